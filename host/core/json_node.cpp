@@ -1,0 +1,165 @@
+#include "core/json_node.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "core/error.h"
+
+namespace kasha {
+
+JsonNode::JsonNode(std::shared_ptr<const nlohmann::json> root, const nlohmann::json* json,
+                   std::string file, std::filesystem::path base_dir, std::string path)
+    : root_(std::move(root)),
+      json_(json),
+      file_(std::move(file)),
+      base_dir_(std::move(base_dir)),
+      path_(std::move(path)),
+      read_keys_(std::make_shared<std::set<std::string>>()) {}
+
+JsonNode JsonNode::load_file(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw Error(file.string() + ": cannot open file");
+  std::stringstream text;
+  text << in.rdbuf();
+  nlohmann::json document;
+  try {
+    document = nlohmann::json::parse(text.str());
+  } catch (const nlohmann::json::parse_error& e) {
+    // nlohmann's message reads "[json.exception.parse_error.101] parse error at line L, column C: ..."
+    std::string what = e.what();
+    size_t at = what.find("parse error");
+    throw Error(file.string() + ": malformed JSON: " + (at == std::string::npos ? what : what.substr(at)));
+  }
+  auto root = std::make_shared<const nlohmann::json>(std::move(document));
+  std::filesystem::path base = file.parent_path();
+  return JsonNode(root, root.get(), file.string(), base.empty() ? "." : base, "");
+}
+
+JsonNode JsonNode::from_json(nlohmann::json document, const std::string& file) {
+  auto root = std::make_shared<const nlohmann::json>(std::move(document));
+  std::filesystem::path base = std::filesystem::path(file).parent_path();
+  return JsonNode(root, root.get(), file, base.empty() ? "." : base, "");
+}
+
+void JsonNode::fail(const std::string& why) const { throw Error(file_ + ": " + path() + ": " + why); }
+
+std::string JsonNode::type_name() const {
+  switch (json_->type()) {
+    case nlohmann::json::value_t::null: return "null";
+    case nlohmann::json::value_t::object: return "an object";
+    case nlohmann::json::value_t::array: return "an array";
+    case nlohmann::json::value_t::string: return "a string";
+    case nlohmann::json::value_t::boolean: return "a boolean";
+    default: return "a number";
+  }
+}
+
+void JsonNode::expect_object() const {
+  if (!json_->is_object()) fail("expected an object, got " + type_name());
+}
+
+bool JsonNode::has(const std::string& key) const {
+  expect_object();
+  return json_->contains(key);
+}
+
+// JSON Pointer escaping (RFC 6901) keeps paths unambiguous for keys holding '/' or '~'.
+static std::string escape_pointer(const std::string& key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~') out += "~0";
+    else if (c == '/') out += "~1";
+    else out += c;
+  }
+  return out;
+}
+
+std::optional<JsonNode> JsonNode::find(const std::string& key) const {
+  expect_object();
+  auto it = json_->find(key);
+  if (it == json_->end()) return std::nullopt;
+  read_keys_->insert(key);
+  return JsonNode(root_, &*it, file_, base_dir_, path_ + "/" + escape_pointer(key));
+}
+
+JsonNode JsonNode::at(const std::string& key) const {
+  auto node = find(key);
+  if (!node) fail("missing required key \"" + key + "\"");
+  return *node;
+}
+
+std::vector<std::string> JsonNode::keys() const {
+  expect_object();
+  std::vector<std::string> out;
+  for (auto it = json_->begin(); it != json_->end(); ++it) {
+    out.push_back(it.key());
+    read_keys_->insert(it.key());
+  }
+  return out;
+}
+
+size_t JsonNode::size() const {
+  if (!json_->is_array()) fail("expected an array, got " + type_name());
+  return json_->size();
+}
+
+JsonNode JsonNode::operator[](size_t index) const {
+  if (index >= size()) fail("index " + std::to_string(index) + " out of range");
+  return JsonNode(root_, &(*json_)[index], file_, base_dir_, path_ + "/" + std::to_string(index));
+}
+
+double JsonNode::number() const {
+  if (!json_->is_number()) fail("expected a number, got " + type_name());
+  double v = json_->get<double>();
+  if (!std::isfinite(v)) fail("number is not finite");
+  return v;
+}
+
+double JsonNode::number_in(double lo, double hi) const {
+  double v = number();
+  if (v < lo || v > hi) {
+    std::ostringstream msg;
+    msg << "value " << v << " is outside [" << lo << ", " << hi << "]";
+    fail(msg.str());
+  }
+  return v;
+}
+
+int JsonNode::integer_in(int lo, int hi) const {
+  double v = number();
+  if (v != std::floor(v)) fail("expected an integer, got " + json_->dump());
+  if (v < lo || v > hi)
+    fail("value " + json_->dump() + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return static_cast<int>(v);
+}
+
+std::string JsonNode::string() const {
+  if (!json_->is_string()) fail("expected a string, got " + type_name());
+  return json_->get<std::string>();
+}
+
+bool JsonNode::boolean() const {
+  if (!json_->is_boolean()) fail("expected true or false, got " + type_name());
+  return json_->get<bool>();
+}
+
+std::vector<double> JsonNode::numbers() const {
+  std::vector<double> out(size());
+  for (size_t i = 0; i < out.size(); ++i) out[i] = (*this)[i].number();
+  return out;
+}
+
+std::array<double, 3> JsonNode::vec3() const {
+  if (size() != 3) fail("expected an array of 3 numbers, got " + std::to_string(size()) + " elements");
+  return {(*this)[0].number(), (*this)[1].number(), (*this)[2].number()};
+}
+
+void JsonNode::finish() const {
+  expect_object();
+  for (auto it = json_->begin(); it != json_->end(); ++it)
+    if (!read_keys_->count(it.key()))
+      throw Error(file_ + ": " + path_ + "/" + escape_pointer(it.key()) + ": unknown key");
+}
+
+}  // namespace kasha

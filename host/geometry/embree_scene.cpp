@@ -1,0 +1,84 @@
+#include "geometry/embree_scene.h"
+
+#include <algorithm>
+#include <thread>
+
+#include "core/error.h"
+#include "geometry/embree_device.h"
+
+namespace kasha {
+
+EmbreeScene::EmbreeScene(const std::vector<KTriangle>& triangles) {
+  RTCDevice device = embree_device();
+  scene_ = rtcNewScene(device);
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                                        3 * sizeof(float), 3 * triangles.size()));
+  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                                             3 * sizeof(unsigned), triangles.size()));
+  if (!v || !idx) throw Error("Embree: cannot allocate geometry buffers");
+  for (size_t i = 0; i < triangles.size(); ++i) {
+    const KTriangle& t = triangles[i];
+    std::copy(t.v0, t.v0 + 3, v + 9 * i);
+    std::copy(t.v1, t.v1 + 3, v + 9 * i + 3);
+    std::copy(t.v2, t.v2 + 3, v + 9 * i + 6);
+    idx[3 * i] = 3 * i, idx[3 * i + 1] = 3 * i + 1, idx[3 * i + 2] = 3 * i + 2;
+  }
+  rtcCommitGeometry(geom);
+  rtcAttachGeometry(scene_, geom);
+  rtcReleaseGeometry(geom);
+  rtcCommitScene(scene_);
+}
+
+EmbreeScene::~EmbreeScene() { rtcReleaseScene(scene_); }
+
+KHit EmbreeScene::intersect(const KRay& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRayHit rh{};
+  rh.ray.org_x = ray.org[0], rh.ray.org_y = ray.org[1], rh.ray.org_z = ray.org[2];
+  rh.ray.dir_x = ray.dir[0], rh.ray.dir_y = ray.dir[1], rh.ray.dir_z = ray.dir[2];
+  rh.ray.tnear = ray.tmin;
+  rh.ray.tfar = ray.tmax;
+  rh.ray.mask = 0xFFFFFFFFu;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene_, &context, &rh);
+  KHit hit{ray.tmax, -1, 0, 0};
+  if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
+    hit.t = rh.ray.tfar;
+    hit.prim = static_cast<int>(rh.hit.primID);
+    hit.u = rh.hit.u;
+    hit.v = rh.hit.v;
+  }
+  return hit;
+}
+
+bool EmbreeScene::occluded(const KRay& ray) const {
+  RTCIntersectContext context;
+  rtcInitIntersectContext(&context);
+  RTCRay r{};
+  r.org_x = ray.org[0], r.org_y = ray.org[1], r.org_z = ray.org[2];
+  r.dir_x = ray.dir[0], r.dir_y = ray.dir[1], r.dir_z = ray.dir[2];
+  r.tnear = ray.tmin;
+  r.tfar = ray.tmax;
+  r.mask = 0xFFFFFFFFu;
+  rtcOccluded1(scene_, &context, &r);
+  return r.tfar < 0;  // Embree sets tfar = -inf on a hit
+}
+
+void EmbreeScene::intersect_all(const std::vector<KRay>& rays, std::vector<KHit>& hits) const {
+  hits.resize(rays.size());
+  unsigned n = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> threads;
+  size_t chunk = (rays.size() + n - 1) / n;
+  for (unsigned t = 0; t < n; ++t)
+    threads.emplace_back([&, t] {
+      size_t end = std::min(rays.size(), (t + 1) * chunk);
+      for (size_t i = t * chunk; i < end; ++i) hits[i] = intersect(rays[i]);
+    });
+  for (auto& th : threads) th.join();
+}
+
+}  // namespace kasha

@@ -1,0 +1,28 @@
+#pragma once
+// Embree's own intersector over the same triangles: the host reference the OpenCL traversal is
+// tested against, and the yard-stick the traversal benchmark compares with.
+#include <embree3/rtcore.h>
+
+#include <vector>
+
+#include "shared_types.h"
+
+namespace kasha {
+
+class EmbreeScene {
+ public:
+  explicit EmbreeScene(const std::vector<KTriangle>& triangles);  // scene order: primID = index
+  ~EmbreeScene();
+  EmbreeScene(const EmbreeScene&) = delete;
+  EmbreeScene& operator=(const EmbreeScene&) = delete;
+
+  KHit intersect(const KRay& ray) const;
+  bool occluded(const KRay& ray) const;
+  // All rays, spread over the host's hardware threads.
+  void intersect_all(const std::vector<KRay>& rays, std::vector<KHit>& hits) const;
+
+ private:
+  RTCScene scene_ = nullptr;
+};
+
+}  // namespace kasha

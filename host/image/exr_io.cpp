@@ -1,0 +1,127 @@
+#include "image/exr_io.h"
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "color/color_space.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace kasha {
+
+std::string spectral_channel_name(double nm) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.6f", nm);
+  std::string s = text;
+  std::replace(s.begin(), s.end(), '.', ',');
+  return "S0." + s + "nm";
+}
+
+void write_exr(const std::string& path, const Image& image) {
+  const size_t n = image.pixels();
+  std::vector<float> rgb(3 * n);
+  for (size_t p = 0; p < n; ++p) {
+    Vec3d c = xyz_to_linear_srgb({image.xyz[3 * p], image.xyz[3 * p + 1], image.xyz[3 * p + 2]});
+    for (int k = 0; k < 3; ++k) rgb[3 * p + k] = static_cast<float>(c[k]);
+  }
+  write_atomically(path, [&](const std::string& tmp) {
+    Imf::Header header(image.width, image.height);
+    header.compression() = Imf::ZIP_COMPRESSION;
+    Imf::FrameBuffer fb;
+    auto add = [&](const std::string& name, const float* base, size_t stride_floats) {
+      header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+      fb.insert(name, Imf::Slice(Imf::FLOAT, (char*)base, sizeof(float) * stride_floats,
+                                 sizeof(float) * stride_floats * image.width));
+    };
+    const char* rgb_names[3] = {"R", "G", "B"};
+    const char* xyz_names[3] = {"XYZ.X", "XYZ.Y", "XYZ.Z"};
+    for (int k = 0; k < 3; ++k) add(rgb_names[k], rgb.data() + k, 3);
+    for (int k = 0; k < 3; ++k) add(xyz_names[k], image.xyz.data() + k, 3);
+    if (image.has_spectral()) {
+      header.insert("spectralLayoutVersion", Imf::StringAttribute("1.0"));
+      header.insert("emissiveUnits", Imf::StringAttribute("W.m^-2.sr^-1"));
+      for (int i = 0; i < image.grid.bins; ++i)
+        add(spectral_channel_name(image.grid.center(i)), image.spectral.data() + i, image.grid.bins);
+    }
+    Imf::OutputFile file(tmp.c_str(), header);
+    file.setFrameBuffer(fb);
+    file.writePixels(image.height);
+  });
+}
+
+Image read_exr(const std::string& path) {
+  try {
+    Imf::InputFile file(path.c_str());
+    const Imath::Box2i dw = file.header().dataWindow();
+    Image img;
+    img.width = dw.max.x - dw.min.x + 1;
+    img.height = dw.max.y - dw.min.y + 1;
+    const size_t n = img.pixels();
+    const Imf::ChannelList& channels = file.header().channels();
+
+    std::map<double, std::string> bins;  // wavelength -> channel name
+    for (auto it = channels.begin(); it != channels.end(); ++it) {
+      std::string name = it.name();
+      if (name.rfind("S0.", 0) == 0 && name.size() > 5 && name.substr(name.size() - 2) == "nm") {
+        std::string value = name.substr(3, name.size() - 5);
+        std::replace(value.begin(), value.end(), ',', '.');
+        bins[std::stod(value)] = name;
+      }
+    }
+    bool has_xyz = channels.findChannel("XYZ.X") && channels.findChannel("XYZ.Y") && channels.findChannel("XYZ.Z");
+    bool has_rgb = channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
+    if (!has_xyz && !has_rgb) throw Error(path + ": EXR has neither an XYZ layer nor R, G, B channels");
+
+    std::vector<float> three(3 * n, 0.0f);
+    Imf::FrameBuffer fb;
+    char* origin = (char*)three.data() - (dw.min.x + dw.min.y * (size_t)img.width) * 3 * sizeof(float);
+    const char* xyz_names[3] = {"XYZ.X", "XYZ.Y", "XYZ.Z"};
+    const char* rgb_names[3] = {"R", "G", "B"};
+    for (int k = 0; k < 3; ++k)
+      fb.insert(has_xyz ? xyz_names[k] : rgb_names[k],
+                Imf::Slice(Imf::FLOAT, origin + k * sizeof(float), 3 * sizeof(float), 3 * sizeof(float) * img.width));
+    if (!bins.empty()) {
+      std::vector<double> wl;
+      for (const auto& [nm, name] : bins) wl.push_back(nm);
+      img.grid.bins = static_cast<int>(wl.size());
+      img.grid.bin_nm = wl.size() > 1 ? (wl.back() - wl.front()) / (wl.size() - 1) : 10.0;
+      img.grid.min_nm = wl.front() - 0.5 * img.grid.bin_nm;
+      img.spectral.assign(n * wl.size(), 0.0f);
+      size_t stride = wl.size();
+      char* sorigin = (char*)img.spectral.data() - (dw.min.x + dw.min.y * (size_t)img.width) * stride * sizeof(float);
+      int i = 0;
+      for (const auto& [nm, name] : bins) {
+        fb.insert(name, Imf::Slice(Imf::FLOAT, sorigin + i * sizeof(float), stride * sizeof(float),
+                                   stride * sizeof(float) * img.width));
+        ++i;
+      }
+    }
+    file.setFrameBuffer(fb);
+    file.readPixels(dw.min.y, dw.max.y);
+    if (has_xyz) {
+      img.xyz = std::move(three);
+    } else {
+      img.xyz.resize(3 * n);
+      for (size_t p = 0; p < n; ++p) {
+        Vec3d c = linear_srgb_to_xyz({three[3 * p], three[3 * p + 1], three[3 * p + 2]});
+        for (int k = 0; k < 3; ++k) img.xyz[3 * p + k] = static_cast<float>(c[k]);
+      }
+    }
+    return img;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(path + ": cannot read EXR: " + e.what());
+  }
+}
+
+}  // namespace kasha

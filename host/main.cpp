@@ -1,0 +1,162 @@
+// kasha: the command line of DESIGN §5.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+
+#include "core/error.h"
+#include "film/film.h"
+#include "image/exr_io.h"
+#include "image/png_preview.h"
+#include "opencl/device.h"
+#include "render/debug_integrator.h"
+#include "render/device_scene.h"
+#include "render/progressive_render.h"
+#include "scene/scene.h"
+
+using namespace kasha;
+
+namespace {
+
+int run_devices() {
+  for (const DeviceInfo& d : list_devices()) {
+    std::printf("%d: %s — %s [%s, %s, %u compute units, %.1f GiB]\n", d.index, d.platform.c_str(), d.name.c_str(),
+                d.type.c_str(), d.version.c_str(), d.compute_units, d.global_mem_bytes / 1073741824.0);
+  }
+  return 0;
+}
+
+std::string bytes_text(double b) {
+  char t[64];
+  if (b >= 1 << 30) std::snprintf(t, sizeof t, "%.2f GiB", b / (1 << 30));
+  else if (b >= 1 << 20) std::snprintf(t, sizeof t, "%.2f MiB", b / (1 << 20));
+  else if (b >= 1 << 10) std::snprintf(t, sizeof t, "%.1f KiB", b / (1 << 10));
+  else std::snprintf(t, sizeof t, "%.0f B", b);
+  return t;
+}
+
+int run_info(const std::string& scene_path, bool spectral) {
+  Scene scene = load_scene(scene_path);
+  KernelSceneData data(scene);
+  int emitting_triangles = 0;
+  for (const Emitter& e : scene.emitters) emitting_triangles += e.triangle_count;
+  std::printf("scene: %s\n", scene_path.c_str());
+  std::printf("wavelengths: %s\n", scene.grid.describe().c_str());
+  std::printf("features: fluorescence %s, gloss %s\n", scene.fluorescent() ? "yes" : "no", scene.glossy() ? "yes" : "no");
+  std::printf("materials: %zu; shapes: %d; triangles: %zu; emitters: %zu (%d triangles)\n", scene.materials.size(),
+              scene.shape_count, scene.triangles.size(), scene.emitters.size(), emitting_triangles);
+  std::printf("bvh: %zu nodes, depth %d (Embree SAH)\n", data.bvh.nodes.size(), data.bvh.depth);
+  std::printf("camera: %dx%d, fov %g deg\n", scene.camera.width, scene.camera.height, scene.camera.fov_deg);
+  std::printf("kernel build options: %s\n", build_options(scene_defines(scene, spectral)).c_str());
+  size_t pixels = static_cast<size_t>(scene.camera.width) * scene.camera.height;
+  size_t rows = spectral ? scene.grid.bins : 3;
+  std::printf("memory: scene %s (bvh %s, triangles %s, materials and spectra %s); film %s on the device, %s on the host\n",
+              bytes_text(data.bytes()).c_str(), bytes_text(data.bvh.nodes.size() * sizeof(KBvhNode)).c_str(),
+              bytes_text(data.bvh.triangles.size() * sizeof(KTriangle)).c_str(),
+              bytes_text(data.materials.size() * sizeof(KMaterial) +
+                         (data.spectra.size() + data.emitter_radiance.size()) * sizeof(float))
+                  .c_str(),
+              bytes_text(pixels * rows * sizeof(float)).c_str(), bytes_text(pixels * rows * sizeof(double)).c_str());
+  return 0;
+}
+
+struct RenderArgs {
+  std::string scene, output, png, integrator = "debug", view = "emission", reference, log;
+  double seconds = 0;
+  int passes = 0, spp = 16, device = 0;
+  long long photons = 1 << 20;
+  unsigned seed = 1;
+  bool spectral = false;
+};
+
+void check_writable(const std::string& path, const std::string& option) {
+  if (path.empty()) return;
+  std::filesystem::path dir = std::filesystem::path(path).parent_path();
+  if (!dir.empty() && !std::filesystem::is_directory(dir))
+    throw Error(option + " " + path + ": directory " + dir.string() + " does not exist");
+}
+
+int run_render(const RenderArgs& a) {
+  check_writable(a.output, "-o");
+  check_writable(a.png, "--png");
+  check_writable(a.log, "--log");
+  if (a.passes <= 0 && a.seconds <= 0) throw Error("render: give --time SECONDS or --passes N");
+  Scene scene = load_scene(a.scene);
+  RenderOptions options;
+  options.stop = {a.seconds, a.passes};
+  options.log_path = a.log;
+  if (!a.reference.empty()) {
+    if (a.reference == "furnace")
+      throw Error("--reference furnace: the analytic furnace reference comes with the physical integrators; "
+                  "the debug integrator renders only first-hit views");
+    options.reference = read_exr(a.reference);
+  }
+  ClContext cl(a.device);
+  DeviceScene device_scene(cl, scene);
+  Film film(scene.camera.width, scene.camera.height, scene.grid, a.spectral);
+  DebugIntegrator integrator(cl, scene, device_scene, film, parse_debug_view(a.view), a.spp, a.seed);
+  RenderSummary summary = render_progressive(integrator, film, options);
+  Image image = film.image();
+  write_exr(a.output, image);
+  if (!a.png.empty()) write_png_preview(a.png, image);
+  std::fprintf(stderr, "wrote %s%s%s: %d passes, %lld samples per pixel, %.2f s on %s\n", a.output.c_str(),
+               a.png.empty() ? "" : " and ", a.png.c_str(), summary.passes, film.samples_per_pixel(), summary.seconds,
+               cl.info().name.c_str());
+  return summary.interrupted ? 130 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"kasha: a spectral renderer for fluorescent materials"};
+  app.require_subcommand(1);
+
+  app.add_subcommand("devices", "list OpenCL platforms and devices");
+
+  std::string info_scene;
+  bool info_spectral = false;
+  CLI::App* info = app.add_subcommand("info", "what a scene needs: bins, features, memory, kernel build options");
+  info->add_option("scene", info_scene, "scene JSON file")->required();
+  info->add_flag("--spectral", info_spectral, "report for a spectral film");
+
+  RenderArgs r;
+  CLI::App* render = app.add_subcommand("render", "render a scene to an EXR");
+  render->add_option("scene", r.scene, "scene JSON file")->required();
+  render->add_option("-o,--output", r.output, "output EXR")->required();
+  render->add_option("--integrator", r.integrator, "integrator (debug: first-hit views)")
+      ->check(CLI::IsMember({"debug"}));
+  render->add_option("--view", r.view, "debug view: emission, normals or albedo")
+      ->check(CLI::IsMember({"emission", "normals", "albedo"}));
+  render->add_option("--time", r.seconds, "stop after this many seconds")->check(CLI::PositiveNumber);
+  render->add_option("--passes", r.passes, "stop after this many passes")->check(CLI::PositiveNumber);
+  render->add_option("--spp", r.spp, "camera samples per pixel per pass")->check(CLI::Range(1, 1 << 20));
+  render->add_option("--photons", r.photons, "photons per pass")->check(CLI::PositiveNumber);
+  render->add_option("--seed", r.seed, "random seed");
+  render->add_option("--device", r.device, "OpenCL device index (see `kasha devices`)")->check(CLI::NonNegativeNumber);
+  render->add_option("--png", r.png, "also write a tone-mapped sRGB PNG preview");
+  render->add_flag("--spectral", r.spectral, "add one channel per wavelength bin to the EXR");
+  render->add_option("--reference", r.reference, "reference EXR for the convergence log's error columns");
+  render->add_option("--log", r.log, "convergence log CSV, a row after every pass");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    if (app.got_subcommand("devices")) return run_devices();
+    if (app.got_subcommand("info")) return run_info(info_scene, info_spectral);
+    if (app.got_subcommand("render")) return run_render(r);
+  } catch (const Error& e) {
+    std::fprintf(stderr, "kasha: error: %s\n", e.what());
+    return 1;
+  } catch (const cl::Error& e) {
+    std::fprintf(stderr, "kasha: error: OpenCL: %s\n", cl_error_text(e).c_str());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "kasha: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

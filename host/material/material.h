@@ -1,0 +1,53 @@
+#pragma once
+// The surface model of DESIGN §1: white gloss lobe + coloured Lambert passive part + Lambert
+// fluorescent part e(λo)·a(λi)/π. MaterialDesc is the continuous description as read;
+// Material is the same on a wavelength grid, checked for energy conservation.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/json_node.h"
+#include "spectrum/spectrum.h"
+#include "spectrum/wavelength_grid.h"
+
+namespace kasha {
+
+struct GlossDesc {
+  double reflectance = 0;  // g, white
+  double cone_deg = 10;    // the lobe is zero outside this cone around the mirror direction
+  bool mirror = false;     // ideal mirror (delta lobe)
+  // p as a function of the angle from the mirror direction; empty for a uniform cone.
+  std::vector<double> profile_deg, profile_value;
+};
+
+struct MaterialDesc {
+  std::string name;
+  std::string where;  // "file: /json/path", for messages
+  SpectrumPtr passive;     // ρ(λ)
+  SpectrumPtr excitation;  // a(λ)
+  SpectrumPtr emission;    // e(λ), any scale: normalized on the grid
+  std::optional<GlossDesc> gloss;
+
+  bool fluorescent() const { return excitation != nullptr; }
+};
+
+struct Material {
+  std::string name;
+  std::vector<double> rho;    // empty without a passive part
+  std::vector<double> a;      // empty without fluorescence
+  std::vector<double> e_hat;  // e·Δλ, sums to 1; empty without fluorescence
+  std::optional<GlossDesc> gloss;
+
+  bool fluorescent() const { return !a.empty(); }
+  double gloss_reflectance() const { return gloss ? gloss->reflectance : 0.0; }
+};
+
+// A material object (inline in a scene, or the root of a material file).
+MaterialDesc parse_material(const JsonNode& node, const std::string& name);
+// A material file written by `kasha measure` or by hand: {"kasha_material": 1, ...}.
+MaterialDesc load_material_file(const std::string& path, const std::string& name);
+// Resamples to the grid, normalizes the emission and checks g + ρ + a <= 1 in every bin; the
+// error names the material and the wavelength.
+Material discretize_material(const MaterialDesc& desc, const WavelengthGrid& grid);
+
+}  // namespace kasha

@@ -1,0 +1,3 @@
+#pragma once
+// The Khronos C++ bindings, configured once (version macros and exceptions come from CMake).
+#include <CL/opencl.hpp>

@@ -1,0 +1,74 @@
+#include "opencl/kernel_program.h"
+
+#include <regex>
+#include <set>
+#include <sstream>
+
+#include "core/embedded_file.h"
+#include "core/error.h"
+
+namespace kasha {
+
+std::string build_options(const KernelDefines& defines) {
+  std::string out;
+  for (const auto& [name, value] : defines) out += (out.empty() ? "" : " ") + std::string("-D ") + name + "=" + value;
+  return out;
+}
+
+static void inline_file(const std::string& name, std::set<std::string>& seen, std::ostringstream& out) {
+  if (!seen.insert(name).second) return;
+  static const std::regex include_line(R"(^\s*#\s*include\s+"([^"]+)\"\s*$)");
+  std::istringstream in(embedded_kernel(name));
+  std::string line;
+  int line_no = 0;
+  out << "#line 1 \"" << name << "\"\n";
+  while (std::getline(in, line)) {
+    ++line_no;
+    std::smatch m;
+    if (std::regex_match(line, m, include_line)) {
+      inline_file(m[1], seen, out);
+      out << "#line " << line_no + 1 << " \"" << name << "\"\n";
+    } else {
+      out << line << "\n";
+    }
+  }
+}
+
+std::string assemble_kernel_source(const std::string& main_file) {
+  std::set<std::string> seen;
+  std::ostringstream out;
+  inline_file(main_file, seen, out);
+  return out.str();
+}
+
+cl::Program build_program(ClContext& cl, const std::string& source, const KernelDefines& defines,
+                          const std::string& what) {
+  std::string options = build_options(defines);
+  cl::Program program;
+  try {
+    program = cl::Program(cl.context(), source);
+  } catch (const cl::Error& e) {
+    throw Error("OpenCL: cannot create program " + what + ": " + cl_error_text(e));
+  }
+  cl_int status = CL_SUCCESS;
+  try {
+    status = program.build({cl.device()}, options.c_str());
+  } catch (const cl::BuildError& e) {
+    status = e.err();
+  } catch (const cl::Error& e) {
+    status = e.err();
+  }
+  if (status != CL_SUCCESS) {
+    std::string log;
+    try {
+      log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(cl.device());
+    } catch (const cl::Error&) {
+      log = "(no build log)";
+    }
+    throw Error("OpenCL kernel build failed for " + what + " on " + cl.info().name + " (error " +
+                std::to_string(status) + ", options: " + options + "); build log:\n" + log);
+  }
+  return program;
+}
+
+}  // namespace kasha

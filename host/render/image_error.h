@@ -1,0 +1,15 @@
+#pragma once
+// Error of an image against a reference, as the convergence log reports it (DESIGN §5): RMSE over
+// all pixels and X, Y, Z; relMSE = mean of (x − r)² / (r² + 0.01).
+#include "film/image.h"
+
+namespace kasha {
+
+struct ImageError {
+  double rmse = 0, relmse = 0;
+};
+
+// Throws kasha::Error when the sizes differ.
+ImageError image_error(const Image& image, const Image& reference);
+
+}  // namespace kasha

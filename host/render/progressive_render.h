@@ -1,0 +1,35 @@
+#pragma once
+// The progressive loop every integrator runs under: passes until --time or --passes, progress on
+// the terminal (passes, elapsed, estimated remaining), an optional convergence log row after each
+// pass, and Ctrl-C ending the loop after the pass in flight so the image so far is written.
+#include <optional>
+#include <string>
+
+#include "film/film.h"
+#include "film/image.h"
+#include "render/integrator.h"
+
+namespace kasha {
+
+struct StopCondition {
+  double seconds = 0;  // > 0: stop once this much time has passed
+  int passes = 0;      // > 0: stop after this many passes
+};
+
+struct RenderOptions {
+  StopCondition stop;
+  std::string log_path;              // convergence log CSV, or empty
+  std::optional<Image> reference;    // for the log's error columns
+  bool show_progress = true;
+};
+
+struct RenderSummary {
+  int passes = 0;
+  double seconds = 0;
+  bool interrupted = false;
+};
+
+// Installs the SIGINT handler for the duration of a render.
+RenderSummary render_progressive(Integrator& integrator, Film& film, const RenderOptions& options);
+
+}  // namespace kasha

@@ -1,0 +1,47 @@
+#include "scene/camera.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+
+namespace kasha {
+
+static Eigen::Vector3d vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+
+static void put(float out[3], const Eigen::Vector3d& v) {
+  for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(v[k]);
+}
+
+Camera parse_camera(const JsonNode& node) {
+  Camera c;
+  c.position = node.at("position").vec3();
+  c.look_at = node.at("look_at").vec3();
+  if (auto up = node.find("up")) c.up = up->vec3();
+  if (auto fov = node.find("fov_deg")) c.fov_deg = fov->number_in(1e-3, 179.0);
+  if (auto w = node.find("width")) c.width = w->integer_in(1, 16384);
+  if (auto h = node.find("height")) c.height = h->integer_in(1, 16384);
+  node.finish();
+  Eigen::Vector3d forward = vec(c.look_at) - vec(c.position);
+  if (forward.norm() == 0) node.fail("\"position\" and \"look_at\" are the same point");
+  if (forward.normalized().cross(vec(c.up)).norm() < 1e-9) node.fail("\"up\" is parallel to the view direction");
+  return c;
+}
+
+KCamera Camera::to_kernel() const {
+  Eigen::Vector3d forward = (vec(look_at) - vec(position)).normalized();
+  Eigen::Vector3d right = forward.cross(vec(up)).normalized();
+  Eigen::Vector3d true_up = right.cross(forward);
+  double t = std::tan(fov_deg * M_PI / 360.0);
+  // The shorter side spans the field of view.
+  double sx = width >= height ? t * width / height : t;
+  double sy = width >= height ? t : t * height / width;
+  KCamera k{};
+  put(k.position, vec(position));
+  put(k.forward, forward);
+  put(k.right, right * sx);
+  put(k.up, true_up * sy);
+  k.width = width;
+  k.height = height;
+  return k;
+}
+
+}  // namespace kasha

@@ -1,0 +1,21 @@
+#pragma once
+// Pinhole camera of DESIGN §5: fov_deg spans the shorter image side, row 0 is the top, the image's
+// right is forward × up.
+#include <array>
+
+#include "core/json_node.h"
+#include "shared_types.h"
+
+namespace kasha {
+
+struct Camera {
+  std::array<double, 3> position{0, 0, 0}, look_at{0, 0, 1}, up{0, 1, 0};
+  double fov_deg = 40;
+  int width = 256, height = 256;
+
+  KCamera to_kernel() const;
+};
+
+Camera parse_camera(const JsonNode& node);
+
+}  // namespace kasha

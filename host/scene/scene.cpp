@@ -1,0 +1,161 @@
+#include "scene/scene.h"
+
+#include <algorithm>
+#include <filesystem>
+
+#include "core/error.h"
+#include "scene/shape_mesh.h"
+#include "scene/transform.h"
+#include "spectrum/spectrum_parser.h"
+
+namespace kasha {
+
+bool Scene::fluorescent() const {
+  for (const Material& m : materials)
+    if (m.fluorescent()) return true;
+  return false;
+}
+
+bool Scene::glossy() const {
+  for (const Material& m : materials)
+    if (m.gloss) return true;
+  return false;
+}
+
+int Scene::material_index(const std::string& name) const {
+  for (size_t i = 0; i < material_descs.size(); ++i)
+    if (material_descs[i].name == name) return static_cast<int>(i);
+  return -1;
+}
+
+static Eigen::Vector3d vec(const JsonNode& n) {
+  auto a = n.vec3();
+  return {a[0], a[1], a[2]};
+}
+
+static std::filesystem::path relative_to(const JsonNode& node, const std::string& file) {
+  std::filesystem::path p(file);
+  return p.is_relative() ? node.base_dir() / p : p;
+}
+
+static GridRequest parse_grid_request(const JsonNode& node) {
+  GridRequest r;
+  if (auto lo = node.find("min_nm")) r.min_nm = lo->number_in(1.0, 1e5);
+  if (auto hi = node.find("max_nm")) r.max_nm = hi->number_in(1.0, 1e5);
+  if (auto bin = node.find("bin_nm")) r.bin_nm = bin->number_in(0.1, 1000.0);
+  node.finish();
+  double lo = r.min_nm >= 0 ? r.min_nm : kVisibleMinNm, hi = r.max_nm >= 0 ? r.max_nm : kVisibleMaxNm;
+  if (!(lo < hi)) node.fail("min_nm must be below max_nm");
+  if ((hi - lo) / r.bin_nm > 4096) node.fail("more than 4096 bins");
+  return r;
+}
+
+// Triangles of one shape, in world space, front sides as the shape asks.
+static std::vector<Triangle> shape_triangles(const JsonNode& shape, const std::string& type) {
+  std::vector<Triangle> tris;
+  if (type == "obj") {
+    std::filesystem::path file = relative_to(shape, shape.at("file").string());
+    tris = obj_triangles(file.string());
+  } else if (type == "quad") {
+    Eigen::Vector3d u = vec(shape.at("u")), v = vec(shape.at("v"));
+    if (u.cross(v).norm() == 0) shape.fail("quad edges \"u\" and \"v\" are parallel or zero");
+    tris = quad_triangles(vec(shape.at("corner")), u, v);
+  } else if (type == "box") {
+    Eigen::Vector3d lo = vec(shape.at("min")), hi = vec(shape.at("max"));
+    if (!(lo.array() < hi.array()).all()) shape.fail("box \"min\" must be below \"max\" on every axis");
+    tris = box_triangles(lo, hi);
+  } else if (type == "sphere") {
+    double r = shape.at("radius").number();
+    if (!(r > 0)) shape.fail("sphere radius must be positive");
+    int segments = 64;
+    if (auto s = shape.find("segments")) segments = s->integer_in(3, 4096);
+    tris = sphere_triangles(vec(shape.at("center")), r, segments);
+  } else {
+    shape.at("type").fail("unknown shape type \"" + type + "\" (obj, quad, box, sphere)");
+  }
+  if (auto t = shape.find("transform")) transform_triangles(tris, parse_transform(*t));
+  if (auto inward = shape.find("inward")) {
+    if (type == "quad" || type == "obj") inward->fail("\"inward\" applies to closed shapes (box, sphere)");
+    if (inward->boolean()) flip_triangles(tris);
+  }
+  return tris;
+}
+
+Scene load_scene(const std::string& path) {
+  JsonNode root = JsonNode::load_file(path);
+  if (!root.is_object()) root.fail("expected a scene object");
+  Scene scene;
+  scene.file = path;
+  if (root.at("kasha_scene").integer_in(0, 1000) != 1) root.at("kasha_scene").fail("unsupported scene version");
+
+  GridRequest request;
+  if (auto w = root.find("wavelengths")) request = parse_grid_request(*w);
+  scene.camera = parse_camera(root.at("camera"));
+
+  JsonNode materials = root.at("materials");
+  for (const std::string& name : materials.keys()) {
+    JsonNode m = materials.at(name);
+    if (!m.is_object()) m.fail("expected a material object or {\"file\": ...}");
+    if (auto file = m.find("file")) {
+      std::filesystem::path p = relative_to(m, file->string());
+      m.finish();
+      scene.material_descs.push_back(load_material_file(p.string(), name));
+    } else {
+      scene.material_descs.push_back(parse_material(m, name));
+    }
+  }
+
+  JsonNode shapes = root.at("shapes");
+  std::vector<bool> material_used(scene.material_descs.size(), false);
+  for (size_t s = 0; s < shapes.size(); ++s) {
+    JsonNode shape = shapes[s];
+    if (!shape.is_object()) shape.fail("expected a shape object");
+    std::string type = shape.at("type").string();
+    std::string material_name = shape.at("material").string();
+    int material = scene.material_index(material_name);
+    if (material < 0) shape.at("material").fail("no material named \"" + material_name + "\"");
+    material_used[material] = true;
+    std::vector<Triangle> tris = shape_triangles(shape, type);
+
+    int emitter = -1;
+    if (auto emission = shape.find("emission")) {
+      Emitter e;
+      e.where = emission->file() + ": " + emission->path();
+      e.radiance = parse_spectrum(*emission);
+      e.first_triangle = static_cast<int>(scene.triangles.size());
+      e.triangle_count = static_cast<int>(tris.size());
+      emitter = static_cast<int>(scene.emitters.size());
+      scene.emitters.push_back(e);
+    }
+    shape.finish();
+    for (const Triangle& t : tris) {
+      KTriangle k{};
+      for (int c = 0; c < 3; ++c) {
+        k.v0[c] = static_cast<float>(t[0][c]);
+        k.v1[c] = static_cast<float>(t[1][c]);
+        k.v2[c] = static_cast<float>(t[2][c]);
+      }
+      k.material = material;
+      k.emitter = emitter;
+      k.prim = static_cast<int>(scene.triangles.size());
+      scene.triangles.push_back(k);
+    }
+    ++scene.shape_count;
+  }
+  root.finish();
+  if (scene.triangles.empty()) root.fail("the scene has no shapes");
+
+  // The grid covers what the emitters and the materials in use need.
+  std::vector<SpectralSupport> emitting, exciting;
+  for (const Emitter& e : scene.emitters) emitting.push_back(e.radiance->support());
+  for (size_t m = 0; m < scene.material_descs.size(); ++m)
+    if (material_used[m] && scene.material_descs[m].excitation)
+      exciting.push_back(scene.material_descs[m].excitation->support());
+  scene.grid = choose_grid(request, emitting, exciting);
+
+  for (const MaterialDesc& d : scene.material_descs) scene.materials.push_back(discretize_material(d, scene.grid));
+  for (Emitter& e : scene.emitters) e.per_bin = scene.grid.resample(*e.radiance);
+  return scene;
+}
+
+}  // namespace kasha

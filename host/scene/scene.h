@@ -1,0 +1,38 @@
+#pragma once
+// A scene as loaded from its JSON file (DESIGN §5): camera, materials on the chosen wavelength
+// grid, and every shape turned into triangles.
+#include <string>
+#include <vector>
+
+#include "material/material.h"
+#include "scene/camera.h"
+#include "shared_types.h"
+#include "spectrum/wavelength_grid.h"
+
+namespace kasha {
+
+struct Emitter {
+  std::string where;              // JSON path of the shape's "emission"
+  SpectrumPtr radiance;           // Lambertian spectral radiance, front side only
+  std::vector<double> per_bin;    // on the scene grid
+  int first_triangle = 0, triangle_count = 0;  // in scene (primitive) order
+};
+
+struct Scene {
+  std::string file;
+  Camera camera;
+  WavelengthGrid grid;
+  std::vector<MaterialDesc> material_descs;
+  std::vector<Material> materials;  // on `grid`, same order as material_descs
+  std::vector<KTriangle> triangles; // scene order: prim == index
+  std::vector<Emitter> emitters;
+  int shape_count = 0;
+
+  bool fluorescent() const;  // some shape's material has a fluorescent part
+  bool glossy() const;       // some shape's material has a gloss lobe
+  int material_index(const std::string& name) const;  // -1 when absent
+};
+
+Scene load_scene(const std::string& path);
+
+}  // namespace kasha

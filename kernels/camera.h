@@ -1,0 +1,21 @@
+/* Primary rays of the pinhole camera (shared_types.h: KCamera). */
+#ifndef KASHA_CAMERA_H
+#define KASHA_CAMERA_H
+
+#include "shared_types.h"
+
+/* Direction through image position (x, y) in pixels, (0, 0) the top-left corner. */
+inline float3 camera_direction(const KCamera* c, float x, float y) {
+  float sx = 2.0f * x / (float)c->width - 1.0f;
+  float sy = 1.0f - 2.0f * y / (float)c->height;
+  float3 d = (float3)(c->forward[0], c->forward[1], c->forward[2]) +
+             sx * (float3)(c->right[0], c->right[1], c->right[2]) +
+             sy * (float3)(c->up[0], c->up[1], c->up[2]);
+  return normalize(d);
+}
+
+inline float3 camera_position(const KCamera* c) {
+  return (float3)(c->position[0], c->position[1], c->position[2]);
+}
+
+#endif
