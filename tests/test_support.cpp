@@ -1,0 +1,50 @@
+#include "test_support.h"
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+namespace kasha::test {
+
+std::filesystem::path scratch_dir() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::filesystem::path dir = std::filesystem::path(KASHA_TEST_TMP) / (std::string(info->test_suite_name()) + "." + info->name());
+  static std::string last;
+  if (last != dir.string()) {
+    std::filesystem::remove_all(dir);
+    last = dir.string();
+  }
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+std::string write_file(const std::string& name, const std::string& text) {
+  std::filesystem::path p = scratch_dir() / name;
+  std::filesystem::create_directories(p.parent_path());
+  std::ofstream(p) << text;
+  return p.string();
+}
+
+std::string source_path(const std::string& relative) { return std::string(KASHA_SOURCE_DIR) + "/" + relative; }
+
+static std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+CommandResult run_kasha(const std::string& args) {
+  std::string out = (scratch_dir() / "stdout.txt").string(), err = (scratch_dir() / "stderr.txt").string();
+  std::string cmd = std::string(KASHA_BINARY) + " " + args + " > '" + out + "' 2> '" + err + "' < /dev/null";
+  int status = std::system(cmd.c_str());
+  CommandResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+}  // namespace kasha::test

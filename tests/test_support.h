@@ -1,0 +1,37 @@
+#pragma once
+// Helpers shared by the tests: scratch files, running the kasha binary, expecting kasha::Error.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "core/error.h"
+
+namespace kasha::test {
+
+// A fresh scratch directory for the calling test.
+std::filesystem::path scratch_dir();
+// Writes `text` to scratch_dir()/name and returns the path.
+std::string write_file(const std::string& name, const std::string& text);
+std::string source_path(const std::string& relative);  // inside the source tree
+
+struct CommandResult {
+  int exit_code = 0;
+  std::string out, err;
+};
+// Runs the kasha binary with `args` (a shell-quoted string).
+CommandResult run_kasha(const std::string& args);
+
+// Runs f and returns the kasha::Error message it throws (fails the test if it throws nothing).
+template <typename F>
+std::string error_of(F&& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected a kasha::Error";
+  return "";
+}
+
+}  // namespace kasha::test
