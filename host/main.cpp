@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "film/film.h"
 #include "image/exr_io.h"
 #include "image/png_preview.h"
@@ -78,6 +79,7 @@ void check_writable(const std::string& path, const std::string& option) {
 }
 
 int run_render(const RenderArgs& a) {
+  install_interrupt_handler();  // from the start, so an early Ctrl-C still gets one pass written
   check_writable(a.output, "-o");
   check_writable(a.png, "--png");
   check_writable(a.log, "--log");

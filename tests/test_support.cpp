@@ -36,9 +36,13 @@ static std::string slurp(const std::string& path) {
   return s.str();
 }
 
-CommandResult run_kasha(const std::string& args) {
+CommandResult run_kasha(const std::string& args) { return run_kasha_env("", args); }
+
+CommandResult run_kasha_env(const std::string& env, const std::string& args, int interrupt_after_s) {
   std::string out = (scratch_dir() / "stdout.txt").string(), err = (scratch_dir() / "stderr.txt").string();
-  std::string cmd = std::string(KASHA_BINARY) + " " + args + " > '" + out + "' 2> '" + err + "' < /dev/null";
+  std::string prefix = env.empty() ? "" : "env " + env + " ";
+  if (interrupt_after_s > 0) prefix += "timeout --preserve-status -s INT " + std::to_string(interrupt_after_s) + " ";
+  std::string cmd = prefix + KASHA_BINARY + " " + args + " > '" + out + "' 2> '" + err + "' < /dev/null";
   int status = std::system(cmd.c_str());
   CommandResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);

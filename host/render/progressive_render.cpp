@@ -1,8 +1,6 @@
 #include "render/progressive_render.h"
 
-#include <atomic>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -10,25 +8,13 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "render/image_error.h"
 
 namespace kasha {
 
-namespace {
-std::atomic<bool> g_interrupted{false};
-extern "C" void on_sigint(int) { g_interrupted = true; }
-
-// Restores the previous SIGINT handler however the render ends.
-struct SigintScope {
-  void (*previous)(int);
-  SigintScope() : previous(std::signal(SIGINT, on_sigint)) { g_interrupted = false; }
-  ~SigintScope() { std::signal(SIGINT, previous); }
-};
-}  // namespace
-
 RenderSummary render_progressive(Integrator& integrator, Film& film, const RenderOptions& options) {
   if (options.stop.seconds <= 0 && options.stop.passes <= 0) throw Error("give --time SECONDS or --passes N");
-  SigintScope sigint;
   std::ostringstream log;
   log << "integrator,pass,seconds,camera_paths,photons,rmse,relmse\n";
   log << std::setprecision(9);
@@ -36,6 +22,7 @@ RenderSummary render_progressive(Integrator& integrator, Film& film, const Rende
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   RenderSummary summary;
+  double shown_at = -1.0;
   for (int pass = 0;; ++pass) {
     integrator.render_pass(pass, film);
     summary.passes = pass + 1;
@@ -56,7 +43,10 @@ RenderSummary render_progressive(Integrator& integrator, Film& film, const Rende
 
     bool done = (options.stop.passes > 0 && summary.passes >= options.stop.passes) ||
                 (options.stop.seconds > 0 && summary.seconds >= options.stop.seconds);
-    if (options.show_progress) {
+    // A progress line at most four times a second, and always at the end.
+    bool last = done || interrupt_requested();
+    if (options.show_progress && (last || summary.seconds - shown_at >= 0.25)) {
+      shown_at = summary.seconds;
       double per_pass = summary.seconds / summary.passes, left = 0;
       if (options.stop.passes > 0) left = per_pass * (options.stop.passes - summary.passes);
       if (options.stop.seconds > 0) left = std::max(0.0, options.stop.seconds - summary.seconds);
@@ -64,9 +54,9 @@ RenderSummary render_progressive(Integrator& integrator, Film& film, const Rende
                    summary.passes,
                    options.stop.passes > 0 ? ("/" + std::to_string(options.stop.passes)).c_str() : "",
                    summary.seconds, left);
-      if (done || g_interrupted) std::fprintf(stderr, "\n");
+      if (last) std::fprintf(stderr, "\n");
     }
-    if (g_interrupted) {
+    if (interrupt_requested()) {
       summary.interrupted = true;
       if (options.show_progress) std::fprintf(stderr, "interrupted: writing the image after %d passes\n", summary.passes);
       break;

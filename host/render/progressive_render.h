@@ -1,7 +1,7 @@
 #pragma once
 // The progressive loop every integrator runs under: passes until --time or --passes, progress on
 // the terminal (passes, elapsed, estimated remaining), an optional convergence log row after each
-// pass, and Ctrl-C ending the loop after the pass in flight so the image so far is written.
+// pass, and Ctrl-C ending the loop after the pass in flight so the caller writes the image so far.
 #include <optional>
 #include <string>
 
@@ -29,7 +29,7 @@ struct RenderSummary {
   bool interrupted = false;
 };
 
-// Installs the SIGINT handler for the duration of a render.
+// Stops early, after a whole pass, once interrupt_requested() (core/interrupt.h).
 RenderSummary render_progressive(Integrator& integrator, Film& film, const RenderOptions& options);
 
 }  // namespace kasha

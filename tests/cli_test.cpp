@@ -1,0 +1,116 @@
+// The command line end to end: bad input gives one clear line, a non-zero exit and no output;
+// good input writes whole files; Ctrl-C writes the image so far.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "image/exr_io.h"
+#include "test_support.h"
+
+using namespace kasha;
+using test::run_kasha;
+
+namespace {
+
+std::string shell_quoted(const std::string& s) { return "'" + s + "'"; }
+
+void expect_one_line_error(const test::CommandResult& r, const std::string& expected) {
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find(expected), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+}  // namespace
+
+TEST(Cli, RenderWritesExrAndPng) {
+  std::string exr = (test::scratch_dir() / "c.exr").string(), png = (test::scratch_dir() / "c.png").string();
+  auto r = run_kasha("render " + shell_quoted(test::source_path("scenes/cornell_box.json")) +
+                     " --integrator debug --view albedo --passes 2 --spp 1 -o " + shell_quoted(exr) + " --png " + shell_quoted(png));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Image img = read_exr(exr);
+  EXPECT_EQ(img.width, 256);
+  std::ifstream in(png, std::ios::binary);
+  char sig[8] = {};
+  in.read(sig, 8);
+  EXPECT_EQ(std::string(sig + 1, 3), "PNG");
+}
+
+TEST(Cli, LogHasARowPerPassWithErrorsAgainstAReference) {
+  std::string scene = shell_quoted(test::source_path("scenes/torus.json"));
+  std::string ref = (test::scratch_dir() / "ref.exr").string(), out = (test::scratch_dir() / "o.exr").string();
+  std::string log = (test::scratch_dir() / "log.csv").string();
+  ASSERT_EQ(run_kasha("render " + scene + " --passes 1 --spp 64 -o " + shell_quoted(ref)).exit_code, 0);
+  auto r = run_kasha("render " + scene + " --passes 3 --spp 1 --seed 9 -o " + shell_quoted(out) + " --reference " +
+                     shell_quoted(ref) + " --log " + shell_quoted(log));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(log);
+  std::string line;
+  std::getline(in, line);
+  EXPECT_EQ(line, "integrator,pass,seconds,camera_paths,photons,rmse,relmse");
+  int rows = 0;
+  while (std::getline(in, line)) {
+    ++rows;
+    EXPECT_EQ(line.rfind("debug," + std::to_string(rows) + ",", 0), 0u) << line;
+    EXPECT_NE(line.back(), ',') << "error columns must be filled: " << line;
+  }
+  EXPECT_EQ(rows, 3);
+}
+
+TEST(Cli, BadInputsGiveOneLineAndNoOutput) {
+  std::string out = (test::scratch_dir() / "out.exr").string();
+  std::string bad_json = test::write_file("bad.json", "{\"kasha_scene\": 1,");
+  expect_one_line_error(run_kasha("render " + shell_quoted(bad_json) + " --passes 1 -o " + shell_quoted(out)),
+                        "bad.json: malformed JSON: parse error at line 1");
+  expect_one_line_error(run_kasha("render /nonexistent.json --passes 1 -o " + shell_quoted(out)),
+                        "/nonexistent.json: cannot open file");
+  std::string gain = test::write_file("gain.json", R"({"kasha_scene": 1,
+    "camera": {"position": [0,0,-3], "look_at": [0,0,0]},
+    "materials": {"hot": {"passive": {"reflectance": 0.7}, "gloss": {"reflectance": 0.4, "mirror": true}}},
+    "shapes": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "hot"}]})");
+  expect_one_line_error(run_kasha("render " + shell_quoted(gain) + " --passes 1 -o " + shell_quoted(out)),
+                        "material 'hot' (" );
+  expect_one_line_error(run_kasha("render " + shell_quoted(gain) + " --passes 1 -o " + shell_quoted(out)), "energy gain at 385 nm");
+  std::string scene = shell_quoted(test::source_path("scenes/torus.json"));
+  expect_one_line_error(run_kasha("render " + scene + " --passes 1 -o /nonexistent/dir/x.exr"),
+                        "directory /nonexistent/dir does not exist");
+  expect_one_line_error(run_kasha("render " + scene + " --passes 1 --view normals --spectral -o " + shell_quoted(out)),
+                        "the normals view has no spectrum");
+  expect_one_line_error(run_kasha("render " + scene + " -o " + shell_quoted(out)), "give --time SECONDS or --passes N");
+  expect_one_line_error(run_kasha("render " + scene + " --passes 1 --device 42 -o " + shell_quoted(out)),
+                        "--device 42: no such OpenCL device");
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(Cli, NoOpenClDeviceSaysHowToInstallPocl) {
+  std::string out = (test::scratch_dir() / "out.exr").string();
+  auto r = run_kasha("devices");
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("0: "), std::string::npos);
+  std::string empty = (test::scratch_dir() / "no-vendors").string();
+  std::filesystem::create_directories(empty);
+  r = test::run_kasha_env("OCL_ICD_VENDORS=" + shell_quoted(empty), "render " + shell_quoted(test::source_path("scenes/torus.json")) +
+                                                                " --passes 1 -o " + shell_quoted(out));
+  expect_one_line_error(r, "no OpenCL device found");
+  EXPECT_NE(r.err.find("pocl-opencl-icd"), std::string::npos);
+  EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+TEST(Cli, InfoReportsGridFeaturesOptionsAndMemory) {
+  auto r = run_kasha("info " + shell_quoted(test::source_path("scenes/cornell_box.json")));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* s : {"wavelengths: 320–780 nm, 46 bins of 10 nm", "fluorescence yes", "-D KASHA_BINS=46",
+                        "-D KASHA_FLUORESCENCE=1", "memory: "})
+    EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
+}
+
+TEST(Cli, CtrlCWritesTheImageSoFar) {
+  std::string out = (test::scratch_dir() / "i.exr").string();
+  auto r = test::run_kasha_env("", "render " + shell_quoted(test::source_path("scenes/torus.json")) +
+                                       " --time 120 --spp 1 -o " + shell_quoted(out),
+                               /*interrupt_after_s=*/3);
+  EXPECT_EQ(r.exit_code, 130) << r.err;
+  EXPECT_NE(r.err.find("interrupted: writing the image after"), std::string::npos) << r.err;
+  Image img = read_exr(out);
+  EXPECT_EQ(img.width, 192);
+}

@@ -1,0 +1,96 @@
+// Images: EXR channels, names and values as DESIGN §5 fixes them; the film; whole-or-nothing writes.
+#include <gtest/gtest.h>
+
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfStringAttribute.h>
+
+#include <filesystem>
+
+#include "color/color_space.h"
+#include "film/film.h"
+#include "image/exr_io.h"
+#include "image/png_preview.h"
+#include "test_support.h"
+
+using namespace kasha;
+
+TEST(Exr, SpectralChannelNamesFollowTheSpectralLayout) {
+  EXPECT_EQ(spectral_channel_name(555.0), "S0.555,000000nm");
+  EXPECT_EQ(spectral_channel_name(382.5), "S0.382,500000nm");
+}
+
+TEST(Exr, SpectralImageReadsBackWithNamesAndValues) {
+  Image img;
+  img.width = 3;
+  img.height = 2;
+  img.grid = WavelengthGrid{550, 10, 3};  // bins centred at 555, 565, 575 nm
+  for (size_t p = 0; p < img.pixels(); ++p) {
+    for (int k = 0; k < 3; ++k) img.xyz.push_back(static_cast<float>(p + 0.1 * k));
+    for (int i = 0; i < 3; ++i) img.spectral.push_back(static_cast<float>(100 * p + i + 0.25));
+  }
+  std::string path = (test::scratch_dir() / "s.exr").string();
+  write_exr(path, img);
+
+  Imf::InputFile file(path.c_str());
+  const Imf::Header& h = file.header();
+  for (const char* name : {"R", "G", "B", "XYZ.X", "XYZ.Y", "XYZ.Z", "S0.555,000000nm", "S0.565,000000nm", "S0.575,000000nm"})
+    EXPECT_NE(h.channels().findChannel(name), nullptr) << name;
+  EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("spectralLayoutVersion").value(), "1.0");
+  EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("emissiveUnits").value(), "W.m^-2.sr^-1");
+
+  Image back = read_exr(path);
+  ASSERT_EQ(back.width, 3);
+  ASSERT_EQ(back.height, 2);
+  EXPECT_EQ(back.xyz, img.xyz);
+  EXPECT_EQ(back.spectral, img.spectral);
+  EXPECT_DOUBLE_EQ(back.grid.min_nm, 550);
+  EXPECT_EQ(back.grid.bins, 3);
+}
+
+TEST(Exr, RgbIsLinearSrgbOfXyz) {
+  Image img;
+  img.width = img.height = 1;
+  img.xyz = {0.9505f, 1.0f, 1.089f};  // D65 white, Y = 1
+  std::string path = (test::scratch_dir() / "w.exr").string();
+  write_exr(path, img);
+  Imf::InputFile file(path.c_str());
+  float rgb[3];
+  Imf::FrameBuffer fb;
+  const char* names[3] = {"R", "G", "B"};
+  for (int k = 0; k < 3; ++k) fb.insert(names[k], Imf::Slice(Imf::FLOAT, (char*)&rgb[k], 3 * sizeof(float), 3 * sizeof(float)));
+  file.setFrameBuffer(fb);
+  file.readPixels(0, 0);
+  for (float c : rgb) EXPECT_NEAR(c, 1.0f, 2e-3f);
+  EXPECT_FALSE(file.header().channels().findChannel("S0.555,000000nm"));
+}
+
+TEST(Film, AveragesPassesAndDerivesXyzFromBins) {
+  WavelengthGrid g{380, 10, 40};
+  Film film(2, 1, g, true);
+  std::vector<float> pass(2 * 40, 0.0f);
+  pass[17] = 4.0f;  // pixel 0, bin 17: two samples of 2
+  film.add_pass(pass, 2);
+  film.add_pass(std::vector<float>(2 * 40, 0.0f), 2);
+  Image img = film.image();
+  EXPECT_FLOAT_EQ(img.spectral[17], 1.0f);
+  BinnedObserver obs(g);
+  EXPECT_NEAR(img.xyz[1], obs.y[17] * 10.0, 1e-6);
+  EXPECT_EQ(img.xyz[4], 0.0f);
+}
+
+TEST(Output, FailedWritesLeaveNothingBehind) {
+  Image img;
+  img.width = img.height = 1;
+  img.xyz = {1, 1, 1};
+  std::string missing_dir = (test::scratch_dir() / "no" / "such" / "x.exr").string();
+  EXPECT_NE(test::error_of([&] { write_exr(missing_dir, img); }).find("does not exist"), std::string::npos);
+  std::string png = (test::scratch_dir() / "p.png").string();
+  write_png_preview(png, img);
+  EXPECT_TRUE(std::filesystem::exists(png));
+  size_t files = 0;
+  for (auto& e : std::filesystem::directory_iterator(test::scratch_dir())) files += e.is_regular_file();
+  EXPECT_EQ(files, 1u);  // no temporary left next to it
+}
