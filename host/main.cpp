@@ -1,6 +1,5 @@
 // kasha: the command line of DESIGN §5.
 #include <CLI/CLI.hpp>
-
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -22,18 +21,23 @@ namespace {
 
 int run_devices() {
   for (const DeviceInfo& d : list_devices()) {
-    std::printf("%d: %s — %s [%s, %s, %u compute units, %.1f GiB]\n", d.index, d.platform.c_str(), d.name.c_str(),
-                d.type.c_str(), d.version.c_str(), d.compute_units, d.global_mem_bytes / 1073741824.0);
+    std::printf("%d: %s — %s [%s, %s, %u compute units, %.1f GiB]\n", d.index, d.platform.c_str(),
+                d.name.c_str(), d.type.c_str(), d.version.c_str(), d.compute_units,
+                d.global_mem_bytes / 1073741824.0);
   }
   return 0;
 }
 
 std::string bytes_text(double b) {
   char t[64];
-  if (b >= 1 << 30) std::snprintf(t, sizeof t, "%.2f GiB", b / (1 << 30));
-  else if (b >= 1 << 20) std::snprintf(t, sizeof t, "%.2f MiB", b / (1 << 20));
-  else if (b >= 1 << 10) std::snprintf(t, sizeof t, "%.1f KiB", b / (1 << 10));
-  else std::snprintf(t, sizeof t, "%.0f B", b);
+  if (b >= 1 << 30)
+    std::snprintf(t, sizeof t, "%.2f GiB", b / (1 << 30));
+  else if (b >= 1 << 20)
+    std::snprintf(t, sizeof t, "%.2f MiB", b / (1 << 20));
+  else if (b >= 1 << 10)
+    std::snprintf(t, sizeof t, "%.1f KiB", b / (1 << 10));
+  else
+    std::snprintf(t, sizeof t, "%.0f B", b);
   return t;
 }
 
@@ -44,21 +48,28 @@ int run_info(const std::string& scene_path, bool spectral) {
   for (const Emitter& e : scene.emitters) emitting_triangles += e.triangle_count;
   std::printf("scene: %s\n", scene_path.c_str());
   std::printf("wavelengths: %s\n", scene.grid.describe().c_str());
-  std::printf("features: fluorescence %s, gloss %s\n", scene.fluorescent() ? "yes" : "no", scene.glossy() ? "yes" : "no");
-  std::printf("materials: %zu; shapes: %d; triangles: %zu; emitters: %zu (%d triangles)\n", scene.materials.size(),
-              scene.shape_count, scene.triangles.size(), scene.emitters.size(), emitting_triangles);
+  std::printf("features: fluorescence %s, gloss %s\n", scene.fluorescent() ? "yes" : "no",
+              scene.glossy() ? "yes" : "no");
+  std::printf("materials: %zu; shapes: %d; triangles: %zu; emitters: %zu (%d triangles)\n",
+              scene.materials.size(), scene.shape_count, scene.triangles.size(),
+              scene.emitters.size(), emitting_triangles);
   std::printf("bvh: %zu nodes, depth %d (Embree SAH)\n", data.bvh.nodes.size(), data.bvh.depth);
-  std::printf("camera: %dx%d, fov %g deg\n", scene.camera.width, scene.camera.height, scene.camera.fov_deg);
+  std::printf("camera: %dx%d, fov %g deg\n", scene.camera.width, scene.camera.height,
+              scene.camera.fov_deg);
   std::printf("kernel build options: %s\n", build_options(scene_defines(scene, spectral)).c_str());
   size_t pixels = static_cast<size_t>(scene.camera.width) * scene.camera.height;
   size_t rows = spectral ? scene.grid.bins : 3;
-  std::printf("memory: scene %s (bvh %s, triangles %s, materials and spectra %s); film %s on the device, %s on the host\n",
-              bytes_text(data.bytes()).c_str(), bytes_text(data.bvh.nodes.size() * sizeof(KBvhNode)).c_str(),
-              bytes_text(data.bvh.triangles.size() * sizeof(KTriangle)).c_str(),
-              bytes_text(data.materials.size() * sizeof(KMaterial) +
-                         (data.spectra.size() + data.emitter_radiance.size()) * sizeof(float))
-                  .c_str(),
-              bytes_text(pixels * rows * sizeof(float)).c_str(), bytes_text(pixels * rows * sizeof(double)).c_str());
+  std::printf(
+      "memory: scene %s (bvh %s, triangles %s, materials and spectra %s); film %s on the device, "
+      "%s on the host\n",
+      bytes_text(data.bytes()).c_str(),
+      bytes_text(data.bvh.nodes.size() * sizeof(KBvhNode)).c_str(),
+      bytes_text(data.bvh.triangles.size() * sizeof(KTriangle)).c_str(),
+      bytes_text(data.materials.size() * sizeof(KMaterial) +
+                 (data.spectra.size() + data.emitter_radiance.size()) * sizeof(float))
+          .c_str(),
+      bytes_text(pixels * rows * sizeof(float)).c_str(),
+      bytes_text(pixels * rows * sizeof(double)).c_str());
   return 0;
 }
 
@@ -90,21 +101,24 @@ int run_render(const RenderArgs& a) {
   options.log_path = a.log;
   if (!a.reference.empty()) {
     if (a.reference == "furnace")
-      throw Error("--reference furnace: the analytic furnace reference comes with the physical integrators; "
-                  "the debug integrator renders only first-hit views");
+      throw Error(
+          "--reference furnace: the analytic furnace reference comes with the physical "
+          "integrators; "
+          "the debug integrator renders only first-hit views");
     options.reference = read_exr(a.reference);
   }
   ClContext cl(a.device);
   DeviceScene device_scene(cl, scene);
   Film film(scene.camera.width, scene.camera.height, scene.grid, a.spectral);
-  DebugIntegrator integrator(cl, scene, device_scene, film, parse_debug_view(a.view), a.spp, a.seed);
+  DebugIntegrator integrator(cl, scene, device_scene, film, parse_debug_view(a.view), a.spp,
+                             a.seed);
   RenderSummary summary = render_progressive(integrator, film, options);
   Image image = film.image();
   write_exr(a.output, image);
   if (!a.png.empty()) write_png_preview(a.png, image);
-  std::fprintf(stderr, "wrote %s%s%s: %d passes, %lld samples per pixel, %.2f s on %s\n", a.output.c_str(),
-               a.png.empty() ? "" : " and ", a.png.c_str(), summary.passes, film.samples_per_pixel(), summary.seconds,
-               cl.info().name.c_str());
+  std::fprintf(stderr, "wrote %s%s%s: %d passes, %lld samples per pixel, %.2f s on %s\n",
+               a.output.c_str(), a.png.empty() ? "" : " and ", a.png.c_str(), summary.passes,
+               film.samples_per_pixel(), summary.seconds, cl.info().name.c_str());
   return summary.interrupted ? 130 : 0;
 }
 
@@ -118,7 +132,8 @@ int main(int argc, char** argv) {
 
   std::string info_scene;
   bool info_spectral = false;
-  CLI::App* info = app.add_subcommand("info", "what a scene needs: bins, features, memory, kernel build options");
+  CLI::App* info = app.add_subcommand(
+      "info", "what a scene needs: bins, features, memory, kernel build options");
   info->add_option("scene", info_scene, "scene JSON file")->required();
   info->add_flag("--spectral", info_spectral, "report for a spectral film");
 
@@ -130,15 +145,20 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"debug"}));
   render->add_option("--view", r.view, "debug view: emission, normals or albedo")
       ->check(CLI::IsMember({"emission", "normals", "albedo"}));
-  render->add_option("--time", r.seconds, "stop after this many seconds")->check(CLI::PositiveNumber);
-  render->add_option("--passes", r.passes, "stop after this many passes")->check(CLI::PositiveNumber);
-  render->add_option("--spp", r.spp, "camera samples per pixel per pass")->check(CLI::Range(1, 1 << 20));
+  render->add_option("--time", r.seconds, "stop after this many seconds")
+      ->check(CLI::PositiveNumber);
+  render->add_option("--passes", r.passes, "stop after this many passes")
+      ->check(CLI::PositiveNumber);
+  render->add_option("--spp", r.spp, "camera samples per pixel per pass")
+      ->check(CLI::Range(1, 1 << 20));
   render->add_option("--photons", r.photons, "photons per pass")->check(CLI::PositiveNumber);
   render->add_option("--seed", r.seed, "random seed");
-  render->add_option("--device", r.device, "OpenCL device index (see `kasha devices`)")->check(CLI::NonNegativeNumber);
+  render->add_option("--device", r.device, "OpenCL device index (see `kasha devices`)")
+      ->check(CLI::NonNegativeNumber);
   render->add_option("--png", r.png, "also write a tone-mapped sRGB PNG preview");
   render->add_flag("--spectral", r.spectral, "add one channel per wavelength bin to the EXR");
-  render->add_option("--reference", r.reference, "reference EXR for the convergence log's error columns");
+  render->add_option("--reference", r.reference,
+                     "reference EXR for the convergence log's error columns");
   render->add_option("--log", r.log, "convergence log CSV, a row after every pass");
 
   try {

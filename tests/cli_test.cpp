@@ -13,7 +13,9 @@ using test::run_kasha;
 
 namespace {
 
-std::string shell_quoted(const std::string& s) { return "'" + s + "'"; }
+std::string shell_quoted(const std::string& s) {
+  return "'" + s + "'";
+}
 
 void expect_one_line_error(const test::CommandResult& r, const std::string& expected) {
   EXPECT_NE(r.exit_code, 0);
@@ -24,9 +26,11 @@ void expect_one_line_error(const test::CommandResult& r, const std::string& expe
 }  // namespace
 
 TEST(Cli, RenderWritesExrAndPng) {
-  std::string exr = (test::scratch_dir() / "c.exr").string(), png = (test::scratch_dir() / "c.png").string();
+  std::string exr = (test::scratch_dir() / "c.exr").string(),
+              png = (test::scratch_dir() / "c.png").string();
   auto r = run_kasha("render " + shell_quoted(test::source_path("scenes/cornell_box.json")) +
-                     " --integrator debug --view albedo --passes 2 --spp 1 -o " + shell_quoted(exr) + " --png " + shell_quoted(png));
+                     " --integrator debug --view albedo --passes 2 --spp 1 -o " +
+                     shell_quoted(exr) + " --png " + shell_quoted(png));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   Image img = read_exr(exr);
   EXPECT_EQ(img.width, 256);
@@ -38,11 +42,13 @@ TEST(Cli, RenderWritesExrAndPng) {
 
 TEST(Cli, LogHasARowPerPassWithErrorsAgainstAReference) {
   std::string scene = shell_quoted(test::source_path("scenes/torus.json"));
-  std::string ref = (test::scratch_dir() / "ref.exr").string(), out = (test::scratch_dir() / "o.exr").string();
+  std::string ref = (test::scratch_dir() / "ref.exr").string(),
+              out = (test::scratch_dir() / "o.exr").string();
   std::string log = (test::scratch_dir() / "log.csv").string();
-  ASSERT_EQ(run_kasha("render " + scene + " --passes 1 --spp 64 -o " + shell_quoted(ref)).exit_code, 0);
-  auto r = run_kasha("render " + scene + " --passes 3 --spp 1 --seed 9 -o " + shell_quoted(out) + " --reference " +
-                     shell_quoted(ref) + " --log " + shell_quoted(log));
+  ASSERT_EQ(run_kasha("render " + scene + " --passes 1 --spp 64 -o " + shell_quoted(ref)).exit_code,
+            0);
+  auto r = run_kasha("render " + scene + " --passes 3 --spp 1 --seed 9 -o " + shell_quoted(out) +
+                     " --reference " + shell_quoted(ref) + " --log " + shell_quoted(log));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::ifstream in(log);
   std::string line;
@@ -60,25 +66,32 @@ TEST(Cli, LogHasARowPerPassWithErrorsAgainstAReference) {
 TEST(Cli, BadInputsGiveOneLineAndNoOutput) {
   std::string out = (test::scratch_dir() / "out.exr").string();
   std::string bad_json = test::write_file("bad.json", "{\"kasha_scene\": 1,");
-  expect_one_line_error(run_kasha("render " + shell_quoted(bad_json) + " --passes 1 -o " + shell_quoted(out)),
-                        "bad.json: malformed JSON: parse error at line 1");
+  expect_one_line_error(
+      run_kasha("render " + shell_quoted(bad_json) + " --passes 1 -o " + shell_quoted(out)),
+      "bad.json: malformed JSON: parse error at line 1");
   expect_one_line_error(run_kasha("render /nonexistent.json --passes 1 -o " + shell_quoted(out)),
                         "/nonexistent.json: cannot open file");
   std::string gain = test::write_file("gain.json", R"({"kasha_scene": 1,
     "camera": {"position": [0,0,-3], "look_at": [0,0,0]},
     "materials": {"hot": {"passive": {"reflectance": 0.7}, "gloss": {"reflectance": 0.4, "mirror": true}}},
     "shapes": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "hot"}]})");
-  expect_one_line_error(run_kasha("render " + shell_quoted(gain) + " --passes 1 -o " + shell_quoted(out)),
-                        "material 'hot' (" );
-  expect_one_line_error(run_kasha("render " + shell_quoted(gain) + " --passes 1 -o " + shell_quoted(out)), "energy gain at 385 nm");
+  expect_one_line_error(
+      run_kasha("render " + shell_quoted(gain) + " --passes 1 -o " + shell_quoted(out)),
+      "material 'hot' (");
+  expect_one_line_error(
+      run_kasha("render " + shell_quoted(gain) + " --passes 1 -o " + shell_quoted(out)),
+      "energy gain at 385 nm");
   std::string scene = shell_quoted(test::source_path("scenes/torus.json"));
   expect_one_line_error(run_kasha("render " + scene + " --passes 1 -o /nonexistent/dir/x.exr"),
                         "directory /nonexistent/dir does not exist");
-  expect_one_line_error(run_kasha("render " + scene + " --passes 1 --view normals --spectral -o " + shell_quoted(out)),
+  expect_one_line_error(run_kasha("render " + scene + " --passes 1 --view normals --spectral -o " +
+                                  shell_quoted(out)),
                         "the normals view has no spectrum");
-  expect_one_line_error(run_kasha("render " + scene + " -o " + shell_quoted(out)), "give --time SECONDS or --passes N");
-  expect_one_line_error(run_kasha("render " + scene + " --passes 1 --device 42 -o " + shell_quoted(out)),
-                        "--device 42: no such OpenCL device");
+  expect_one_line_error(run_kasha("render " + scene + " -o " + shell_quoted(out)),
+                        "give --time SECONDS or --passes N");
+  expect_one_line_error(
+      run_kasha("render " + scene + " --passes 1 --device 42 -o " + shell_quoted(out)),
+      "--device 42: no such OpenCL device");
   EXPECT_FALSE(std::filesystem::exists(out));
 }
 
@@ -89,8 +102,9 @@ TEST(Cli, NoOpenClDeviceSaysHowToInstallPocl) {
   EXPECT_NE(r.out.find("0: "), std::string::npos);
   std::string empty = (test::scratch_dir() / "no-vendors").string();
   std::filesystem::create_directories(empty);
-  r = test::run_kasha_env("OCL_ICD_VENDORS=" + shell_quoted(empty), "render " + shell_quoted(test::source_path("scenes/torus.json")) +
-                                                                " --passes 1 -o " + shell_quoted(out));
+  r = test::run_kasha_env("OCL_ICD_VENDORS=" + shell_quoted(empty),
+                          "render " + shell_quoted(test::source_path("scenes/torus.json")) +
+                              " --passes 1 -o " + shell_quoted(out));
   expect_one_line_error(r, "no OpenCL device found");
   EXPECT_NE(r.err.find("pocl-opencl-icd"), std::string::npos);
   EXPECT_FALSE(std::filesystem::exists(out));
@@ -99,15 +113,16 @@ TEST(Cli, NoOpenClDeviceSaysHowToInstallPocl) {
 TEST(Cli, InfoReportsGridFeaturesOptionsAndMemory) {
   auto r = run_kasha("info " + shell_quoted(test::source_path("scenes/cornell_box.json")));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* s : {"wavelengths: 320–780 nm, 46 bins of 10 nm", "fluorescence yes", "-D KASHA_BINS=46",
-                        "-D KASHA_FLUORESCENCE=1", "memory: "})
+  for (const char* s : {"wavelengths: 320–780 nm, 46 bins of 10 nm", "fluorescence yes",
+                        "-D KASHA_BINS=46", "-D KASHA_FLUORESCENCE=1", "memory: "})
     EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
 }
 
 TEST(Cli, CtrlCWritesTheImageSoFar) {
   std::string out = (test::scratch_dir() / "i.exr").string();
-  auto r = test::run_kasha_env("", "render " + shell_quoted(test::source_path("scenes/torus.json")) +
-                                       " --time 120 --spp 1 -o " + shell_quoted(out),
+  auto r = test::run_kasha_env("",
+                               "render " + shell_quoted(test::source_path("scenes/torus.json")) +
+                                   " --time 120 --spp 1 -o " + shell_quoted(out),
                                /*interrupt_after_s=*/3);
   EXPECT_EQ(r.exit_code, 130) << r.err;
   EXPECT_NE(r.err.find("interrupted: writing the image after"), std::string::npos) << r.err;

@@ -31,7 +31,8 @@ Rendered render(bool facing_camera, bool spectral, int passes) {
   std::string path = test::write_file("emitter.json", R"({"kasha_scene": 1,
     "camera": {"position": [0, 0, 0], "look_at": [0, 0, 1], "up": [0, 1, 0], "fov_deg": 90, "width": 128, "height": 64},
     "materials": {"black": {}},
-    "shapes": [{"type": "quad", "corner": )" + corner + R"(, "u": [9.3, 0, 0], "v": )" + v + R"(, "material": "black",
+    "shapes": [{"type": "quad", "corner": )" + corner + R"(, "u": [9.3, 0, 0], "v": )" +
+                                                          v + R"(, "material": "black",
                 "emission": {"gaussian_nm": 550, "fwhm_nm": 60, "scale": 3}}]})");
   Rendered r{load_scene(path), {}, 0};
   ClContext cl(0);
@@ -54,7 +55,8 @@ TEST(DebugRender, EmissionCoversTheRightFractionWithTheRightRadiance) {
 
   // Fully covered pixels hold the emitter's radiance exactly, bin by bin; uncovered ones zero.
   int n = r.scene.grid.bins;
-  for (int i = 0; i < n; ++i) EXPECT_NEAR(r.image.spectral[(10 * 128 + 120) * n + i], le[i], 1e-5 * (1 + le[i]));
+  for (int i = 0; i < n; ++i)
+    EXPECT_NEAR(r.image.spectral[(10 * 128 + 120) * n + i], le[i], 1e-5 * (1 + le[i]));
   for (int i = 0; i < n; ++i) EXPECT_EQ(r.image.spectral[(10 * 128 + 5) * n + i], 0.0f);
 
   // The image mean is 57.5 % of the emitter's Y; only the column holding the edge is noisy.
@@ -62,7 +64,8 @@ TEST(DebugRender, EmissionCoversTheRightFractionWithTheRightRadiance) {
   for (size_t p = 0; p < r.image.pixels(); ++p) mean += r.image.xyz[3 * p + 1];
   mean /= r.image.pixels();
   double edge_fraction = 0.575 * 128 - std::floor(0.575 * 128);
-  double sigma = y_emitter * std::sqrt(64 * edge_fraction * (1 - edge_fraction) / r.spp) / r.image.pixels();
+  double sigma =
+      y_emitter * std::sqrt(64 * edge_fraction * (1 - edge_fraction) / r.spp) / r.image.pixels();
   EXPECT_NEAR(mean, 0.575 * y_emitter, 4 * sigma + 1e-6 * y_emitter);
   // The covered side is the image's right (+x is on the left).
   EXPECT_GT(r.image.xyz[3 * (32 * 128 + 127) + 1], 0);

@@ -1,11 +1,11 @@
-// Images: EXR channels, names and values as DESIGN §5 fixes them; the film; whole-or-nothing writes.
-#include <gtest/gtest.h>
-
+// Images: EXR channels, names and values as DESIGN §5 fixes them; the film; whole-or-nothing
+// writes.
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfStringAttribute.h>
+#include <gtest/gtest.h>
 
 #include <filesystem>
 
@@ -36,7 +36,8 @@ TEST(Exr, SpectralImageReadsBackWithNamesAndValues) {
 
   Imf::InputFile file(path.c_str());
   const Imf::Header& h = file.header();
-  for (const char* name : {"R", "G", "B", "XYZ.X", "XYZ.Y", "XYZ.Z", "S0.555,000000nm", "S0.565,000000nm", "S0.575,000000nm"})
+  for (const char* name : {"R", "G", "B", "XYZ.X", "XYZ.Y", "XYZ.Z", "S0.555,000000nm",
+                           "S0.565,000000nm", "S0.575,000000nm"})
     EXPECT_NE(h.channels().findChannel(name), nullptr) << name;
   EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("spectralLayoutVersion").value(), "1.0");
   EXPECT_EQ(h.typedAttribute<Imf::StringAttribute>("emissiveUnits").value(), "W.m^-2.sr^-1");
@@ -60,7 +61,9 @@ TEST(Exr, RgbIsLinearSrgbOfXyz) {
   float rgb[3];
   Imf::FrameBuffer fb;
   const char* names[3] = {"R", "G", "B"};
-  for (int k = 0; k < 3; ++k) fb.insert(names[k], Imf::Slice(Imf::FLOAT, (char*)&rgb[k], 3 * sizeof(float), 3 * sizeof(float)));
+  for (int k = 0; k < 3; ++k)
+    fb.insert(names[k],
+              Imf::Slice(Imf::FLOAT, (char*)&rgb[k], 3 * sizeof(float), 3 * sizeof(float)));
   file.setFrameBuffer(fb);
   file.readPixels(0, 0);
   for (float c : rgb) EXPECT_NEAR(c, 1.0f, 2e-3f);
@@ -86,11 +89,13 @@ TEST(Output, FailedWritesLeaveNothingBehind) {
   img.width = img.height = 1;
   img.xyz = {1, 1, 1};
   std::string missing_dir = (test::scratch_dir() / "no" / "such" / "x.exr").string();
-  EXPECT_NE(test::error_of([&] { write_exr(missing_dir, img); }).find("does not exist"), std::string::npos);
+  EXPECT_NE(test::error_of([&] { write_exr(missing_dir, img); }).find("does not exist"),
+            std::string::npos);
   std::string png = (test::scratch_dir() / "p.png").string();
   write_png_preview(png, img);
   EXPECT_TRUE(std::filesystem::exists(png));
   size_t files = 0;
-  for (auto& e : std::filesystem::directory_iterator(test::scratch_dir())) files += e.is_regular_file();
+  for (auto& e : std::filesystem::directory_iterator(test::scratch_dir()))
+    files += e.is_regular_file();
   EXPECT_EQ(files, 1u);  // no temporary left next to it
 }

@@ -1,9 +1,10 @@
 // Materials: parsing, emission normalization on the grid, energy conservation with clear errors.
+#include "material/material.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "material/material.h"
 #include "test_support.h"
 
 using namespace kasha;
@@ -15,7 +16,9 @@ MaterialDesc parse(const std::string& json, const std::string& name = "paper") {
   return parse_material(JsonNode::from_json(nlohmann::json::parse(json), "scene.json"), name);
 }
 
-WavelengthGrid visible() { return WavelengthGrid{380, 10, 40}; }
+WavelengthGrid visible() {
+  return WavelengthGrid{380, 10, 40};
+}
 
 }  // namespace
 
@@ -42,12 +45,13 @@ TEST(Material, OneBinEmissionLine) {
 
 TEST(Material, EnergyGainNamesTheMaterialAndTheWavelength) {
   std::string msg = error_of([&] {
-    discretize_material(parse(R"({"passive": {"reflectance": {"nm": [380, 780], "value": [0.5, 0.9]}},
+    discretize_material(
+        parse(R"({"passive": {"reflectance": {"nm": [380, 780], "value": [0.5, 0.9]}},
                                   "fluorescence": {"excitation": {"nm": [380, 780], "value": [0.3, 0.3]},
                                                    "emission": 1},
                                   "gloss": {"reflectance": 0.05, "mirror": true}})",
-                                 "ink"),
-                        visible());
+              "ink"),
+        visible());
   });
   // g + ρ + a first exceeds 1 where ρ > 0.65: the bin around 535 nm (ρ = 0.655 there).
   EXPECT_NE(msg.find("material 'ink'"), std::string::npos) << msg;
@@ -61,11 +65,16 @@ TEST(Material, BadMaterials) {
     EXPECT_NE(msg.find(expected), std::string::npos) << json << " -> " << msg;
   };
   check(R"({"passive": {"reflectance": 1.2}})", "passive reflectance 1.2");
-  check(R"({"fluorescence": {"excitation": 0.2}})", "/fluorescence: missing required key \"emission\"");
-  check(R"({"fluorescence": {"excitation": 0.2, "emission": {"line_nm": 300}}})", "emission is zero over 380");
-  check(R"({"gloss": {"reflectance": 0.1, "mirror": true, "cone_deg": 5}})", "an ideal mirror has no cone");
-  check(R"({"gloss": {"reflectance": 0.1, "profile": {"deg": [0, 20], "value": [1, 0]}}})", "outside the cone");
-  check(R"({"gloss": {"reflectance": 0.1, "profile": {"deg": [0, 5], "value": [0, 0]}}})", "zero everywhere");
+  check(R"({"fluorescence": {"excitation": 0.2}})",
+        "/fluorescence: missing required key \"emission\"");
+  check(R"({"fluorescence": {"excitation": 0.2, "emission": {"line_nm": 300}}})",
+        "emission is zero over 380");
+  check(R"({"gloss": {"reflectance": 0.1, "mirror": true, "cone_deg": 5}})",
+        "an ideal mirror has no cone");
+  check(R"({"gloss": {"reflectance": 0.1, "profile": {"deg": [0, 20], "value": [1, 0]}}})",
+        "outside the cone");
+  check(R"({"gloss": {"reflectance": 0.1, "profile": {"deg": [0, 5], "value": [0, 0]}}})",
+        "zero everywhere");
   check(R"({"gloss": {"reflectance": 1.5}})", "/gloss/reflectance: value 1.5 is outside [0, 1]");
   check(R"({"passive": {"reflectance": 0.2}, "shine": 1})", "scene.json: /shine: unknown key");
 }
@@ -76,7 +85,8 @@ TEST(Material, FileWithDiagnosticsIsRead) {
   MaterialDesc d = load_material_file(path, "");
   EXPECT_EQ(d.name, "postit");
   std::string plain = test::write_file("plain.json", R"({"passive": {"reflectance": 0.5}})");
-  EXPECT_NE(error_of([&] { load_material_file(plain, "x"); }).find("not a kasha material file"), std::string::npos);
+  EXPECT_NE(error_of([&] { load_material_file(plain, "x"); }).find("not a kasha material file"),
+            std::string::npos);
 }
 
 TEST(Material, EmptyMaterialIsBlack) {

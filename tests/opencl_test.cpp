@@ -17,8 +17,8 @@ TEST(OpenCl, IncludesAreInlinedOnce) {
 TEST(OpenCl, BuildFailureCarriesTheBuildLog) {
   ClContext cl(0);
   std::string msg = test::error_of([&] {
-    build_program(cl, "__kernel void broken(__global float* x) { x[0] = undefined_name; }", {{"KASHA_BINS", "4"}},
-                  "broken.cl");
+    build_program(cl, "__kernel void broken(__global float* x) { x[0] = undefined_name; }",
+                  {{"KASHA_BINS", "4"}}, "broken.cl");
   });
   EXPECT_NE(msg.find("OpenCL kernel build failed for broken.cl"), std::string::npos) << msg;
   EXPECT_NE(msg.find("-D KASHA_BINS=4"), std::string::npos) << msg;

@@ -1,10 +1,11 @@
 // Scenes: strict JSON with paths in errors, shapes and their front sides, transforms, camera.
+#include "scene/scene.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Dense>
 #include <cmath>
 
-#include "scene/scene.h"
 #include "test_support.h"
 
 using namespace kasha;
@@ -16,16 +17,23 @@ const char* kMaterials = R"("materials": {"grey": {"passive": {"reflectance": 0.
 const char* kCamera = R"("camera": {"position": [0, 0, -5], "look_at": [0, 0, 0]})";
 
 std::string scene_with(const std::string& shapes, const std::string& extra = "") {
-  return std::string(R"({"kasha_scene": 1, )") + kCamera + ", " + kMaterials + ", " + extra + R"("shapes": [)" +
-         shapes + "]}";
+  return std::string(R"({"kasha_scene": 1, )") + kCamera + ", " + kMaterials + ", " + extra +
+         R"("shapes": [)" + shapes + "]}";
 }
 
-Scene load(const std::string& text) { return load_scene(test::write_file("scene.json", text)); }
+Scene load(const std::string& text) {
+  return load_scene(test::write_file("scene.json", text));
+}
 
-Eigen::Vector3d v(const float* p) { return {p[0], p[1], p[2]}; }
-Eigen::Vector3d normal(const KTriangle& t) { return (v(t.v1) - v(t.v0)).cross(v(t.v2) - v(t.v0)); }
+Eigen::Vector3d v(const float* p) {
+  return {p[0], p[1], p[2]};
+}
+Eigen::Vector3d normal(const KTriangle& t) {
+  return (v(t.v1) - v(t.v0)).cross(v(t.v2) - v(t.v0));
+}
 
-// Σ over triangles of (centroid · area-normal)/3: the enclosed volume, positive for outward normals.
+// Σ over triangles of (centroid · area-normal)/3: the enclosed volume, positive for outward
+// normals.
 double signed_volume(const Scene& s) {
   double vol = 0;
   for (const KTriangle& t : s.triangles) vol += v(t.v0).dot(normal(t)) / 6.0;
@@ -35,24 +43,30 @@ double signed_volume(const Scene& s) {
 }  // namespace
 
 TEST(Scene, ClosedShapesFaceOutwardUnlessInward) {
-  EXPECT_NEAR(signed_volume(load(scene_with(R"({"type": "box", "min": [0,0,0], "max": [1,2,3], "material": "grey"})"))),
-              6.0, 1e-5);
   EXPECT_NEAR(signed_volume(load(scene_with(
-                  R"({"type": "box", "min": [0,0,0], "max": [1,2,3], "material": "grey", "inward": true})"))),
-              -6.0, 1e-5);
-  double sphere = signed_volume(load(scene_with(R"({"type": "sphere", "center": [1,2,3], "radius": 2, "material": "grey"})")));
+                  R"({"type": "box", "min": [0,0,0], "max": [1,2,3], "material": "grey"})"))),
+              6.0, 1e-5);
+  EXPECT_NEAR(
+      signed_volume(load(scene_with(
+          R"({"type": "box", "min": [0,0,0], "max": [1,2,3], "material": "grey", "inward": true})"))),
+      -6.0, 1e-5);
+  double sphere = signed_volume(load(
+      scene_with(R"({"type": "sphere", "center": [1,2,3], "radius": 2, "material": "grey"})")));
   EXPECT_NEAR(sphere / (4.0 / 3.0 * M_PI * 8), 1.0, 0.01);  // 64 segments: within 1 %
-  EXPECT_LT(signed_volume(load(scene_with(
-                R"({"type": "sphere", "center": [1,2,3], "radius": 2, "material": "grey", "inward": true})"))),
-            0);
+  EXPECT_LT(
+      signed_volume(load(scene_with(
+          R"({"type": "sphere", "center": [1,2,3], "radius": 2, "material": "grey", "inward": true})"))),
+      0);
   // The OBJ torus encloses 2π²Rr² (up to faceting).
   std::string obj = test::source_path("scenes/meshes/torus.obj");
-  double torus = signed_volume(load(scene_with(R"({"type": "obj", "file": ")" + obj + R"(", "material": "grey"})")));
+  double torus = signed_volume(
+      load(scene_with(R"({"type": "obj", "file": ")" + obj + R"(", "material": "grey"})")));
   EXPECT_NEAR(torus / (2 * M_PI * M_PI * 1.0 * 0.35 * 0.35), 1.0, 0.02);
 }
 
 TEST(Scene, QuadFacesUCrossV) {
-  Scene s = load(scene_with(R"({"type": "quad", "corner": [0,0,0], "u": [1,0,0], "v": [0,1,0], "material": "grey",
+  Scene s = load(scene_with(
+      R"({"type": "quad", "corner": [0,0,0], "u": [1,0,0], "v": [0,1,0], "material": "grey",
                                 "emission": 2})"));
   ASSERT_EQ(s.triangles.size(), 2u);
   for (const KTriangle& t : s.triangles) {
@@ -64,13 +78,15 @@ TEST(Scene, QuadFacesUCrossV) {
 }
 
 TEST(Scene, TransformsScaleRotateTranslate) {
-  Scene s = load(scene_with(R"({"type": "quad", "corner": [0,0,0], "u": [1,0,0], "v": [0,1,0], "material": "grey",
+  Scene s = load(scene_with(
+      R"({"type": "quad", "corner": [0,0,0], "u": [1,0,0], "v": [0,1,0], "material": "grey",
       "transform": {"scale": 2, "rotate": {"axis": [0,0,1], "deg": 90}, "translate": [10, 0, 0]}})"));
   // (1,0,0) → scale (2,0,0) → rotate (0,2,0) → translate (10,2,0).
   EXPECT_NEAR(s.triangles[0].v1[0], 10, 1e-5);
   EXPECT_NEAR(s.triangles[0].v1[1], 2, 1e-5);
   // A mirroring matrix keeps the front side (winding is swapped).
-  Scene m = load(scene_with(R"({"type": "quad", "corner": [0,0,0], "u": [1,0,0], "v": [0,1,0], "material": "grey",
+  Scene m = load(scene_with(
+      R"({"type": "quad", "corner": [0,0,0], "u": [1,0,0], "v": [0,1,0], "material": "grey",
       "transform": {"matrix": [-1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1]}})"));
   EXPECT_GT(normal(m.triangles[0]).z(), 0);
 }
@@ -93,11 +109,13 @@ TEST(Scene, CameraConventions) {
 }
 
 TEST(Scene, PathsAreRelativeToTheSceneFile) {
-  test::write_file("sub/m.json", R"({"kasha_material": 1, "passive": {"reflectance": {"csv": "r.csv"}}})");
+  test::write_file("sub/m.json",
+                   R"({"kasha_material": 1, "passive": {"reflectance": {"csv": "r.csv"}}})");
   test::write_file("sub/r.csv", "380,0.1\n780,0.1\n");
   std::string scene = test::write_file(
-      "sub/scene.json", std::string(R"({"kasha_scene": 1, )") + kCamera +
-                            R"(, "materials": {"m": {"file": "m.json"}}, "shapes": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}]})");
+      "sub/scene.json",
+      std::string(R"({"kasha_scene": 1, )") + kCamera +
+          R"(, "materials": {"m": {"file": "m.json"}}, "shapes": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "m"}]})");
   Scene s = load_scene(scene);
   EXPECT_NEAR(s.materials[0].rho[3], 0.1, 1e-12);
 }
@@ -120,7 +138,8 @@ TEST(Scene, BadScenesGiveOneClearLine) {
     EXPECT_NE(msg.find(expected), std::string::npos) << msg;
     EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
   };
-  const std::string sphere = R"({"type": "sphere", "center": [0,0,0], "radius": 1, "material": "grey"})";
+  const std::string sphere =
+      R"({"type": "sphere", "center": [0,0,0], "radius": 1, "material": "grey"})";
   check(scene_with(sphere, R"("colour": 1, )"), "scene.json: /colour: unknown key");
   check(scene_with(R"({"type": "sphere", "center": [0,0,0], "radius": "1", "material": "grey"})"),
         "scene.json: /shapes/0/radius: expected a number, got a string");
@@ -128,22 +147,33 @@ TEST(Scene, BadScenesGiveOneClearLine) {
         "/shapes/0/center: expected an array of 3 numbers");
   check(scene_with(R"({"type": "sphere", "center": [0,0,0], "radius": 1, "material": "gold"})"),
         "/shapes/0/material: no material named \"gold\"");
-  check(scene_with(R"({"type": "cone", "material": "grey"})"), "/shapes/0/type: unknown shape type \"cone\"");
-  check(scene_with(R"({"type": "box", "min": [0,0,0], "max": [1,0,1], "material": "grey"})"), "must be below");
-  check(scene_with(R"({"type": "sphere", "center": [0,0,0], "radius": 1, "material": "grey", "radius2": 1})"),
-        "/shapes/0/radius2: unknown key");
-  check(scene_with(R"({"type": "obj", "file": "missing.obj", "material": "grey"})"), "missing.obj: cannot read OBJ mesh");
-  check(scene_with(R"({"type": "sphere", "center": [0,0,0], "radius": 1, "material": "grey", "emission": {"nm": [500, 400], "value": [1, 1]}})"),
-        "scene.json: /shapes/0/emission: at 400 nm: wavelengths must increase");
+  check(scene_with(R"({"type": "cone", "material": "grey"})"),
+        "/shapes/0/type: unknown shape type \"cone\"");
+  check(scene_with(R"({"type": "box", "min": [0,0,0], "max": [1,0,1], "material": "grey"})"),
+        "must be below");
+  check(
+      scene_with(
+          R"({"type": "sphere", "center": [0,0,0], "radius": 1, "material": "grey", "radius2": 1})"),
+      "/shapes/0/radius2: unknown key");
+  check(scene_with(R"({"type": "obj", "file": "missing.obj", "material": "grey"})"),
+        "missing.obj: cannot read OBJ mesh");
+  check(
+      scene_with(
+          R"({"type": "sphere", "center": [0,0,0], "radius": 1, "material": "grey", "emission": {"nm": [500, 400], "value": [1, 1]}})"),
+      "scene.json: /shapes/0/emission: at 400 nm: wavelengths must increase");
   check(scene_with(""), "the scene has no shapes");
-  check(R"({"kasha_scene": 1, "camera": {"position": [0,0,0], "look_at": [0,0,0]}, )" + std::string(kMaterials) +
-            R"(, "shapes": [])",
+  check(R"({"kasha_scene": 1, "camera": {"position": [0,0,0], "look_at": [0,0,0]}, )" +
+            std::string(kMaterials) + R"(, "shapes": [])",
         "scene.json: malformed JSON: parse error at line 1, column");
-  check(R"({"kasha_scene": 1, "camera": {"position": [0,0,0], "look_at": [0,0,0]}, )" + std::string(kMaterials) +
-            R"(, "shapes": [)" + sphere + "]}",
+  check(R"({"kasha_scene": 1, "camera": {"position": [0,0,0], "look_at": [0,0,0]}, )" +
+            std::string(kMaterials) + R"(, "shapes": [)" + sphere + "]}",
         "/camera: \"position\" and \"look_at\" are the same point");
-  check(scene_with(sphere, R"("wavelengths": {"min_nm": 700, "max_nm": 400}, )"), "/wavelengths: min_nm must be below max_nm");
-  check(scene_with(sphere, R"("wavelengths": {"bin_nm": -1}, )"), "/wavelengths/bin_nm: value -1 is outside");
-  EXPECT_NE(error_of([] { load_scene("/nonexistent/scene.json"); }).find("/nonexistent/scene.json: cannot open file"),
+  check(scene_with(sphere, R"("wavelengths": {"min_nm": 700, "max_nm": 400}, )"),
+        "/wavelengths: min_nm must be below max_nm");
+  check(scene_with(sphere, R"("wavelengths": {"bin_nm": -1}, )"),
+        "/wavelengths/bin_nm: value -1 is outside");
+  EXPECT_NE(error_of([] {
+              load_scene("/nonexistent/scene.json");
+            }).find("/nonexistent/scene.json: cannot open file"),
             std::string::npos);
 }

@@ -69,7 +69,8 @@ TEST(Spectrum, LineKeepsItsIntegralInOneBin) {
   WavelengthGrid g = grid(380, 780, 10);
   auto s = parse(R"({"line_nm": 405, "scale": 3})");
   auto v = g.resample(*s);
-  for (int i = 0; i < g.bins; ++i) EXPECT_DOUBLE_EQ(v[i], i == 2 ? 0.3 : 0.0) << i;  // [400, 410) holds 405
+  for (int i = 0; i < g.bins; ++i)
+    EXPECT_DOUBLE_EQ(v[i], i == 2 ? 0.3 : 0.0) << i;  // [400, 410) holds 405
   EXPECT_NEAR(grid_integral(g, *s), 3.0, 1e-12);
   // On a bin edge it belongs to the upper bin; at the top edge, to the last bin.
   auto edge = g.resample(*parse(R"({"line_nm": 410})"));
@@ -110,14 +111,17 @@ TEST(Spectrum, ConstantAndBuiltins) {
   EXPECT_NEAR(grid_integral(g, *parse(R"("E")")), 40000.0, 1e-6);
   auto d65 = g.resample(*parse(R"("D65")"));
   EXPECT_NEAR(d65[18], 100.0, 3.0);  // the bin around 560 nm
-  for (const char* name : {"\"A\"", "\"F11\"", "\"D50\"", "\"F2\"", "\"F7\""}) EXPECT_GT(grid_integral(g, *parse(name)), 0);
+  for (const char* name : {"\"A\"", "\"F11\"", "\"D50\"", "\"F2\"", "\"F7\""})
+    EXPECT_GT(grid_integral(g, *parse(name)), 0);
 }
 
 TEST(Spectrum, BlackbodyIsPlanckPerNanometre) {
   // ∫ B dλ over all wavelengths = σ T⁴ / π.
   WavelengthGrid wide = grid(50, 200050, 100);
   double T = 3000, sigma = 5.670374419e-8;
-  EXPECT_NEAR(grid_integral(wide, *parse(R"({"blackbody_K": 3000})")) / (sigma * std::pow(T, 4) / M_PI), 1.0, 1e-4);
+  EXPECT_NEAR(
+      grid_integral(wide, *parse(R"({"blackbody_K": 3000})")) / (sigma * std::pow(T, 4) / M_PI),
+      1.0, 1e-4);
   // Wien's peak near 2898/T µm; a scale multiplies.
   WavelengthGrid g = grid(380, 780, 1);
   auto v = g.resample(*parse(R"({"blackbody_K": 5000, "scale": 2})"));
@@ -126,12 +130,17 @@ TEST(Spectrum, BlackbodyIsPlanckPerNanometre) {
 }
 
 TEST(Spectrum, CsvColumnsCommentsAndHeader) {
-  std::string path = test::write_file("s.csv", "# comment\nnm,low,high\n400,0.1,0.5\n500,0.3,0.7\n");
+  std::string path =
+      test::write_file("s.csv", "# comment\nnm,low,high\n400,0.1,0.5\n500,0.3,0.7\n");
   WavelengthGrid g = grid(400, 500, 100);
   auto s = parse(R"({"csv": ")" + path + R"(", "column": "high"})");
   EXPECT_NEAR(g.resample(*s)[0], 0.6, 1e-12);
-  EXPECT_NE(error_of([&] { parse(R"({"csv": ")" + path + R"("})"); }).find("choose one with \"column\""), std::string::npos);
-  EXPECT_NE(error_of([&] { parse(R"({"csv": ")" + path + R"(", "column": "mid"})"); }).find("no column named"),
+  EXPECT_NE(
+      error_of([&] { parse(R"({"csv": ")" + path + R"("})"); }).find("choose one with \"column\""),
+      std::string::npos);
+  EXPECT_NE(error_of([&] {
+              parse(R"({"csv": ")" + path + R"(", "column": "mid"})");
+            }).find("no column named"),
             std::string::npos);
 }
 
@@ -144,7 +153,8 @@ TEST(Spectrum, BadSpectraGiveOneClearLine) {
   check(R"({"nm": [400, 390], "value": [1, 1]})", "wavelengths must increase");
   check(R"({"nm": [400, 500], "value": [1, -0.5]})", "negative value -0.5");
   check(R"({"nm": [400, 500], "value": [1]})", "2 wavelengths but 1 values");
-  check(R"({"nm": [400, 500], "value": [1, "x"]})", "test.json: /value/1: expected a number, got a string");
+  check(R"({"nm": [400, 500], "value": [1, "x"]})",
+        "test.json: /value/1: expected a number, got a string");
   check(R"(-1)", "negative spectrum value");
   check(R"("D66")", "unknown built-in spectrum \"D66\"");
   check(R"({"line_nm": 405, "colour": 1})", "test.json: /colour: unknown key");

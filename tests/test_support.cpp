@@ -10,7 +10,8 @@ namespace kasha::test {
 
 std::filesystem::path scratch_dir() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  std::filesystem::path dir = std::filesystem::path(KASHA_TEST_TMP) / (std::string(info->test_suite_name()) + "." + info->name());
+  std::filesystem::path dir = std::filesystem::path(KASHA_TEST_TMP) /
+                              (std::string(info->test_suite_name()) + "." + info->name());
   static std::string last;
   if (last != dir.string()) {
     std::filesystem::remove_all(dir);
@@ -27,7 +28,9 @@ std::string write_file(const std::string& name, const std::string& text) {
   return p.string();
 }
 
-std::string source_path(const std::string& relative) { return std::string(KASHA_SOURCE_DIR) + "/" + relative; }
+std::string source_path(const std::string& relative) {
+  return std::string(KASHA_SOURCE_DIR) + "/" + relative;
+}
 
 static std::string slurp(const std::string& path) {
   std::ifstream in(path);
@@ -36,13 +39,19 @@ static std::string slurp(const std::string& path) {
   return s.str();
 }
 
-CommandResult run_kasha(const std::string& args) { return run_kasha_env("", args); }
+CommandResult run_kasha(const std::string& args) {
+  return run_kasha_env("", args);
+}
 
-CommandResult run_kasha_env(const std::string& env, const std::string& args, int interrupt_after_s) {
-  std::string out = (scratch_dir() / "stdout.txt").string(), err = (scratch_dir() / "stderr.txt").string();
+CommandResult run_kasha_env(const std::string& env, const std::string& args,
+                            int interrupt_after_s) {
+  std::string out = (scratch_dir() / "stdout.txt").string(),
+              err = (scratch_dir() / "stderr.txt").string();
   std::string prefix = env.empty() ? "" : "env " + env + " ";
-  if (interrupt_after_s > 0) prefix += "timeout --preserve-status -s INT " + std::to_string(interrupt_after_s) + " ";
-  std::string cmd = prefix + KASHA_BINARY + " " + args + " > '" + out + "' 2> '" + err + "' < /dev/null";
+  if (interrupt_after_s > 0)
+    prefix += "timeout --preserve-status -s INT " + std::to_string(interrupt_after_s) + " ";
+  std::string cmd =
+      prefix + KASHA_BINARY + " " + args + " > '" + out + "' 2> '" + err + "' < /dev/null";
   int status = std::system(cmd.c_str());
   CommandResult r;
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);

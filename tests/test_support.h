@@ -23,7 +23,8 @@ struct CommandResult {
 CommandResult run_kasha(const std::string& args);
 // Same, with environment assignments ("NAME=value ...") and, when interrupt_after_s > 0, a SIGINT
 // sent after that many seconds, as Ctrl-C would.
-CommandResult run_kasha_env(const std::string& env, const std::string& args, int interrupt_after_s = 0);
+CommandResult run_kasha_env(const std::string& env, const std::string& args,
+                            int interrupt_after_s = 0);
 
 // Runs f and returns the kasha::Error message it throws (fails the test if it throws nothing).
 template <typename F>

@@ -25,7 +25,9 @@ ClContext& device() {
 }
 
 // Barycentric distance of a hit from its triangle's nearest edge.
-float edge_distance(const KHit& h) { return std::min({h.u, h.v, 1.0f - h.u - h.v}); }
+float edge_distance(const KHit& h) {
+  return std::min({h.u, h.v, 1.0f - h.u - h.v});
+}
 
 double scene_extent(const std::vector<KTriangle>& tris) {
   float lo = INFINITY, hi = -INFINITY;
@@ -64,8 +66,10 @@ Agreement compare_closest(const Scene& scene, std::uint64_t seed) {
     } else if (e.prim >= 0 && g.prim >= 0 && std::abs(e.t - g.t) <= tol) {
       // Each side found its own triangle at the same distance: an edge two triangles share, or
       // coincident faces (a box standing on a floor). Either is a correct closest hit.
-      if (std::min(edge_distance(e), edge_distance(g)) < 1e-4f) ++a.edge_ties;
-      else ++a.coincident;
+      if (std::min(edge_distance(e), edge_distance(g)) < 1e-4f)
+        ++a.edge_ties;
+      else
+        ++a.coincident;
       continue;
     } else if ((e.prim < 0 ? edge_distance(g) : edge_distance(e)) < 1e-5f) {
       ++a.edge_ties;  // grazes an edge: one watertight test counts it, the other does not
@@ -73,8 +77,8 @@ Agreement compare_closest(const Scene& scene, std::uint64_t seed) {
     }
     ++a.mismatches;
     if (a.mismatches <= 5)
-      ADD_FAILURE() << "ray " << i << ": Embree prim " << e.prim << " t " << e.t << ", OpenCL prim " << g.prim
-                    << " t " << g.t;
+      ADD_FAILURE() << "ray " << i << ": Embree prim " << e.prim << " t " << e.t << ", OpenCL prim "
+                    << g.prim << " t " << g.t;
   }
   return a;
 }
@@ -98,24 +102,34 @@ Scene scaled_scene(double scale) {
 void expect_agreement(const Scene& scene, std::uint64_t seed) {
   Agreement a = compare_closest(scene, seed);
   EXPECT_EQ(a.mismatches, 0u);
-  EXPECT_GT(a.hits, kRays / 4);                 // the rays do exercise the geometry
-  EXPECT_LT(a.edge_ties, kRays / 1000);         // ties stay rare
+  EXPECT_GT(a.hits, kRays / 4);          // the rays do exercise the geometry
+  EXPECT_LT(a.edge_ties, kRays / 1000);  // ties stay rare
   EXPECT_EQ(a.same + a.edge_ties + a.coincident + a.mismatches, kRays);
-  std::printf("  %zu rays, %zu hits, %zu identical, %zu edge ties, %zu on coincident faces\n", kRays, a.hits, a.same,
-              a.edge_ties, a.coincident);
+  std::printf("  %zu rays, %zu hits, %zu identical, %zu edge ties, %zu on coincident faces\n",
+              kRays, a.hits, a.same, a.edge_ties, a.coincident);
 }
 
 }  // namespace
 
-TEST(Traversal, CornellBoxMatchesEmbree) { expect_agreement(load_scene(test::source_path("scenes/cornell_box.json")), 1); }
+TEST(Traversal, CornellBoxMatchesEmbree) {
+  expect_agreement(load_scene(test::source_path("scenes/cornell_box.json")), 1);
+}
 
-TEST(Traversal, ObjMeshSceneMatchesEmbree) { expect_agreement(load_scene(test::source_path("scenes/torus.json")), 2); }
+TEST(Traversal, ObjMeshSceneMatchesEmbree) {
+  expect_agreement(load_scene(test::source_path("scenes/torus.json")), 2);
+}
 
-TEST(Traversal, TinySceneMatchesEmbree) { expect_agreement(scaled_scene(1e-3), 3); }
+TEST(Traversal, TinySceneMatchesEmbree) {
+  expect_agreement(scaled_scene(1e-3), 3);
+}
 
-TEST(Traversal, UnitSceneMatchesEmbree) { expect_agreement(scaled_scene(1.0), 4); }
+TEST(Traversal, UnitSceneMatchesEmbree) {
+  expect_agreement(scaled_scene(1.0), 4);
+}
 
-TEST(Traversal, HugeSceneMatchesEmbree) { expect_agreement(scaled_scene(1e3), 5); }
+TEST(Traversal, HugeSceneMatchesEmbree) {
+  expect_agreement(scaled_scene(1e3), 5);
+}
 
 TEST(Traversal, AnyHitMatchesEmbreeOccluded) {
   Scene scene = scaled_scene(1.0);
@@ -153,11 +167,13 @@ TEST(Traversal, DegenerateTrianglesAreNeverHit) {
   std::copy(d, d + 3, tris[1].v0), std::copy(e, e + 3, tris[1].v1), std::copy(f, f + 3, tris[1].v2);
   tris[0].prim = 0, tris[1].prim = 1;
   ClTraversal traversal(device(), build_bvh(tris));
-  KRay r{{0.5f, 0.0f, -1.0f}, 0.0f, {0.0f, 0.0f, 1.0f}, INFINITY};  // through the degenerate one first
+  KRay r{
+      {0.5f, 0.0f, -1.0f}, 0.0f, {0.0f, 0.0f, 1.0f}, INFINITY};  // through the degenerate one first
   KRay s{{0.2f, 0.2f, -1.0f}, 0.0f, {0.0f, 0.0f, 1.0f}, INFINITY};
   std::vector<KHit> hits = traversal.closest({r, s});
   EXPECT_EQ(hits[0].prim, -1);
   EXPECT_EQ(hits[1].prim, 1);
   EXPECT_NEAR(hits[1].t, 2.0f, 1e-6f);
-  for (float x : {hits[0].t, hits[1].t, hits[1].u, hits[1].v}) EXPECT_TRUE(std::isfinite(x) || x == INFINITY);
+  for (float x : {hits[0].t, hits[1].t, hits[1].u, hits[1].v})
+    EXPECT_TRUE(std::isfinite(x) || x == INFINITY);
 }

@@ -1,14 +1,15 @@
 #include "color/color_space.h"
 
-#include "color_constants.h"
-
 #include <algorithm>
 #include <cmath>
+
+#include "color_constants.h"
 
 namespace kasha {
 
 static Vec3d apply(const double m[3][3], const Vec3d& v) {
-  return {m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2], m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2],
+  return {m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2],
+          m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2],
           m[2][0] * v[0] + m[2][1] * v[1] + m[2][2] * v[2]};
 }
 

@@ -1,18 +1,22 @@
 #include "core/atomic_file.h"
 
-#include <filesystem>
 #include <unistd.h>
+
+#include <filesystem>
 
 #include "core/error.h"
 
 namespace kasha {
 
-void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write) {
+void write_atomically(const std::string& path,
+                      const std::function<void(const std::string&)>& write) {
   namespace fs = std::filesystem;
   fs::path target(path);
   fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  if (!fs::is_directory(dir)) throw Error(path + ": cannot write: directory " + dir.string() + " does not exist");
-  fs::path tmp = dir / ("." + target.filename().string() + ".tmp" + std::to_string(getpid()) + target.extension().string());
+  if (!fs::is_directory(dir))
+    throw Error(path + ": cannot write: directory " + dir.string() + " does not exist");
+  fs::path tmp = dir / ("." + target.filename().string() + ".tmp" + std::to_string(getpid()) +
+                        target.extension().string());
   try {
     write(tmp.string());
     fs::rename(tmp, target);

@@ -8,6 +8,7 @@ namespace kasha {
 
 // Calls write(temporary_path); on success renames it to `path`, on any exception removes it and
 // rethrows (kasha::Error naming `path` for non-kasha errors).
-void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
+void write_atomically(const std::string& path,
+                      const std::function<void(const std::string&)>& write);
 
 }  // namespace kasha

@@ -52,11 +52,11 @@ CsvTable parse_csv_table(const std::string& text, const std::string& source) {
     std::vector<double> row(cells.size());
     for (size_t c = 0; c < cells.size(); ++c) {
       if (!parse_number(cells[c], row[c]))
-        throw Error(source + ": line " + std::to_string(line_no) + ", column " + std::to_string(c + 1) +
-                    ": not a number: \"" + cells[c] + "\"");
+        throw Error(source + ": line " + std::to_string(line_no) + ", column " +
+                    std::to_string(c + 1) + ": not a number: \"" + cells[c] + "\"");
       if (!std::isfinite(row[c]))
-        throw Error(source + ": line " + std::to_string(line_no) + ", column " + std::to_string(c + 1) +
-                    ": value is not finite");
+        throw Error(source + ": line " + std::to_string(line_no) + ", column " +
+                    std::to_string(c + 1) + ": value is not finite");
     }
     table.rows.push_back(std::move(row));
     table.row_lines.push_back(line_no);

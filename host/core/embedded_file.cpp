@@ -4,7 +4,8 @@
 
 namespace kasha {
 
-static const std::string& find_embedded(const std::vector<EmbeddedFile>& files, const std::string& name) {
+static const std::string& find_embedded(const std::vector<EmbeddedFile>& files,
+                                        const std::string& name) {
   for (const EmbeddedFile& f : files)
     if (f.name == name) return f.contents;
   throw std::logic_error("embedded file '" + name + "' is missing from the build");

@@ -1,5 +1,6 @@
 #pragma once
-// Files compiled into the binary (kernel sources, built-in spectral tables); see cmake/EmbedFiles.cmake.
+// Files compiled into the binary (kernel sources, built-in spectral tables); see
+// cmake/EmbedFiles.cmake.
 #include <string>
 #include <vector>
 
@@ -13,7 +14,8 @@ struct EmbeddedFile {
 const std::vector<EmbeddedFile>& kasha_embedded_kernels();
 const std::vector<EmbeddedFile>& kasha_embedded_data();
 
-// The contents of an embedded file by name; throws if it is not there (a build error, not user error).
+// The contents of an embedded file by name; throws if it is not there (a build error, not user
+// error).
 const std::string& embedded_kernel(const std::string& name);
 const std::string& embedded_data(const std::string& name);
 

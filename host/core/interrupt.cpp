@@ -21,6 +21,8 @@ void install_interrupt_handler() {
   std::signal(SIGINT, on_sigint);
 }
 
-bool interrupt_requested() { return g_requests > 0; }
+bool interrupt_requested() {
+  return g_requests > 0;
+}
 
 }  // namespace kasha

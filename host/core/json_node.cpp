@@ -26,10 +26,12 @@ JsonNode JsonNode::load_file(const std::filesystem::path& file) {
   try {
     document = nlohmann::json::parse(text.str());
   } catch (const nlohmann::json::parse_error& e) {
-    // nlohmann's message reads "[json.exception.parse_error.101] parse error at line L, column C: ..."
+    // nlohmann's message reads "[json.exception.parse_error.101] parse error at line L, column C:
+    // ..."
     std::string what = e.what();
     size_t at = what.find("parse error");
-    throw Error(file.string() + ": malformed JSON: " + (at == std::string::npos ? what : what.substr(at)));
+    throw Error(file.string() +
+                ": malformed JSON: " + (at == std::string::npos ? what : what.substr(at)));
   }
   auto root = std::make_shared<const nlohmann::json>(std::move(document));
   std::filesystem::path base = file.parent_path();
@@ -42,16 +44,24 @@ JsonNode JsonNode::from_json(nlohmann::json document, const std::string& file) {
   return JsonNode(root, root.get(), file, base.empty() ? "." : base, "");
 }
 
-void JsonNode::fail(const std::string& why) const { throw Error(file_ + ": " + path() + ": " + why); }
+void JsonNode::fail(const std::string& why) const {
+  throw Error(file_ + ": " + path() + ": " + why);
+}
 
 std::string JsonNode::type_name() const {
   switch (json_->type()) {
-    case nlohmann::json::value_t::null: return "null";
-    case nlohmann::json::value_t::object: return "an object";
-    case nlohmann::json::value_t::array: return "an array";
-    case nlohmann::json::value_t::string: return "a string";
-    case nlohmann::json::value_t::boolean: return "a boolean";
-    default: return "a number";
+    case nlohmann::json::value_t::null:
+      return "null";
+    case nlohmann::json::value_t::object:
+      return "an object";
+    case nlohmann::json::value_t::array:
+      return "an array";
+    case nlohmann::json::value_t::string:
+      return "a string";
+    case nlohmann::json::value_t::boolean:
+      return "a boolean";
+    default:
+      return "a number";
   }
 }
 
@@ -68,9 +78,12 @@ bool JsonNode::has(const std::string& key) const {
 static std::string escape_pointer(const std::string& key) {
   std::string out;
   for (char c : key) {
-    if (c == '~') out += "~0";
-    else if (c == '/') out += "~1";
-    else out += c;
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
   }
   return out;
 }
@@ -130,7 +143,8 @@ int JsonNode::integer_in(int lo, int hi) const {
   double v = number();
   if (v != std::floor(v)) fail("expected an integer, got " + json_->dump());
   if (v < lo || v > hi)
-    fail("value " + json_->dump() + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    fail("value " + json_->dump() + " is outside [" + std::to_string(lo) + ", " +
+         std::to_string(hi) + "]");
   return static_cast<int>(v);
 }
 
@@ -151,7 +165,8 @@ std::vector<double> JsonNode::numbers() const {
 }
 
 std::array<double, 3> JsonNode::vec3() const {
-  if (size() != 3) fail("expected an array of 3 numbers, got " + std::to_string(size()) + " elements");
+  if (size() != 3)
+    fail("expected an array of 3 numbers, got " + std::to_string(size()) + " elements");
   return {(*this)[0].number(), (*this)[1].number(), (*this)[2].number()};
 }
 

@@ -33,9 +33,9 @@ class JsonNode {
   bool has(const std::string& key) const;
   JsonNode at(const std::string& key) const;  // required key of an object
   std::optional<JsonNode> find(const std::string& key) const;
-  std::vector<std::string> keys() const;      // an object's keys, all marked as read
-  size_t size() const;                        // array length
-  JsonNode operator[](size_t index) const;    // array element
+  std::vector<std::string> keys() const;    // an object's keys, all marked as read
+  size_t size() const;                      // array length
+  JsonNode operator[](size_t index) const;  // array element
 
   double number() const;  // finite
   double number_in(double lo, double hi) const;

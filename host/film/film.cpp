@@ -5,7 +5,11 @@
 namespace kasha {
 
 Film::Film(int width, int height, const WavelengthGrid& grid, bool spectral)
-    : width_(width), height_(height), grid_(grid), spectral_(spectral), observer_(grid),
+    : width_(width),
+      height_(height),
+      grid_(grid),
+      spectral_(spectral),
+      observer_(grid),
       sum_(pixels() * rows(), 0.0) {}
 
 void Film::add_pass(const std::vector<float>& sums, long long samples_per_pixel) {

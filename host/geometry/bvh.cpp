@@ -43,7 +43,8 @@ void set_bounds(void* node, const RTCBounds** bounds, unsigned int count, void*)
   for (unsigned i = 0; i < count; ++i) inner->child_bounds[i] = *bounds[i];
 }
 
-void* create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims, size_t count, void*) {
+void* create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims, size_t count,
+                  void*) {
   void* mem = rtcThreadLocalAlloc(alloc, sizeof(LeafNode), 16);
   auto* leaf = new (mem) LeafNode;
   leaf->ids = static_cast<unsigned*>(rtcThreadLocalAlloc(alloc, count * sizeof(unsigned), 16));
@@ -70,8 +71,8 @@ void store_bounds(KBvhNode& n, const RTCBounds& b) {
   n.hi[0] = b.upper_x, n.hi[1] = b.upper_y, n.hi[2] = b.upper_z;
 }
 
-void flatten(const BuildNode* node, const RTCBounds& bounds, const std::vector<KTriangle>& in, FlatBvh& out,
-             int depth) {
+void flatten(const BuildNode* node, const RTCBounds& bounds, const std::vector<KTriangle>& in,
+             FlatBvh& out, int depth) {
   out.depth = std::max(out.depth, depth);
   int index = static_cast<int>(out.nodes.size());
   out.nodes.push_back(KBvhNode{});
@@ -133,7 +134,8 @@ FlatBvh build_bvh(const std::vector<KTriangle>& triangles) {
   auto* root = static_cast<BuildNode*>(rtcBuildBVH(&args));
   if (!root) {
     rtcReleaseBVH(bvh);
-    throw Error("Embree: BVH build failed (error " + std::to_string(rtcGetDeviceError(embree_device())) + ")");
+    throw Error("Embree: BVH build failed (error " +
+                std::to_string(rtcGetDeviceError(embree_device())) + ")");
   }
   // The root's bounds are not reported through a parent; a lone leaf's come from its triangles.
   RTCBounds root_bounds;
@@ -142,8 +144,10 @@ FlatBvh build_bvh(const std::vector<KTriangle>& triangles) {
   } else {
     auto* inner = static_cast<InnerNode*>(root);
     const RTCBounds &a = inner->child_bounds[0], &b = inner->child_bounds[1];
-    root_bounds = {std::min(a.lower_x, b.lower_x), std::min(a.lower_y, b.lower_y), std::min(a.lower_z, b.lower_z), 0,
-                   std::max(a.upper_x, b.upper_x), std::max(a.upper_y, b.upper_y), std::max(a.upper_z, b.upper_z), 0};
+    root_bounds = {std::min(a.lower_x, b.lower_x), std::min(a.lower_y, b.lower_y),
+                   std::min(a.lower_z, b.lower_z), 0,
+                   std::max(a.upper_x, b.upper_x), std::max(a.upper_y, b.upper_y),
+                   std::max(a.upper_z, b.upper_z), 0};
   }
   out.nodes.reserve(2 * triangles.size());
   out.triangles.reserve(triangles.size());

@@ -5,11 +5,13 @@
 namespace kasha {
 
 ClTraversal::ClTraversal(ClContext& cl, const FlatBvh& bvh) : cl_(cl) {
-  nodes_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bvh.nodes.size() * sizeof(KBvhNode),
-                      const_cast<KBvhNode*>(bvh.nodes.data()));
+  nodes_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                      bvh.nodes.size() * sizeof(KBvhNode), const_cast<KBvhNode*>(bvh.nodes.data()));
   triangles_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                          bvh.triangles.size() * sizeof(KTriangle), const_cast<KTriangle*>(bvh.triangles.data()));
-  cl::Program program = build_program(cl, assemble_kernel_source("trace_rays.cl"), {}, "trace_rays.cl");
+                          bvh.triangles.size() * sizeof(KTriangle),
+                          const_cast<KTriangle*>(bvh.triangles.data()));
+  cl::Program program =
+      build_program(cl, assemble_kernel_source("trace_rays.cl"), {}, "trace_rays.cl");
   closest_ = cl::Kernel(program, "trace_closest");
   occluded_ = cl::Kernel(program, "trace_occluded");
 }
@@ -31,7 +33,11 @@ std::vector<Out> ClTraversal::run(cl::Kernel& kernel, const std::vector<KRay>& r
   return out;
 }
 
-std::vector<KHit> ClTraversal::closest(const std::vector<KRay>& rays) { return run<KHit>(closest_, rays); }
-std::vector<int> ClTraversal::occluded(const std::vector<KRay>& rays) { return run<int>(occluded_, rays); }
+std::vector<KHit> ClTraversal::closest(const std::vector<KRay>& rays) {
+  return run<KHit>(closest_, rays);
+}
+std::vector<int> ClTraversal::occluded(const std::vector<KRay>& rays) {
+  return run<int>(occluded_, rays);
+}
 
 }  // namespace kasha

@@ -9,7 +9,9 @@ namespace kasha {
 RTCDevice embree_device() {
   static RTCDevice device = [] {
     RTCDevice d = rtcNewDevice(nullptr);
-    if (!d) throw Error("Embree: cannot create a device (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
+    if (!d)
+      throw Error("Embree: cannot create a device (error " +
+                  std::to_string(rtcGetDeviceError(nullptr)) + ")");
     return d;
   }();
   return device;

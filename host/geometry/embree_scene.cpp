@@ -13,10 +13,10 @@ EmbreeScene::EmbreeScene(const std::vector<KTriangle>& triangles) {
   scene_ = rtcNewScene(device);
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
   RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                        3 * sizeof(float), 3 * triangles.size()));
-  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                             3 * sizeof(unsigned), triangles.size()));
+  auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * triangles.size()));
+  auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
+      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles.size()));
   if (!v || !idx) throw Error("Embree: cannot allocate geometry buffers");
   for (size_t i = 0; i < triangles.size(); ++i) {
     const KTriangle& t = triangles[i];
@@ -31,7 +31,9 @@ EmbreeScene::EmbreeScene(const std::vector<KTriangle>& triangles) {
   rtcCommitScene(scene_);
 }
 
-EmbreeScene::~EmbreeScene() { rtcReleaseScene(scene_); }
+EmbreeScene::~EmbreeScene() {
+  rtcReleaseScene(scene_);
+}
 
 KHit EmbreeScene::intersect(const KRay& ray) const {
   RTCIntersectContext context;

@@ -7,7 +7,8 @@
 
 namespace kasha {
 
-std::vector<KRay> random_rays(const std::vector<KTriangle>& triangles, size_t count, std::uint64_t seed) {
+std::vector<KRay> random_rays(const std::vector<KTriangle>& triangles, size_t count,
+                              std::uint64_t seed) {
   float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
   for (const KTriangle& t : triangles)
     for (const float* v : {t.v0, t.v1, t.v2})

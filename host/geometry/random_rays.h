@@ -10,6 +10,7 @@
 
 namespace kasha {
 
-std::vector<KRay> random_rays(const std::vector<KTriangle>& triangles, size_t count, std::uint64_t seed);
+std::vector<KRay> random_rays(const std::vector<KTriangle>& triangles, size_t count,
+                              std::uint64_t seed);
 
 }  // namespace kasha

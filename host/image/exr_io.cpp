@@ -50,7 +50,8 @@ void write_exr(const std::string& path, const Image& image) {
       header.insert("spectralLayoutVersion", Imf::StringAttribute("1.0"));
       header.insert("emissiveUnits", Imf::StringAttribute("W.m^-2.sr^-1"));
       for (int i = 0; i < image.grid.bins; ++i)
-        add(spectral_channel_name(image.grid.center(i)), image.spectral.data() + i, image.grid.bins);
+        add(spectral_channel_name(image.grid.center(i)), image.spectral.data() + i,
+            image.grid.bins);
     }
     Imf::OutputFile file(tmp.c_str(), header);
     file.setFrameBuffer(fb);
@@ -77,18 +78,23 @@ Image read_exr(const std::string& path) {
         bins[std::stod(value)] = name;
       }
     }
-    bool has_xyz = channels.findChannel("XYZ.X") && channels.findChannel("XYZ.Y") && channels.findChannel("XYZ.Z");
-    bool has_rgb = channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
-    if (!has_xyz && !has_rgb) throw Error(path + ": EXR has neither an XYZ layer nor R, G, B channels");
+    bool has_xyz = channels.findChannel("XYZ.X") && channels.findChannel("XYZ.Y") &&
+                   channels.findChannel("XYZ.Z");
+    bool has_rgb =
+        channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
+    if (!has_xyz && !has_rgb)
+      throw Error(path + ": EXR has neither an XYZ layer nor R, G, B channels");
 
     std::vector<float> three(3 * n, 0.0f);
     Imf::FrameBuffer fb;
-    char* origin = (char*)three.data() - (dw.min.x + dw.min.y * (size_t)img.width) * 3 * sizeof(float);
+    char* origin =
+        (char*)three.data() - (dw.min.x + dw.min.y * (size_t)img.width) * 3 * sizeof(float);
     const char* xyz_names[3] = {"XYZ.X", "XYZ.Y", "XYZ.Z"};
     const char* rgb_names[3] = {"R", "G", "B"};
     for (int k = 0; k < 3; ++k)
       fb.insert(has_xyz ? xyz_names[k] : rgb_names[k],
-                Imf::Slice(Imf::FLOAT, origin + k * sizeof(float), 3 * sizeof(float), 3 * sizeof(float) * img.width));
+                Imf::Slice(Imf::FLOAT, origin + k * sizeof(float), 3 * sizeof(float),
+                           3 * sizeof(float) * img.width));
     if (!bins.empty()) {
       std::vector<double> wl;
       for (const auto& [nm, name] : bins) wl.push_back(nm);
@@ -97,7 +103,8 @@ Image read_exr(const std::string& path) {
       img.grid.min_nm = wl.front() - 0.5 * img.grid.bin_nm;
       img.spectral.assign(n * wl.size(), 0.0f);
       size_t stride = wl.size();
-      char* sorigin = (char*)img.spectral.data() - (dw.min.x + dw.min.y * (size_t)img.width) * stride * sizeof(float);
+      char* sorigin = (char*)img.spectral.data() -
+                      (dw.min.x + dw.min.y * (size_t)img.width) * stride * sizeof(float);
       int i = 0;
       for (const auto& [nm, name] : bins) {
         fb.insert(name, Imf::Slice(Imf::FLOAT, sorigin + i * sizeof(float), stride * sizeof(float),

@@ -16,7 +16,8 @@ namespace kasha {
 static double exposure_for(const Image& image) {
   std::vector<float> y;
   for (size_t p = 0; p < image.pixels(); ++p)
-    if (image.xyz[3 * p + 1] > 0 && std::isfinite(image.xyz[3 * p + 1])) y.push_back(image.xyz[3 * p + 1]);
+    if (image.xyz[3 * p + 1] > 0 && std::isfinite(image.xyz[3 * p + 1]))
+      y.push_back(image.xyz[3 * p + 1]);
   if (y.empty()) return 1.0;
   size_t k = std::min(y.size() - 1, static_cast<size_t>(0.99 * y.size()));
   std::nth_element(y.begin(), y.begin() + k, y.end());
@@ -27,7 +28,8 @@ void write_png_preview(const std::string& path, const Image& image) {
   const double scale = exposure_for(image);
   std::vector<unsigned char> pixels(3 * image.pixels());
   for (size_t p = 0; p < image.pixels(); ++p) {
-    Vec3d rgb = xyz_to_linear_srgb({image.xyz[3 * p] * scale, image.xyz[3 * p + 1] * scale, image.xyz[3 * p + 2] * scale});
+    Vec3d rgb = xyz_to_linear_srgb(
+        {image.xyz[3 * p] * scale, image.xyz[3 * p + 1] * scale, image.xyz[3 * p + 2] * scale});
     for (int k = 0; k < 3; ++k) {
       double v = std::isfinite(rgb[k]) ? srgb_encode(rgb[k]) : 0.0;
       pixels[3 * p + k] = static_cast<unsigned char>(std::lround(255.0 * v));
@@ -48,7 +50,8 @@ void write_png_preview(const std::string& path, const Image& image) {
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
     png_write_info(png, info);
-    for (int y = 0; y < image.height; ++y) png_write_row(png, pixels.data() + 3 * static_cast<size_t>(y) * image.width);
+    for (int y = 0; y < image.height; ++y)
+      png_write_row(png, pixels.data() + 3 * static_cast<size_t>(y) * image.width);
     png_write_end(png, nullptr);
     png_destroy_write_struct(&png, &info);
     if (std::fclose(f) != 0) throw Error(path + ": write failed");

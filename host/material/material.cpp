@@ -27,7 +27,8 @@ static GlossDesc parse_gloss(const JsonNode& node) {
     double total = 0;
     for (size_t i = 0; i < g.profile_deg.size(); ++i) {
       double d = g.profile_deg[i], v = g.profile_value[i];
-      if (d < 0 || d > g.cone_deg) profile->fail("angle " + std::to_string(d) + " is outside the cone");
+      if (d < 0 || d > g.cone_deg)
+        profile->fail("angle " + std::to_string(d) + " is outside the cone");
       if (i > 0 && d <= g.profile_deg[i - 1]) profile->fail("angles must increase");
       if (v < 0) profile->fail("negative profile value at " + std::to_string(d) + " deg");
       total += v;
@@ -67,7 +68,8 @@ MaterialDesc parse_material(const JsonNode& node, const std::string& name) {
 MaterialDesc load_material_file(const std::string& path, const std::string& name) {
   JsonNode root = JsonNode::load_file(path);
   if (!root.is_object()) root.fail("expected a material object");
-  if (!root.has("kasha_material")) root.fail("missing \"kasha_material\": 1 (not a kasha material file)");
+  if (!root.has("kasha_material"))
+    root.fail("missing \"kasha_material\": 1 (not a kasha material file)");
   return parse_material(root, name);
 }
 
@@ -86,28 +88,29 @@ Material discretize_material(const MaterialDesc& desc, const WavelengthGrid& gri
     m.rho = grid.resample(*desc.passive);
     for (int i = 0; i < grid.bins; ++i)
       if (m.rho[i] > 1.0 + 1e-9)
-        throw Error(who + ": passive reflectance " + std::to_string(m.rho[i]) + " > 1 at " + nm_text(grid.center(i)));
+        throw Error(who + ": passive reflectance " + std::to_string(m.rho[i]) + " > 1 at " +
+                    nm_text(grid.center(i)));
   }
   if (desc.excitation) {
     m.a = grid.resample(*desc.excitation);
     std::vector<double> e = grid.resample(*desc.emission);
     double total = 0;
     for (double v : e) total += v * grid.bin_nm;
-    if (!(total > 0))
-      throw Error(who + ": fluorescence emission is zero over " + grid.describe());
+    if (!(total > 0)) throw Error(who + ": fluorescence emission is zero over " + grid.describe());
     m.e_hat.resize(grid.bins);
     for (int i = 0; i < grid.bins; ++i) m.e_hat[i] = e[i] * grid.bin_nm / total;
     for (int i = 0; i < grid.bins; ++i)
       if (m.a[i] > 1.0 + 1e-9)
-        throw Error(who + ": excitation " + std::to_string(m.a[i]) + " > 1 at " + nm_text(grid.center(i)));
+        throw Error(who + ": excitation " + std::to_string(m.a[i]) + " > 1 at " +
+                    nm_text(grid.center(i)));
   }
   double g = m.gloss_reflectance();
   for (int i = 0; i < grid.bins; ++i) {
     double rho = m.rho.empty() ? 0 : m.rho[i], a = m.a.empty() ? 0 : m.a[i];
     if (g + rho + a > 1.0 + 1e-6) {
       std::ostringstream msg;
-      msg << who << ": energy gain at " << nm_text(grid.center(i)) << ": gloss " << g << " + passive " << rho
-          << " + excitation " << a << " = " << g + rho + a << " > 1";
+      msg << who << ": energy gain at " << nm_text(grid.center(i)) << ": gloss " << g
+          << " + passive " << rho << " + excitation " << a << " = " << g + rho + a << " > 1";
       throw Error(msg.str());
     }
   }

@@ -22,7 +22,7 @@ struct GlossDesc {
 
 struct MaterialDesc {
   std::string name;
-  std::string where;  // "file: /json/path", for messages
+  std::string where;       // "file: /json/path", for messages
   SpectrumPtr passive;     // ρ(λ)
   SpectrumPtr excitation;  // a(λ)
   SpectrumPtr emission;    // e(λ), any scale: normalized on the grid

@@ -45,7 +45,9 @@ std::vector<DeviceInfo> list_devices() {
       info.name = d.getInfo<CL_DEVICE_NAME>();
       info.version = d.getInfo<CL_DEVICE_VERSION>();
       cl_device_type t = d.getInfo<CL_DEVICE_TYPE>();
-      info.type = (t & CL_DEVICE_TYPE_GPU) ? "GPU" : (t & CL_DEVICE_TYPE_CPU) ? "CPU" : "accelerator";
+      info.type = (t & CL_DEVICE_TYPE_GPU)   ? "GPU"
+                  : (t & CL_DEVICE_TYPE_CPU) ? "CPU"
+                                             : "accelerator";
       info.global_mem_bytes = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
       info.compute_units = d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
       info.device = d;
@@ -66,7 +68,8 @@ ClContext::ClContext(int device_index) {
     context_ = cl::Context(info_.device);
     queue_ = cl::CommandQueue(context_, info_.device);
   } catch (const cl::Error& e) {
-    throw Error("OpenCL device " + std::to_string(device_index) + " (" + info_.name + "): " + cl_error_text(e));
+    throw Error("OpenCL device " + std::to_string(device_index) + " (" + info_.name +
+                "): " + cl_error_text(e));
   }
 }
 

@@ -11,11 +11,13 @@ namespace kasha {
 
 std::string build_options(const KernelDefines& defines) {
   std::string out;
-  for (const auto& [name, value] : defines) out += (out.empty() ? "" : " ") + std::string("-D ") + name + "=" + value;
+  for (const auto& [name, value] : defines)
+    out += (out.empty() ? "" : " ") + std::string("-D ") + name + "=" + value;
   return out;
 }
 
-static void inline_file(const std::string& name, std::set<std::string>& seen, std::ostringstream& out) {
+static void inline_file(const std::string& name, std::set<std::string>& seen,
+                        std::ostringstream& out) {
   if (!seen.insert(name).second) return;
   static const std::regex include_line(R"(^\s*#\s*include\s+"([^"]+)\"\s*$)");
   std::istringstream in(embedded_kernel(name));

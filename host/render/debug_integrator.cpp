@@ -11,8 +11,8 @@ DebugView parse_debug_view(const std::string& name) {
   throw Error("--view " + name + ": unknown debug view (emission, normals, albedo)");
 }
 
-DebugIntegrator::DebugIntegrator(ClContext& cl, const Scene& scene, DeviceScene& device_scene, const Film& film,
-                                 DebugView view, int spp, unsigned seed)
+DebugIntegrator::DebugIntegrator(ClContext& cl, const Scene& scene, DeviceScene& device_scene,
+                                 const Film& film, DebugView view, int spp, unsigned seed)
     : cl_(cl),
       scene_(device_scene),
       camera_(scene.camera.to_kernel()),
@@ -22,10 +22,11 @@ DebugIntegrator::DebugIntegrator(ClContext& cl, const Scene& scene, DeviceScene&
       pixels_(film.pixels()),
       rows_(film.rows()) {
   if (film.spectral() && view != DebugView::emission)
-    throw Error("--spectral: the " + std::string(view == DebugView::normals ? "normals" : "albedo") +
+    throw Error("--spectral: the " +
+                std::string(view == DebugView::normals ? "normals" : "albedo") +
                 " view has no spectrum; use --view emission");
-  cl::Program program =
-      build_program(cl, assemble_kernel_source("debug_render.cl"), scene_defines(scene, film.spectral()), "debug_render.cl");
+  cl::Program program = build_program(cl, assemble_kernel_source("debug_render.cl"),
+                                      scene_defines(scene, film.spectral()), "debug_render.cl");
   kernel_ = cl::Kernel(program, "render_debug");
   std::vector<float> cmf = film.cmf_weights();
   cmf_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY, cmf.size() * sizeof(float));

@@ -16,11 +16,13 @@ DebugView parse_debug_view(const std::string& name);  // throws kasha::Error for
 
 class DebugIntegrator : public Integrator {
  public:
-  DebugIntegrator(ClContext& cl, const Scene& scene, DeviceScene& device_scene, const Film& film, DebugView view,
-                  int spp, unsigned seed);
+  DebugIntegrator(ClContext& cl, const Scene& scene, DeviceScene& device_scene, const Film& film,
+                  DebugView view, int spp, unsigned seed);
   std::string name() const override { return "debug"; }
   void render_pass(int pass, Film& film) override;
-  long long camera_paths_per_pass() const override { return static_cast<long long>(pixels_) * spp_; }
+  long long camera_paths_per_pass() const override {
+    return static_cast<long long>(pixels_) * spp_;
+  }
   long long photons_per_pass() const override { return 0; }
 
  private:

@@ -13,7 +13,8 @@ static int append(std::vector<float>& out, const std::vector<double>& values) {
 
 // The colour of a material's Lambert parts under equal-energy light, fluorescence included:
 // per nm, r_i = ρ_i + ê_i Σ_j a_j; normalized so a perfect white has Y = 1.
-static void albedo_xyz(const Material& m, const WavelengthGrid& grid, const BinnedObserver& obs, float out[3]) {
+static void albedo_xyz(const Material& m, const WavelengthGrid& grid, const BinnedObserver& obs,
+                       float out[3]) {
   double yield = 0;
   for (double a : m.a) yield += a;
   std::vector<double> r(grid.bins, 0.0);
@@ -43,7 +44,8 @@ KernelSceneData::KernelSceneData(const Scene& scene) : bvh(build_bvh(scene.trian
 
 size_t KernelSceneData::bytes() const {
   return bvh.nodes.size() * sizeof(KBvhNode) + bvh.triangles.size() * sizeof(KTriangle) +
-         materials.size() * sizeof(KMaterial) + (spectra.size() + emitter_radiance.size()) * sizeof(float);
+         materials.size() * sizeof(KMaterial) +
+         (spectra.size() + emitter_radiance.size()) * sizeof(float);
 }
 
 KernelDefines scene_defines(const Scene& scene, bool spectral_film) {

@@ -8,8 +8,9 @@ namespace kasha {
 
 ImageError image_error(const Image& image, const Image& reference) {
   if (image.width != reference.width || image.height != reference.height)
-    throw Error("reference is " + std::to_string(reference.width) + "x" + std::to_string(reference.height) +
-                " but the image is " + std::to_string(image.width) + "x" + std::to_string(image.height));
+    throw Error("reference is " + std::to_string(reference.width) + "x" +
+                std::to_string(reference.height) + " but the image is " +
+                std::to_string(image.width) + "x" + std::to_string(image.height));
   double se = 0, rel = 0;
   size_t n = image.xyz.size();
   for (size_t i = 0; i < n; ++i) {

@@ -14,7 +14,8 @@
 namespace kasha {
 
 RenderSummary render_progressive(Integrator& integrator, Film& film, const RenderOptions& options) {
-  if (options.stop.seconds <= 0 && options.stop.passes <= 0) throw Error("give --time SECONDS or --passes N");
+  if (options.stop.seconds <= 0 && options.stop.passes <= 0)
+    throw Error("give --time SECONDS or --passes N");
   std::ostringstream log;
   log << "integrator,pass,seconds,camera_paths,photons,rmse,relmse\n";
   log << std::setprecision(9);
@@ -50,15 +51,17 @@ RenderSummary render_progressive(Integrator& integrator, Film& film, const Rende
       double per_pass = summary.seconds / summary.passes, left = 0;
       if (options.stop.passes > 0) left = per_pass * (options.stop.passes - summary.passes);
       if (options.stop.seconds > 0) left = std::max(0.0, options.stop.seconds - summary.seconds);
-      std::fprintf(stderr, "\r%s: pass %d%s, %.1f s elapsed, ~%.1f s left   ", integrator.name().c_str(),
-                   summary.passes,
-                   options.stop.passes > 0 ? ("/" + std::to_string(options.stop.passes)).c_str() : "",
-                   summary.seconds, left);
+      std::fprintf(
+          stderr, "\r%s: pass %d%s, %.1f s elapsed, ~%.1f s left   ", integrator.name().c_str(),
+          summary.passes,
+          options.stop.passes > 0 ? ("/" + std::to_string(options.stop.passes)).c_str() : "",
+          summary.seconds, left);
       if (last) std::fprintf(stderr, "\n");
     }
     if (interrupt_requested()) {
       summary.interrupted = true;
-      if (options.show_progress) std::fprintf(stderr, "interrupted: writing the image after %d passes\n", summary.passes);
+      if (options.show_progress)
+        std::fprintf(stderr, "interrupted: writing the image after %d passes\n", summary.passes);
       break;
     }
     if (done) break;

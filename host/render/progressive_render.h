@@ -18,8 +18,8 @@ struct StopCondition {
 
 struct RenderOptions {
   StopCondition stop;
-  std::string log_path;              // convergence log CSV, or empty
-  std::optional<Image> reference;    // for the log's error columns
+  std::string log_path;            // convergence log CSV, or empty
+  std::optional<Image> reference;  // for the log's error columns
   bool show_progress = true;
 };
 

@@ -5,7 +5,9 @@
 
 namespace kasha {
 
-static Eigen::Vector3d vec(const std::array<double, 3>& a) { return {a[0], a[1], a[2]}; }
+static Eigen::Vector3d vec(const std::array<double, 3>& a) {
+  return {a[0], a[1], a[2]};
+}
 
 static void put(float out[3], const Eigen::Vector3d& v) {
   for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(v[k]);
@@ -22,7 +24,8 @@ Camera parse_camera(const JsonNode& node) {
   node.finish();
   Eigen::Vector3d forward = vec(c.look_at) - vec(c.position);
   if (forward.norm() == 0) node.fail("\"position\" and \"look_at\" are the same point");
-  if (forward.normalized().cross(vec(c.up)).norm() < 1e-9) node.fail("\"up\" is parallel to the view direction");
+  if (forward.normalized().cross(vec(c.up)).norm() < 1e-9)
+    node.fail("\"up\" is parallel to the view direction");
   return c;
 }
 

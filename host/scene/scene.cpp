@@ -44,7 +44,8 @@ static GridRequest parse_grid_request(const JsonNode& node) {
   if (auto hi = node.find("max_nm")) r.max_nm = hi->number_in(1.0, 1e5);
   if (auto bin = node.find("bin_nm")) r.bin_nm = bin->number_in(0.1, 1000.0);
   node.finish();
-  double lo = r.min_nm >= 0 ? r.min_nm : kVisibleMinNm, hi = r.max_nm >= 0 ? r.max_nm : kVisibleMaxNm;
+  double lo = r.min_nm >= 0 ? r.min_nm : kVisibleMinNm,
+         hi = r.max_nm >= 0 ? r.max_nm : kVisibleMaxNm;
   if (!(lo < hi)) node.fail("min_nm must be below max_nm");
   if ((hi - lo) / r.bin_nm > 4096) node.fail("more than 4096 bins");
   return r;
@@ -62,7 +63,8 @@ static std::vector<Triangle> shape_triangles(const JsonNode& shape, const std::s
     tris = quad_triangles(vec(shape.at("corner")), u, v);
   } else if (type == "box") {
     Eigen::Vector3d lo = vec(shape.at("min")), hi = vec(shape.at("max"));
-    if (!(lo.array() < hi.array()).all()) shape.fail("box \"min\" must be below \"max\" on every axis");
+    if (!(lo.array() < hi.array()).all())
+      shape.fail("box \"min\" must be below \"max\" on every axis");
     tris = box_triangles(lo, hi);
   } else if (type == "sphere") {
     double r = shape.at("radius").number();
@@ -75,7 +77,8 @@ static std::vector<Triangle> shape_triangles(const JsonNode& shape, const std::s
   }
   if (auto t = shape.find("transform")) transform_triangles(tris, parse_transform(*t));
   if (auto inward = shape.find("inward")) {
-    if (type == "quad" || type == "obj") inward->fail("\"inward\" applies to closed shapes (box, sphere)");
+    if (type == "quad" || type == "obj")
+      inward->fail("\"inward\" applies to closed shapes (box, sphere)");
     if (inward->boolean()) flip_triangles(tris);
   }
   return tris;
@@ -86,7 +89,8 @@ Scene load_scene(const std::string& path) {
   if (!root.is_object()) root.fail("expected a scene object");
   Scene scene;
   scene.file = path;
-  if (root.at("kasha_scene").integer_in(0, 1000) != 1) root.at("kasha_scene").fail("unsupported scene version");
+  if (root.at("kasha_scene").integer_in(0, 1000) != 1)
+    root.at("kasha_scene").fail("unsupported scene version");
 
   GridRequest request;
   if (auto w = root.find("wavelengths")) request = parse_grid_request(*w);
@@ -153,7 +157,8 @@ Scene load_scene(const std::string& path) {
       exciting.push_back(scene.material_descs[m].excitation->support());
   scene.grid = choose_grid(request, emitting, exciting);
 
-  for (const MaterialDesc& d : scene.material_descs) scene.materials.push_back(discretize_material(d, scene.grid));
+  for (const MaterialDesc& d : scene.material_descs)
+    scene.materials.push_back(discretize_material(d, scene.grid));
   for (Emitter& e : scene.emitters) e.per_bin = scene.grid.resample(*e.radiance);
   return scene;
 }

@@ -12,9 +12,9 @@
 namespace kasha {
 
 struct Emitter {
-  std::string where;              // JSON path of the shape's "emission"
-  SpectrumPtr radiance;           // Lambertian spectral radiance, front side only
-  std::vector<double> per_bin;    // on the scene grid
+  std::string where;                           // JSON path of the shape's "emission"
+  SpectrumPtr radiance;                        // Lambertian spectral radiance, front side only
+  std::vector<double> per_bin;                 // on the scene grid
   int first_triangle = 0, triangle_count = 0;  // in scene (primitive) order
 };
 
@@ -23,8 +23,8 @@ struct Scene {
   Camera camera;
   WavelengthGrid grid;
   std::vector<MaterialDesc> material_descs;
-  std::vector<Material> materials;  // on `grid`, same order as material_descs
-  std::vector<KTriangle> triangles; // scene order: prim == index
+  std::vector<Material> materials;   // on `grid`, same order as material_descs
+  std::vector<KTriangle> triangles;  // scene order: prim == index
   std::vector<Emitter> emitters;
   int shape_count = 0;
 

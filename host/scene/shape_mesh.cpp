@@ -21,12 +21,12 @@ std::vector<Triangle> box_triangles(const Eigen::Vector3d& lo, const Eigen::Vect
   auto add = [&](const Eigen::Vector3d& c, const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
     for (const Triangle& t : quad_triangles(c, u, v)) out.push_back(t);
   };
-  add(lo, ez, ey);            // -x: ez × ey = -x
-  add(lo + ex, ey, ez);       // +x
-  add(lo, ex, ez);            // -y: ex × ez = -y
-  add(lo + ey, ez, ex);       // +y
-  add(lo, ey, ex);            // -z: ey × ex = -z
-  add(lo + ez, ex, ey);       // +z
+  add(lo, ez, ey);       // -x: ez × ey = -x
+  add(lo + ex, ey, ez);  // +x
+  add(lo, ex, ez);       // -y: ex × ez = -y
+  add(lo + ey, ez, ex);  // +y
+  add(lo, ey, ex);       // -z: ey × ex = -z
+  add(lo + ez, ex, ey);  // +z
   return out;
 }
 
@@ -34,13 +34,15 @@ std::vector<Triangle> sphere_triangles(const Eigen::Vector3d& center, double rad
   int rings = std::max(2, segments / 2);
   auto point = [&](int ring, int seg) {
     double theta = M_PI * ring / rings, phi = 2.0 * M_PI * seg / segments;
-    return Eigen::Vector3d(center + radius * Eigen::Vector3d(std::sin(theta) * std::cos(phi), std::cos(theta),
+    return Eigen::Vector3d(center + radius * Eigen::Vector3d(std::sin(theta) * std::cos(phi),
+                                                             std::cos(theta),
                                                              std::sin(theta) * std::sin(phi)));
   };
   std::vector<Triangle> out;
   for (int r = 0; r < rings; ++r)
     for (int s = 0; s < segments; ++s) {
-      Eigen::Vector3d a = point(r, s), b = point(r, s + 1), c = point(r + 1, s), d = point(r + 1, s + 1);
+      Eigen::Vector3d a = point(r, s), b = point(r, s + 1), c = point(r + 1, s),
+                      d = point(r + 1, s + 1);
       // Outward winding; the pole rows collapse to one triangle each.
       if (r > 0) out.push_back({a, b, c});
       if (r < rings - 1) out.push_back({b, d, c});

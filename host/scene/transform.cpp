@@ -20,7 +20,8 @@ Eigen::Affine3d parse_transform(const JsonNode& node) {
   } else {
     if (auto scale = node.find("scale")) {
       Eigen::Vector3d s;
-      if (scale->is_number()) s.setConstant(scale->number());
+      if (scale->is_number())
+        s.setConstant(scale->number());
       else {
         auto a = scale->vec3();
         s = {a[0], a[1], a[2]};

@@ -10,8 +10,8 @@ namespace kasha {
 namespace {
 const std::map<std::string, std::string>& table_files() {
   static const std::map<std::string, std::string> files = {
-      {"A", "CIE_A.csv"},     {"D50", "CIE_D50.csv"}, {"D65", "CIE_D65.csv"},
-      {"F2", "CIE_FL2.csv"},  {"F7", "CIE_FL7.csv"},  {"F11", "CIE_FL11.csv"},
+      {"A", "CIE_A.csv"},    {"D50", "CIE_D50.csv"}, {"D65", "CIE_D65.csv"},
+      {"F2", "CIE_FL2.csv"}, {"F7", "CIE_FL7.csv"},  {"F11", "CIE_FL11.csv"},
   };
   return files;
 }

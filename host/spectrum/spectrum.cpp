@@ -64,7 +64,8 @@ SpectralSupport GaussianSpectrum::support() const {
 
 double GaussianSpectrum::raw_integral(double a, double b) const {
   double k = 1.0 / (sigma_ * std::sqrt(2.0));
-  return sigma_ * std::sqrt(M_PI / 2.0) * (std::erf((b - center_) * k) - std::erf((a - center_) * k));
+  return sigma_ * std::sqrt(M_PI / 2.0) *
+         (std::erf((b - center_) * k) - std::erf((a - center_) * k));
 }
 
 namespace {

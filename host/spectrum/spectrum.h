@@ -94,7 +94,9 @@ class LineSpectrum : public Spectrum {
   double wavelength() const { return nm_; }
 
  protected:
-  double raw_integral(double a, double b) const override { return (nm_ >= a && nm_ < b) ? 1.0 : 0.0; }
+  double raw_integral(double a, double b) const override {
+    return (nm_ >= a && nm_ < b) ? 1.0 : 0.0;
+  }
 
  private:
   double nm_;

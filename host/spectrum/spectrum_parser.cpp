@@ -18,7 +18,8 @@ SpectrumPtr make_tabulated_spectrum(const std::vector<double>& nm, const std::ve
   for (size_t i = 0; i < nm.size(); ++i) {
     std::ostringstream at;
     at << where << ": at " << nm[i] << " nm: ";
-    if (!std::isfinite(nm[i]) || !std::isfinite(value[i])) throw Error(at.str() + "value is not finite");
+    if (!std::isfinite(nm[i]) || !std::isfinite(value[i]))
+      throw Error(at.str() + "value is not finite");
     if (nm[i] <= 0) throw Error(at.str() + "wavelength must be positive");
     if (value[i] < 0) {
       std::ostringstream v;
@@ -40,8 +41,8 @@ SpectrumPtr read_spectrum_csv(const std::string& path, const std::string& column
       if (table.header[c] == column) col = c;
     if (col == 0) throw Error(path + ": no column named \"" + column + "\" in the header");
   } else if (table.rows[0].size() != 2) {
-    throw Error(path + ": expected two columns (nm, value), found " + std::to_string(table.rows[0].size()) +
-                "; choose one with \"column\"");
+    throw Error(path + ": expected two columns (nm, value), found " +
+                std::to_string(table.rows[0].size()) + "; choose one with \"column\"");
   }
   std::vector<double> nm, value;
   for (size_t r = 0; r < table.rows.size(); ++r) {
@@ -87,7 +88,9 @@ SpectrumPtr parse_spectrum(const JsonNode& node) {
   } else if (auto line = node.find("line_nm")) {
     s = std::make_shared<LineSpectrum>(line->number_in(1.0, 1e5));
   } else {
-    node.fail("expected one of \"csv\", \"nm\"/\"value\", \"blackbody_K\", \"gaussian_nm\"/\"fwhm_nm\", \"line_nm\"");
+    node.fail(
+        "expected one of \"csv\", \"nm\"/\"value\", \"blackbody_K\", \"gaussian_nm\"/\"fwhm_nm\", "
+        "\"line_nm\"");
   }
   if (auto scale = node.find("scale")) {
     double k = scale->number();
