@@ -44,9 +44,11 @@ inline bool intersect_triangle(const __global KTriangle* tri, float3 org, float3
   return true;
 }
 
-/* Closest hit along [tmin, tmax]. Returns the leaf-order index of the triangle hit, or -1. */
-inline int bvh_closest(const __global KBvhNode* nodes, const __global KTriangle* tris, float3 org, float3 dir,
-                       float tmin, float tmax, float* t_hit, float* u_hit, float* v_hit) {
+/* Ordered stack traversal. Closest hit: returns the leaf-order index of the nearest triangle in
+ * [tmin, tmax] (or -1) with its t and barycentrics. With `any_hit` it stops at the first triangle
+ * found (shadow rays); the compiler specializes each caller, as the flag is a constant there. */
+inline int bvh_traverse(const __global KBvhNode* nodes, const __global KTriangle* tris, float3 org, float3 dir,
+                        float tmin, float tmax, bool any_hit, float* t_hit, float* u_hit, float* v_hit) {
   float3 inv_dir = 1.0f / dir;
   int best = -1;
   float best_t = tmax;
@@ -64,6 +66,10 @@ inline int bvh_closest(const __global KBvhNode* nodes, const __global KTriangle*
           best_t = t;
           *u_hit = u;
           *v_hit = v;
+          if (any_hit) {
+            *t_hit = t;
+            return i;
+          }
         }
       }
     } else {
@@ -76,12 +82,8 @@ inline int bvh_closest(const __global KBvhNode* nodes, const __global KTriangle*
         node = tl <= tr ? left : right;
         continue;
       }
-      if (tl != INFINITY) {
-        node = left;
-        continue;
-      }
-      if (tr != INFINITY) {
-        node = right;
+      if (tl != INFINITY || tr != INFINITY) {
+        node = tl != INFINITY ? left : right;
         continue;
       }
     }
@@ -92,39 +94,15 @@ inline int bvh_closest(const __global KBvhNode* nodes, const __global KTriangle*
   return best;
 }
 
-/* Any hit along [tmin, tmax] (shadow rays). */
+inline int bvh_closest(const __global KBvhNode* nodes, const __global KTriangle* tris, float3 org, float3 dir,
+                       float tmin, float tmax, float* t_hit, float* u_hit, float* v_hit) {
+  return bvh_traverse(nodes, tris, org, dir, tmin, tmax, false, t_hit, u_hit, v_hit);
+}
+
 inline bool bvh_occluded(const __global KBvhNode* nodes, const __global KTriangle* tris, float3 org, float3 dir,
                          float tmin, float tmax) {
-  float3 inv_dir = 1.0f / dir;
-  if (box_entry(&nodes[0], org, inv_dir, tmin, tmax) == INFINITY) return false;
-  int stack[KASHA_BVH_STACK];
-  int sp = 0;
-  int node = 0;
-  for (;;) {
-    const __global KBvhNode* n = &nodes[node];
-    if (n->count > 0) {
-      for (int i = n->offset; i < n->offset + n->count; ++i) {
-        float t, u, v;
-        if (intersect_triangle(&tris[i], org, dir, tmin, tmax, &t, &u, &v)) return true;
-      }
-    } else {
-      int left = node + 1, right = n->offset;
-      bool hl = box_entry(&nodes[left], org, inv_dir, tmin, tmax) != INFINITY;
-      bool hr = box_entry(&nodes[right], org, inv_dir, tmin, tmax) != INFINITY;
-      if (hl && hr) {
-        stack[sp++] = right;
-        node = left;
-        continue;
-      }
-      if (hl || hr) {
-        node = hl ? left : right;
-        continue;
-      }
-    }
-    if (sp == 0) break;
-    node = stack[--sp];
-  }
-  return false;
+  float t, u, v;
+  return bvh_traverse(nodes, tris, org, dir, tmin, tmax, true, &t, &u, &v) >= 0;
 }
 
 #endif
