@@ -1,6 +1,8 @@
 #pragma once
-// Numeric tables in delimited text: comma, semicolon or tab separated, `#` comment lines, an
-// optional header row. Every cell error names the file, line and column.
+// Numeric tables in delimited text: comma, semicolon, tab or space separated, `#` comment lines, an
+// optional header row; also JASCO Spectra Manager exports (header fields, XYDATA, footer). Every
+// cell error names the file, line and column.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -11,6 +13,8 @@ struct CsvTable {
   std::vector<std::string> header;  // empty when the first row is numeric
   std::vector<std::vector<double>> rows;
   std::vector<int> row_lines;  // 1-based line number of each row, for messages
+  bool jasco = false;          // read from a JASCO Spectra Manager export
+  std::map<std::string, std::string> fields;  // its header fields (XUNITS, NPOINTS, ...)
 };
 
 // Parses `text` (named `source` in messages). A header is a first row whose first cell is not a

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/error.h"
+
 namespace kasha {
 
 SpectralSupport ConstantSpectrum::support() const {
@@ -29,7 +31,7 @@ SpectralSupport PiecewiseLinearSpectrum::support() const {
   return s;
 }
 
-double PiecewiseLinearSpectrum::value_at(double x) const {
+double PiecewiseLinearSpectrum::raw_value(double x) const {
   if (x < nm_.front() || x > nm_.back()) return 0.0;
   size_t k = std::upper_bound(nm_.begin(), nm_.end(), x) - nm_.begin();
   if (k == 0) return value_.front();
@@ -48,7 +50,7 @@ double PiecewiseLinearSpectrum::raw_integral(double a, double b) const {
   double sum = 0.0;
   for (; k < nm_.size() && nm_[k - 1] < b; ++k) {
     double l = std::max(a, nm_[k - 1]), r = std::min(b, nm_[k]);
-    if (r > l) sum += 0.5 * (r - l) * (value_at(l) + value_at(r));
+    if (r > l) sum += 0.5 * (r - l) * (raw_value(l) + raw_value(r));
   }
   return sum;
 }
@@ -60,6 +62,15 @@ SpectralSupport GaussianSpectrum::support() const {
   // Where the value exceeds 1e-4 of the peak.
   double half = sigma_ * std::sqrt(2.0 * std::log(1e4));
   return {false, false, center_ - half, center_ + half};
+}
+
+double GaussianSpectrum::raw_value(double nm) const {
+  double z = (nm - center_) / sigma_;
+  return std::exp(-0.5 * z * z);
+}
+
+double LineSpectrum::raw_value(double) const {
+  throw Error("a line spectrum has no value at a single wavelength; use a tabulated or smooth spectrum");
 }
 
 double GaussianSpectrum::raw_integral(double a, double b) const {
@@ -74,7 +85,7 @@ constexpr double kLightSpeed = 299792458.0;
 constexpr double kBoltzmann = 1.380649e-23;
 }  // namespace
 
-double BlackbodySpectrum::value_at(double nm) const {
+double BlackbodySpectrum::raw_value(double nm) const {
   if (nm <= 0) return 0.0;
   double l = nm * 1e-9;
   double x = kPlanck * kLightSpeed / (l * kBoltzmann * kelvin_);
@@ -85,9 +96,9 @@ double BlackbodySpectrum::value_at(double nm) const {
 SpectralSupport BlackbodySpectrum::support() const {
   // Non-negligible (> 1e-4 of the peak, Wien's law) from some short wavelength up.
   double peak_nm = 2.897771955e6 / kelvin_;
-  double peak = value_at(peak_nm);
+  double peak = raw_value(peak_nm);
   double lo = peak_nm;
-  while (lo > 1.0 && value_at(lo) > 1e-4 * peak) lo *= 0.99;
+  while (lo > 1.0 && raw_value(lo) > 1e-4 * peak) lo *= 0.99;
   return {false, false, lo, 1e9};
 }
 
@@ -104,7 +115,7 @@ double BlackbodySpectrum::raw_integral(double a, double b) const {
   for (int p = 0; p < pieces; ++p) {
     double mid = a + (p + 0.5) * h, half = 0.5 * h;
     for (int i = 0; i < 4; ++i)
-      sum += w[i] * half * (value_at(mid - half * x[i]) + value_at(mid + half * x[i]));
+      sum += w[i] * half * (raw_value(mid - half * x[i]) + raw_value(mid + half * x[i]));
   }
   return sum;
 }

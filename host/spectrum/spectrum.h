@@ -20,11 +20,14 @@ class Spectrum {
   // ∫_a^b s(λ) dλ for a <= b, including the scale factor.
   double integral(double a_nm, double b_nm) const { return scale_ * raw_integral(a_nm, b_nm); }
   virtual SpectralSupport support() const = 0;
+  // The value at one wavelength, including the scale; a line has none (throws kasha::Error).
+  double value(double nm) const { return scale_ * raw_value(nm); }
   void set_scale(double scale) { scale_ *= scale; }
   double scale() const { return scale_; }
 
  protected:
   virtual double raw_integral(double a_nm, double b_nm) const = 0;
+  virtual double raw_value(double nm) const = 0;
 
  private:
   double scale_ = 1.0;
@@ -39,6 +42,7 @@ class ConstantSpectrum : public Spectrum {
 
  protected:
   double raw_integral(double a, double b) const override { return value_ * (b - a); }
+  double raw_value(double) const override { return value_; }
 
  private:
   double value_;
@@ -50,10 +54,10 @@ class PiecewiseLinearSpectrum : public Spectrum {
  public:
   PiecewiseLinearSpectrum(std::vector<double> nm, std::vector<double> value);
   SpectralSupport support() const override;
-  double value_at(double nm) const;
 
  protected:
   double raw_integral(double a, double b) const override;
+  double raw_value(double nm) const override;
 
  private:
   std::vector<double> nm_, value_;
@@ -67,6 +71,7 @@ class GaussianSpectrum : public Spectrum {
 
  protected:
   double raw_integral(double a, double b) const override;
+  double raw_value(double nm) const override;
 
  private:
   double center_, sigma_;
@@ -76,11 +81,11 @@ class GaussianSpectrum : public Spectrum {
 class BlackbodySpectrum : public Spectrum {
  public:
   explicit BlackbodySpectrum(double kelvin) : kelvin_(kelvin) {}
-  double value_at(double nm) const;
   SpectralSupport support() const override;
 
  protected:
   double raw_integral(double a, double b) const override;
+  double raw_value(double nm) const override;
 
  private:
   double kelvin_;
@@ -97,6 +102,7 @@ class LineSpectrum : public Spectrum {
   double raw_integral(double a, double b) const override {
     return (nm_ >= a && nm_ < b) ? 1.0 : 0.0;
   }
+  double raw_value(double nm) const override;
 
  private:
   double nm_;

@@ -1,5 +1,6 @@
 #include "spectrum/spectrum_parser.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -44,6 +45,11 @@ SpectrumPtr read_spectrum_csv(const std::string& path, const std::string& column
     throw Error(path + ": expected two columns (nm, value), found " +
                 std::to_string(table.rows[0].size()) + "; choose one with \"column\"");
   }
+  if (table.jasco) {
+    auto units = table.fields.find("XUNITS");
+    if (units != table.fields.end() && units->second != "NANOMETERS")
+      throw Error(path + ": x units are " + units->second + ", not NANOMETERS");
+  }
   std::vector<double> nm, value;
   for (size_t r = 0; r < table.rows.size(); ++r) {
     if (table.rows[r].size() <= col)
@@ -51,6 +57,11 @@ SpectrumPtr read_spectrum_csv(const std::string& path, const std::string& column
                   std::to_string(col + 1));
     nm.push_back(table.rows[r][0]);
     value.push_back(table.rows[r][col]);
+  }
+  // JASCO instruments export from the long wavelength down.
+  if (table.jasco && nm.size() > 1 && nm.front() > nm.back()) {
+    std::reverse(nm.begin(), nm.end());
+    std::reverse(value.begin(), value.end());
   }
   return make_tabulated_spectrum(nm, value, path);
 }

@@ -1,0 +1,62 @@
+#include "measure/measurement_plots.h"
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include "core/embedded_file.h"
+#include "core/error.h"
+
+namespace kasha {
+
+static void write_matrix(const std::filesystem::path& file, const MeasuredMaterial& m, const Eigen::MatrixXd& v) {
+  std::ofstream out(file);
+  out << "lambda_out_nm\\lambda_in_nm";
+  for (double l : m.ex_nm) out << "," << l;
+  out << "\n";
+  for (Eigen::Index o = 0; o < v.rows(); ++o) {
+    out << m.em_nm[o];
+    for (Eigen::Index i = 0; i < v.cols(); ++i) out << "," << v(o, i);
+    out << "\n";
+  }
+  if (!out) throw Error(file.string() + ": write failed");
+}
+
+static void write_spectrum(const std::filesystem::path& file, const Tabulated& t) {
+  std::ofstream out(file);
+  out << "nm,value\n";
+  for (size_t k = 0; k < t.nm.size(); ++k) out << t.nm[k] << "," << t.value[k] << "\n";
+}
+
+void write_measurement_plots(const std::string& dir, const MeasuredMaterial& m) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw Error("--plots " + dir + ": cannot create directory: " + ec.message());
+  fs::path d(dir);
+  write_matrix(d / "raw_matrix.csv", m, m.raw);
+  // Unknown entries (band, second order) as NaN so the plot leaves them blank.
+  Eigen::MatrixXd offband = m.fluorescence;
+  for (Eigen::Index o = 0; o < offband.rows(); ++o)
+    for (Eigen::Index i = 0; i < offband.cols(); ++i)
+      if (m.known(o, i) == 0) offband(o, i) = NAN;
+  write_matrix(d / "offband_matrix.csv", m, offband);
+  Eigen::MatrixXd residual = offband - m.fit;
+  write_matrix(d / "fit_residual.csv", m, residual);
+  write_spectrum(d / "passive.csv", m.passive);
+  write_spectrum(d / "excitation.csv", m.excitation);
+  write_spectrum(d / "emission.csv", m.emission);
+
+  fs::path script = d / "plot_measurement.py";
+  std::ofstream(script) << embedded_data("plot_measurement.py");
+  std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + d.string() + "' " +
+                    std::to_string(m.rank1_residual) + " > '" + (d / "plot.log").string() + "' 2>&1";
+  int status = std::system(cmd.c_str());
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
+    throw Error("--plots " + dir + ": plotting failed (needs /usr/bin/python3 with python3-matplotlib; see " +
+                (d / "plot.log").string() + ")");
+}
+
+}  // namespace kasha
