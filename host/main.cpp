@@ -163,16 +163,25 @@ int main(int argc, char** argv) {
   render->add_option("--log", r.log, "convergence log CSV, a row after every pass");
 
   MeasureArgs m;
-  CLI::App* measure = app.add_subcommand("measure", "turn fluorimeter or bispectral data into a material file");
-  measure->add_option("--sample", m.sample, "sample excitation–emission matrix (CSV or JASCO export)");
-  measure->add_option("--etalon", m.etalon, "etalon (white diffuse reference) excitation–emission matrix");
-  measure->add_option("--etalon-reflectance", m.etalon_reflectance, "the etalon's reflectance spectrum (CSV)");
-  measure->add_option("--sensitivity", m.sensitivity, "detector relative spectral sensitivity C(λ) (CSV)");
+  CLI::App* measure =
+      app.add_subcommand("measure", "turn fluorimeter or bispectral data into a material file");
+  measure->add_option("--sample", m.sample,
+                      "sample excitation–emission matrix (CSV or JASCO export)");
+  measure->add_option("--etalon", m.etalon,
+                      "etalon (white diffuse reference) excitation–emission matrix");
+  measure->add_option("--etalon-reflectance", m.etalon_reflectance,
+                      "the etalon's reflectance spectrum (CSV)");
+  measure->add_option("--sensitivity", m.sensitivity,
+                      "detector relative spectral sensitivity C(λ) (CSV)");
   measure->add_option("--gloss", m.gloss, "goniometer CSV: theta_in_deg, theta_out_deg, brdf");
-  measure->add_option("--band-nm", m.band_nm, "half-width of the near-diagonal band (default: from the etalon)")
+  measure
+      ->add_option("--band-nm", m.band_nm,
+                   "half-width of the near-diagonal band (default: from the etalon)")
       ->check(CLI::PositiveNumber);
-  measure->add_option("--cone-deg", m.cone_deg, "gloss cone around the mirror direction")->check(CLI::Range(0.1, 90.0));
-  measure->add_option("--bispectral", m.bispectral, "a measured bispectral (Donaldson) matrix instead");
+  measure->add_option("--cone-deg", m.cone_deg, "gloss cone around the mirror direction")
+      ->check(CLI::Range(0.1, 90.0));
+  measure->add_option("--bispectral", m.bispectral,
+                      "a measured bispectral (Donaldson) matrix instead");
   measure->add_option("-o,--output", m.output, "material JSON to write")->required();
   measure->add_option("--plots", m.plots, "write the method's figures (PNG) into this directory");
   measure->add_option("--name", m.name, "material name (default: the output file's stem)");

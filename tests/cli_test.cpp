@@ -113,8 +113,8 @@ TEST(Cli, NoOpenClDeviceSaysHowToInstallPocl) {
 TEST(Cli, InfoReportsGridFeaturesOptionsAndMemory) {
   auto r = run_kasha("info " + shell_quoted(test::source_path("scenes/cornell_box.json")));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* s : {"wavelengths: 320–780 nm, 46 bins of 10 nm", "fluorescence yes",
-                        "-D KASHA_BINS=46", "-D KASHA_FLUORESCENCE=1", "memory: "})
+  for (const char* s : {"wavelengths: 300–780 nm, 48 bins of 10 nm", "fluorescence yes",
+                        "-D KASHA_BINS=48", "-D KASHA_FLUORESCENCE=1", "memory: "})
     EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
 }
 

@@ -46,8 +46,9 @@ SpectrumPtr sensitivity_spectrum(const Instrument& in) {
 }
 
 MeasuredMaterial measure(const Instrument& in, const TrueMaterial& truth, bool give_sensitivity) {
-  FluorimeterInput input{in.measure(truth, nullptr, "sample.csv"), in.measure(TrueMaterial{}, etalon_rho(), "etalon.csv"),
-                         etalon_spectrum(), give_sensitivity ? sensitivity_spectrum(in) : nullptr, 0.0};
+  FluorimeterInput input{in.measure(truth, nullptr, "sample.csv"),
+                         in.measure(TrueMaterial{}, etalon_rho(), "etalon.csv"), etalon_spectrum(),
+                         give_sensitivity ? sensitivity_spectrum(in) : nullptr, 0.0};
   return material_from_fluorimeter(input);
 }
 
@@ -57,7 +58,8 @@ void expect_recovered(const MeasuredMaterial& m, const TrueMaterial& truth) {
     worst_rho = std::max(worst_rho, std::abs(m.passive.value[k] - truth.rho(m.passive.nm[k])));
   }
   for (size_t k = 0; k < m.excitation.nm.size(); ++k)
-    worst_a = std::max(worst_a, std::abs(m.excitation.value[k] - truth.excitation(m.excitation.nm[k])));
+    worst_a =
+        std::max(worst_a, std::abs(m.excitation.value[k] - truth.excitation(m.excitation.nm[k])));
   for (size_t k = 0; k + 1 < m.emission.nm.size(); ++k) {
     double h = m.emission.nm[k + 1] - m.emission.nm[k];
     l1 += 0.5 * h *
@@ -68,8 +70,10 @@ void expect_recovered(const MeasuredMaterial& m, const TrueMaterial& truth) {
   EXPECT_LT(worst_a, 0.02);
   EXPECT_LT(l1, 0.05);
   EXPECT_LT(m.rank1_signal_residual, 0.15);
-  std::printf("  band ±%.1f nm, max |Δρ| %.4f, max |Δa| %.4f, emission L1 %.4f, residual %.3f (signal %.3f)\n",
-              m.band_nm, worst_rho, worst_a, l1, m.rank1_residual, m.rank1_signal_residual);
+  std::printf(
+      "  band ±%.1f nm, max |Δρ| %.4f, max |Δa| %.4f, emission L1 %.4f, residual %.3f (signal "
+      "%.3f)\n",
+      m.band_nm, worst_rho, worst_a, l1, m.rank1_residual, m.rank1_signal_residual);
 }
 
 }  // namespace
@@ -96,7 +100,8 @@ TEST(Measure, IgnoringTheSensitivityIsCaught) {
   MeasuredMaterial m = measure(in, brightened_paper(), false);
   double worst_a = 0, l1 = 0;
   for (size_t k = 0; k < m.excitation.nm.size(); ++k)
-    worst_a = std::max(worst_a, std::abs(m.excitation.value[k] - brightened_paper().excitation(m.excitation.nm[k])));
+    worst_a = std::max(worst_a, std::abs(m.excitation.value[k] -
+                                         brightened_paper().excitation(m.excitation.nm[k])));
   for (size_t k = 0; k + 1 < m.emission.nm.size(); ++k)
     l1 += (m.emission.nm[k + 1] - m.emission.nm[k]) *
           std::abs(m.emission.value[k] - brightened_paper().emission(m.emission.nm[k]));
@@ -116,14 +121,16 @@ TEST(Measure, TwoFluorophoresAreFlagged) {
 
   // End to end: the command warns on stderr and still writes the material.
   write_eem_csv(write_file("two.csv", ""), in.measure(two, nullptr, "two.csv"));
-  write_eem_csv(write_file("etalon.csv", ""), in.measure(TrueMaterial{}, etalon_rho(), "etalon.csv"));
+  write_eem_csv(write_file("etalon.csv", ""),
+                in.measure(TrueMaterial{}, etalon_rho(), "etalon.csv"));
   std::ofstream(scratch_dir() / "rho.csv") << "nm,rho\n250,0.969\n850,0.981\n";
   std::ofstream c(scratch_dir() / "c.csv");
   for (double l = 250; l <= 850; l += 5) c << l << "," << in.sensitivity(l) << "\n";
   c.close();
   std::string d = scratch_dir().string();
-  auto r = run_kasha("measure --sample " + d + "/two.csv --etalon " + d + "/etalon.csv --etalon-reflectance " + d +
-                     "/rho.csv --sensitivity " + d + "/c.csv -o " + d + "/two.json");
+  auto r = run_kasha("measure --sample " + d + "/two.csv --etalon " + d +
+                     "/etalon.csv --etalon-reflectance " + d + "/rho.csv --sensitivity " + d +
+                     "/c.csv -o " + d + "/two.json");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("kasha: warning: rank-1 residual"), std::string::npos) << r.err;
   EXPECT_TRUE(std::filesystem::exists(d + "/two.json"));
@@ -138,8 +145,9 @@ TEST(Measure, CommandWritesALoadableMaterialAndPlots) {
   for (double l = 250; l <= 850; l += 5) c << l << "," << in.sensitivity(l) << "\n";
   c.close();
   std::string d = scratch_dir().string();
-  auto r = run_kasha("measure --sample " + d + "/s.csv --etalon " + d + "/e.csv --etalon-reflectance " + d +
-                     "/rho.csv --sensitivity " + d + "/c.csv -o " + d + "/paper.json --plots " + d + "/plots");
+  auto r = run_kasha("measure --sample " + d + "/s.csv --etalon " + d +
+                     "/e.csv --etalon-reflectance " + d + "/rho.csv --sensitivity " + d +
+                     "/c.csv -o " + d + "/paper.json --plots " + d + "/plots");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "");
   MaterialDesc desc = load_material_file(d + "/paper.json", "");
@@ -147,15 +155,17 @@ TEST(Measure, CommandWritesALoadableMaterialAndPlots) {
   Material mat = discretize_material(desc, WavelengthGrid{300, 10, 48});
   EXPECT_TRUE(mat.fluorescent());
   EXPECT_NEAR(mat.a[7], 0.3, 0.02);  // the bin 370–380 nm
-  for (const char* png : {"raw_matrix.png", "offband_matrix.png", "passive.png", "excitation.png", "emission.png",
-                          "fit_residual.png"})
+  for (const char* png : {"raw_matrix.png", "offband_matrix.png", "passive.png", "excitation.png",
+                          "emission.png", "fit_residual.png"})
     EXPECT_GT(std::filesystem::file_size(d + "/plots/" + png), 1000u) << png;
 }
 
 TEST(Measure, RealPostItBispectralMatrix) {
-  ExcitationEmissionMatrix D = read_eem(source_path("scenes/data/Labsphere_BFC450_3M_PostIt_fluorescent_yellow_donaldson_10nm.csv"));
+  ExcitationEmissionMatrix D = read_eem(
+      source_path("scenes/data/Labsphere_BFC450_3M_PostIt_fluorescent_yellow_donaldson_10nm.csv"));
   MeasuredMaterial m = material_from_bispectral(D, 0);
-  // A yellow fluorescent dye: excited in the blue, emitting green-yellow, reflecting yellow and red.
+  // A yellow fluorescent dye: excited in the blue, emitting green-yellow, reflecting yellow and
+  // red.
   auto peak = [](const Tabulated& t) {
     return t.nm[std::max_element(t.value.begin(), t.value.end()) - t.value.begin()];
   };
@@ -177,7 +187,8 @@ TEST(Measure, GlossFromASimulatedGoniometer) {
   double norm = 0;  // 2π ∫ exp(-δ²/2σ²) sin δ dδ over the cone
   for (int k = 0; k < 10000; ++k) {
     double d = (k + 0.5) * (10 * M_PI / 180) / 10000;
-    norm += 2 * M_PI * std::exp(-d * d / (2 * sigma * sigma)) * std::sin(d) * (10 * M_PI / 180) / 10000;
+    norm +=
+        2 * M_PI * std::exp(-d * d / (2 * sigma * sigma)) * std::sin(d) * (10 * M_PI / 180) / 10000;
   }
   std::ofstream f(scratch_dir() / "gonio.csv");
   f << "theta_in_deg,theta_out_deg,brdf\n";
@@ -223,23 +234,29 @@ TEST(Measure, BadInputsGiveOneLineAndNoMaterial) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(std::filesystem::exists(out)) << args;
   };
-  std::string good = "--sample " + d + "/s.csv --etalon " + d + "/e.csv --etalon-reflectance " + d + "/rho.csv";
-  check("--sample " + d + "/s.csv --etalon " + d + "/coarse.csv --etalon-reflectance " + d + "/rho.csv",
+  std::string good =
+      "--sample " + d + "/s.csv --etalon " + d + "/e.csv --etalon-reflectance " + d + "/rho.csv";
+  check("--sample " + d + "/s.csv --etalon " + d + "/coarse.csv --etalon-reflectance " + d +
+            "/rho.csv",
         "grids do not match");
   check(good + " --band-nm 0.5", "empty band: no emission sample lies within");
-  check("--sample " + d + "/s.csv --etalon " + d + "/dead.csv --etalon-reflectance " + d + "/rho.csv",
-        "the etalon reading is zero in the band at excitation 400 nm");
-  check("--sample " + d + "/s.csv --etalon " + d + "/e.csv --etalon-reflectance " + d + "/negative.csv",
+  check(
+      "--sample " + d + "/s.csv --etalon " + d + "/dead.csv --etalon-reflectance " + d + "/rho.csv",
+      "the etalon reading is zero in the band at excitation 400 nm");
+  check("--sample " + d + "/s.csv --etalon " + d + "/e.csv --etalon-reflectance " + d +
+            "/negative.csv",
         "negative.csv: at 500 nm: negative value -0.1");
-  check("--sample " + d + "/text.csv --etalon " + d + "/e.csv --etalon-reflectance " + d + "/rho.csv",
-        "text.csv: line 3, column 3: not a number: \"oops\"");
+  check(
+      "--sample " + d + "/text.csv --etalon " + d + "/e.csv --etalon-reflectance " + d + "/rho.csv",
+      "text.csv: line 3, column 3: not a number: \"oops\"");
   check("--sample " + d + "/s.csv", "give --sample, --etalon and --etalon-reflectance");
   check("--bispectral " + d + "/missing.csv", "missing.csv: cannot open file");
   // An energy gain fails without --clip, and is clipped and recorded with it.
   TrueMaterial hot = brightened_paper();
   hot.rho = [](double) { return 0.9; };
   write_eem_csv(d + "/hot.csv", in.measure(hot, nullptr, "hot.csv"));
-  std::string hot_args = "--sample " + d + "/hot.csv --etalon " + d + "/e.csv --etalon-reflectance " + d + "/rho.csv";
+  std::string hot_args =
+      "--sample " + d + "/hot.csv --etalon " + d + "/e.csv --etalon-reflectance " + d + "/rho.csv";
   check(hot_args, "energy gain at ");
   auto r = run_kasha("measure " + hot_args + " --clip -o " + out);
   EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -250,20 +267,24 @@ TEST(Measure, BadInputsGiveOneLineAndNoMaterial) {
 
 TEST(Measure, JascoExportsAreReadAsSpectraAndMatrices) {
   // Real exports: tab-separated with CRLF and a Shift-JIS footer, and a comma CSV; descending x.
-  CsvTable t = read_csv_table(source_path("tests/data/JASCOFiles.jl_uvvis_test_V-730_tab_export_SJIS_footer.txt"));
+  CsvTable t = read_csv_table(
+      source_path("tests/data/JASCOFiles.jl_uvvis_test_V-730_tab_export_SJIS_footer.txt"));
   ASSERT_EQ(t.rows.size(), 1001u);
   EXPECT_EQ(t.fields["XUNITS"], "NANOMETERS");
   EXPECT_EQ(t.rows.front()[0], 1000);
   std::string err = error_of([&] {
     read_spectrum_csv(source_path("tests/data/JASCOFiles.jl_uvvis_abs_V-730_tab_export.txt"));
   });
-  EXPECT_NE(err.find("at 400 nm: negative value"), std::string::npos) << err;  // absorbance, not a spectrum
-  err = error_of([&] { read_spectrum_csv(source_path("tests/data/JASCOFiles.jl_raman_japanese_test.csv")); });
+  EXPECT_NE(err.find("at 400 nm: negative value"), std::string::npos)
+      << err;  // absorbance, not a spectrum
+  err = error_of(
+      [&] { read_spectrum_csv(source_path("tests/data/JASCOFiles.jl_raman_japanese_test.csv")); });
   EXPECT_NE(err.find("x units are 1/CM"), std::string::npos) << err;
   // A 3-D export: the first XYDATA row holds the excitation wavelengths; x descending.
-  std::string path = write_file("jasco3d.txt",
-                                "TITLE\tEEM\r\nXUNITS\tNANOMETERS\r\nNPOINTS\t3\r\nXYDATA\r\n\t350\t360\r\n"
-                                "420\t0.5\t0.25\r\n410\t1.5\t1.25\r\n400\t2\t3\r\n\r\n[footer]\tx\r\n");
+  std::string path =
+      write_file("jasco3d.txt",
+                 "TITLE\tEEM\r\nXUNITS\tNANOMETERS\r\nNPOINTS\t3\r\nXYDATA\r\n\t350\t360\r\n"
+                 "420\t0.5\t0.25\r\n410\t1.5\t1.25\r\n400\t2\t3\r\n\r\n[footer]\tx\r\n");
   ExcitationEmissionMatrix m = read_eem(path);
   ASSERT_EQ(m.ex_nm.size(), 2u);
   EXPECT_EQ(m.em_nm, (std::vector<double>{400, 410, 420}));

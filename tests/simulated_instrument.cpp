@@ -21,12 +21,14 @@ Instrument Instrument::typical(bool with_sensitivity) {
   for (double l = 300; l <= 800 + 1e-9; l += 2) in.em_nm.push_back(l);
   // A smooth xenon-like continuum with a strong line at 467 nm.
   in.lamp = [](double l) { return 0.4 + l / 600.0 + 3.0 * gaussian(l, 467, 4); };
-  in.sensitivity = with_sensitivity ? SpectralFunction([](double l) { return 1.2 - 0.9 * (l - 300) / 500; })
-                                    : SpectralFunction([](double) { return 1.0; });
+  in.sensitivity = with_sensitivity
+                       ? SpectralFunction([](double l) { return 1.2 - 0.9 * (l - 300) / 500; })
+                       : SpectralFunction([](double) { return 1.0; });
   return in;
 }
 
-ExcitationEmissionMatrix Instrument::measure(const TrueMaterial& m, const SpectralFunction& etalon_rho,
+ExcitationEmissionMatrix Instrument::measure(const TrueMaterial& m,
+                                             const SpectralFunction& etalon_rho,
                                              const std::string& name) const {
   const size_t n_o = em_nm.size(), n_i = ex_nm.size();
   const double s1 = excitation_fwhm_nm / (2 * std::sqrt(2 * std::log(2.0)));
@@ -72,7 +74,8 @@ ExcitationEmissionMatrix Instrument::measure(const TrueMaterial& m, const Spectr
         norm += b;
       }
       double reading = sensitivity(em_nm[o]) * sum / norm;
-      double sigma = std::sqrt(shot_noise * std::max(0.0, reading) * etalon_peak + std::pow(read_noise * etalon_peak, 2));
+      double sigma = std::sqrt(shot_noise * std::max(0.0, reading) * etalon_peak +
+                               std::pow(read_noise * etalon_peak, 2));
       out.value(o, i) = reading + sigma * normal(rng);
     }
   }

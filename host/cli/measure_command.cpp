@@ -19,20 +19,26 @@ int run_measure(const MeasureArgs& a) {
     throw Error("-o " + a.output + ": directory " + out.parent_path().string() + " does not exist");
   MeasuredMaterial m;
   if (!a.bispectral.empty()) {
-    if (!a.sample.empty() || !a.etalon.empty() || !a.etalon_reflectance.empty() || !a.sensitivity.empty())
-      throw Error("measure: --bispectral takes no --sample, --etalon, --etalon-reflectance or --sensitivity");
+    if (!a.sample.empty() || !a.etalon.empty() || !a.etalon_reflectance.empty() ||
+        !a.sensitivity.empty())
+      throw Error(
+          "measure: --bispectral takes no --sample, --etalon, --etalon-reflectance or "
+          "--sensitivity");
     m = material_from_bispectral(read_eem(a.bispectral), a.band_nm);
   } else {
     if (a.sample.empty() || a.etalon.empty() || a.etalon_reflectance.empty())
       throw Error("measure: give --sample, --etalon and --etalon-reflectance (or --bispectral)");
-    FluorimeterInput in{read_eem(a.sample), read_eem(a.etalon), read_spectrum_csv(a.etalon_reflectance),
-                        a.sensitivity.empty() ? nullptr : read_spectrum_csv(a.sensitivity), a.band_nm};
+    FluorimeterInput in{
+        read_eem(a.sample), read_eem(a.etalon), read_spectrum_csv(a.etalon_reflectance),
+        a.sensitivity.empty() ? nullptr : read_spectrum_csv(a.sensitivity), a.band_nm};
     m = material_from_fluorimeter(in);
   }
   if (!a.gloss.empty()) {
     GlossFit g = fit_gloss(a.gloss, a.cone_deg);
-    if (g.gloss.reflectance > 0) m.gloss = g.gloss;
-    else m.notes.push_back("no gloss above the diffuse floor in " + a.gloss);
+    if (g.gloss.reflectance > 0)
+      m.gloss = g.gloss;
+    else
+      m.notes.push_back("no gloss above the diffuse floor in " + a.gloss);
   }
   check_energy(m, a.clip);
 
@@ -41,17 +47,22 @@ int run_measure(const MeasureArgs& a) {
   if (!a.plots.empty()) write_measurement_plots(a.plots, m);
 
   std::printf(
-      "wrote %s (%s): band ±%.3g nm%s, rank-1 residual %.4f (%.4f where there is signal), max g+ρ+a %.3f at %g nm%s\n",
-      a.output.c_str(), m.method.c_str(), m.band_nm, m.band_estimated ? (m.method == "fluorimeter" ? " (from the etalon)" : " (one bin)") : "", m.rank1_residual,
-      m.rank1_signal_residual, m.max_energy, m.max_energy_nm,
+      "wrote %s (%s): band ±%.3g nm%s, rank-1 residual %.4f (%.4f where there is signal), max "
+      "g+ρ+a %.3f at %g nm%s\n",
+      a.output.c_str(), m.method.c_str(), m.band_nm,
+      m.band_estimated ? (m.method == "fluorimeter" ? " (from the etalon)" : " (one bin)") : "",
+      m.rank1_residual, m.rank1_signal_residual, m.max_energy, m.max_energy_nm,
       m.gloss ? (", gloss " + std::to_string(m.gloss->reflectance)).c_str() : "");
   if (m.rank1_signal_residual > kRank1WarningResidual)
     std::fprintf(stderr,
-                 "kasha: warning: rank-1 residual %.3f > %.2f where there is signal: the fluorescence is not one emission shape times "
-                 "one excitation spectrum (several fluorophores?); the material keeps only its best rank-1 part\n",
+                 "kasha: warning: rank-1 residual %.3f > %.2f where there is signal: the "
+                 "fluorescence is not one emission shape times "
+                 "one excitation spectrum (several fluorophores?); the material keeps only its "
+                 "best rank-1 part\n",
                  m.rank1_signal_residual, kRank1WarningResidual);
   if (!m.clipped_nm.empty())
-    std::fprintf(stderr, "kasha: warning: --clip reduced %zu wavelengths to g + ρ + a = 1\n", m.clipped_nm.size());
+    std::fprintf(stderr, "kasha: warning: --clip reduced %zu wavelengths to g + ρ + a = 1\n",
+                 m.clipped_nm.size());
   return 0;
 }
 

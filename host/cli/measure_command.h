@@ -5,12 +5,14 @@
 namespace kasha {
 
 struct MeasureArgs {
-  std::string sample, etalon, etalon_reflectance, sensitivity, gloss, bispectral, output, plots, name;
+  std::string sample, etalon, etalon_reflectance, sensitivity, gloss, bispectral, output, plots,
+      name;
   double band_nm = 0, cone_deg = 10;
   bool clip = false;
 };
 
-// A rank-1 residual (over the entries with signal) above this is reported as a sample that does not follow Kasha's rule.
+// A rank-1 residual (over the entries with signal) above this is reported as a sample that does not
+// follow Kasha's rule.
 constexpr double kRank1WarningResidual = 0.15;
 
 int run_measure(const MeasureArgs& args);

@@ -12,8 +12,8 @@ struct CsvTable {
   std::string source;               // file name used in messages
   std::vector<std::string> header;  // empty when the first row is numeric
   std::vector<std::vector<double>> rows;
-  std::vector<int> row_lines;  // 1-based line number of each row, for messages
-  bool jasco = false;          // read from a JASCO Spectra Manager export
+  std::vector<int> row_lines;                 // 1-based line number of each row, for messages
+  bool jasco = false;                         // read from a JASCO Spectra Manager export
   std::map<std::string, std::string> fields;  // its header fields (XUNITS, NPOINTS, ...)
 };
 

@@ -33,7 +33,10 @@ MeasuredMaterial material_from_bispectral(const ExcitationEmissionMatrix& D, dou
     }
   bool any = false;
   for (Eigen::Index d : diagonal) any = any || d >= 0;
-  if (!any) throw Error(D.source + ": missing band: no excitation wavelength equals an emission wavelength (no diagonal)");
+  if (!any)
+    throw Error(
+        D.source +
+        ": missing band: no excitation wavelength equals an emission wavelength (no diagonal)");
 
   Rank1Fit fit = fit_rank1_nonnegative(m.fluorescence, m.known);
   m.fit = fit.e * fit.a.transpose();

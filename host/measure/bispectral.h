@@ -9,6 +9,7 @@
 namespace kasha {
 
 // band_nm <= 0: the diagonal and one bin on each side are left out of the fit.
-MeasuredMaterial material_from_bispectral(const ExcitationEmissionMatrix& donaldson, double band_nm);
+MeasuredMaterial material_from_bispectral(const ExcitationEmissionMatrix& donaldson,
+                                          double band_nm);
 
 }  // namespace kasha

@@ -18,9 +18,11 @@ bool ExcitationEmissionMatrix::same_grid(const ExcitationEmissionMatrix& o) cons
   return same(ex_nm, o.ex_nm) && same(em_nm, o.em_nm);
 }
 
-static void check_increasing(const std::vector<double>& nm, const std::string& what, const std::string& path) {
+static void check_increasing(const std::vector<double>& nm, const std::string& what,
+                             const std::string& path) {
   for (size_t i = 0; i < nm.size(); ++i) {
-    if (!(nm[i] > 0)) throw Error(path + ": " + what + " wavelength " + std::to_string(nm[i]) + " is not positive");
+    if (!(nm[i] > 0))
+      throw Error(path + ": " + what + " wavelength " + std::to_string(nm[i]) + " is not positive");
     if (i > 0 && nm[i] <= nm[i - 1]) throw Error(path + ": " + what + " wavelengths must increase");
   }
 }
@@ -36,8 +38,8 @@ ExcitationEmissionMatrix read_eem(const std::string& path) {
       char* end = nullptr;
       double v = std::strtod(t.header[c].c_str(), &end);
       if (t.header[c].empty() || *end != '\0' || !std::isfinite(v))
-        throw Error(path + ": header row, column " + std::to_string(c + 1) + ": excitation wavelength \"" +
-                    t.header[c] + "\" is not a number");
+        throw Error(path + ": header row, column " + std::to_string(c + 1) +
+                    ": excitation wavelength \"" + t.header[c] + "\" is not a number");
       m.ex_nm.push_back(v);
     }
   } else if (!t.rows.empty()) {

@@ -45,7 +45,8 @@ double band_from_etalon(const ExcitationEmissionMatrix& etalon) {
     // The diagonal peak: the largest reading within 50 nm of λi.
     Eigen::Index top = -1;
     for (size_t o = 0; o < em.size(); ++o)
-      if (std::abs(em[o] - li) <= 50 && (top < 0 || etalon.value(o, i) > etalon.value(top, i))) top = o;
+      if (std::abs(em[o] - li) <= 50 && (top < 0 || etalon.value(o, i) > etalon.value(top, i)))
+        top = o;
     if (top < 0 || etalon.value(top, i) <= 0) continue;
     double threshold = 0.02 * etalon.value(top, i), width = 0;
     Eigen::Index lo = top, hi = top;
@@ -55,7 +56,9 @@ double band_from_etalon(const ExcitationEmissionMatrix& etalon) {
     widths.push_back(width);
   }
   if (widths.empty())
-    throw Error(etalon.source + ": missing band: no excitation wavelength has a diagonal peak inside the emission range");
+    throw Error(
+        etalon.source +
+        ": missing band: no excitation wavelength has a diagonal peak inside the emission range");
   std::sort(widths.begin(), widths.end());
   double step = em.size() > 1 ? (em.back() - em.front()) / (em.size() - 1) : 0;
   // The 90th percentile ignores a column spoiled by noise.
@@ -66,10 +69,11 @@ MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in) {
   const ExcitationEmissionMatrix &S = in.sample, &E = in.etalon;
   if (!S.same_grid(E)) {
     std::ostringstream msg;
-    msg << "grids do not match: " << S.source << " has " << S.ex_nm.size() << " excitation x " << S.em_nm.size()
-        << " emission wavelengths (" << S.ex_nm.front() << "–" << S.ex_nm.back() << " / " << S.em_nm.front() << "–"
-        << S.em_nm.back() << " nm), " << E.source << " has " << E.ex_nm.size() << " x " << E.em_nm.size() << " ("
-        << E.ex_nm.front() << "–" << E.ex_nm.back() << " / " << E.em_nm.front() << "–" << E.em_nm.back() << " nm)";
+    msg << "grids do not match: " << S.source << " has " << S.ex_nm.size() << " excitation x "
+        << S.em_nm.size() << " emission wavelengths (" << S.ex_nm.front() << "–" << S.ex_nm.back()
+        << " / " << S.em_nm.front() << "–" << S.em_nm.back() << " nm), " << E.source << " has "
+        << E.ex_nm.size() << " x " << E.em_nm.size() << " (" << E.ex_nm.front() << "–"
+        << E.ex_nm.back() << " / " << E.em_nm.front() << "–" << E.em_nm.back() << " nm)";
     throw Error(msg.str());
   }
   MeasuredMaterial m;
@@ -106,11 +110,13 @@ MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in) {
       }
     bool inside = li >= S.em_nm.front() && li <= S.em_nm.back();
     if (inside && !has_band[i])
-      throw Error("empty band: no emission sample lies within ±" + std::to_string(eps) + " nm of the excitation at " +
-                  nm_text(li) + " (--band-nm is narrower than the emission grid's step)");
+      throw Error("empty band: no emission sample lies within ±" + std::to_string(eps) +
+                  " nm of the excitation at " + nm_text(li) +
+                  " (--band-nm is narrower than the emission grid's step)");
     if (!has_band[i]) continue;
     if (!(rbar_e[i] > 0))
-      throw Error(E.source + ": the etalon reading is zero in the band at excitation " + nm_text(li));
+      throw Error(E.source + ": the etalon reading is zero in the band at excitation " +
+                  nm_text(li));
     double rho_e = in.etalon_reflectance->value(li);
     if (rho_e < 0) throw Error("etalon reflectance is negative at " + nm_text(li));
     if (!(rho_e > 0)) throw Error("etalon reflectance is zero at " + nm_text(li));
@@ -119,7 +125,8 @@ MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in) {
   }
   std::vector<double> c_o(n_o, 1.0);
   if (in.sensitivity)
-    for (Eigen::Index o = 0; o < n_o; ++o) c_o[o] = positive_value(*in.sensitivity, S.em_nm[o], "detector sensitivity");
+    for (Eigen::Index o = 0; o < n_o; ++o)
+      c_o[o] = positive_value(*in.sensitivity, S.em_nm[o], "detector sensitivity");
 
   // Corrected eq. 8 on every entry; only the known ones enter the fit. Columns without a band
   // (excitation outside the emission range) have no R̄_e to scale by and stay out.
@@ -129,7 +136,8 @@ MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in) {
       m.known.col(i).setZero();
       continue;
     }
-    for (Eigen::Index o = 0; o < n_o; ++o) m.fluorescence(o, i) = f_e[i] * S.value(o, i) / rbar_e[i] * c_i[i] / c_o[o];
+    for (Eigen::Index o = 0; o < n_o; ++o)
+      m.fluorescence(o, i) = f_e[i] * S.value(o, i) / rbar_e[i] * c_i[i] / c_o[o];
   }
   bool any_known = m.known.sum() > 0;
   if (!any_known) throw Error(S.source + ": no off-band entries left to fit the fluorescence to");
@@ -153,11 +161,12 @@ MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in) {
     // Corrected eq. 7: subtract the fluorescence the fit puts inside the band, in reading units.
     double fluorescence_in_band = 0;
     for (Eigen::Index o = 0; o < n_o; ++o)
-      if (band(o, i) > 0) fluorescence_in_band += m.fit(o, i) * rbar_e[i] / f_e[i] * c_o[o] / c_i[i] * w[o];
+      if (band(o, i) > 0)
+        fluorescence_in_band += m.fit(o, i) * rbar_e[i] / f_e[i] * c_o[o] / c_i[i] * w[o];
     double rho = M_PI * f_e[i] * (rbar[i] - fluorescence_in_band) / rbar_e[i];
     if (rho < 0) {
-      m.notes.push_back("passive reflectance " + std::to_string(rho) + " at " + nm_text(S.ex_nm[i]) +
-                        " (noise) set to 0");
+      m.notes.push_back("passive reflectance " + std::to_string(rho) + " at " +
+                        nm_text(S.ex_nm[i]) + " (noise) set to 0");
       rho = 0;
     }
     m.passive.nm.push_back(S.ex_nm[i]);

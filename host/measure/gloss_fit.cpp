@@ -17,10 +17,13 @@ GlossFit fit_gloss(const std::string& path, double cone_deg) {
   for (size_t r = 0; r < t.rows.size(); ++r) {
     const auto& row = t.rows[r];
     if (row.size() != 3)
-      throw Error(path + ": line " + std::to_string(t.row_lines[r]) + ": expected theta_in_deg, theta_out_deg, brdf");
-    if (row[2] < 0) throw Error(path + ": line " + std::to_string(t.row_lines[r]) + ": negative BRDF");
+      throw Error(path + ": line " + std::to_string(t.row_lines[r]) +
+                  ": expected theta_in_deg, theta_out_deg, brdf");
+    if (row[2] < 0)
+      throw Error(path + ": line " + std::to_string(t.row_lines[r]) + ": negative BRDF");
     if (std::abs(row[0]) >= 90 || std::abs(row[1]) >= 90)
-      throw Error(path + ": line " + std::to_string(t.row_lines[r]) + ": angles must lie within (-90, 90) degrees");
+      throw Error(path + ": line " + std::to_string(t.row_lines[r]) +
+                  ": angles must lie within (-90, 90) degrees");
     by_incidence[row[0]].push_back({row[1], row[2]});
   }
 
@@ -32,8 +35,9 @@ GlossFit fit_gloss(const std::string& path, double cone_deg) {
     for (auto [theta_out, brdf] : samples)
       if (std::abs(theta_out - theta_in) > cone_deg) outside.push_back(brdf);
     if (outside.empty())
-      throw Error(path + ": incidence " + std::to_string(theta_in) + " deg has no samples outside the " +
-                  std::to_string(cone_deg) + " deg cone to measure the diffuse floor");
+      throw Error(path + ": incidence " + std::to_string(theta_in) +
+                  " deg has no samples outside the " + std::to_string(cone_deg) +
+                  " deg cone to measure the diffuse floor");
     std::nth_element(outside.begin(), outside.begin() + outside.size() / 2, outside.end());
     double floor = outside[outside.size() / 2];
     floor_sum += floor;
@@ -48,7 +52,8 @@ GlossFit fit_gloss(const std::string& path, double cone_deg) {
   }
   fit.incidence_angles = static_cast<int>(by_incidence.size());
   fit.diffuse_floor = floor_sum / fit.incidence_angles;
-  if (lobe.empty()) throw Error(path + ": no samples within the " + std::to_string(cone_deg) + " deg cone");
+  if (lobe.empty())
+    throw Error(path + ": no samples within the " + std::to_string(cone_deg) + " deg cone");
 
   std::vector<double> deg, gp;
   for (auto& [d, s] : lobe) deg.push_back(d), gp.push_back(s.first / s.second);

@@ -8,19 +8,23 @@
 
 namespace kasha {
 
-static nlohmann::json tabulated(const Tabulated& t) { return {{"nm", t.nm}, {"value", t.value}}; }
+static nlohmann::json tabulated(const Tabulated& t) {
+  return {{"nm", t.nm}, {"value", t.value}};
+}
 
 static nlohmann::json grid_summary(const std::vector<double>& nm) {
   return {{"min_nm", nm.front()}, {"max_nm", nm.back()}, {"count", nm.size()}};
 }
 
-void write_material_file(const std::string& path, const std::string& name, const MeasuredMaterial& m) {
+void write_material_file(const std::string& path, const std::string& name,
+                         const MeasuredMaterial& m) {
   nlohmann::json j;
   j["kasha_material"] = 1;
   j["name"] = name;
   if (!m.passive.nm.empty()) j["passive"] = {{"reflectance", tabulated(m.passive)}};
   if (!m.excitation.nm.empty())
-    j["fluorescence"] = {{"excitation", tabulated(m.excitation)}, {"emission", tabulated(m.emission)}};
+    j["fluorescence"] = {{"excitation", tabulated(m.excitation)},
+                         {"emission", tabulated(m.emission)}};
   if (m.gloss) {
     j["gloss"] = {{"reflectance", m.gloss->reflectance},
                   {"cone_deg", m.gloss->cone_deg},

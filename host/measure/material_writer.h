@@ -6,6 +6,7 @@
 
 namespace kasha {
 
-void write_material_file(const std::string& path, const std::string& name, const MeasuredMaterial& m);
+void write_material_file(const std::string& path, const std::string& name,
+                         const MeasuredMaterial& m);
 
 }  // namespace kasha

@@ -30,8 +30,8 @@ void check_energy(MeasuredMaterial& m, bool clip) {
     if (total <= 1.0 + 1e-9) continue;
     if (!clip) {
       std::ostringstream msg;
-      msg << "energy gain at " << l << " nm: gloss " << g << " + passive " << rho << " + excitation " << a << " = "
-          << total << " > 1 (use --clip to clip it)";
+      msg << "energy gain at " << l << " nm: gloss " << g << " + passive " << rho
+          << " + excitation " << a << " = " << total << " > 1 (use --clip to clip it)";
       throw Error(msg.str());
     }
     m.clipped_nm.push_back(l);
@@ -43,7 +43,8 @@ void check_energy(MeasuredMaterial& m, bool clip) {
         excess -= cut;
       }
     for (size_t i = 0; i < m.excitation.nm.size() && excess > 0; ++i)
-      if (m.excitation.nm[i] == l) m.excitation.value[i] = std::max(0.0, m.excitation.value[i] - excess);
+      if (m.excitation.nm[i] == l)
+        m.excitation.value[i] = std::max(0.0, m.excitation.value[i] - excess);
   }
 }
 

@@ -11,7 +11,8 @@
 
 namespace kasha {
 
-static void write_matrix(const std::filesystem::path& file, const MeasuredMaterial& m, const Eigen::MatrixXd& v) {
+static void write_matrix(const std::filesystem::path& file, const MeasuredMaterial& m,
+                         const Eigen::MatrixXd& v) {
   std::ofstream out(file);
   out << "lambda_out_nm\\lambda_in_nm";
   for (double l : m.ex_nm) out << "," << l;
@@ -52,10 +53,12 @@ void write_measurement_plots(const std::string& dir, const MeasuredMaterial& m) 
   fs::path script = d / "plot_measurement.py";
   std::ofstream(script) << embedded_data("plot_measurement.py");
   std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + d.string() + "' " +
-                    std::to_string(m.rank1_residual) + " > '" + (d / "plot.log").string() + "' 2>&1";
+                    std::to_string(m.rank1_residual) + " > '" + (d / "plot.log").string() +
+                    "' 2>&1";
   int status = std::system(cmd.c_str());
   if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw Error("--plots " + dir + ": plotting failed (needs /usr/bin/python3 with python3-matplotlib; see " +
+    throw Error("--plots " + dir +
+                ": plotting failed (needs /usr/bin/python3 with python3-matplotlib; see " +
                 (d / "plot.log").string() + ")");
 }
 

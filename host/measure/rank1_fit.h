@@ -6,8 +6,8 @@
 namespace kasha {
 
 struct Rank1Fit {
-  Eigen::VectorXd e;  // rows; scaled so that max(e) = 1
-  Eigen::VectorXd a;  // columns
+  Eigen::VectorXd e;             // rows; scaled so that max(e) = 1
+  Eigen::VectorXd a;             // columns
   double relative_residual = 0;  // ‖W∘(F − e aᵀ)‖ / ‖W∘F‖ over the known entries
   // The same over the known entries that carry signal (fit or data above 10 % of the fit's peak):
   // unlike the first, it does not fall as empty, noisy parts of the matrix grow.

@@ -70,7 +70,8 @@ double GaussianSpectrum::raw_value(double nm) const {
 }
 
 double LineSpectrum::raw_value(double) const {
-  throw Error("a line spectrum has no value at a single wavelength; use a tabulated or smooth spectrum");
+  throw Error(
+      "a line spectrum has no value at a single wavelength; use a tabulated or smooth spectrum");
 }
 
 double GaussianSpectrum::raw_integral(double a, double b) const {
