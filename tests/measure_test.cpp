@@ -52,6 +52,19 @@ MeasuredMaterial measure(const Instrument& in, const TrueMaterial& truth, bool g
   return material_from_fluorimeter(input);
 }
 
+// Writes what the instrument measures of `truth` and of the etalon, the etalon's reflectance and
+// the detector's sensitivity into the scratch directory; returns the matching measure options.
+std::string instrument_files(const Instrument& in, const TrueMaterial& truth) {
+  std::string d = scratch_dir().string();
+  write_eem_csv(d + "/s.csv", in.measure(truth, nullptr, "s.csv"));
+  write_eem_csv(d + "/e.csv", in.measure(TrueMaterial{}, etalon_rho(), "e.csv"));
+  std::ofstream(d + "/rho.csv") << "nm,rho\n250,0.969\n850,0.981\n";
+  std::ofstream c(d + "/c.csv");
+  for (double l = 250; l <= 850; l += 5) c << l << "," << in.sensitivity(l) << "\n";
+  return "--sample " + d + "/s.csv --etalon " + d + "/e.csv --etalon-reflectance " + d +
+         "/rho.csv --sensitivity " + d + "/c.csv";
+}
+
 void expect_recovered(const MeasuredMaterial& m, const TrueMaterial& truth) {
   double worst_rho = 0, worst_a = 0, l1 = 0;
   for (size_t k = 0; k < m.passive.nm.size(); ++k) {
@@ -120,17 +133,8 @@ TEST(Measure, TwoFluorophoresAreFlagged) {
   EXPECT_GT(m.rank1_signal_residual, 0.3);
 
   // End to end: the command warns on stderr and still writes the material.
-  write_eem_csv(write_file("two.csv", ""), in.measure(two, nullptr, "two.csv"));
-  write_eem_csv(write_file("etalon.csv", ""),
-                in.measure(TrueMaterial{}, etalon_rho(), "etalon.csv"));
-  std::ofstream(scratch_dir() / "rho.csv") << "nm,rho\n250,0.969\n850,0.981\n";
-  std::ofstream c(scratch_dir() / "c.csv");
-  for (double l = 250; l <= 850; l += 5) c << l << "," << in.sensitivity(l) << "\n";
-  c.close();
   std::string d = scratch_dir().string();
-  auto r = run_kasha("measure --sample " + d + "/two.csv --etalon " + d +
-                     "/etalon.csv --etalon-reflectance " + d + "/rho.csv --sensitivity " + d +
-                     "/c.csv -o " + d + "/two.json");
+  auto r = run_kasha("measure " + instrument_files(in, two) + " -o " + d + "/two.json");
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("kasha: warning: rank-1 residual"), std::string::npos) << r.err;
   EXPECT_TRUE(std::filesystem::exists(d + "/two.json"));
@@ -138,16 +142,9 @@ TEST(Measure, TwoFluorophoresAreFlagged) {
 
 TEST(Measure, CommandWritesALoadableMaterialAndPlots) {
   Instrument in = Instrument::typical(true);
-  write_eem_csv(write_file("s.csv", ""), in.measure(brightened_paper(), nullptr, "s.csv"));
-  write_eem_csv(write_file("e.csv", ""), in.measure(TrueMaterial{}, etalon_rho(), "e.csv"));
-  std::ofstream(scratch_dir() / "rho.csv") << "nm,rho\n250,0.969\n850,0.981\n";
-  std::ofstream c(scratch_dir() / "c.csv");
-  for (double l = 250; l <= 850; l += 5) c << l << "," << in.sensitivity(l) << "\n";
-  c.close();
   std::string d = scratch_dir().string();
-  auto r = run_kasha("measure --sample " + d + "/s.csv --etalon " + d +
-                     "/e.csv --etalon-reflectance " + d + "/rho.csv --sensitivity " + d +
-                     "/c.csv -o " + d + "/paper.json --plots " + d + "/plots");
+  auto r = run_kasha("measure " + instrument_files(in, brightened_paper()) + " -o " + d +
+                     "/paper.json --plots " + d + "/plots");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "");
   MaterialDesc desc = load_material_file(d + "/paper.json", "");
