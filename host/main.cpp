@@ -5,15 +5,10 @@
 #include <iostream>
 
 #include "cli/measure_command.h"
+#include "cli/render_command.h"
 #include "core/error.h"
-#include "core/interrupt.h"
-#include "film/film.h"
-#include "image/exr_io.h"
-#include "image/png_preview.h"
 #include "opencl/device.h"
-#include "render/debug_integrator.h"
 #include "render/device_scene.h"
-#include "render/progressive_render.h"
 #include "scene/scene.h"
 
 using namespace kasha;
@@ -74,55 +69,6 @@ int run_info(const std::string& scene_path, bool spectral) {
   return 0;
 }
 
-struct RenderArgs {
-  std::string scene, output, png, integrator = "debug", view = "emission", reference, log;
-  double seconds = 0;
-  int passes = 0, spp = 16, device = 0;
-  long long photons = 1 << 20;
-  unsigned seed = 1;
-  bool spectral = false;
-};
-
-void check_writable(const std::string& path, const std::string& option) {
-  if (path.empty()) return;
-  std::filesystem::path dir = std::filesystem::path(path).parent_path();
-  if (!dir.empty() && !std::filesystem::is_directory(dir))
-    throw Error(option + " " + path + ": directory " + dir.string() + " does not exist");
-}
-
-int run_render(const RenderArgs& a) {
-  install_interrupt_handler();  // from the start, so an early Ctrl-C still gets one pass written
-  check_writable(a.output, "-o");
-  check_writable(a.png, "--png");
-  check_writable(a.log, "--log");
-  if (a.passes <= 0 && a.seconds <= 0) throw Error("render: give --time SECONDS or --passes N");
-  Scene scene = load_scene(a.scene);
-  RenderOptions options;
-  options.stop = {a.seconds, a.passes};
-  options.log_path = a.log;
-  if (!a.reference.empty()) {
-    if (a.reference == "furnace")
-      throw Error(
-          "--reference furnace: the analytic furnace reference comes with the physical "
-          "integrators; "
-          "the debug integrator renders only first-hit views");
-    options.reference = read_exr(a.reference);
-  }
-  ClContext cl(a.device);
-  DeviceScene device_scene(cl, scene);
-  Film film(scene.camera.width, scene.camera.height, scene.grid, a.spectral);
-  DebugIntegrator integrator(cl, scene, device_scene, film, parse_debug_view(a.view), a.spp,
-                             a.seed);
-  RenderSummary summary = render_progressive(integrator, film, options);
-  Image image = film.image();
-  write_exr(a.output, image);
-  if (!a.png.empty()) write_png_preview(a.png, image);
-  std::fprintf(stderr, "wrote %s%s%s: %d passes, %lld samples per pixel, %.2f s on %s\n",
-               a.output.c_str(), a.png.empty() ? "" : " and ", a.png.c_str(), summary.passes,
-               film.samples_per_pixel(), summary.seconds, cl.info().name.c_str());
-  return summary.interrupted ? 130 : 0;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -142,8 +88,8 @@ int main(int argc, char** argv) {
   CLI::App* render = app.add_subcommand("render", "render a scene to an EXR");
   render->add_option("scene", r.scene, "scene JSON file")->required();
   render->add_option("-o,--output", r.output, "output EXR")->required();
-  render->add_option("--integrator", r.integrator, "integrator (debug: first-hit views)")
-      ->check(CLI::IsMember({"debug"}));
+  render->add_option("--integrator", r.integrator, "backward (default until photon mapping lands), or debug")
+      ->check(CLI::IsMember({"backward", "debug"}));
   render->add_option("--view", r.view, "debug view: emission, normals or albedo")
       ->check(CLI::IsMember({"emission", "normals", "albedo"}));
   render->add_option("--time", r.seconds, "stop after this many seconds")

@@ -73,11 +73,18 @@ typedef struct {
   int passive;    /* rho(lambda) */
   int excitation; /* a(lambda) */
   int emission;   /* e_hat = e * bin width, sums to 1 */
-  float gloss;    /* g */
+  int lobe;       /* gloss lobe table (KASHA_LOBE_CELLS pdf values then as many CDF values), -1: mirror */
+  float gloss;    /* g; 0 without a gloss part */
+  float cone_rad; /* half-angle of the gloss cone */
+  float excitation_sum; /* sum_i a_i, for the branch probabilities */
+  float pad0;
   float albedo_xyz[3]; /* colour under equal-energy light, fluorescence included (debug view) */
   int flags;
 } KMaterial;
-KASHA_STATIC_SIZE(KMaterial, 32);
+KASHA_STATIC_SIZE(KMaterial, 48);
+
+/* Gloss lobes are tabulated in this many equal rings of angle from the mirror direction. */
+#define KASHA_LOBE_CELLS 64
 
 #ifndef __OPENCL_VERSION__
 }  // namespace kasha

@@ -1,5 +1,9 @@
 #include "render/device_scene.h"
 
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
 #include "color/cie_observer.h"
 
 namespace kasha {
@@ -28,6 +32,44 @@ static void albedo_xyz(const Material& m, const WavelengthGrid& grid, const Binn
   for (int k = 0; k < 3; ++k) out[k] = white > 0 ? static_cast<float>(xyz[k] / white) : 0.0f;
 }
 
+std::vector<float> gloss_lobe_table(const GlossDesc& gloss) {
+  const int K = KASHA_LOBE_CELLS;
+  const double cone = gloss.cone_deg * M_PI / 180.0;
+  auto profile = [&](double delta) {
+    if (gloss.profile_deg.empty()) return 1.0;
+    double d = delta * 180.0 / M_PI;
+    const auto &x = gloss.profile_deg, &y = gloss.profile_value;
+    if (d < x.front() || d > x.back()) return 0.0;
+    size_t k = std::upper_bound(x.begin(), x.end(), d) - x.begin();
+    if (k == 0) return y.front();
+    if (k >= x.size()) return y.back();
+    return y[k - 1] + (d - x[k - 1]) / (x[k] - x[k - 1]) * (y[k] - y[k - 1]);
+  };
+  std::vector<double> density(K), mass(K);
+  double total = 0;
+  for (int k = 0; k < K; ++k) {
+    // Ring average of p weighted by sin δ (solid angle), by the midpoint rule on 32 sub-steps.
+    double lo = cone * k / K, hi = cone * (k + 1) / K, num = 0, den = 0;
+    for (int j = 0; j < 32; ++j) {
+      double d = lo + (j + 0.5) * (hi - lo) / 32;
+      num += profile(d) * std::sin(d);
+      den += std::sin(d);
+    }
+    density[k] = den > 0 ? num / den : 0.0;
+    mass[k] = density[k] * 2.0 * M_PI * (std::cos(lo) - std::cos(hi));
+    total += mass[k];
+  }
+  std::vector<float> table(2 * K);
+  double cdf = 0;
+  for (int k = 0; k < K; ++k) {
+    table[k] = static_cast<float>(density[k] / total);
+    cdf += mass[k] / total;
+    table[K + k] = static_cast<float>(cdf);
+  }
+  table[2 * K - 1] = 1.0f;
+  return table;
+}
+
 KernelSceneData::KernelSceneData(const Scene& scene) : bvh(build_bvh(scene.triangles)) {
   BinnedObserver obs(scene.grid);
   for (const Material& m : scene.materials) {
@@ -36,16 +78,52 @@ KernelSceneData::KernelSceneData(const Scene& scene) : bvh(build_bvh(scene.trian
     k.excitation = append(spectra, m.a);
     k.emission = append(spectra, m.e_hat);
     k.gloss = static_cast<float>(m.gloss_reflectance());
+    k.lobe = -1;
+    if (m.gloss && !m.gloss->mirror) {
+      k.lobe = static_cast<int>(lobes.size());
+      k.cone_rad = static_cast<float>(m.gloss->cone_deg * M_PI / 180.0);
+      std::vector<float> t = gloss_lobe_table(*m.gloss);
+      lobes.insert(lobes.end(), t.begin(), t.end());
+    }
+    for (double a : m.a) k.excitation_sum += static_cast<float>(a);
     albedo_xyz(m, scene.grid, obs, k.albedo_xyz);
     materials.push_back(k);
   }
   for (const Emitter& e : scene.emitters) append(emitter_radiance, e.per_bin);
+
+  // Lights, in leaf order so kernels index the triangles they traverse.
+  std::vector<double> radiance_sum(scene.emitters.size(), 0.0);
+  for (size_t e = 0; e < scene.emitters.size(); ++e)
+    for (double v : scene.emitters[e].per_bin) radiance_sum[e] += v * scene.grid.bin_nm;
+  std::vector<double> power;
+  float extent = 0;
+  for (size_t i = 0; i < bvh.triangles.size(); ++i) {
+    const KTriangle& t = bvh.triangles[i];
+    for (const float* v : {t.v0, t.v1, t.v2})
+      for (int c = 0; c < 3; ++c) extent = std::max(extent, std::abs(v[c]));
+    if (t.emitter < 0) continue;
+    Eigen::Vector3d a(t.v0[0], t.v0[1], t.v0[2]), b(t.v1[0], t.v1[1], t.v1[2]), c(t.v2[0], t.v2[1], t.v2[2]);
+    double p = 0.5 * (b - a).cross(c - a).norm() * M_PI * radiance_sum[t.emitter];
+    if (!(p > 0)) continue;
+    light_tri.push_back(static_cast<int>(i));
+    power.push_back(p);
+    total_power += p;
+  }
+  double cdf = 0;
+  for (double p : power) light_cdf.push_back(static_cast<float>((cdf += p) / total_power));
+  if (!light_cdf.empty()) light_cdf.back() = 1.0f;
+  for (double r : radiance_sum)
+    emitter_area_pdf.push_back(total_power > 0 ? static_cast<float>(M_PI * r / total_power) : 0.0f);
+  // Float rounding of hit points grows with the coordinates' magnitude.
+  ray_eps = 2e-5f * std::max(extent, 1e-30f);
 }
 
 size_t KernelSceneData::bytes() const {
   return bvh.nodes.size() * sizeof(KBvhNode) + bvh.triangles.size() * sizeof(KTriangle) +
          materials.size() * sizeof(KMaterial) +
-         (spectra.size() + emitter_radiance.size()) * sizeof(float);
+         (spectra.size() + lobes.size() + emitter_radiance.size() + light_cdf.size() + emitter_area_pdf.size()) *
+             sizeof(float) +
+         light_tri.size() * sizeof(int);
 }
 
 KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
@@ -72,7 +150,11 @@ DeviceScene::DeviceScene(ClContext& cl, const Scene& scene) : data_(scene) {
   triangles = upload(cl, data_.bvh.triangles);
   materials = upload(cl, data_.materials);
   spectra = upload(cl, data_.spectra);
+  lobes = upload(cl, data_.lobes);
   emitter_radiance = upload(cl, data_.emitter_radiance);
+  light_tri = upload(cl, data_.light_tri);
+  light_cdf = upload(cl, data_.light_cdf);
+  emitter_area_pdf = upload(cl, data_.emitter_area_pdf);
 }
 
 }  // namespace kasha

@@ -16,11 +16,23 @@ struct KernelSceneData {
   FlatBvh bvh;
   std::vector<KMaterial> materials;
   std::vector<float> spectra;           // material spectra at KMaterial offsets
+  std::vector<float> lobes;             // gloss lobe tables at KMaterial::lobe
   std::vector<float> emitter_radiance;  // emitters x N
+  // Next-event estimation: emitting triangles (leaf order) with the CDF of their power, and per
+  // emitter the area density p(triangle)/area = pi·Σ Le Δλ / total power.
+  std::vector<int> light_tri;
+  std::vector<float> light_cdf;
+  std::vector<float> emitter_area_pdf;
+  double total_power = 0;  // W: Σ over emitting triangles of area·pi·Σ Le Δλ
+  float ray_eps = 0;       // offset of secondary ray origins, from the scene's extent
 
   explicit KernelSceneData(const Scene& scene);
   size_t bytes() const;
 };
+
+// The lobe table of a gloss part: KASHA_LOBE_CELLS ring densities (per solid angle), then their
+// CDF. The tabulated profile is averaged over each ring (a uniform cone without a profile).
+std::vector<float> gloss_lobe_table(const GlossDesc& gloss);
 
 // Definitions every kernel of this scene is built with.
 KernelDefines scene_defines(const Scene& scene, bool spectral_film);
@@ -30,7 +42,7 @@ class DeviceScene {
   DeviceScene(ClContext& cl, const Scene& scene);
   const KernelSceneData& data() const { return data_; }
 
-  cl::Buffer nodes, triangles, materials, spectra, emitter_radiance;
+  cl::Buffer nodes, triangles, materials, spectra, lobes, emitter_radiance, light_tri, light_cdf, emitter_area_pdf;
 
  private:
   KernelSceneData data_;

@@ -14,6 +14,8 @@ class Integrator {
   virtual void render_pass(int pass, Film& film) = 0;
   virtual long long camera_paths_per_pass() const = 0;
   virtual long long photons_per_pass() const = 0;
+  // Samples left out of the film because they were not finite (reported, never hidden).
+  virtual long long rejected_samples() const { return 0; }
 };
 
 }  // namespace kasha

@@ -131,7 +131,10 @@ Scene load_scene(const std::string& path) {
       emitter = static_cast<int>(scene.emitters.size());
       scene.emitters.push_back(e);
     }
+    bool inward = false;
+    if (auto in = shape.find("inward")) inward = in->boolean();
     shape.finish();
+    scene.shapes.push_back(ShapeInfo{type, inward, material, emitter});
     for (const Triangle& t : tris) {
       KTriangle k{};
       for (int c = 0; c < 3; ++c) {

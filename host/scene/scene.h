@@ -18,6 +18,12 @@ struct Emitter {
   int first_triangle = 0, triangle_count = 0;  // in scene (primitive) order
 };
 
+struct ShapeInfo {
+  std::string type;  // obj, quad, box, sphere
+  bool inward = false;
+  int material = -1, emitter = -1;
+};
+
 struct Scene {
   std::string file;
   Camera camera;
@@ -26,6 +32,7 @@ struct Scene {
   std::vector<Material> materials;   // on `grid`, same order as material_descs
   std::vector<KTriangle> triangles;  // scene order: prim == index
   std::vector<Emitter> emitters;
+  std::vector<ShapeInfo> shapes;
   int shape_count = 0;
 
   bool fluorescent() const;  // some shape's material has a fluorescent part

@@ -1,0 +1,19 @@
+#pragma once
+// `kasha render`: a scene through one integrator to an EXR (and PNG), with progress, Ctrl-C, a
+// convergence log and a reference.
+#include <string>
+
+namespace kasha {
+
+struct RenderArgs {
+  std::string scene, output, png, integrator = "backward", view = "emission", reference, log;
+  double seconds = 0;
+  int passes = 0, spp = 16, device = 0;
+  long long photons = 1 << 20;
+  unsigned seed = 1;
+  bool spectral = false;
+};
+
+int run_render(const RenderArgs& args);
+
+}  // namespace kasha

@@ -1,0 +1,52 @@
+#include "render_support.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "film/film.h"
+#include "render/backward_integrator.h"
+#include "render/device_scene.h"
+#include "test_support.h"
+
+namespace kasha::test {
+
+RenderResult render_scene(const std::string& path, const RenderSettings& s) {
+  static ClContext cl(0);
+  RenderResult r{load_scene(path), {}, 0, 0};
+  if (s.camera) r.scene.camera = *s.camera;
+  DeviceScene ds(cl, r.scene);
+  Film film(r.scene.camera.width, r.scene.camera.height, r.scene.grid, s.spectral);
+  auto start = std::chrono::steady_clock::now();
+  if (s.integrator != "backward") throw std::logic_error("unknown integrator " + s.integrator);
+  BackwardIntegrator it(cl, r.scene, ds, film, s.spp, s.seed, s.full_matrix);
+  for (int p = 0; p < s.passes; ++p) it.render_pass(p, film);
+  r.rejected = it.rejected_samples();
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  r.image = film.image();
+  return r;
+}
+
+BinStats pixel_statistics(const Image& image, bool spectral, const std::vector<size_t>& pixels) {
+  const size_t rows = spectral ? image.grid.bins : 3;
+  const std::vector<float>& v = spectral ? image.spectral : image.xyz;
+  std::vector<size_t> use = pixels;
+  if (use.empty())
+    for (size_t p = 0; p < image.pixels(); ++p) use.push_back(p);
+  BinStats s;
+  s.mean.assign(rows, 0.0);
+  s.standard_error.assign(rows, 0.0);
+  for (size_t r = 0; r < rows; ++r) {
+    double sum = 0, sum2 = 0;
+    for (size_t p : use) {
+      double x = v[p * rows + r];
+      sum += x;
+      sum2 += x * x;
+    }
+    double n = use.size(), mean = sum / n;
+    s.mean[r] = mean;
+    s.standard_error[r] = std::sqrt(std::max(0.0, sum2 / n - mean * mean) / (n - 1));
+  }
+  return s;
+}
+
+}  // namespace kasha::test

@@ -1,0 +1,37 @@
+#pragma once
+// Rendering helpers for integrator tests: a scene with its camera moved, a render to an image,
+// per-bin statistics over the pixels.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "film/image.h"
+#include "scene/scene.h"
+
+namespace kasha::test {
+
+struct RenderResult {
+  Scene scene;
+  Image image;
+  long long rejected = 0;
+  double seconds = 0;
+};
+
+struct RenderSettings {
+  std::string integrator = "backward";
+  int passes = 4, spp = 16;
+  bool spectral = true;
+  unsigned seed = 1;
+  bool full_matrix = false;           // backward's test-only full-matrix path state
+  std::optional<Camera> camera;       // replaces the scene's camera
+};
+
+RenderResult render_scene(const std::string& path, const RenderSettings& settings);
+
+struct BinStats {
+  std::vector<double> mean, standard_error;  // over pixels, per bin (or per XYZ row)
+};
+// Per spectral bin (spectral image) or per XYZ row; pixels are independent estimates.
+BinStats pixel_statistics(const Image& image, bool spectral, const std::vector<size_t>& pixels = {});
+
+}  // namespace kasha::test
