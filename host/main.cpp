@@ -141,7 +141,10 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("devices")) return run_devices();
     if (app.got_subcommand("info")) return run_info(info_scene, info_spectral);
-    if (app.got_subcommand("render")) return run_render(r);
+    if (app.got_subcommand("render")) {
+      r.view_given = render->count("--view") > 0;
+      return run_render(r);
+    }
     if (app.got_subcommand("measure")) return run_measure(m);
   } catch (const Error& e) {
     std::fprintf(stderr, "kasha: error: %s\n", e.what());

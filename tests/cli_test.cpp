@@ -57,7 +57,7 @@ TEST(Cli, LogHasARowPerPassWithErrorsAgainstAReference) {
   int rows = 0;
   while (std::getline(in, line)) {
     ++rows;
-    EXPECT_EQ(line.rfind("debug," + std::to_string(rows) + ",", 0), 0u) << line;
+    EXPECT_EQ(line.rfind("backward," + std::to_string(rows) + ",", 0), 0u) << line;
     EXPECT_NE(line.back(), ',') << "error columns must be filled: " << line;
   }
   EXPECT_EQ(rows, 3);
@@ -84,9 +84,15 @@ TEST(Cli, BadInputsGiveOneLineAndNoOutput) {
   std::string scene = shell_quoted(test::source_path("scenes/torus.json"));
   expect_one_line_error(run_kasha("render " + scene + " --passes 1 -o /nonexistent/dir/x.exr"),
                         "directory /nonexistent/dir does not exist");
-  expect_one_line_error(run_kasha("render " + scene + " --passes 1 --view normals --spectral -o " +
+  expect_one_line_error(
+      run_kasha("render " + scene + " --passes 1 --view normals -o " + shell_quoted(out)),
+      "--view applies to --integrator debug only");
+  expect_one_line_error(run_kasha("render " + scene + " --integrator debug --passes 1 --view normals --spectral -o " +
                                   shell_quoted(out)),
                         "the normals view has no spectrum");
+  expect_one_line_error(
+      run_kasha("render " + scene + " --passes 1 --reference furnace -o " + shell_quoted(out)),
+      "--reference furnace: " + test::source_path("scenes/torus.json") + " is not an analytic furnace: ");
   expect_one_line_error(run_kasha("render " + scene + " -o " + shell_quoted(out)),
                         "give --time SECONDS or --passes N");
   expect_one_line_error(

@@ -29,6 +29,7 @@ int run_render(const RenderArgs& a) {
   check_writable(a.png, "--png");
   check_writable(a.log, "--log");
   if (a.passes <= 0 && a.seconds <= 0) throw Error("render: give --time SECONDS or --passes N");
+  if (a.view_given && a.integrator != "debug") throw Error("--view applies to --integrator debug only");
   Scene scene = load_scene(a.scene);
   RenderOptions options;
   options.stop = {a.seconds, a.passes};

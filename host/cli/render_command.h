@@ -12,6 +12,7 @@ struct RenderArgs {
   long long photons = 1 << 20;
   unsigned seed = 1;
   bool spectral = false;
+  bool view_given = false;  // --view was on the command line
 };
 
 int run_render(const RenderArgs& args);
