@@ -49,4 +49,12 @@ BinStats pixel_statistics(const Image& image, bool spectral, const std::vector<s
   return s;
 }
 
+BinStats difference_statistics(const Image& a, const Image& b, bool spectral, const std::vector<size_t>& pixels) {
+  Image d = a;
+  std::vector<float>& v = spectral ? d.spectral : d.xyz;
+  const std::vector<float>& w = spectral ? b.spectral : b.xyz;
+  for (size_t i = 0; i < v.size(); ++i) v[i] -= w[i];
+  return pixel_statistics(d, spectral, pixels);
+}
+
 }  // namespace kasha::test

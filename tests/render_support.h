@@ -34,4 +34,8 @@ struct BinStats {
 // Per spectral bin (spectral image) or per XYZ row; pixels are independent estimates.
 BinStats pixel_statistics(const Image& image, bool spectral, const std::vector<size_t>& pixels = {});
 
+// Per row, the mean over pixels of the difference a − b and its standard error: the images'
+// structure cancels, leaving the two estimators' noise (pixels are independent).
+BinStats difference_statistics(const Image& a, const Image& b, bool spectral, const std::vector<size_t>& pixels = {});
+
 }  // namespace kasha::test
