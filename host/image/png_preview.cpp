@@ -13,15 +13,16 @@
 
 namespace kasha {
 
+// Reinhard's key: the log-average luminance of the lit pixels maps to 0.18, so mid-tones sit in
+// the middle of the range whatever the scene's units; lamps and highlights clip.
 static double exposure_for(const Image& image) {
-  std::vector<float> y;
-  for (size_t p = 0; p < image.pixels(); ++p)
-    if (image.xyz[3 * p + 1] > 0 && std::isfinite(image.xyz[3 * p + 1]))
-      y.push_back(image.xyz[3 * p + 1]);
-  if (y.empty()) return 1.0;
-  size_t k = std::min(y.size() - 1, static_cast<size_t>(0.99 * y.size()));
-  std::nth_element(y.begin(), y.begin() + k, y.end());
-  return y[k] > 0 ? 1.0 / y[k] : 1.0;
+  double sum = 0;
+  size_t n = 0;
+  for (size_t p = 0; p < image.pixels(); ++p) {
+    double y = image.xyz[3 * p + 1];
+    if (y > 0 && std::isfinite(y)) sum += std::log(y), ++n;
+  }
+  return n ? 0.18 / std::exp(sum / n) : 1.0;
 }
 
 void write_png_preview(const std::string& path, const Image& image) {

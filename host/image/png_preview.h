@@ -1,7 +1,7 @@
 #pragma once
-// The tone-mapped sRGB PNG preview: linear sRGB from XYZ, scaled so that the 99th percentile of
-// luminance (Y) over the non-black pixels maps to 1 (so a visible lamp does not darken the rest),
-// clipped, and encoded with the sRGB transfer function, 8 bits.
+// The tone-mapped sRGB PNG preview: linear sRGB from XYZ, scaled so that the log-average
+// luminance of the lit pixels maps to 0.18 (Reinhard's key), clipped, and encoded with the sRGB
+// transfer function, 8 bits.
 #include <string>
 
 #include "film/image.h"
