@@ -12,15 +12,24 @@ namespace kasha::test {
 
 RenderResult render_scene(const std::string& path, const RenderSettings& s) {
   static ClContext cl(0);
-  RenderResult r{load_scene(path), {}, 0, 0};
+  RenderResult r;
+  r.scene = load_scene(path);
   if (s.camera) r.scene.camera = *s.camera;
   DeviceScene ds(cl, r.scene);
   Film film(r.scene.camera.width, r.scene.camera.height, r.scene.grid, s.spectral);
   auto start = std::chrono::steady_clock::now();
-  if (s.integrator != "backward") throw std::logic_error("unknown integrator " + s.integrator);
-  BackwardIntegrator it(cl, r.scene, ds, film, s.spp, s.seed, s.full_matrix);
-  for (int p = 0; p < s.passes; ++p) it.render_pass(p, film);
-  r.rejected = it.rejected_samples();
+  if (s.integrator == "forward") {
+    ForwardIntegrator it(cl, r.scene, ds, film, s.photons, s.seed, s.max_depth, s.photons_per_item);
+    for (int p = 0; p < s.passes; ++p) it.render_pass(p, film);
+    r.rejected = it.rejected_samples();
+    r.ledger = it.ledger();
+  } else if (s.integrator == "backward") {
+    BackwardIntegrator it(cl, r.scene, ds, film, s.spp, s.seed, s.full_matrix);
+    for (int p = 0; p < s.passes; ++p) it.render_pass(p, film);
+    r.rejected = it.rejected_samples();
+  } else {
+    throw std::logic_error("unknown integrator " + s.integrator);
+  }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   r.image = film.image();
   return r;

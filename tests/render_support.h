@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "film/image.h"
+#include "render/forward_integrator.h"
 #include "scene/scene.h"
 
 namespace kasha::test {
@@ -15,6 +16,7 @@ struct RenderResult {
   Image image;
   long long rejected = 0;
   double seconds = 0;
+  PhotonLedger ledger;  // forward
 };
 
 struct RenderSettings {
@@ -23,6 +25,9 @@ struct RenderSettings {
   bool spectral = true;
   unsigned seed = 1;
   bool full_matrix = false;           // backward's test-only full-matrix path state
+  long long photons = 1 << 18;        // forward: photons per pass
+  int max_depth = 1000;               // forward: photon path cut
+  int photons_per_item = 64;          // forward: work per work item
   std::optional<Camera> camera;       // replaces the scene's camera
 };
 

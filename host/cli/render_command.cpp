@@ -11,6 +11,7 @@
 #include "image/png_preview.h"
 #include "render/backward_integrator.h"
 #include "render/debug_integrator.h"
+#include "render/forward_integrator.h"
 #include "render/furnace.h"
 #include "render/progressive_render.h"
 
@@ -47,6 +48,8 @@ int run_render(const RenderArgs& a) {
   std::unique_ptr<Integrator> integrator;
   if (a.integrator == "debug")
     integrator = std::make_unique<DebugIntegrator>(cl, scene, device_scene, film, parse_debug_view(a.view), a.spp, a.seed);
+  else if (a.integrator == "forward")
+    integrator = std::make_unique<ForwardIntegrator>(cl, scene, device_scene, film, a.photons, a.seed);
   else
     integrator = std::make_unique<BackwardIntegrator>(cl, scene, device_scene, film, a.spp, a.seed);
   RenderSummary summary = render_progressive(*integrator, film, options);

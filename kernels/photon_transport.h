@@ -1,0 +1,101 @@
+/* Photons from the lights (DESIGN §2.1): emission, and the one routine that decides what happens
+ * at a hit — constant-energy branching by the branch energies under the photon's spectrum. The
+ * caller decides what to do at the hit (splat to the camera, or store in the photon map).
+ * A photon's spectrum is its power per bin (W). */
+#ifndef KASHA_PHOTON_TRANSPORT_H
+#define KASHA_PHOTON_TRANSPORT_H
+
+#include "gloss_lobe.h"
+#include "lights.h"
+#include "rng.h"
+#include "sampling.h"
+#include "surface.h"
+
+typedef struct {
+  float3 position;
+  float3 direction;
+  float power[KASHA_BINS];
+} Photon;
+
+enum { BRANCH_ABSORBED = 0, BRANCH_GLOSS = 1, BRANCH_PASSIVE = 2, BRANCH_FLUORESCENT = 3 };
+
+/* A photon leaving a light: a triangle chosen by power, a uniform point, a cosine-weighted
+ * direction; its spectrum is the emitter's radiance scaled so that the `photons` of a pass carry
+ * the lights' total power: Φ_i = Le_i Δλ · π / (p_area · photons). Returns the light point's
+ * area density p_area through *area_pdf. */
+inline Photon emit_photon(const __global KTriangle* tris, const __global int* light_tri,
+                          const __global float* light_cdf, int light_count, const __global float* emitter_radiance,
+                          const __global float* emitter_area_pdf, float bin_nm, float photons, Rng* rng,
+                          float3* light_normal, int* emitter, float* area_pdf) {
+  LightPoint lp = sample_light(tris, light_tri, light_cdf, light_count, rng_next_float(rng), rng_next_float(rng),
+                               rng_next_float(rng));
+  Photon p;
+  p.position = lp.position;
+  p.direction = sample_cosine_hemisphere(lp.normal, rng_next_float(rng), rng_next_float(rng));
+  *area_pdf = emitter_area_pdf[lp.emitter];
+  float scale = bin_nm * KASHA_PI / (*area_pdf * photons);
+  for (int i = 0; i < KASHA_BINS; ++i) p.power[i] = emitter_radiance[lp.emitter * KASHA_BINS + i] * scale;
+  *light_normal = lp.normal;
+  *emitter = lp.emitter;
+  return p;
+}
+
+inline float photon_total(const Photon* p) {
+  float s = 0.0f;
+  for (int i = 0; i < KASHA_BINS; ++i) s += p->power[i];
+  return s;
+}
+
+/* Scatters the photon at x (ns: the normal on the side it arrived from). Chooses gloss, passive
+ * or fluorescent re-emission with probability P_k / ΣΦ, P_g = g ΣΦ, P_p = Σ ρ_i Φ_i,
+ * P_f = Σ a_i Φ_i, or absorption; the new spectrum (g Φ, ρ∘Φ or ê (a·Φ)) is rescaled by ΣΦ/P_k so
+ * the photon keeps its power (the cone lobe's cosine ratio aside). Returns the branch. */
+inline int scatter_photon(Photon* p, const Surface* s, const __global KMaterial* m, const __global float* lobes,
+                          float3 x, float3 ns, float ray_eps, Rng* rng) {
+  float total = photon_total(p);
+  float pg = s->g * total, pp = 0.0f, pf = 0.0f;
+  if (s->passive)
+    for (int i = 0; i < KASHA_BINS; ++i) pp += s->rho[i] * p->power[i];
+#if KASHA_FLUORESCENCE
+  if (s->fluorescent)
+    for (int i = 0; i < KASHA_BINS; ++i) pf += s->a[i] * p->power[i];
+#endif
+  float xi = rng_next_float(rng) * total;
+  float u1 = rng_next_float(rng), u2 = rng_next_float(rng);
+  float3 d_in = p->direction;
+  if (xi < pg) {
+    float3 mirror = reflect_dir(d_in, ns);
+    if (s->mirror) {
+      p->direction = mirror;
+    } else {
+      float pdf;
+      float3 wo = sample_lobe(m, lobes, mirror, u1, u2, rng_next_float(rng), &pdf);
+      float co = dot(wo, ns), ci = -dot(d_in, ns);
+      if (co <= 0.0f) return BRANCH_ABSORBED;
+      float k = 2.0f * co / (ci + co);
+      for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= k;
+      p->direction = wo;
+    }
+    p->position = x + ns * ray_eps;
+    return BRANCH_GLOSS;
+  }
+  if (xi < pg + pp) {
+    float k = total / pp;
+    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= s->rho[i] * k;
+    p->direction = sample_cosine_hemisphere(ns, u1, u2);
+    p->position = x + ns * ray_eps;
+    return BRANCH_PASSIVE;
+  }
+#if KASHA_FLUORESCENCE
+  if (xi < pg + pp + pf) {
+    /* The photon changes colour: all its power re-emitted with the emission spectrum. */
+    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] = s->ehat[i] * total;
+    p->direction = sample_cosine_hemisphere(ns, u1, u2);
+    p->position = x + ns * ray_eps;
+    return BRANCH_FLUORESCENT;
+  }
+#endif
+  return BRANCH_ABSORBED;
+}
+
+#endif

@@ -1,0 +1,154 @@
+// The forward integrator (light tracing) against the analytic furnace, against the backward
+// integrator on the Cornell box, and its power bookkeeping.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "geometry/embree_scene.h"
+#include "render/furnace.h"
+#include "render_support.h"
+#include "test_support.h"
+
+using namespace kasha;
+using namespace kasha::test;
+
+namespace {
+
+// Light tracing cannot see an ideal mirror from a pinhole: it estimates everything but the
+// mirror-reflected part g·L of what the camera sees, i.e. (1 − g)·L in a furnace.
+std::vector<double> forward_furnace_value(const Scene& scene, const Furnace& f) {
+  double g = scene.materials[scene.shapes.front().material].gloss_reflectance();
+  bool mirror = g > 0 && scene.materials[scene.shapes.front().material].gloss->mirror;
+  std::vector<double> v = f.radiance;
+  if (mirror)
+    for (double& x : v) x *= 1 - g;
+  return v;
+}
+
+}  // namespace
+
+class ForwardFurnace : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(ForwardFurnace, EveryBinMatchesTheAnalyticValue) {
+  std::string path = source_path(std::string("scenes/") + GetParam());
+  RenderSettings s;
+  s.integrator = "forward";
+  s.passes = 12;
+  s.photons = 1 << 18;
+  RenderResult r = render_scene(path, s);
+  Furnace f = analyze_furnace(r.scene);
+  ASSERT_TRUE(f.qualifies) << f.why_not;
+  std::vector<double> truth = forward_furnace_value(r.scene, f);
+  BinStats st = pixel_statistics(r.image, true);
+  double peak = *std::max_element(truth.begin(), truth.end());
+  for (size_t i = 0; i < truth.size(); ++i) {
+    if (truth[i] < 1e-3 * peak) {
+      EXPECT_LT(st.mean[i], 2e-3 * peak + 4 * st.standard_error[i]);
+      continue;
+    }
+    EXPECT_LT(std::abs(st.mean[i] - truth[i]), 4 * st.standard_error[i] + 1e-6 * truth[i])
+        << GetParam() << " bin " << r.scene.grid.center(i) << " nm: " << st.mean[i] << " vs " << truth[i] << " ± "
+        << st.standard_error[i];
+    EXPECT_LT(std::abs(st.mean[i] - truth[i]), 0.01 * truth[i]) << GetParam() << " bin " << r.scene.grid.center(i);
+  }
+  EXPECT_EQ(r.rejected, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Forward, ForwardFurnace,
+                         ::testing::Values("furnace_passive.json", "furnace_fluorescent.json", "furnace_uv.json",
+                                           "furnace_self_absorption.json", "furnace_mirror.json"),
+                         [](const auto& info) {
+                           std::string s = info.param;
+                           return s.substr(8, s.size() - 13);
+                         });
+
+TEST(Forward, PowerIsConservedInAClosedScene) {
+  // Photons cut after 3 bounces: absorbed + still in flight = emitted, and nothing escapes.
+  RenderSettings s;
+  s.integrator = "forward";
+  s.passes = 2;
+  s.photons = 100000;
+  s.max_depth = 3;
+  for (const char* scene : {"furnace_fluorescent.json", "furnace_mirror.json", "furnace_uv.json"}) {
+    RenderResult r = render_scene(source_path(std::string("scenes/") + scene), s);
+    const PhotonLedger& l = r.ledger;
+    EXPECT_NEAR(l.absorbed + l.in_flight, l.emitted, 1e-5 * l.emitted) << scene;
+    EXPECT_EQ(l.escaped, 0) << scene;
+    EXPECT_GT(l.in_flight, 0.05 * l.emitted) << scene;  // the cut leaves photons in flight
+    // A pass's photons carry the lights' total power.
+    KernelSceneData data(r.scene);
+    EXPECT_NEAR(l.emitted, 2 * data.total_power, 1e-4 * data.total_power) << scene;
+  }
+}
+
+TEST(Forward, ImageDoesNotDependOnHowWorkIsSplit) {
+  // The same photons spread over work items of 64, 7 and 1 photons: each photon's random numbers
+  // depend on its index only and the fixed-point film adds exactly, so the images are identical.
+  RenderSettings a;
+  a.integrator = "forward";
+  a.spectral = false;
+  a.passes = 1;
+  a.photons = 40000;
+  std::vector<float> reference;
+  for (int per_item : {64, 7, 1}) {
+    a.photons_per_item = per_item;
+    RenderResult r = render_scene(source_path("scenes/furnace_fluorescent.json"), a);
+    if (reference.empty()) reference = r.image.xyz;
+    EXPECT_EQ(r.image.xyz, reference) << per_item << " photons per work item";
+  }
+}
+
+TEST(Forward, AgreesWithBackwardOnTheCornellBox) {
+  std::string path = source_path("scenes/cornell_box.json");
+  Scene scene = load_scene(path);
+  Camera cam = scene.camera;
+  cam.width = cam.height = 48;
+  RenderSettings s;
+  s.camera = cam;
+  s.spectral = false;
+  s.integrator = "forward";
+  s.passes = 24;
+  s.photons = 1 << 19;
+  RenderResult fwd = render_scene(path, s);
+  s.integrator = "backward";
+  s.passes = 16;
+  s.spp = 64;
+  RenderResult bwd = render_scene(path, s);
+
+  // Regions: the pixels whose centre sees each material (and the lamp), by Embree.
+  EmbreeScene embree(scene.triangles);
+  KCamera k = cam.to_kernel();
+  std::map<std::string, std::vector<size_t>> regions;
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x) {
+      float sx = 2.0f * (x + 0.5f) / cam.width - 1, sy = 1 - 2.0f * (y + 0.5f) / cam.height;
+      KRay r{};
+      for (int c = 0; c < 3; ++c) r.org[c] = k.position[c], r.dir[c] = k.forward[c] + sx * k.right[c] + sy * k.up[c];
+      r.tmax = INFINITY;
+      KHit h = embree.intersect(r);
+      if (h.prim < 0) continue;
+      const KTriangle& t = scene.triangles[h.prim];
+      std::string name = t.emitter >= 0 ? "lamp" : scene.material_descs[t.material].name;
+      regions[name].push_back(static_cast<size_t>(y) * cam.width + x);
+    }
+  EXPECT_EQ(regions.size(), 5u);  // white, red, green, the lamp, the Post-it sphere
+  for (const auto& [name, pixels] : regions) {
+    BinStats f = pixel_statistics(fwd.image, false, pixels);
+    BinStats d = difference_statistics(fwd.image, bwd.image, false, pixels);
+    for (int c = 0; c < 3; ++c) {
+      double b = f.mean[c] - d.mean[c];
+      EXPECT_LT(std::abs(d.mean[c]), 0.02 * b) << name << " row " << c << ": forward " << f.mean[c] << " backward " << b;
+      EXPECT_LT(std::abs(d.mean[c]), 4 * d.standard_error[c]) << name << " row " << c;
+    }
+  }
+  // The images within noise: in each 6 × 6 block, the mean difference within 5 standard errors.
+  for (int by = 0; by < 8; ++by)
+    for (int bx = 0; bx < 8; ++bx) {
+      std::vector<size_t> block;
+      for (int y = 6 * by; y < 6 * by + 6; ++y)
+        for (int x = 6 * bx; x < 6 * bx + 6; ++x) block.push_back(static_cast<size_t>(y) * cam.width + x);
+      BinStats d = difference_statistics(fwd.image, bwd.image, false, block);
+      for (int c = 0; c < 3; ++c)
+        EXPECT_LE(std::abs(d.mean[c]), 5 * d.standard_error[c]) << "block " << bx << "," << by << " row " << c;
+    }
+}
