@@ -88,8 +88,8 @@ int main(int argc, char** argv) {
   CLI::App* render = app.add_subcommand("render", "render a scene to an EXR");
   render->add_option("scene", r.scene, "scene JSON file")->required();
   render->add_option("-o,--output", r.output, "output EXR")->required();
-  render->add_option("--integrator", r.integrator, "backward (default until photon mapping lands), forward, or debug")
-      ->check(CLI::IsMember({"backward", "forward", "debug"}));
+  render->add_option("--integrator", r.integrator, "photon (default), backward, forward, or debug")
+      ->check(CLI::IsMember({"photon", "backward", "forward", "debug"}));
   render->add_option("--view", r.view, "debug view: emission, normals or albedo")
       ->check(CLI::IsMember({"emission", "normals", "albedo"}));
   render->add_option("--time", r.seconds, "stop after this many seconds")
@@ -98,7 +98,10 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   render->add_option("--spp", r.spp, "camera samples per pixel per pass")
       ->check(CLI::Range(1, 1 << 20));
-  render->add_option("--photons", r.photons, "photons per pass (forward)")->check(CLI::Range(1LL, (1LL << 31) - 1));
+  render->add_option("--alpha", r.alpha, "photon mapping: radius reduction α (default 2/3)")->check(CLI::Range(0.01, 0.99));
+  render->add_option("--radius", r.radius, "photon mapping: initial gather radius (default: from the pixel footprint)")
+      ->check(CLI::PositiveNumber);
+  render->add_option("--photons", r.photons, "photons per pass (forward, photon)")->check(CLI::Range(1LL, (1LL << 31) - 1));
   render->add_option("--seed", r.seed, "random seed");
   render->add_option("--device", r.device, "OpenCL device index (see `kasha devices`)")
       ->check(CLI::NonNegativeNumber);

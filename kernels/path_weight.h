@@ -6,6 +6,7 @@
 #ifndef KASHA_PATH_WEIGHT_H
 #define KASHA_PATH_WEIGHT_H
 
+#include "film_rows.h"
 #include "surface.h"
 
 #ifndef KASHA_FULL_MATRIX
@@ -24,15 +25,6 @@ typedef struct {
 #endif
 #endif
 } PathWeight;
-
-/* C, the film's rows over bins: x̄ȳz̄ times the bin width (XYZ film) or the identity (spectral). */
-inline float film_row_weight(const __global float* cmf, int r, int i) {
-#if KASHA_SPECTRAL_FILM
-  return r == i ? 1.0f : 0.0f;
-#else
-  return cmf[r * KASHA_BINS + i];
-#endif
-}
 
 inline void pw_init(PathWeight* p, const __global float* cmf) {
 #if KASHA_FULL_MATRIX

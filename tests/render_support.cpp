@@ -6,6 +6,7 @@
 #include "film/film.h"
 #include "render/backward_integrator.h"
 #include "render/device_scene.h"
+#include "render/photon_map_integrator.h"
 #include "test_support.h"
 
 namespace kasha::test {
@@ -18,15 +19,24 @@ RenderResult render_scene(const std::string& path, const RenderSettings& s) {
   DeviceScene ds(cl, r.scene);
   Film film(r.scene.camera.width, r.scene.camera.height, r.scene.grid, s.spectral);
   auto start = std::chrono::steady_clock::now();
-  if (s.integrator == "forward") {
-    ForwardIntegrator it(cl, r.scene, ds, film, s.photons, s.seed, s.max_depth, s.photons_per_item);
-    for (int p = 0; p < s.passes; ++p) it.render_pass(p, film);
+  auto run = [&](Integrator& it) {
+    for (int p = 0; p < s.passes; ++p) {
+      it.render_pass(p, film);
+      if (s.after_pass) s.after_pass(p + 1, film.image());
+    }
     r.rejected = it.rejected_samples();
+  };
+  if (s.integrator == "photon") {
+    PhotonMapIntegrator it(cl, r.scene, ds, film, PhotonMapSettings{s.photons, s.alpha, s.radius, s.seed});
+    run(it);
+    r.visible_point_buffer_bytes = it.visible_point_buffer_bytes();
+  } else if (s.integrator == "forward") {
+    ForwardIntegrator it(cl, r.scene, ds, film, s.photons, s.seed, s.max_depth, s.photons_per_item);
+    run(it);
     r.ledger = it.ledger();
   } else if (s.integrator == "backward") {
     BackwardIntegrator it(cl, r.scene, ds, film, s.spp, s.seed, s.full_matrix);
-    for (int p = 0; p < s.passes; ++p) it.render_pass(p, film);
-    r.rejected = it.rejected_samples();
+    run(it);
   } else {
     throw std::logic_error("unknown integrator " + s.integrator);
   }

@@ -1,6 +1,7 @@
 #pragma once
 // Rendering helpers for integrator tests: a scene with its camera moved, a render to an image,
 // per-bin statistics over the pixels.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@ struct RenderResult {
   long long rejected = 0;
   double seconds = 0;
   PhotonLedger ledger;  // forward
+  size_t visible_point_buffer_bytes = 0;  // photon
 };
 
 struct RenderSettings {
@@ -28,6 +30,9 @@ struct RenderSettings {
   long long photons = 1 << 18;        // forward: photons per pass
   int max_depth = 1000;               // forward: photon path cut
   int photons_per_item = 64;          // forward: work per work item
+  double alpha = 2.0 / 3.0, radius = 0;  // photon mapping
+  // Called after every pass with the pass count and the film's image (photon: error over passes).
+  std::function<void(int, const Image&)> after_pass;
   std::optional<Camera> camera;       // replaces the scene's camera
 };
 

@@ -13,6 +13,7 @@
 #include "render/debug_integrator.h"
 #include "render/forward_integrator.h"
 #include "render/furnace.h"
+#include "render/photon_map_integrator.h"
 #include "render/progressive_render.h"
 
 namespace kasha {
@@ -48,6 +49,9 @@ int run_render(const RenderArgs& a) {
   std::unique_ptr<Integrator> integrator;
   if (a.integrator == "debug")
     integrator = std::make_unique<DebugIntegrator>(cl, scene, device_scene, film, parse_debug_view(a.view), a.spp, a.seed);
+  else if (a.integrator == "photon")
+    integrator = std::make_unique<PhotonMapIntegrator>(cl, scene, device_scene, film,
+                                                       PhotonMapSettings{a.photons, a.alpha, a.radius, a.seed});
   else if (a.integrator == "forward")
     integrator = std::make_unique<ForwardIntegrator>(cl, scene, device_scene, film, a.photons, a.seed);
   else
@@ -59,6 +63,14 @@ int run_render(const RenderArgs& a) {
   std::fprintf(stderr, "wrote %s%s%s: %d passes, %lld samples per pixel, %.2f s on %s\n", a.output.c_str(),
                a.png.empty() ? "" : " and ", a.png.c_str(), summary.passes, film.samples_per_pixel(), summary.seconds,
                cl.info().name.c_str());
+  if (auto* pm = dynamic_cast<PhotonMapIntegrator*>(integrator.get())) {
+    const PhotonMapTimes& t = pm->times();
+    double total = t.photon_tracing + t.kd_tree + t.camera_pass + t.gather;
+    if (total > 0)
+      std::fprintf(stderr, "photon mapping time: photon tracing %.0f %%, kd-tree %.0f %%, camera pass %.0f %%, gather %.0f %%\n",
+                   100 * t.photon_tracing / total, 100 * t.kd_tree / total, 100 * t.camera_pass / total,
+                   100 * t.gather / total);
+  }
   if (integrator->rejected_samples() > 0)
     std::fprintf(stderr, "kasha: warning: %lld samples were not finite and were left out\n",
                  integrator->rejected_samples());

@@ -6,10 +6,11 @@
 namespace kasha {
 
 struct RenderArgs {
-  std::string scene, output, png, integrator = "backward", view = "emission", reference, log;
+  std::string scene, output, png, integrator = "photon", view = "emission", reference, log;
   double seconds = 0;
   int passes = 0, spp = 16, device = 0;
-  long long photons = 1 << 20;
+  long long photons = 1 << 18;
+  double alpha = 2.0 / 3.0, radius = 0;
   unsigned seed = 1;
   bool spectral = false;
   bool view_given = false;  // --view was on the command line

@@ -18,6 +18,12 @@ void Film::add_pass(const std::vector<float>& sums, long long samples_per_pixel)
   samples_ += samples_per_pixel;
 }
 
+void Film::set_estimate(const std::vector<double>& mean, long long samples) {
+  if (mean.size() != sum_.size()) throw std::logic_error("film estimate has the wrong size");
+  samples_ = samples;
+  for (size_t i = 0; i < sum_.size(); ++i) sum_[i] = mean[i] * samples;
+}
+
 std::vector<float> Film::cmf_weights() const {
   std::vector<float> w(3 * grid_.bins);
   for (int i = 0; i < grid_.bins; ++i) {

@@ -20,6 +20,9 @@ class Film {
   // Adds a pass: `sums` holds pixels × rows values, each the sum of `samples_per_pixel` samples.
   void add_pass(const std::vector<float>& sums, long long samples_per_pixel);
   long long samples_per_pixel() const { return samples_; }
+  // Replaces the film's content by a per-pixel estimate (pixels × rows) worth `samples` samples,
+  // for integrators whose estimate is not a plain average of passes (photon mapping).
+  void set_estimate(const std::vector<double>& mean, long long samples);
   // Per-bin XYZ weights (x̄ȳz̄ times bin width), 3 × N, as kernels take them.
   std::vector<float> cmf_weights() const;
 

@@ -1,0 +1,106 @@
+#include "render/photon_gather.h"
+
+#include <algorithm>
+#include <nanoflann.hpp>
+#include <thread>
+
+#include "photon_layout.h"
+
+namespace kasha {
+
+namespace {
+// nanoflann's dataset adaptor: the photons' positions, copied out of the records so the build
+// walks a compact array.
+struct PhotonCloud {
+  const float* data;
+  size_t count;
+  int stride;
+  std::vector<float> positions;
+  size_t kdtree_get_point_count() const { return count; }
+  float kdtree_get_pt(size_t i, size_t dim) const { return positions[3 * i + dim]; }
+  template <class Box>
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
+};
+using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PhotonCloud>, PhotonCloud, 3,
+                                                 uint32_t>;
+}  // namespace
+
+struct PhotonKdTree::Impl {
+  PhotonCloud cloud;
+  Tree tree;
+  Impl(const float* photons, size_t count, int stride)
+      : cloud{photons, count, stride, positions_of(photons, count, stride)},
+        tree(3, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16)) {
+    tree.buildIndex();
+  }
+  static std::vector<float> positions_of(const float* photons, size_t count, int stride) {
+    std::vector<float> p(3 * count);
+    for (size_t i = 0; i < count; ++i)
+      for (int k = 0; k < 3; ++k) p[3 * i + k] = photons[i * stride + k];
+    return p;
+  }
+};
+
+PhotonKdTree::PhotonKdTree(const float* photons, size_t count, int floats_per_photon)
+    : impl_(new Impl(photons, count, floats_per_photon)) {}
+
+PhotonKdTree::~PhotonKdTree() { delete impl_; }
+
+GatherResult PhotonKdTree::gather(const float* vps, int vp_floats, size_t pixels, const std::vector<double>& radius,
+                                  const PhotonGatherLayout& L) const {
+  GatherResult out;
+  out.flux.assign(pixels * L.rows, 0.0);
+  out.found.assign(pixels, 0);
+  const int N = L.bins, stride = impl_->cloud.stride;
+  const float* photons = impl_->cloud.data;
+  auto work = [&](size_t begin, size_t end) {
+    std::vector<std::pair<uint32_t, float>> matches;
+    std::vector<double> rows(L.rows);
+    for (size_t px = begin; px < end; ++px) {
+      const float* vp = vps + px * vp_floats;
+      if (vp[KASHA_VP_VALID] == 0.0f || impl_->cloud.count == 0) continue;
+      const float r2 = static_cast<float>(radius[px] * radius[px]);
+      impl_->tree.radiusSearch(vp, r2, matches, nanoflann::SearchParams(32, 0.0f, false));
+      std::fill(rows.begin(), rows.end(), 0.0);
+      const float* d = vp + KASHA_VP_D;
+      const float* c = vp + KASHA_VP_C(N);
+      const float* b = vp + KASHA_VP_B(N, L.rows);
+      int found = 0;
+      for (const auto& [index, dist2] : matches) {
+        const float* ph = photons + static_cast<size_t>(index) * stride;
+        // Same side of the surface, roughly the same orientation: no leaks through thin walls
+        // or around corners.
+        if (ph[3] * vp[3] + ph[4] * vp[4] + ph[5] * vp[5] < 0.5f) continue;
+        const float* phi = ph + KASHA_PHOTON_POWER;
+        ++found;
+        if (L.spectral_film) {
+          for (int i = 0; i < N; ++i) rows[i] += static_cast<double>(d[i]) * phi[i];
+        } else {
+          for (int r = 0; r < 3; ++r) {
+            double s = 0;
+            for (int i = 0; i < N; ++i) s += static_cast<double>(L.cmf[r * N + i]) * d[i] * phi[i];
+            rows[r] += s;
+          }
+        }
+        if (L.fluorescent) {
+          double bphi = 0;
+          for (int i = 0; i < N; ++i) bphi += static_cast<double>(b[i]) * phi[i];
+          for (int r = 0; r < L.rows; ++r) rows[r] += c[r] * bphi;
+        }
+      }
+      out.found[px] = found;
+      for (int r = 0; r < L.rows; ++r) out.flux[px * L.rows + r] = rows[r];
+    }
+  };
+  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> pool;
+  size_t chunk = (pixels + threads - 1) / threads;
+  for (unsigned t = 0; t < threads; ++t)
+    pool.emplace_back(work, std::min(pixels, t * chunk), std::min(pixels, (t + 1) * chunk));
+  for (auto& th : pool) th.join();
+  return out;
+}
+
+}  // namespace kasha

@@ -1,0 +1,38 @@
+#pragma once
+// The gather of photon mapping on the host: a kd-tree (nanoflann) over one pass's photons, and
+// for each visible point the sum of K·Φ over the photons within its radius on the same side of the
+// surface, spread over the host's threads.
+#include <cstddef>
+#include <vector>
+
+namespace kasha {
+
+struct PhotonGatherLayout {
+  int bins = 0, rows = 0;
+  bool fluorescent = false;
+  bool spectral_film = false;
+  const float* cmf = nullptr;  // 3 × N film row weights (XYZ film)
+};
+
+struct GatherResult {
+  std::vector<double> flux;   // pixels × rows: Σ K·Φ over the photons found
+  std::vector<int> found;     // pixels: photons found
+};
+
+class PhotonKdTree {
+ public:
+  PhotonKdTree(const float* photons, size_t count, int floats_per_photon);
+  ~PhotonKdTree();
+  PhotonKdTree(const PhotonKdTree&) = delete;
+  PhotonKdTree& operator=(const PhotonKdTree&) = delete;
+
+  // Gathers for every pixel with a valid visible point, within radius[pixel].
+  GatherResult gather(const float* visible_points, int vp_floats, size_t pixels, const std::vector<double>& radius,
+                      const PhotonGatherLayout& layout) const;
+
+ private:
+  struct Impl;
+  Impl* impl_;
+};
+
+}  // namespace kasha

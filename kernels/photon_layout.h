@@ -1,0 +1,22 @@
+/* Record layouts of photon mapping, shared by host and kernels. Their sizes depend on the bin
+ * count N, the film rows R and whether the scene fluoresces, so they are float arrays with these
+ * strides and offsets rather than structs.
+ *
+ * Photon: position (3), normal on the side it arrived from (3), power per bin (N).
+ * Visible point: position (3), normal on the camera's side (3), valid flag, path length from the
+ * camera (for the initial radius), then the factor K = C∘d + c bᵀ that maps a photon's power to the
+ * pixel's film rows: d (N) and, in a fluorescent scene only, c (R) and b (N). */
+#ifndef KASHA_PHOTON_LAYOUT_H
+#define KASHA_PHOTON_LAYOUT_H
+
+#define KASHA_PHOTON_FLOATS(N) (6 + (N))
+#define KASHA_PHOTON_POWER 6
+
+#define KASHA_VP_VALID 6
+#define KASHA_VP_DISTANCE 7
+#define KASHA_VP_D 8
+#define KASHA_VP_C(N) (8 + (N))
+#define KASHA_VP_B(N, R) (8 + (N) + (R))
+#define KASHA_VP_FLOATS(N, R, FLUORESCENT) (8 + (N) + ((FLUORESCENT) ? (R) + (N) : 0))
+
+#endif
