@@ -57,7 +57,7 @@ TEST(Cli, LogHasARowPerPassWithErrorsAgainstAReference) {
   int rows = 0;
   while (std::getline(in, line)) {
     ++rows;
-    EXPECT_EQ(line.rfind("backward," + std::to_string(rows) + ",", 0), 0u) << line;
+    EXPECT_EQ(line.rfind("photon," + std::to_string(rows) + ",", 0), 0u) << line;
     EXPECT_NE(line.back(), ',') << "error columns must be filled: " << line;
   }
   EXPECT_EQ(rows, 3);
