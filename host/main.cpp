@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "opencl/device.h"
 #include "render/device_scene.h"
+#include "render/photon_map_integrator.h"
 #include "scene/scene.h"
 
 using namespace kasha;
@@ -53,6 +54,13 @@ int run_info(const std::string& scene_path, bool spectral) {
   std::printf("camera: %dx%d, fov %g deg\n", scene.camera.width, scene.camera.height,
               scene.camera.fov_deg);
   std::printf("kernel build options: %s\n", build_options(scene_defines(scene, spectral)).c_str());
+  size_t rows_count = spectral ? scene.grid.bins : 3;
+  std::printf("photon mapping: %zu bytes per photon (position, normal, %d bins); %zu bytes per visible point "
+              "(geometry 8 values%s)\n",
+              photon_record_bytes(scene), scene.grid.bins, visible_point_bytes(scene, spectral),
+              scene.fluorescent() ? (", K = C∘d + c bᵀ: 2N + R = " + std::to_string(2 * scene.grid.bins + rows_count) +
+                                     " values").c_str()
+                                  : (", K = C∘d: N = " + std::to_string(scene.grid.bins) + " values").c_str());
   size_t pixels = static_cast<size_t>(scene.camera.width) * scene.camera.height;
   size_t rows = spectral ? scene.grid.bins : 3;
   std::printf(
