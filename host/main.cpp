@@ -1,6 +1,8 @@
 // kasha: the command line of DESIGN §5.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <filesystem>
 #include <iostream>
 
@@ -9,7 +11,10 @@
 #include "core/error.h"
 #include "opencl/device.h"
 #include "render/device_scene.h"
+#include "render/convergence_study.h"
 #include "render/photon_map_integrator.h"
+#include "render/reference_image.h"
+#include "core/interrupt.h"
 #include "scene/scene.h"
 
 using namespace kasha;
@@ -144,6 +149,33 @@ int main(int argc, char** argv) {
   measure->add_option("--name", m.name, "material name (default: the output file's stem)");
   measure->add_flag("--clip", m.clip, "clip an energy gain instead of failing, and record it");
 
+  StudyOptions study;
+  std::string converge_scene, integrators = "backward,forward,photon";
+  CLI::App* converge = app.add_subcommand("converge", "error against run time for several integrators");
+  converge->add_option("scene", converge_scene, "scene JSON file")->required();
+  converge->add_option("--integrators", integrators, "comma-separated: backward,forward,photon");
+  converge->add_option("--time", study.seconds, "rendering seconds per integrator and run")->required();
+  converge->add_option("--reference", study.reference, "reference EXR or `furnace` (default: cached next to the scene)");
+  converge->add_option("--reference-time", study.reference_seconds,
+                       "seconds for a new cached reference (default 4 × time × integrators)");
+  converge->add_option("--repeats", study.repeats, "runs per integrator, seeds 1..K, for error bars");
+  converge->add_option("--target", study.target, "RMSE whose time to reach is reported (default: the worst final)");
+  converge->add_option("--spp", study.settings.spp, "backward: camera samples per pixel per pass");
+  converge->add_option("--photons", study.settings.photons, "forward, photon: photons per pass");
+  converge->add_option("--device", study.device, "OpenCL device index");
+  converge->add_option("-o,--output", study.out_dir, "directory for logs, plot, images and summary")->required();
+
+  std::string reference_scene, reference_out;
+  double reference_seconds = 0;
+  unsigned reference_seed = 1;
+  int reference_device = 0;
+  CLI::App* reference = app.add_subcommand("reference", "render a reference image with the lowest-variance unbiased integrator");
+  reference->add_option("scene", reference_scene, "scene JSON file")->required();
+  reference->add_option("--time", reference_seconds, "rendering seconds")->required()->check(CLI::PositiveNumber);
+  reference->add_option("--seed", reference_seed, "random seed");
+  reference->add_option("--device", reference_device, "OpenCL device index");
+  reference->add_option("-o,--output", reference_out, "reference EXR")->required();
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -157,6 +189,29 @@ int main(int argc, char** argv) {
       return run_render(r);
     }
     if (app.got_subcommand("measure")) return run_measure(m);
+    if (app.got_subcommand("converge")) {
+      install_interrupt_handler();
+      study.integrators.clear();
+      std::stringstream list(integrators);
+      for (std::string name; std::getline(list, name, ',');) study.integrators.push_back(name);
+      StudyResult r = run_convergence_study(converge_scene, study);
+      std::printf("converge: reference %s; wrote %s/{summary.md,summary.csv,convergence.png,images.png,log_*.csv}\n",
+                  r.reference_description.c_str(), study.out_dir.c_str());
+      std::ifstream summary(study.out_dir + "/summary.md");
+      std::printf("%s", std::string(std::istreambuf_iterator<char>(summary), {}).c_str());
+      return 0;
+    }
+    if (app.got_subcommand("reference")) {
+      install_interrupt_handler();
+      Scene scene = load_scene(reference_scene);
+      ClContext cl(reference_device);
+      ReferenceInfo info;
+      Image image = render_reference(cl, scene, reference_seconds, reference_seed, info, true);
+      write_reference(reference_out, image, info);
+      std::fprintf(stderr, "wrote %s: %s, %.1f s, %lld samples per pixel\n", reference_out.c_str(),
+                   info.integrator.c_str(), info.seconds, info.samples_per_pixel);
+      return 0;
+    }
   } catch (const Error& e) {
     std::fprintf(stderr, "kasha: error: %s\n", e.what());
     return 1;

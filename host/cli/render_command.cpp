@@ -9,9 +9,8 @@
 #include "film/film.h"
 #include "image/exr_io.h"
 #include "image/png_preview.h"
-#include "render/backward_integrator.h"
 #include "render/debug_integrator.h"
-#include "render/forward_integrator.h"
+#include "render/integrator_factory.h"
 #include "render/furnace.h"
 #include "render/photon_map_integrator.h"
 #include "render/progressive_render.h"
@@ -49,13 +48,9 @@ int run_render(const RenderArgs& a) {
   std::unique_ptr<Integrator> integrator;
   if (a.integrator == "debug")
     integrator = std::make_unique<DebugIntegrator>(cl, scene, device_scene, film, parse_debug_view(a.view), a.spp, a.seed);
-  else if (a.integrator == "photon")
-    integrator = std::make_unique<PhotonMapIntegrator>(cl, scene, device_scene, film,
-                                                       PhotonMapSettings{a.photons, a.alpha, a.radius, a.seed});
-  else if (a.integrator == "forward")
-    integrator = std::make_unique<ForwardIntegrator>(cl, scene, device_scene, film, a.photons, a.seed);
   else
-    integrator = std::make_unique<BackwardIntegrator>(cl, scene, device_scene, film, a.spp, a.seed);
+    integrator = make_integrator(a.integrator, cl, scene, device_scene, film,
+                                 IntegratorSettings{a.spp, a.photons, a.alpha, a.radius, a.seed});
   RenderSummary summary = render_progressive(*integrator, film, options);
   Image image = film.image();
   write_exr(a.output, image);

@@ -26,7 +26,7 @@ std::string spectral_channel_name(double nm) {
   return "S0." + s + "nm";
 }
 
-void write_exr(const std::string& path, const Image& image) {
+void write_exr(const std::string& path, const Image& image, const std::map<std::string, std::string>& attributes) {
   const size_t n = image.pixels();
   std::vector<float> rgb(3 * n);
   for (size_t p = 0; p < n; ++p) {
@@ -36,6 +36,7 @@ void write_exr(const std::string& path, const Image& image) {
   write_atomically(path, [&](const std::string& tmp) {
     Imf::Header header(image.width, image.height);
     header.compression() = Imf::ZIP_COMPRESSION;
+    for (const auto& [name, value] : attributes) header.insert(name, Imf::StringAttribute(value));
     Imf::FrameBuffer fb;
     auto add = [&](const std::string& name, const float* base, size_t stride_floats) {
       header.channels().insert(name, Imf::Channel(Imf::FLOAT));
@@ -57,6 +58,18 @@ void write_exr(const std::string& path, const Image& image) {
     file.setFrameBuffer(fb);
     file.writePixels(image.height);
   });
+}
+
+std::map<std::string, std::string> read_exr_attributes(const std::string& path) {
+  try {
+    Imf::InputFile file(path.c_str());
+    std::map<std::string, std::string> out;
+    for (auto it = file.header().begin(); it != file.header().end(); ++it)
+      if (auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) out[it.name()] = s->value();
+    return out;
+  } catch (const std::exception& e) {
+    throw Error(path + ": cannot read EXR: " + e.what());
+  }
 }
 
 Image read_exr(const std::string& path) {

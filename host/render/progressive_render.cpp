@@ -2,11 +2,7 @@
 
 #include <chrono>
 #include <cstdio>
-#include <fstream>
-#include <iomanip>
-#include <sstream>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "render/image_error.h"
@@ -16,30 +12,30 @@ namespace kasha {
 RenderSummary render_progressive(Integrator& integrator, Film& film, const RenderOptions& options) {
   if (options.stop.seconds <= 0 && options.stop.passes <= 0)
     throw Error("give --time SECONDS or --passes N");
-  std::ostringstream log;
-  log << "integrator,pass,seconds,camera_paths,photons,rmse,relmse\n";
-  log << std::setprecision(9);
-
   using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
   RenderSummary summary;
   double shown_at = -1.0;
   for (int pass = 0;; ++pass) {
+    // Only rendering counts towards the time: evaluating the error for the log does not.
+    const auto pass_start = clock::now();
     integrator.render_pass(pass, film);
     summary.passes = pass + 1;
-    summary.seconds = std::chrono::duration<double>(clock::now() - start).count();
+    summary.seconds += std::chrono::duration<double>(clock::now() - pass_start).count();
 
-    if (!options.log_path.empty()) {
-      log << integrator.name() << "," << summary.passes << "," << summary.seconds << ","
-          << integrator.camera_paths_per_pass() * summary.passes << ","
-          << integrator.photons_per_pass() * summary.passes << ",";
+    if (!options.log_path.empty() || options.keep_log) {
+      LogRow row;
+      row.integrator = integrator.name();
+      row.pass = summary.passes;
+      row.seconds = summary.seconds;
+      row.camera_paths = integrator.camera_paths_per_pass() * summary.passes;
+      row.photons = integrator.photons_per_pass() * summary.passes;
       if (options.reference) {
         ImageError e = image_error(film.image(), *options.reference);
-        log << e.rmse << "," << e.relmse;
-      } else {
-        log << ",";
+        row.has_error = true;
+        row.rmse = e.rmse;
+        row.relmse = e.relmse;
       }
-      log << "\n";
+      summary.log.push_back(row);
     }
 
     bool done = (options.stop.passes > 0 && summary.passes >= options.stop.passes) ||
@@ -66,12 +62,7 @@ RenderSummary render_progressive(Integrator& integrator, Film& film, const Rende
     }
     if (done) break;
   }
-  if (!options.log_path.empty())
-    write_atomically(options.log_path, [&](const std::string& tmp) {
-      std::ofstream out(tmp);
-      out << log.str();
-      if (!out) throw Error(options.log_path + ": write failed");
-    });
+  if (!options.log_path.empty()) write_convergence_log(options.log_path, summary.log);
   return summary;
 }
 

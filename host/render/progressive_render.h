@@ -7,6 +7,7 @@
 
 #include "film/film.h"
 #include "film/image.h"
+#include "render/convergence_log.h"
 #include "render/integrator.h"
 
 namespace kasha {
@@ -21,12 +22,14 @@ struct RenderOptions {
   std::string log_path;            // convergence log CSV, or empty
   std::optional<Image> reference;  // for the log's error columns
   bool show_progress = true;
+  bool keep_log = false;             // fill RenderSummary::log even without a log file
 };
 
 struct RenderSummary {
   int passes = 0;
-  double seconds = 0;
+  double seconds = 0;  // rendering time, without the log's error evaluation
   bool interrupted = false;
+  std::vector<LogRow> log;  // when logging
 };
 
 // Stops early, after a whole pass, once interrupt_requested() (core/interrupt.h).

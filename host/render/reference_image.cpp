@@ -1,0 +1,64 @@
+#include "render/reference_image.h"
+
+#include <fstream>
+#include <functional>
+#include <sstream>
+
+#include "core/error.h"
+#include "film/film.h"
+#include "image/exr_io.h"
+#include "render/backward_integrator.h"
+#include "render/device_scene.h"
+#include "render/progressive_render.h"
+
+namespace kasha {
+
+std::string scene_fingerprint(const std::string& scene_path) {
+  std::ifstream in(scene_path, std::ios::binary);
+  if (!in) throw Error(scene_path + ": cannot open file");
+  std::stringstream text;
+  text << in.rdbuf();
+  // FNV-1a, 64 bits: stable across runs and builds (std::hash is not).
+  unsigned long long h = 1469598103934665603ULL;
+  for (unsigned char c : text.str()) h = (h ^ c) * 1099511628211ULL;
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", h);
+  return hex;
+}
+
+Image render_reference(ClContext& cl, const Scene& scene, double seconds, unsigned seed, ReferenceInfo& info,
+                       bool show_progress) {
+  DeviceScene device_scene(cl, scene);
+  Film film(scene.camera.width, scene.camera.height, scene.grid, false);
+  BackwardIntegrator integrator(cl, scene, device_scene, film, 16, seed);
+  RenderOptions options;
+  options.stop.seconds = seconds;
+  options.show_progress = show_progress;
+  RenderSummary summary = render_progressive(integrator, film, options);
+  info.integrator = integrator.name();
+  info.seconds = summary.seconds;
+  info.samples_per_pixel = film.samples_per_pixel();
+  info.scene_fingerprint = scene_fingerprint(scene.file);
+  return film.image();
+}
+
+void write_reference(const std::string& path, const Image& image, const ReferenceInfo& info) {
+  write_exr(path, image,
+            {{"kashaReferenceIntegrator", info.integrator},
+             {"kashaReferenceSeconds", std::to_string(info.seconds)},
+             {"kashaReferenceSamplesPerPixel", std::to_string(info.samples_per_pixel)},
+             {"kashaSceneFingerprint", info.scene_fingerprint}});
+}
+
+ReferenceInfo read_reference_info(const std::string& path) {
+  std::map<std::string, std::string> a = read_exr_attributes(path);
+  ReferenceInfo info;
+  if (!a.count("kashaReferenceIntegrator")) return info;
+  info.integrator = a["kashaReferenceIntegrator"];
+  info.seconds = std::stod(a["kashaReferenceSeconds"]);
+  info.samples_per_pixel = std::stoll(a["kashaReferenceSamplesPerPixel"]);
+  info.scene_fingerprint = a["kashaSceneFingerprint"];
+  return info;
+}
+
+}  // namespace kasha

@@ -1,0 +1,29 @@
+#pragma once
+// Reference images for error-against-time comparisons when no analytic one exists: rendered with
+// the lowest-variance unbiased integrator kasha has — backward, with next-event estimation and MIS
+// (forward is unbiased too but sees the camera side of a scene through light paths alone; photon
+// mapping is biased). The EXR records how it was made.
+#include <string>
+
+#include "film/image.h"
+#include "opencl/device.h"
+#include "scene/scene.h"
+
+namespace kasha {
+
+struct ReferenceInfo {
+  std::string integrator, scene_fingerprint;
+  double seconds = 0;
+  long long samples_per_pixel = 0;
+};
+
+// A fingerprint of the scene file's bytes, to tell whether a cached reference still fits it.
+std::string scene_fingerprint(const std::string& scene_path);
+
+Image render_reference(ClContext& cl, const Scene& scene, double seconds, unsigned seed, ReferenceInfo& info,
+                       bool show_progress);
+void write_reference(const std::string& path, const Image& image, const ReferenceInfo& info);
+// The provenance of a reference EXR written by write_reference; empty integrator if it has none.
+ReferenceInfo read_reference_info(const std::string& path);
+
+}  // namespace kasha
