@@ -1,20 +1,20 @@
 // kasha: the command line of DESIGN §5.
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "cli/measure_command.h"
 #include "cli/render_command.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "opencl/device.h"
-#include "render/device_scene.h"
 #include "render/convergence_study.h"
+#include "render/device_scene.h"
 #include "render/photon_map_integrator.h"
 #include "render/reference_image.h"
-#include "core/interrupt.h"
 #include "scene/scene.h"
 
 using namespace kasha;
@@ -60,12 +60,16 @@ int run_info(const std::string& scene_path, bool spectral) {
               scene.camera.fov_deg);
   std::printf("kernel build options: %s\n", build_options(scene_defines(scene, spectral)).c_str());
   size_t rows_count = spectral ? scene.grid.bins : 3;
-  std::printf("photon mapping: %zu bytes per photon (position, normal, %d bins); %zu bytes per visible point "
-              "(geometry 8 values%s)\n",
-              photon_record_bytes(scene), scene.grid.bins, visible_point_bytes(scene, spectral),
-              scene.fluorescent() ? (", K = C∘d + c bᵀ: 2N + R = " + std::to_string(2 * scene.grid.bins + rows_count) +
-                                     " values").c_str()
-                                  : (", K = C∘d: N = " + std::to_string(scene.grid.bins) + " values").c_str());
+  std::printf(
+      "photon mapping: %zu bytes per photon (position, normal, %d bins); %zu bytes per visible "
+      "point "
+      "(geometry 8 values%s)\n",
+      photon_record_bytes(scene), scene.grid.bins, visible_point_bytes(scene, spectral),
+      scene.fluorescent()
+          ? (", K = C∘d + c bᵀ: 2N + R = " + std::to_string(2 * scene.grid.bins + rows_count) +
+             " values")
+                .c_str()
+          : (", K = C∘d: N = " + std::to_string(scene.grid.bins) + " values").c_str());
   size_t pixels = static_cast<size_t>(scene.camera.width) * scene.camera.height;
   size_t rows = spectral ? scene.grid.bins : 3;
   std::printf(
@@ -111,10 +115,14 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   render->add_option("--spp", r.spp, "camera samples per pixel per pass")
       ->check(CLI::Range(1, 1 << 20));
-  render->add_option("--alpha", r.alpha, "photon mapping: radius reduction α (default 2/3)")->check(CLI::Range(0.01, 0.99));
-  render->add_option("--radius", r.radius, "photon mapping: initial gather radius (default: from the pixel footprint)")
+  render->add_option("--alpha", r.alpha, "photon mapping: radius reduction α (default 2/3)")
+      ->check(CLI::Range(0.01, 0.99));
+  render
+      ->add_option("--radius", r.radius,
+                   "photon mapping: initial gather radius (default: from the pixel footprint)")
       ->check(CLI::PositiveNumber);
-  render->add_option("--photons", r.photons, "photons per pass (forward, photon)")->check(CLI::Range(1LL, (1LL << 31) - 1));
+  render->add_option("--photons", r.photons, "photons per pass (forward, photon)")
+      ->check(CLI::Range(1LL, (1LL << 31) - 1));
   render->add_option("--seed", r.seed, "random seed");
   render->add_option("--device", r.device, "OpenCL device index (see `kasha devices`)")
       ->check(CLI::NonNegativeNumber);
@@ -151,27 +159,36 @@ int main(int argc, char** argv) {
 
   StudyOptions study;
   std::string converge_scene, integrators = "backward,forward,photon";
-  CLI::App* converge = app.add_subcommand("converge", "error against run time for several integrators");
+  CLI::App* converge =
+      app.add_subcommand("converge", "error against run time for several integrators");
   converge->add_option("scene", converge_scene, "scene JSON file")->required();
   converge->add_option("--integrators", integrators, "comma-separated: backward,forward,photon");
-  converge->add_option("--time", study.seconds, "rendering seconds per integrator and run")->required();
-  converge->add_option("--reference", study.reference, "reference EXR or `furnace` (default: cached next to the scene)");
+  converge->add_option("--time", study.seconds, "rendering seconds per integrator and run")
+      ->required();
+  converge->add_option("--reference", study.reference,
+                       "reference EXR or `furnace` (default: cached next to the scene)");
   converge->add_option("--reference-time", study.reference_seconds,
                        "seconds for a new cached reference (default 4 × time × integrators)");
-  converge->add_option("--repeats", study.repeats, "runs per integrator, seeds 1..K, for error bars");
-  converge->add_option("--target", study.target, "RMSE whose time to reach is reported (default: the worst final)");
+  converge->add_option("--repeats", study.repeats,
+                       "runs per integrator, seeds 1..K, for error bars");
+  converge->add_option("--target", study.target,
+                       "RMSE whose time to reach is reported (default: the worst final)");
   converge->add_option("--spp", study.settings.spp, "backward: camera samples per pixel per pass");
   converge->add_option("--photons", study.settings.photons, "forward, photon: photons per pass");
   converge->add_option("--device", study.device, "OpenCL device index");
-  converge->add_option("-o,--output", study.out_dir, "directory for logs, plot, images and summary")->required();
+  converge->add_option("-o,--output", study.out_dir, "directory for logs, plot, images and summary")
+      ->required();
 
   std::string reference_scene, reference_out;
   double reference_seconds = 0;
   unsigned reference_seed = 1;
   int reference_device = 0;
-  CLI::App* reference = app.add_subcommand("reference", "render a reference image with the lowest-variance unbiased integrator");
+  CLI::App* reference = app.add_subcommand(
+      "reference", "render a reference image with the lowest-variance unbiased integrator");
   reference->add_option("scene", reference_scene, "scene JSON file")->required();
-  reference->add_option("--time", reference_seconds, "rendering seconds")->required()->check(CLI::PositiveNumber);
+  reference->add_option("--time", reference_seconds, "rendering seconds")
+      ->required()
+      ->check(CLI::PositiveNumber);
   reference->add_option("--seed", reference_seed, "random seed");
   reference->add_option("--device", reference_device, "OpenCL device index");
   reference->add_option("-o,--output", reference_out, "reference EXR")->required();
@@ -195,8 +212,10 @@ int main(int argc, char** argv) {
       std::stringstream list(integrators);
       for (std::string name; std::getline(list, name, ',');) study.integrators.push_back(name);
       StudyResult r = run_convergence_study(converge_scene, study);
-      std::printf("converge: reference %s; wrote %s/{summary.md,summary.csv,convergence.png,images.png,log_*.csv}\n",
-                  r.reference_description.c_str(), study.out_dir.c_str());
+      std::printf(
+          "converge: reference %s; wrote "
+          "%s/{summary.md,summary.csv,convergence.png,images.png,log_*.csv}\n",
+          r.reference_description.c_str(), study.out_dir.c_str());
       std::ifstream summary(study.out_dir + "/summary.md");
       std::printf("%s", std::string(std::istreambuf_iterator<char>(summary), {}).c_str());
       return 0;

@@ -87,12 +87,14 @@ TEST(Cli, BadInputsGiveOneLineAndNoOutput) {
   expect_one_line_error(
       run_kasha("render " + scene + " --passes 1 --view normals -o " + shell_quoted(out)),
       "--view applies to --integrator debug only");
-  expect_one_line_error(run_kasha("render " + scene + " --integrator debug --passes 1 --view normals --spectral -o " +
-                                  shell_quoted(out)),
-                        "the normals view has no spectrum");
+  expect_one_line_error(
+      run_kasha("render " + scene + " --integrator debug --passes 1 --view normals --spectral -o " +
+                shell_quoted(out)),
+      "the normals view has no spectrum");
   expect_one_line_error(
       run_kasha("render " + scene + " --passes 1 --reference furnace -o " + shell_quoted(out)),
-      "--reference furnace: " + test::source_path("scenes/torus.json") + " is not an analytic furnace: ");
+      "--reference furnace: " + test::source_path("scenes/torus.json") +
+          " is not an analytic furnace: ");
   expect_one_line_error(run_kasha("render " + scene + " -o " + shell_quoted(out)),
                         "give --time SECONDS or --passes N");
   expect_one_line_error(
@@ -119,10 +121,10 @@ TEST(Cli, NoOpenClDeviceSaysHowToInstallPocl) {
 TEST(Cli, InfoReportsGridFeaturesOptionsAndMemory) {
   auto r = run_kasha("info " + shell_quoted(test::source_path("scenes/cornell_box.json")));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* s : {"wavelengths: 300–780 nm, 48 bins of 10 nm", "fluorescence yes",
-                        "-D KASHA_BINS=48", "-D KASHA_FLUORESCENCE=1", "memory: ",
-                        "photon mapping: 216 bytes per photon", "428 bytes per visible point",
-                        "2N + R = 99 values"})
+  for (const char* s :
+       {"wavelengths: 300–780 nm, 48 bins of 10 nm", "fluorescence yes", "-D KASHA_BINS=48",
+        "-D KASHA_FLUORESCENCE=1", "memory: ", "photon mapping: 216 bytes per photon",
+        "428 bytes per visible point", "2N + R = 99 values"})
     EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
 }
 

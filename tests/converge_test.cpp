@@ -27,10 +27,12 @@ TEST(Converge, FurnaceSlopesMatchTheory) {
     EXPECT_NEAR(s.slope_rmse, theory, 0.1) << s.integrator;
     EXPECT_NEAR(s.slope_relmse, 2 * theory, 0.2) << s.integrator;
     EXPECT_EQ(s.reached_target, 1) << s.integrator;  // the worst final RMSE is every run's target
-    std::printf("  %s: RMSE slope %.3f, relMSE slope %.3f\n", s.integrator.c_str(), s.slope_rmse, s.slope_relmse);
+    std::printf("  %s: RMSE slope %.3f, relMSE slope %.3f\n", s.integrator.c_str(), s.slope_rmse,
+                s.slope_relmse);
   }
-  for (const char* f : {"summary.md", "summary.csv", "convergence.png", "images.png", "log_backward_1.csv",
-                        "log_forward_1.csv", "log_photon_1.csv", "backward.exr", "forward.exr", "photon.exr"})
+  for (const char* f :
+       {"summary.md", "summary.csv", "convergence.png", "images.png", "log_backward_1.csv",
+        "log_forward_1.csv", "log_photon_1.csv", "backward.exr", "forward.exr", "photon.exr"})
     EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(o.out_dir) / f)) << f;
   std::vector<LogRow> log = read_convergence_log(o.out_dir + "/log_backward_1.csv");
   EXPECT_GT(log.size(), 10u);
@@ -44,7 +46,8 @@ TEST(Converge, RepeatsGiveErrorBarsAndACachedReference) {
   std::string scene = (dir / "box.json").string();
   std::filesystem::copy_file(source_path("scenes/furnace_passive.json"), scene);
   std::filesystem::create_directories(dir / "data");
-  std::filesystem::copy_file(source_path("scenes/data/CIE_D65_300_780.csv"), dir / "data/CIE_D65_300_780.csv");
+  std::filesystem::copy_file(source_path("scenes/data/CIE_D65_300_780.csv"),
+                             dir / "data/CIE_D65_300_780.csv");
   StudyOptions o;
   o.integrators = {"backward", "forward"};
   o.seconds = 0.5;
@@ -62,7 +65,8 @@ TEST(Converge, RepeatsGiveErrorBarsAndACachedReference) {
   }
   EXPECT_TRUE(std::filesystem::exists(dir / "study/log_forward_2.csv"));
   StudyResult again = run_convergence_study(scene, o);
-  EXPECT_NE(again.reference_description.find("(cached"), std::string::npos) << again.reference_description;
+  EXPECT_NE(again.reference_description.find("(cached"), std::string::npos)
+      << again.reference_description;
 }
 
 TEST(Converge, BadArgumentsGiveOneLine) {
@@ -74,10 +78,12 @@ TEST(Converge, BadArgumentsGiveOneLine) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   };
   std::string furnace = source_path("scenes/furnace_passive.json");
-  check(furnace + " --integrators backward,sideways --time 1 -o " + out, "unknown integrator \"sideways\"");
+  check(furnace + " --integrators backward,sideways --time 1 -o " + out,
+        "unknown integrator \"sideways\"");
   check(source_path("scenes/cornell_box.json") + " --time 1 --reference furnace -o " + out,
         "is not an analytic furnace: ");
-  check(furnace + " --time 1 --reference /nonexistent/ref.exr -o " + out, "--reference /nonexistent/ref.exr: no such file");
+  check(furnace + " --time 1 --reference /nonexistent/ref.exr -o " + out,
+        "--reference /nonexistent/ref.exr: no such file");
   std::string file = write_file("a_file", "x");
   check(furnace + " --time 1 --reference furnace -o " + file + "/sub", "cannot create directory");
 }

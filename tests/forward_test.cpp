@@ -4,7 +4,6 @@
 
 #include <cmath>
 
-#include "geometry/embree_scene.h"
 #include "render/furnace.h"
 #include "render_support.h"
 #include "test_support.h"
@@ -38,25 +37,13 @@ TEST_P(ForwardFurnace, EveryBinMatchesTheAnalyticValue) {
   RenderResult r = render_scene(path, s);
   Furnace f = analyze_furnace(r.scene);
   ASSERT_TRUE(f.qualifies) << f.why_not;
-  std::vector<double> truth = forward_furnace_value(r.scene, f);
-  BinStats st = pixel_statistics(r.image, true);
-  double peak = *std::max_element(truth.begin(), truth.end());
-  for (size_t i = 0; i < truth.size(); ++i) {
-    if (truth[i] < 1e-3 * peak) {
-      EXPECT_LT(st.mean[i], 2e-3 * peak + 4 * st.standard_error[i]);
-      continue;
-    }
-    EXPECT_LT(std::abs(st.mean[i] - truth[i]), 4 * st.standard_error[i] + 1e-6 * truth[i])
-        << GetParam() << " bin " << r.scene.grid.center(i) << " nm: " << st.mean[i] << " vs " << truth[i] << " ± "
-        << st.standard_error[i];
-    EXPECT_LT(std::abs(st.mean[i] - truth[i]), 0.01 * truth[i]) << GetParam() << " bin " << r.scene.grid.center(i);
-  }
-  EXPECT_EQ(r.rejected, 0);
+  expect_bins_match(r, forward_furnace_value(r.scene, f), 0.01, GetParam());
 }
 
 INSTANTIATE_TEST_SUITE_P(Forward, ForwardFurnace,
-                         ::testing::Values("furnace_passive.json", "furnace_fluorescent.json", "furnace_uv.json",
-                                           "furnace_self_absorption.json", "furnace_mirror.json"),
+                         ::testing::Values("furnace_passive.json", "furnace_fluorescent.json",
+                                           "furnace_uv.json", "furnace_self_absorption.json",
+                                           "furnace_mirror.json"),
                          [](const auto& info) {
                            std::string s = info.param;
                            return s.substr(8, s.size() - 13);
@@ -116,28 +103,15 @@ TEST(Forward, AgreesWithBackwardOnTheCornellBox) {
   RenderResult bwd = render_scene(path, s);
 
   // Regions: the pixels whose centre sees each material (and the lamp), by Embree.
-  EmbreeScene embree(scene.triangles);
-  KCamera k = cam.to_kernel();
-  std::map<std::string, std::vector<size_t>> regions;
-  for (int y = 0; y < cam.height; ++y)
-    for (int x = 0; x < cam.width; ++x) {
-      float sx = 2.0f * (x + 0.5f) / cam.width - 1, sy = 1 - 2.0f * (y + 0.5f) / cam.height;
-      KRay r{};
-      for (int c = 0; c < 3; ++c) r.org[c] = k.position[c], r.dir[c] = k.forward[c] + sx * k.right[c] + sy * k.up[c];
-      r.tmax = INFINITY;
-      KHit h = embree.intersect(r);
-      if (h.prim < 0) continue;
-      const KTriangle& t = scene.triangles[h.prim];
-      std::string name = t.emitter >= 0 ? "lamp" : scene.material_descs[t.material].name;
-      regions[name].push_back(static_cast<size_t>(y) * cam.width + x);
-    }
+  std::map<std::string, std::vector<size_t>> regions = primary_hit_regions(scene, cam);
   EXPECT_EQ(regions.size(), 5u);  // white, red, green, the lamp, the Post-it sphere
   for (const auto& [name, pixels] : regions) {
     BinStats f = pixel_statistics(fwd.image, false, pixels);
     BinStats d = difference_statistics(fwd.image, bwd.image, false, pixels);
     for (int c = 0; c < 3; ++c) {
       double b = f.mean[c] - d.mean[c];
-      EXPECT_LT(std::abs(d.mean[c]), 0.02 * b) << name << " row " << c << ": forward " << f.mean[c] << " backward " << b;
+      EXPECT_LT(std::abs(d.mean[c]), 0.02 * b)
+          << name << " row " << c << ": forward " << f.mean[c] << " backward " << b;
       EXPECT_LT(std::abs(d.mean[c]), 4 * d.standard_error[c]) << name << " row " << c;
     }
   }
@@ -146,9 +120,11 @@ TEST(Forward, AgreesWithBackwardOnTheCornellBox) {
     for (int bx = 0; bx < 8; ++bx) {
       std::vector<size_t> block;
       for (int y = 6 * by; y < 6 * by + 6; ++y)
-        for (int x = 6 * bx; x < 6 * bx + 6; ++x) block.push_back(static_cast<size_t>(y) * cam.width + x);
+        for (int x = 6 * bx; x < 6 * bx + 6; ++x)
+          block.push_back(static_cast<size_t>(y) * cam.width + x);
       BinStats d = difference_statistics(fwd.image, bwd.image, false, block);
       for (int c = 0; c < 3; ++c)
-        EXPECT_LE(std::abs(d.mean[c]), 5 * d.standard_error[c]) << "block " << bx << "," << by << " row " << c;
+        EXPECT_LE(std::abs(d.mean[c]), 5 * d.standard_error[c])
+            << "block " << bx << "," << by << " row " << c;
     }
 }

@@ -4,7 +4,6 @@
 
 #include <cmath>
 
-#include "geometry/embree_scene.h"
 #include "render/device_scene.h"
 #include "render/furnace.h"
 #include "render/photon_map_integrator.h"
@@ -54,7 +53,8 @@ TEST_P(PhotonFurnace, ConvergesToTheAnalyticValue) {
   s.passes = 40;
   std::vector<double> rms;  // per-pixel relative RMS error after 1, 4, 16, 40 passes
   s.after_pass = [&](int pass, const Image& img) {
-    if (pass == 1 || pass == 4 || pass == 16 || pass == 40) rms.push_back(pixel_rms_error(img, f.radiance));
+    if (pass == 1 || pass == 4 || pass == 16 || pass == 40)
+      rms.push_back(pixel_rms_error(img, f.radiance));
   };
   RenderResult r = render_scene(path, s);
   ASSERT_EQ(rms.size(), 4u);
@@ -62,15 +62,18 @@ TEST_P(PhotonFurnace, ConvergesToTheAnalyticValue) {
   EXPECT_LT(rms[2], rms[1]);
   EXPECT_LT(rms[3], rms[2]);
   double worst = worst_bin_error(r.image, f.radiance);
-  std::printf("  per-pixel relative RMS error after 1/4/16/40 passes: %.4f %.4f %.4f %.4f; worst bin %.4f\n",
-              rms[0], rms[1], rms[2], rms[3], worst);
+  std::printf(
+      "  per-pixel relative RMS error after 1/4/16/40 passes: %.4f %.4f %.4f %.4f; worst bin "
+      "%.4f\n",
+      rms[0], rms[1], rms[2], rms[3], worst);
   EXPECT_LT(worst, 0.02);
   for (float v : r.image.spectral) ASSERT_TRUE(std::isfinite(v));
 }
 
 INSTANTIATE_TEST_SUITE_P(Photon, PhotonFurnace,
-                         ::testing::Values("furnace_passive.json", "furnace_fluorescent.json", "furnace_uv.json",
-                                           "furnace_self_absorption.json", "furnace_mirror.json"),
+                         ::testing::Values("furnace_passive.json", "furnace_fluorescent.json",
+                                           "furnace_uv.json", "furnace_self_absorption.json",
+                                           "furnace_mirror.json"),
                          [](const auto& info) {
                            std::string s = info.param;
                            return s.substr(8, s.size() - 13);
@@ -93,24 +96,11 @@ TEST(Photon, AgreesWithBackwardOnTheCornellBox) {
   s.spp = 64;
   RenderResult bwd = render_scene(path, s);
 
-  EmbreeScene embree(scene.triangles);
-  KCamera k = cam.to_kernel();
-  std::map<std::string, std::vector<size_t>> regions;
-  for (int y = 0; y < cam.height; ++y)
-    for (int x = 0; x < cam.width; ++x) {
-      float sx = 2.0f * (x + 0.5f) / cam.width - 1, sy = 1 - 2.0f * (y + 0.5f) / cam.height;
-      KRay r{};
-      for (int c = 0; c < 3; ++c) r.org[c] = k.position[c], r.dir[c] = k.forward[c] + sx * k.right[c] + sy * k.up[c];
-      r.tmax = INFINITY;
-      KHit h = embree.intersect(r);
-      if (h.prim < 0) continue;
-      const KTriangle& t = scene.triangles[h.prim];
-      regions[t.emitter >= 0 ? "lamp" : scene.material_descs[t.material].name].push_back(
-          static_cast<size_t>(y) * cam.width + x);
-    }
+  std::map<std::string, std::vector<size_t>> regions = primary_hit_regions(scene, cam);
   ASSERT_EQ(regions.size(), 5u);
   for (const auto& [name, pixels] : regions) {
-    BinStats p = pixel_statistics(pm.image, false, pixels), b = pixel_statistics(bwd.image, false, pixels);
+    BinStats p = pixel_statistics(pm.image, false, pixels),
+             b = pixel_statistics(bwd.image, false, pixels);
     for (int c = 0; c < 3; ++c)
       EXPECT_LT(std::abs(p.mean[c] - b.mean[c]), 0.03 * b.mean[c])
           << name << " row " << c << ": photon " << p.mean[c] << " backward " << b.mean[c];

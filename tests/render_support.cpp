@@ -1,9 +1,13 @@
 #include "render_support.h"
 
+#include <gtest/gtest.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "film/film.h"
+#include "geometry/embree_scene.h"
 #include "render/backward_integrator.h"
 #include "render/device_scene.h"
 #include "render/photon_map_integrator.h"
@@ -27,7 +31,8 @@ RenderResult render_scene(const std::string& path, const RenderSettings& s) {
     r.rejected = it.rejected_samples();
   };
   if (s.integrator == "photon") {
-    PhotonMapIntegrator it(cl, r.scene, ds, film, PhotonMapSettings{s.photons, s.alpha, s.radius, s.seed});
+    PhotonMapIntegrator it(cl, r.scene, ds, film,
+                           PhotonMapSettings{s.photons, s.alpha, s.radius, s.seed});
     run(it);
     r.visible_point_buffer_bytes = it.visible_point_buffer_bytes();
   } else if (s.integrator == "forward") {
@@ -68,12 +73,58 @@ BinStats pixel_statistics(const Image& image, bool spectral, const std::vector<s
   return s;
 }
 
-BinStats difference_statistics(const Image& a, const Image& b, bool spectral, const std::vector<size_t>& pixels) {
+BinStats difference_statistics(const Image& a, const Image& b, bool spectral,
+                               const std::vector<size_t>& pixels) {
   Image d = a;
   std::vector<float>& v = spectral ? d.spectral : d.xyz;
   const std::vector<float>& w = spectral ? b.spectral : b.xyz;
   for (size_t i = 0; i < v.size(); ++i) v[i] -= w[i];
   return pixel_statistics(d, spectral, pixels);
+}
+
+void expect_bins_match(const RenderResult& r, const std::vector<double>& truth, double tolerance,
+                       const std::string& label) {
+  BinStats s = pixel_statistics(r.image, true);
+  double peak = *std::max_element(truth.begin(), truth.end());
+  int checked = 0;
+  for (size_t i = 0; i < truth.size(); ++i) {
+    const double nm = r.scene.grid.center(static_cast<int>(i));
+    if (truth[i] < 1e-3 * peak) {
+      EXPECT_LT(s.mean[i], 2e-3 * peak + 4 * s.standard_error[i])
+          << label << " bin " << nm << " nm";
+      continue;
+    }
+    ++checked;
+    EXPECT_LT(std::abs(s.mean[i] - truth[i]), 4 * s.standard_error[i] + 1e-6 * truth[i])
+        << label << " bin " << nm << " nm: " << s.mean[i] << " vs " << truth[i] << " ± "
+        << s.standard_error[i];
+    EXPECT_LT(std::abs(s.mean[i] - truth[i]), tolerance * truth[i])
+        << label << " bin " << nm << " nm";
+  }
+  EXPECT_GT(checked, 3) << label;
+  EXPECT_EQ(r.rejected, 0) << label;
+  for (float v : r.image.spectral) ASSERT_TRUE(std::isfinite(v)) << label;
+}
+
+std::map<std::string, std::vector<size_t>> primary_hit_regions(const Scene& scene,
+                                                               const Camera& cam) {
+  EmbreeScene embree(scene.triangles);
+  KCamera k = cam.to_kernel();
+  std::map<std::string, std::vector<size_t>> regions;
+  for (int y = 0; y < cam.height; ++y)
+    for (int x = 0; x < cam.width; ++x) {
+      float sx = 2.0f * (x + 0.5f) / cam.width - 1, sy = 1 - 2.0f * (y + 0.5f) / cam.height;
+      KRay r{};
+      for (int c = 0; c < 3; ++c)
+        r.org[c] = k.position[c], r.dir[c] = k.forward[c] + sx * k.right[c] + sy * k.up[c];
+      r.tmax = INFINITY;
+      KHit h = embree.intersect(r);
+      if (h.prim < 0) continue;
+      const KTriangle& t = scene.triangles[h.prim];
+      regions[t.emitter >= 0 ? "lamp" : scene.material_descs[t.material].name].push_back(
+          static_cast<size_t>(y) * cam.width + x);
+    }
+  return regions;
 }
 
 }  // namespace kasha::test

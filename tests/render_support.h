@@ -2,6 +2,7 @@
 // Rendering helpers for integrator tests: a scene with its camera moved, a render to an image,
 // per-bin statistics over the pixels.
 #include <functional>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,7 +18,7 @@ struct RenderResult {
   Image image;
   long long rejected = 0;
   double seconds = 0;
-  PhotonLedger ledger;  // forward
+  PhotonLedger ledger;                    // forward
   size_t visible_point_buffer_bytes = 0;  // photon
 };
 
@@ -26,14 +27,14 @@ struct RenderSettings {
   int passes = 4, spp = 16;
   bool spectral = true;
   unsigned seed = 1;
-  bool full_matrix = false;           // backward's test-only full-matrix path state
-  long long photons = 1 << 18;        // forward: photons per pass
-  int max_depth = 1000;               // forward: photon path cut
-  int photons_per_item = 64;          // forward: work per work item
+  bool full_matrix = false;              // backward's test-only full-matrix path state
+  long long photons = 1 << 18;           // forward: photons per pass
+  int max_depth = 1000;                  // forward: photon path cut
+  int photons_per_item = 64;             // forward: work per work item
   double alpha = 2.0 / 3.0, radius = 0;  // photon mapping
   // Called after every pass with the pass count and the film's image (photon: error over passes).
   std::function<void(int, const Image&)> after_pass;
-  std::optional<Camera> camera;       // replaces the scene's camera
+  std::optional<Camera> camera;  // replaces the scene's camera
 };
 
 RenderResult render_scene(const std::string& path, const RenderSettings& settings);
@@ -42,10 +43,22 @@ struct BinStats {
   std::vector<double> mean, standard_error;  // over pixels, per bin (or per XYZ row)
 };
 // Per spectral bin (spectral image) or per XYZ row; pixels are independent estimates.
-BinStats pixel_statistics(const Image& image, bool spectral, const std::vector<size_t>& pixels = {});
+BinStats pixel_statistics(const Image& image, bool spectral,
+                          const std::vector<size_t>& pixels = {});
 
 // Per row, the mean over pixels of the difference a − b and its standard error: the images'
 // structure cancels, leaving the two estimators' noise (pixels are independent).
-BinStats difference_statistics(const Image& a, const Image& b, bool spectral, const std::vector<size_t>& pixels = {});
+BinStats difference_statistics(const Image& a, const Image& b, bool spectral,
+                               const std::vector<size_t>& pixels = {});
+
+// Every bin of the image mean against `truth`: within 4 standard errors (pixels are independent
+// estimates) and within `tolerance` relative; bins with next to no light must stay as dark.
+void expect_bins_match(const RenderResult& r, const std::vector<double>& truth, double tolerance,
+                       const std::string& label);
+
+// Pixels grouped by what their centre sees first: the material's name, or "lamp" for an emitter
+// (found with Embree, independently of the integrators).
+std::map<std::string, std::vector<size_t>> primary_hit_regions(const Scene& scene,
+                                                               const Camera& camera);
 
 }  // namespace kasha::test

@@ -26,7 +26,8 @@ std::string spectral_channel_name(double nm) {
   return "S0." + s + "nm";
 }
 
-void write_exr(const std::string& path, const Image& image, const std::map<std::string, std::string>& attributes) {
+void write_exr(const std::string& path, const Image& image,
+               const std::map<std::string, std::string>& attributes) {
   const size_t n = image.pixels();
   std::vector<float> rgb(3 * n);
   for (size_t p = 0; p < n; ++p) {
@@ -65,7 +66,8 @@ std::map<std::string, std::string> read_exr_attributes(const std::string& path) 
     Imf::InputFile file(path.c_str());
     std::map<std::string, std::string> out;
     for (auto it = file.header().begin(); it != file.header().end(); ++it)
-      if (auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute())) out[it.name()] = s->value();
+      if (auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+        out[it.name()] = s->value();
     return out;
   } catch (const std::exception& e) {
     throw Error(path + ": cannot read EXR: " + e.what());

@@ -20,8 +20,8 @@ static cl::Buffer upload(ClContext& cl, const std::vector<T>& v) {
                     const_cast<T*>(v.data()));
 }
 
-BackwardIntegrator::BackwardIntegrator(ClContext& cl, const Scene& scene, DeviceScene& device_scene, const Film& film,
-                                       int spp, unsigned seed, bool full_matrix)
+BackwardIntegrator::BackwardIntegrator(ClContext& cl, const Scene& scene, DeviceScene& device_scene,
+                                       const Film& film, int spp, unsigned seed, bool full_matrix)
     : cl_(cl),
       scene_(device_scene),
       camera_(scene.camera.to_kernel()),
@@ -31,7 +31,8 @@ BackwardIntegrator::BackwardIntegrator(ClContext& cl, const Scene& scene, Device
       rows_(film.rows()) {
   KernelDefines defines = scene_defines(scene, film.spectral());
   if (full_matrix) defines["KASHA_FULL_MATRIX"] = "1";
-  cl::Program program = build_program(cl, assemble_kernel_source("backward.cl"), defines, "backward.cl");
+  cl::Program program =
+      build_program(cl, assemble_kernel_source("backward.cl"), defines, "backward.cl");
   kernel_ = cl::Kernel(program, "render_backward");
   cmf_ = upload(cl, film.cmf_weights());
   importance_ = upload(cl, branch_importance(film));
@@ -65,7 +66,8 @@ void BackwardIntegrator::render_pass(int pass, Film& film) {
   std::vector<float> sums(pixels_ * rows_);
   std::vector<int> rejected(pixels_);
   cl_.queue().enqueueReadBuffer(film_, CL_TRUE, 0, sums.size() * sizeof(float), sums.data());
-  cl_.queue().enqueueReadBuffer(rejected_buffer_, CL_TRUE, 0, rejected.size() * sizeof(int), rejected.data());
+  cl_.queue().enqueueReadBuffer(rejected_buffer_, CL_TRUE, 0, rejected.size() * sizeof(int),
+                                rejected.data());
   for (int r : rejected) rejected_ += r;
   film.add_pass(sums, spp_);
 }

@@ -14,11 +14,13 @@ std::vector<float> branch_importance(const Film& film);
 class BackwardIntegrator : public Integrator {
  public:
   // `full_matrix` builds the test-only reference that carries the whole rows × N matrix.
-  BackwardIntegrator(ClContext& cl, const Scene& scene, DeviceScene& device_scene, const Film& film, int spp,
-                     unsigned seed, bool full_matrix = false);
+  BackwardIntegrator(ClContext& cl, const Scene& scene, DeviceScene& device_scene, const Film& film,
+                     int spp, unsigned seed, bool full_matrix = false);
   std::string name() const override { return "backward"; }
   void render_pass(int pass, Film& film) override;
-  long long camera_paths_per_pass() const override { return static_cast<long long>(pixels_) * spp_; }
+  long long camera_paths_per_pass() const override {
+    return static_cast<long long>(pixels_) * spp_;
+  }
   long long photons_per_pass() const override { return 0; }
   long long rejected_samples() const override { return rejected_; }
 

@@ -17,9 +17,12 @@ void write_convergence_log(const std::string& path, const std::vector<LogRow>& r
     std::ofstream out(tmp);
     out << "integrator,pass,seconds,camera_paths,photons,rmse,relmse\n" << std::setprecision(9);
     for (const LogRow& r : rows) {
-      out << r.integrator << "," << r.pass << "," << r.seconds << "," << r.camera_paths << "," << r.photons << ",";
-      if (r.has_error) out << r.rmse << "," << r.relmse;
-      else out << ",";
+      out << r.integrator << "," << r.pass << "," << r.seconds << "," << r.camera_paths << ","
+          << r.photons << ",";
+      if (r.has_error)
+        out << r.rmse << "," << r.relmse;
+      else
+        out << ",";
       out << "\n";
     }
     if (!out) throw Error(path + ": write failed");
@@ -68,7 +71,8 @@ double loglog_slope(const std::vector<LogRow>& rows, bool relmse, double from_se
 double startup_seconds(const std::vector<LogRow>& rows) {
   if (rows.size() < 3) return 0;
   std::vector<double> durations;
-  for (size_t i = 1; i < rows.size(); ++i) durations.push_back(rows[i].seconds - rows[i - 1].seconds);
+  for (size_t i = 1; i < rows.size(); ++i)
+    durations.push_back(rows[i].seconds - rows[i - 1].seconds);
   std::nth_element(durations.begin(), durations.begin() + durations.size() / 2, durations.end());
   return std::max(0.0, rows[0].seconds - durations[durations.size() / 2]);
 }

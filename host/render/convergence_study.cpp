@@ -28,7 +28,8 @@ namespace {
 void check_directory(const std::string& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir)) throw Error("-o " + dir + ": cannot create directory" + (ec ? ": " + ec.message() : ""));
+  if (ec || !fs::is_directory(dir))
+    throw Error("-o " + dir + ": cannot create directory" + (ec ? ": " + ec.message() : ""));
   fs::path probe = fs::path(dir) / ".kasha-write-test";
   std::ofstream test(probe);
   if (!test) throw Error("-o " + dir + ": directory is not writable");
@@ -54,30 +55,34 @@ Stats stats(const std::vector<double>& v) {
 }
 
 // The reference the study measures against, and a line saying what it is.
-Image study_reference(const std::string& scene_path, const Scene& scene, const StudyOptions& o, ClContext* cl,
-                      std::string& description) {
+Image study_reference(const std::string& scene_path, const Scene& scene, const StudyOptions& o,
+                      ClContext* cl, std::string& description) {
   if (o.reference == "furnace") {
     Furnace f = analyze_furnace(scene);
-    if (!f.qualifies) throw Error("--reference furnace: " + scene_path + " is not an analytic furnace: " + f.why_not);
+    if (!f.qualifies)
+      throw Error("--reference furnace: " + scene_path +
+                  " is not an analytic furnace: " + f.why_not);
     description = "the analytic furnace";
     return furnace_image(scene, f.radiance, false);
   }
   if (!o.reference.empty()) {
     Image ref = read_exr(o.reference);
     if (ref.width != scene.camera.width || ref.height != scene.camera.height)
-      throw Error("--reference " + o.reference + ": " + std::to_string(ref.width) + "x" + std::to_string(ref.height) +
-                  " does not match the scene's camera");
+      throw Error("--reference " + o.reference + ": " + std::to_string(ref.width) + "x" +
+                  std::to_string(ref.height) + " does not match the scene's camera");
     description = o.reference;
     return ref;
   }
   // Cached next to the scene, remade when the scene file changed or the cache is shorter.
   fs::path scene_file(scene_path);
   fs::path cached = scene_file.parent_path() / (scene_file.stem().string() + ".reference.exr");
-  double wanted = o.reference_seconds > 0 ? o.reference_seconds : 4 * o.seconds * o.integrators.size();
+  double wanted =
+      o.reference_seconds > 0 ? o.reference_seconds : 4 * o.seconds * o.integrators.size();
   if (fs::exists(cached)) {
     ReferenceInfo info = read_reference_info(cached.string());
     if (info.scene_fingerprint == scene_fingerprint(scene_path) && info.seconds >= 0.99 * wanted) {
-      description = cached.string() + " (cached: " + info.integrator + ", " + std::to_string(info.seconds) + " s)";
+      description = cached.string() + " (cached: " + info.integrator + ", " +
+                    std::to_string(info.seconds) + " s)";
       return read_exr(cached.string());
     }
   }
@@ -91,7 +96,8 @@ Image study_reference(const std::string& scene_path, const Scene& scene, const S
     target = fs::path(o.out_dir) / "reference.exr";  // the scene's folder is read-only
     write_reference(target.string(), ref, info);
   }
-  description = target.string() + " (" + info.integrator + ", " + std::to_string(info.seconds) + " s)";
+  description =
+      target.string() + " (" + info.integrator + ", " + std::to_string(info.seconds) + " s)";
   return ref;
 }
 
@@ -105,33 +111,42 @@ void write_summary(const std::string& dir, const std::string& scene_path, const 
   };
   write_atomically((fs::path(dir) / "summary.csv").string(), [&](const std::string& tmp) {
     std::ofstream out(tmp);
-    out << "integrator,runs,seconds,final_rmse,final_rmse_sd,final_relmse,final_relmse_sd,slope_rmse,slope_rmse_sd,"
-           "slope_relmse,slope_relmse_sd,target_rmse,time_to_target,reached_target,camera_paths_per_s,photons_per_s,"
+    out << "integrator,runs,seconds,final_rmse,final_rmse_sd,final_relmse,final_relmse_sd,slope_"
+           "rmse,slope_rmse_sd,"
+           "slope_relmse,slope_relmse_sd,target_rmse,time_to_target,reached_target,camera_paths_"
+           "per_s,photons_per_s,"
            "startup_s\n";
     for (const IntegratorSummary& s : r.summaries)
       out << s.integrator << "," << s.runs << "," << o.seconds << "," << num(s.final_rmse, 6) << ","
-          << num(s.final_rmse_sd, 6) << "," << num(s.final_relmse, 6) << "," << num(s.final_relmse_sd, 6) << ","
-          << num(s.slope_rmse) << "," << num(s.slope_rmse_sd) << "," << num(s.slope_relmse) << ","
-          << num(s.slope_relmse_sd) << "," << num(r.target, 6) << ","
-          << (s.time_to_target >= 0 ? num(s.time_to_target) : "") << "," << s.reached_target << ","
-          << num(s.camera_paths_per_second) << "," << num(s.photons_per_second) << "," << num(s.startup) << "\n";
+          << num(s.final_rmse_sd, 6) << "," << num(s.final_relmse, 6) << ","
+          << num(s.final_relmse_sd, 6) << "," << num(s.slope_rmse) << "," << num(s.slope_rmse_sd)
+          << "," << num(s.slope_relmse) << "," << num(s.slope_relmse_sd) << "," << num(r.target, 6)
+          << "," << (s.time_to_target >= 0 ? num(s.time_to_target) : "") << "," << s.reached_target
+          << "," << num(s.camera_paths_per_second) << "," << num(s.photons_per_second) << ","
+          << num(s.startup) << "\n";
   });
   write_atomically((fs::path(dir) / "summary.md").string(), [&](const std::string& tmp) {
     std::ofstream out(tmp);
     out << "Scene `" << scene_path << "`, " << o.seconds << " s per integrator, " << o.repeats
         << " run(s) each (mean ± sd), reference: " << r.reference_description << ".\n\n";
-    out << "| integrator | final RMSE | final relMSE | RMSE slope | relMSE slope | time to RMSE " << num(r.target)
+    out << "| integrator | final RMSE | final relMSE | RMSE slope | relMSE slope | time to RMSE "
+        << num(r.target)
         << " (s) | camera paths/s | photons/s |\n|---|---|---|---|---|---|---|---|\n";
-    auto pm = [&](double m, double sd, int p) { return num(m, p) + (o.repeats > 1 ? " ± " + num(sd, 2) : ""); };
+    auto pm = [&](double m, double sd, int p) {
+      return num(m, p) + (o.repeats > 1 ? " ± " + num(sd, 2) : "");
+    };
     for (const IntegratorSummary& s : r.summaries)
       out << "| " << s.integrator << " | " << pm(s.final_rmse, s.final_rmse_sd, 4) << " | "
-          << pm(s.final_relmse, s.final_relmse_sd, 4) << " | " << pm(s.slope_rmse, s.slope_rmse_sd, 3) << " | "
+          << pm(s.final_relmse, s.final_relmse_sd, 4) << " | "
+          << pm(s.slope_rmse, s.slope_rmse_sd, 3) << " | "
           << pm(s.slope_relmse, s.slope_relmse_sd, 3) << " | "
           << (s.time_to_target >= 0 ? num(s.time_to_target, 3) : "not reached") << " | "
           << num(s.camera_paths_per_second, 3) << " | " << num(s.photons_per_second, 3) << " |\n";
     out << "\nSlopes are least-squares fits of log error over log seconds after the first "
-        << kSlopeFitFrom * 100 << " % of the budget, with the first pass's one-time start-up (kernel "
-           "compilation at first launch) taken off the times; theory: −1/2 (RMSE) and −1 (relMSE) for unbiased "
+        << kSlopeFitFrom * 100
+        << " % of the budget, with the first pass's one-time start-up (kernel "
+           "compilation at first launch) taken off the times; theory: −1/2 (RMSE) and −1 (relMSE) "
+           "for unbiased "
            "estimators, −1/3 and −2/3 for progressive photon mapping.\n";
   });
 }
@@ -139,7 +154,8 @@ void write_summary(const std::string& dir, const std::string& scene_path, const 
 }  // namespace
 
 StudyResult run_convergence_study(const std::string& scene_path, const StudyOptions& o) {
-  if (o.integrators.empty()) throw Error("--integrators: give at least one of backward, forward, photon");
+  if (o.integrators.empty())
+    throw Error("--integrators: give at least one of backward, forward, photon");
   for (const std::string& name : o.integrators)
     if (name != "backward" && name != "forward" && name != "photon")
       throw Error("--integrators: unknown integrator \"" + name + "\" (backward, forward, photon)");
@@ -150,7 +166,9 @@ StudyResult run_convergence_study(const std::string& scene_path, const StudyOpti
   // A reference that cannot exist is refused before the device is touched.
   if (o.reference == "furnace") {
     Furnace f = analyze_furnace(scene);
-    if (!f.qualifies) throw Error("--reference furnace: " + scene_path + " is not an analytic furnace: " + f.why_not);
+    if (!f.qualifies)
+      throw Error("--reference furnace: " + scene_path +
+                  " is not an analytic furnace: " + f.why_not);
   } else if (!o.reference.empty() && !fs::exists(o.reference)) {
     throw Error("--reference " + o.reference + ": no such file");
   }
@@ -175,9 +193,10 @@ StudyResult run_convergence_study(const std::string& scene_path, const StudyOpti
       ro.keep_log = true;
       ro.show_progress = o.show_progress;
       RenderSummary summary = render_progressive(*integrator, film, ro);
-      write_convergence_log(
-          (fs::path(o.out_dir) / ("log_" + o.integrators[k] + "_" + std::to_string(run + 1) + ".csv")).string(),
-          summary.log);
+      write_convergence_log((fs::path(o.out_dir) /
+                             ("log_" + o.integrators[k] + "_" + std::to_string(run + 1) + ".csv"))
+                                .string(),
+                            summary.log);
       by_integrator[k].push_back(summary.log);
       if (run == 0) {
         Image img = film.image();
@@ -214,8 +233,10 @@ StudyResult run_convergence_study(const std::string& scene_path, const StudyOpti
       photons.push_back(last.photons / last.seconds);
     }
     Stats a = stats(rmse), b = stats(relmse), c = stats(slope), d = stats(slope_rel);
-    s.final_rmse = a.mean, s.final_rmse_sd = a.sd, s.final_relmse = b.mean, s.final_relmse_sd = b.sd;
-    s.slope_rmse = c.mean, s.slope_rmse_sd = c.sd, s.slope_relmse = d.mean, s.slope_relmse_sd = d.sd;
+    s.final_rmse = a.mean, s.final_rmse_sd = a.sd, s.final_relmse = b.mean,
+    s.final_relmse_sd = b.sd;
+    s.slope_rmse = c.mean, s.slope_rmse_sd = c.sd, s.slope_relmse = d.mean,
+    s.slope_relmse_sd = d.sd;
     s.time_to_target = reach.empty() ? -1 : stats(reach).mean;
     s.camera_paths_per_second = stats(paths).mean;
     s.photons_per_second = stats(photons).mean;
@@ -244,8 +265,9 @@ StudyResult run_convergence_study(const std::string& scene_path, const StudyOpti
                       (fs::path(o.out_dir) / "plot.log").string() + "' 2>&1";
     int status = std::system(cmd.c_str());
     if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-      throw Error("converge: plotting failed (needs /usr/bin/python3 with python3-matplotlib; see " +
-                  (fs::path(o.out_dir) / "plot.log").string() + ")");
+      throw Error(
+          "converge: plotting failed (needs /usr/bin/python3 with python3-matplotlib; see " +
+          (fs::path(o.out_dir) / "plot.log").string() + ")");
   }
   return result;
 }

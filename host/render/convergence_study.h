@@ -15,14 +15,14 @@ struct StudyOptions {
   std::vector<std::string> integrators{"backward", "forward", "photon"};
   double seconds = 10;
   int repeats = 1;
-  std::string reference;           // "furnace", an EXR, or empty: cached next to the scene
-  double reference_seconds = 0;    // for a new cached reference; <= 0: 4 × seconds × integrators
-  double target = -1;              // RMSE for time-to-target; < 0: the worst final RMSE
+  std::string reference;         // "furnace", an EXR, or empty: cached next to the scene
+  double reference_seconds = 0;  // for a new cached reference; <= 0: 4 × seconds × integrators
+  double target = -1;            // RMSE for time-to-target; < 0: the worst final RMSE
   std::string out_dir;
   IntegratorSettings settings;
   int device = 0;
   bool show_progress = true;
-  bool plot = true;                // run scripts/plot_convergence.py (matplotlib)
+  bool plot = true;  // run scripts/plot_convergence.py (matplotlib)
 };
 
 struct IntegratorSummary {

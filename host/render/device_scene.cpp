@@ -102,7 +102,8 @@ KernelSceneData::KernelSceneData(const Scene& scene) : bvh(build_bvh(scene.trian
     for (const float* v : {t.v0, t.v1, t.v2})
       for (int c = 0; c < 3; ++c) extent = std::max(extent, std::abs(v[c]));
     if (t.emitter < 0) continue;
-    Eigen::Vector3d a(t.v0[0], t.v0[1], t.v0[2]), b(t.v1[0], t.v1[1], t.v1[2]), c(t.v2[0], t.v2[1], t.v2[2]);
+    Eigen::Vector3d a(t.v0[0], t.v0[1], t.v0[2]), b(t.v1[0], t.v1[1], t.v1[2]),
+        c(t.v2[0], t.v2[1], t.v2[2]);
     double p = 0.5 * (b - a).cross(c - a).norm() * M_PI * radiance_sum[t.emitter];
     if (!(p > 0)) continue;
     light_tri.push_back(static_cast<int>(i));
@@ -121,7 +122,8 @@ KernelSceneData::KernelSceneData(const Scene& scene) : bvh(build_bvh(scene.trian
 size_t KernelSceneData::bytes() const {
   return bvh.nodes.size() * sizeof(KBvhNode) + bvh.triangles.size() * sizeof(KTriangle) +
          materials.size() * sizeof(KMaterial) +
-         (spectra.size() + lobes.size() + emitter_radiance.size() + light_cdf.size() + emitter_area_pdf.size()) *
+         (spectra.size() + lobes.size() + emitter_radiance.size() + light_cdf.size() +
+          emitter_area_pdf.size()) *
              sizeof(float) +
          light_tri.size() * sizeof(int);
 }

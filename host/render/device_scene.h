@@ -42,7 +42,8 @@ class DeviceScene {
   DeviceScene(ClContext& cl, const Scene& scene);
   const KernelSceneData& data() const { return data_; }
 
-  cl::Buffer nodes, triangles, materials, spectra, lobes, emitter_radiance, light_tri, light_cdf, emitter_area_pdf;
+  cl::Buffer nodes, triangles, materials, spectra, lobes, emitter_radiance, light_tri, light_cdf,
+      emitter_area_pdf;
 
  private:
   KernelSceneData data_;

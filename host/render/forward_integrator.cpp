@@ -7,8 +7,9 @@
 
 namespace kasha {
 
-ForwardIntegrator::ForwardIntegrator(ClContext& cl, const Scene& scene, DeviceScene& device_scene, const Film& film,
-                                     long long photons_per_pass, unsigned seed, int max_depth, int photons_per_item)
+ForwardIntegrator::ForwardIntegrator(ClContext& cl, const Scene& scene, DeviceScene& device_scene,
+                                     const Film& film, long long photons_per_pass, unsigned seed,
+                                     int max_depth, int photons_per_item)
     : cl_(cl),
       scene_(device_scene),
       camera_(scene.camera.to_kernel()),
@@ -20,13 +21,16 @@ ForwardIntegrator::ForwardIntegrator(ClContext& cl, const Scene& scene, DeviceSc
       rows_(film.rows()),
       items_((photons_per_pass + photons_per_item - 1) / photons_per_item),
       bin_nm_(static_cast<float>(scene.grid.bin_nm)) {
-  if (photons_per_pass > (1LL << 31) - 1) throw Error("--photons: at most 2^31 - 1 photons per pass");
-  if (device_scene.data().light_tri.empty()) throw Error("forward: the scene has no emitter with power");
-  cl::Program program =
-      build_program(cl, assemble_kernel_source("forward.cl"), scene_defines(scene, film.spectral()), "forward.cl");
+  if (photons_per_pass > (1LL << 31) - 1)
+    throw Error("--photons: at most 2^31 - 1 photons per pass");
+  if (device_scene.data().light_tri.empty())
+    throw Error("forward: the scene has no emitter with power");
+  cl::Program program = build_program(cl, assemble_kernel_source("forward.cl"),
+                                      scene_defines(scene, film.spectral()), "forward.cl");
   kernel_ = cl::Kernel(program, "trace_forward");
   std::vector<float> cmf = film.cmf_weights();
-  cmf_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, cmf.size() * sizeof(float), cmf.data());
+  cmf_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                    cmf.size() * sizeof(float), cmf.data());
   // Fixed point: the brightest emitter's film value maps to 2^32, leaving 2^31 of headroom per
   // pixel and pass and a resolution of 2^-32 of it.
   double brightest = 0;
@@ -35,7 +39,8 @@ ForwardIntegrator::ForwardIntegrator(ClContext& cl, const Scene& scene, DeviceSc
   for (size_t e = 0; e * n < le.size(); ++e)
     for (size_t r = 0; r < rows_; ++r) {
       double v = 0;
-      for (int i = 0; i < n; ++i) v += (film.spectral() ? (static_cast<int>(r) == i) : cmf[r * n + i]) * le[e * n + i];
+      for (int i = 0; i < n; ++i)
+        v += (film.spectral() ? (static_cast<int>(r) == i) : cmf[r * n + i]) * le[e * n + i];
       brightest = std::max(brightest, v);
     }
   film_scale_ = static_cast<float>(std::ldexp(1.0, 32) / std::max(brightest, 1e-30));
@@ -88,7 +93,8 @@ void ForwardIntegrator::render_pass(int pass, Film& film) {
     ledger_.in_flight += stats[4 * i + 3];
   }
   std::vector<float> values(fixed.size());
-  for (size_t i = 0; i < fixed.size(); ++i) values[i] = static_cast<float>(fixed[i] / static_cast<double>(film_scale_));
+  for (size_t i = 0; i < fixed.size(); ++i)
+    values[i] = static_cast<float>(fixed[i] / static_cast<double>(film_scale_));
   film.add_pass(values, 1);  // the pass's splats are one estimate of every pixel
 }
 

@@ -17,7 +17,8 @@ class ForwardIntegrator : public Integrator {
   // `max_depth` cuts photon paths (tests of the bookkeeping); the default is the kernel's guard.
   // `photons_per_item`: how many photons one work item traces (the image does not depend on it).
   ForwardIntegrator(ClContext& cl, const Scene& scene, DeviceScene& device_scene, const Film& film,
-                    long long photons_per_pass, unsigned seed, int max_depth = 1000, int photons_per_item = 64);
+                    long long photons_per_pass, unsigned seed, int max_depth = 1000,
+                    int photons_per_item = 64);
   std::string name() const override { return "forward"; }
   void render_pass(int pass, Film& film) override;
   long long camera_paths_per_pass() const override { return 0; }

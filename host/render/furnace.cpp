@@ -48,8 +48,10 @@ Furnace analyze_furnace(const Scene& scene) {
       const KTriangle& t = scene.triangles[h.prim];
       float e1[3], e2[3], n[3];
       for (int k = 0; k < 3; ++k) e1[k] = t.v1[k] - t.v0[k], e2[k] = t.v2[k] - t.v0[k];
-      n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2], n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-      if (n[0] * r.dir[0] + n[1] * r.dir[1] + n[2] * r.dir[2] >= 0) return refuse("the camera is outside the enclosure");
+      n[0] = e1[1] * e2[2] - e1[2] * e2[1], n[1] = e1[2] * e2[0] - e1[0] * e2[2],
+      n[2] = e1[0] * e2[1] - e1[1] * e2[0];
+      if (n[0] * r.dir[0] + n[1] * r.dir[1] + n[2] * r.dir[2] >= 0)
+        return refuse("the camera is outside the enclosure");
     }
 
   const size_t N = le.size();
@@ -57,7 +59,8 @@ Furnace analyze_furnace(const Scene& scene) {
   std::vector<double> binv_le(N), binv_e(N, 0.0);
   for (size_t i = 0; i < N; ++i) {
     double b = 1.0 - g - (m.rho.empty() ? 0.0 : m.rho[i]);
-    if (!(b > 0)) return refuse("1 − g − ρ is not positive at bin " + std::to_string(i) + " (no absorption)");
+    if (!(b > 0))
+      return refuse("1 − g − ρ is not positive at bin " + std::to_string(i) + " (no absorption)");
     binv_le[i] = le[i] / b;
     if (m.fluorescent()) binv_e[i] = m.e_hat[i] / b;
   }
@@ -68,7 +71,8 @@ Furnace analyze_furnace(const Scene& scene) {
   Furnace f;
   f.qualifies = true;
   f.radiance.resize(N);
-  for (size_t i = 0; i < N; ++i) f.radiance[i] = binv_le[i] + binv_e[i] * a_binv_le / (1 - a_binv_e);
+  for (size_t i = 0; i < N; ++i)
+    f.radiance[i] = binv_le[i] + binv_e[i] * a_binv_le / (1 - a_binv_e);
   return f;
 }
 

@@ -13,7 +13,7 @@ namespace kasha {
 
 struct Furnace {
   bool qualifies = false;
-  std::string why_not;          // when it does not
+  std::string why_not;           // when it does not
   std::vector<double> radiance;  // L per bin
 };
 

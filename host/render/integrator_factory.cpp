@@ -7,14 +7,16 @@
 
 namespace kasha {
 
-std::unique_ptr<Integrator> make_integrator(const std::string& name, ClContext& cl, const Scene& scene,
-                                            DeviceScene& device_scene, const Film& film,
-                                            const IntegratorSettings& s) {
-  if (name == "backward") return std::make_unique<BackwardIntegrator>(cl, scene, device_scene, film, s.spp, s.seed);
-  if (name == "forward") return std::make_unique<ForwardIntegrator>(cl, scene, device_scene, film, s.photons, s.seed);
+std::unique_ptr<Integrator> make_integrator(const std::string& name, ClContext& cl,
+                                            const Scene& scene, DeviceScene& device_scene,
+                                            const Film& film, const IntegratorSettings& s) {
+  if (name == "backward")
+    return std::make_unique<BackwardIntegrator>(cl, scene, device_scene, film, s.spp, s.seed);
+  if (name == "forward")
+    return std::make_unique<ForwardIntegrator>(cl, scene, device_scene, film, s.photons, s.seed);
   if (name == "photon")
-    return std::make_unique<PhotonMapIntegrator>(cl, scene, device_scene, film,
-                                                 PhotonMapSettings{s.photons, s.alpha, s.radius, s.seed});
+    return std::make_unique<PhotonMapIntegrator>(
+        cl, scene, device_scene, film, PhotonMapSettings{s.photons, s.alpha, s.radius, s.seed});
   throw Error("unknown integrator \"" + name + "\" (backward, forward, photon)");
 }
 

@@ -17,8 +17,8 @@ struct IntegratorSettings {
 };
 
 // backward, forward or photon; throws kasha::Error naming the known ones otherwise.
-std::unique_ptr<Integrator> make_integrator(const std::string& name, ClContext& cl, const Scene& scene,
-                                            DeviceScene& device_scene, const Film& film,
-                                            const IntegratorSettings& settings);
+std::unique_ptr<Integrator> make_integrator(const std::string& name, ClContext& cl,
+                                            const Scene& scene, DeviceScene& device_scene,
+                                            const Film& film, const IntegratorSettings& settings);
 
 }  // namespace kasha

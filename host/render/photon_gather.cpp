@@ -23,8 +23,8 @@ struct PhotonCloud {
     return false;
   }
 };
-using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PhotonCloud>, PhotonCloud, 3,
-                                                 uint32_t>;
+using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, PhotonCloud>,
+                                                 PhotonCloud, 3, uint32_t>;
 }  // namespace
 
 struct PhotonKdTree::Impl {
@@ -46,9 +46,12 @@ struct PhotonKdTree::Impl {
 PhotonKdTree::PhotonKdTree(const float* photons, size_t count, int floats_per_photon)
     : impl_(new Impl(photons, count, floats_per_photon)) {}
 
-PhotonKdTree::~PhotonKdTree() { delete impl_; }
+PhotonKdTree::~PhotonKdTree() {
+  delete impl_;
+}
 
-GatherResult PhotonKdTree::gather(const float* vps, int vp_floats, size_t pixels, const std::vector<double>& radius,
+GatherResult PhotonKdTree::gather(const float* vps, int vp_floats, size_t pixels,
+                                  const std::vector<double>& radius,
                                   const PhotonGatherLayout& L) const {
   GatherResult out;
   out.flux.assign(pixels * L.rows, 0.0);

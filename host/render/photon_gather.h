@@ -15,8 +15,8 @@ struct PhotonGatherLayout {
 };
 
 struct GatherResult {
-  std::vector<double> flux;   // pixels × rows: Σ K·Φ over the photons found
-  std::vector<int> found;     // pixels: photons found
+  std::vector<double> flux;  // pixels × rows: Σ K·Φ over the photons found
+  std::vector<int> found;    // pixels: photons found
 };
 
 class PhotonKdTree {
@@ -27,8 +27,8 @@ class PhotonKdTree {
   PhotonKdTree& operator=(const PhotonKdTree&) = delete;
 
   // Gathers for every pixel with a valid visible point, within radius[pixel].
-  GatherResult gather(const float* visible_points, int vp_floats, size_t pixels, const std::vector<double>& radius,
-                      const PhotonGatherLayout& layout) const;
+  GatherResult gather(const float* visible_points, int vp_floats, size_t pixels,
+                      const std::vector<double>& radius, const PhotonGatherLayout& layout) const;
 
  private:
   struct Impl;

@@ -30,8 +30,8 @@ size_t visible_point_bytes(const Scene& scene, bool spectral_film);
 
 class PhotonMapIntegrator : public Integrator {
  public:
-  PhotonMapIntegrator(ClContext& cl, const Scene& scene, DeviceScene& device_scene, const Film& film,
-                      const PhotonMapSettings& settings);
+  PhotonMapIntegrator(ClContext& cl, const Scene& scene, DeviceScene& device_scene,
+                      const Film& film, const PhotonMapSettings& settings);
   std::string name() const override { return "photon"; }
   void render_pass(int pass, Film& film) override;
   long long camera_paths_per_pass() const override { return static_cast<long long>(pixels_); }

@@ -22,7 +22,7 @@ struct RenderOptions {
   std::string log_path;            // convergence log CSV, or empty
   std::optional<Image> reference;  // for the log's error columns
   bool show_progress = true;
-  bool keep_log = false;             // fill RenderSummary::log even without a log file
+  bool keep_log = false;  // fill RenderSummary::log even without a log file
 };
 
 struct RenderSummary {

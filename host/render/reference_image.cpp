@@ -26,8 +26,8 @@ std::string scene_fingerprint(const std::string& scene_path) {
   return hex;
 }
 
-Image render_reference(ClContext& cl, const Scene& scene, double seconds, unsigned seed, ReferenceInfo& info,
-                       bool show_progress) {
+Image render_reference(ClContext& cl, const Scene& scene, double seconds, unsigned seed,
+                       ReferenceInfo& info, bool show_progress) {
   DeviceScene device_scene(cl, scene);
   Film film(scene.camera.width, scene.camera.height, scene.grid, false);
   BackwardIntegrator integrator(cl, scene, device_scene, film, 16, seed);

@@ -20,8 +20,8 @@ struct ReferenceInfo {
 // A fingerprint of the scene file's bytes, to tell whether a cached reference still fits it.
 std::string scene_fingerprint(const std::string& scene_path);
 
-Image render_reference(ClContext& cl, const Scene& scene, double seconds, unsigned seed, ReferenceInfo& info,
-                       bool show_progress);
+Image render_reference(ClContext& cl, const Scene& scene, double seconds, unsigned seed,
+                       ReferenceInfo& info, bool show_progress);
 void write_reference(const std::string& path, const Image& image, const ReferenceInfo& info);
 // The provenance of a reference EXR written by write_reference; empty integrator if it has none.
 ReferenceInfo read_reference_info(const std::string& path);
