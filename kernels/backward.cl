@@ -7,10 +7,12 @@
 #include "bvh_traversal.h"
 #include "camera.h"
 #include "gloss_lobe.h"
+#include "hit_point.h"
 #include "lights.h"
 #include "path_weight.h"
 #include "rng.h"
 #include "sampling.h"
+#include "scene_params.h"
 #include "surface.h"
 
 #define MAX_DEPTH 1000 /* a guard: Russian roulette ends paths long before */
@@ -98,27 +100,20 @@ inline void trace_camera_path(const SceneView* s, float3 org, float3 dir, Rng* r
   bool specular = true; /* the camera ray, or a mirror bounce: emission is not also sampled by NEE */
   float prev_pdf = 0.0f;
   for (int depth = 0; depth < MAX_DEPTH; ++depth) {
-    float t, u, v;
-    int hit = bvh_closest(s->nodes, s->tris, org, dir, 0.0f, INFINITY, &t, &u, &v);
-    if (hit < 0) return;
-    const __global KTriangle* tri = &s->tris[hit];
-    float3 v0 = load_float3(tri->v0);
-    float3 n = normalize(cross(load_float3(tri->v1) - v0, load_float3(tri->v2) - v0));
-    float3 wo = -dir;
-    bool front = dot(n, wo) > 0.0f;
-    float3 ns = front ? n : -n;
-    float3 x = org + t * dir;
+    HitPoint h;
+    if (!intersect_scene(s->nodes, s->tris, org, dir, &h)) return;
+    float3 wo = -dir, ns = h.ns, x = h.x;
 
-    if (tri->emitter >= 0 && front) {
+    if (h.emitter >= 0 && h.front) {
       float weight = 1.0f;
       if (!specular)
-        weight = mis_weight(prev_pdf, light_pdf_solid_angle(s->emitter_area_pdf, tri->emitter, t, dot(n, wo)));
+        weight = mis_weight(prev_pdf, light_pdf_solid_angle(s->emitter_area_pdf, h.emitter, h.t, dot(h.n, wo)));
       float le[KASHA_BINS];
-      load_radiance(s, tri->emitter, le);
+      load_radiance(s, h.emitter, le);
       pw_add(&p, s->cmf, le, weight, rows);
     }
 
-    const __global KMaterial* m = &s->materials[tri->material];
+    const __global KMaterial* m = &s->materials[h.material];
     Surface surf;
     load_surface(m, s->spectra, &surf);
     float3 probs = branch_probabilities(&p, s, &surf);
@@ -164,11 +159,7 @@ inline void trace_camera_path(const SceneView* s, float3 org, float3 dir, Rng* r
   }
 }
 
-__kernel void render_backward(KCamera camera, __global const KBvhNode* nodes, __global const KTriangle* tris,
-                              __global const KMaterial* materials, __global const float* spectra,
-                              __global const float* lobes, __global const float* emitter_radiance,
-                              __global const float* emitter_area_pdf, __global const int* light_tri,
-                              __global const float* light_cdf, int light_count, __global const float* cmf,
+__kernel void render_backward(KCamera camera, KASHA_SCENE_PARAMS, __global const float* cmf,
                               __global const float* importance, float ray_eps,
                               __global float* film,    /* pixels x KASHA_FILM_ROWS, sums over the pass */
                               __global int* rejected,  /* per pixel: samples that were not finite */

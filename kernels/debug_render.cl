@@ -2,10 +2,11 @@
  * geometric normals and material albedo. Each work item owns one pixel, so no atomics are needed.
  * Defines: KASHA_BINS (N), KASHA_SPECTRAL_FILM (0: rows are X,Y,Z; 1: rows are the N bins),
  * KASHA_FILM_ROWS (3 or N). */
-#include "bvh_traversal.h"
+#include "hit_point.h"
 #include "camera.h"
 #include "color_constants.h"
 #include "rng.h"
+#include "scene_params.h"
 
 #define VIEW_EMISSION 0
 #define VIEW_NORMALS 1
@@ -18,9 +19,7 @@ inline void add_rgb_as_xyz(float* rows, float3 rgb) {
     rows[k] += kSrgbToXyz[k][0] * rgb.x + kSrgbToXyz[k][1] * rgb.y + kSrgbToXyz[k][2] * rgb.z;
 }
 
-__kernel void render_debug(KCamera camera, __global const KBvhNode* nodes, __global const KTriangle* tris,
-                           __global const KMaterial* materials,
-                           __global const float* emitter_radiance, /* emitters x N */
+__kernel void render_debug(KCamera camera, KASHA_SCENE_PARAMS,
                            __global const float* cmf,              /* 3 x N: x̄ȳz̄ of each bin times its width */
                            __global float* film,                   /* pixels x KASHA_FILM_ROWS, sums */
                            int view, int spp, uint seed, uint pass) {
@@ -34,15 +33,13 @@ __kernel void render_debug(KCamera camera, __global const KBvhNode* nodes, __glo
 
   for (int s = 0; s < spp; ++s) {
     float3 dir = camera_direction(&camera, px + rng_next_float(&rng), py + rng_next_float(&rng));
-    float t, u, v;
-    int hit = bvh_closest(nodes, tris, org, dir, 0.0f, INFINITY, &t, &u, &v);
-    if (hit < 0) continue;
-    const __global KTriangle* tri = &tris[hit];
-    float3 n = normalize(cross(load_float3(tri->v1) - load_float3(tri->v0), load_float3(tri->v2) - load_float3(tri->v0)));
+    HitPoint h;
+    if (!intersect_scene(nodes, tris, org, dir, &h)) continue;
+    float3 n = h.n;
     if (view == VIEW_EMISSION) {
       /* Emitters radiate from their front side only. */
-      if (tri->emitter < 0 || dot(n, dir) >= 0.0f) continue;
-      const __global float* le = emitter_radiance + tri->emitter * KASHA_BINS;
+      if (h.emitter < 0 || !h.front) continue;
+      const __global float* le = emitter_radiance + h.emitter * KASHA_BINS;
 #if KASHA_SPECTRAL_FILM
       for (int i = 0; i < KASHA_BINS; ++i) rows[i] += le[i];
 #else
@@ -55,7 +52,7 @@ __kernel void render_debug(KCamera camera, __global const KBvhNode* nodes, __glo
     } else if (view == VIEW_NORMALS) {
       add_rgb_as_xyz(rows, 0.5f * n + 0.5f);
     } else {
-      const __global KMaterial* m = &materials[tri->material];
+      const __global KMaterial* m = &materials[h.material];
       for (int k = 0; k < 3; ++k) rows[k] += m->albedo_xyz[k];
     }
   }

@@ -6,7 +6,9 @@
  * delta lobe never reflects a photon into a pinhole. */
 #include "bvh_traversal.h"
 #include "film_splat.h"
+#include "hit_point.h"
 #include "photon_transport.h"
+#include "scene_params.h"
 
 #define FORWARD_MAX_DEPTH 1000 /* a guard: absorption ends photons long before */
 
@@ -46,11 +48,7 @@ inline void splat_to_camera(SplatTarget* t, float3 x, float3 ns, const float* ra
 #endif
 }
 
-__kernel void trace_forward(KCamera camera, __global const KBvhNode* nodes, __global const KTriangle* tris,
-                            __global const KMaterial* materials, __global const float* spectra,
-                            __global const float* lobes, __global const float* emitter_radiance,
-                            __global const float* emitter_area_pdf, __global const int* light_tri,
-                            __global const float* light_cdf, int light_count, __global const float* cmf,
+__kernel void trace_forward(KCamera camera, KASHA_SCENE_PARAMS, __global const float* cmf,
                             float bin_nm, float ray_eps, int photons, int photons_per_item, int max_depth,
                             __global long* film, float film_scale,
                             __global float* stats, /* per item: emitted, absorbed, escaped, in flight (W) */
@@ -77,19 +75,14 @@ __kernel void trace_forward(KCamera camera, __global const KBvhNode* nodes, __gl
 
     bool alive = true;
     for (int depth = 0; depth < max_depth && alive; ++depth) {
-      float t, u, v;
-      int hit = bvh_closest(nodes, tris, p.position, p.direction, 0.0f, INFINITY, &t, &u, &v);
-      if (hit < 0) {
+      HitPoint h;
+      if (!intersect_scene(nodes, tris, p.position, p.direction, &h)) {
         escaped += photon_total(&p);
         alive = false;
         break;
       }
-      const __global KTriangle* tri = &tris[hit];
-      float3 v0 = load_float3(tri->v0);
-      float3 n = normalize(cross(load_float3(tri->v1) - v0, load_float3(tri->v2) - v0));
-      float3 ns = dot(n, p.direction) < 0.0f ? n : -n;
-      float3 x = p.position + t * p.direction;
-      const __global KMaterial* m = &materials[tri->material];
+      float3 ns = h.ns, x = h.x;
+      const __global KMaterial* m = &materials[h.material];
       Surface s;
       load_surface(m, spectra, &s);
       if (surface_has_lambert(&s)) {

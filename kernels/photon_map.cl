@@ -6,17 +6,15 @@
 #include "bvh_traversal.h"
 #include "camera.h"
 #include "film_rows.h"
+#include "hit_point.h"
 #include "photon_layout.h"
 #include "photon_transport.h"
+#include "scene_params.h"
 
 #define PHOTON_MAX_DEPTH 1000
 #define CAMERA_MAX_DEPTH 64
 
-__kernel void trace_photon_map(__global const KBvhNode* nodes, __global const KTriangle* tris,
-                               __global const KMaterial* materials, __global const float* spectra,
-                               __global const float* lobes, __global const float* emitter_radiance,
-                               __global const float* emitter_area_pdf, __global const int* light_tri,
-                               __global const float* light_cdf, int light_count, float bin_nm, float ray_eps,
+__kernel void trace_photon_map(KASHA_SCENE_PARAMS, float bin_nm, float ray_eps,
                                int photons, int photons_per_item, __global float* store, __global int* stored,
                                int capacity, uint seed, uint pass) {
   int item = get_global_id(0);
@@ -30,15 +28,10 @@ __kernel void trace_photon_map(__global const KBvhNode* nodes, __global const KT
                            (float)photons, &rng, &light_normal, &emitter, &area_pdf);
     p.position += light_normal * ray_eps;
     for (int depth = 0; depth < PHOTON_MAX_DEPTH; ++depth) {
-      float t, u, v;
-      int hit = bvh_closest(nodes, tris, p.position, p.direction, 0.0f, INFINITY, &t, &u, &v);
-      if (hit < 0) break;
-      const __global KTriangle* tri = &tris[hit];
-      float3 v0 = load_float3(tri->v0);
-      float3 n = normalize(cross(load_float3(tri->v1) - v0, load_float3(tri->v2) - v0));
-      float3 ns = dot(n, p.direction) < 0.0f ? n : -n;
-      float3 x = p.position + t * p.direction;
-      const __global KMaterial* m = &materials[tri->material];
+      HitPoint h;
+      if (!intersect_scene(nodes, tris, p.position, p.direction, &h)) break;
+      float3 ns = h.ns, x = h.x;
+      const __global KMaterial* m = &materials[h.material];
       Surface s;
       load_surface(m, spectra, &s);
       if (surface_has_lambert(&s)) {
@@ -55,9 +48,7 @@ __kernel void trace_photon_map(__global const KBvhNode* nodes, __global const KT
   }
 }
 
-__kernel void camera_pass(KCamera camera, __global const KBvhNode* nodes, __global const KTriangle* tris,
-                          __global const KMaterial* materials, __global const float* spectra,
-                          __global const float* lobes, __global const float* emitter_radiance,
+__kernel void camera_pass(KCamera camera, KASHA_SCENE_PARAMS,
                           __global const float* cmf, __global const float* importance, float ray_eps,
                           __global float* visible_points, __global float* direct, uint seed, uint pass) {
   int pixel = get_global_id(0);
@@ -77,19 +68,12 @@ __kernel void camera_pass(KCamera camera, __global const KBvhNode* nodes, __glob
   float travelled = 0.0f;
 
   for (int depth = 0; depth < CAMERA_MAX_DEPTH; ++depth) {
-    float t, u, v;
-    int hit = bvh_closest(nodes, tris, org, dir, 0.0f, INFINITY, &t, &u, &v);
-    if (hit < 0) break;
-    travelled += t;
-    const __global KTriangle* tri = &tris[hit];
-    float3 v0 = load_float3(tri->v0);
-    float3 n = normalize(cross(load_float3(tri->v1) - v0, load_float3(tri->v2) - v0));
-    float3 wo = -dir;
-    bool front = dot(n, wo) > 0.0f;
-    float3 ns = front ? n : -n;
-    float3 x = org + t * dir;
-    if (tri->emitter >= 0 && front) {
-      const __global float* le = emitter_radiance + tri->emitter * KASHA_BINS;
+    HitPoint h;
+    if (!intersect_scene(nodes, tris, org, dir, &h)) break;
+    travelled += h.t;
+    float3 wo = -dir, ns = h.ns, x = h.x;
+    if (h.emitter >= 0 && h.front) {
+      const __global float* le = emitter_radiance + h.emitter * KASHA_BINS;
 #if KASHA_SPECTRAL_FILM
       for (int i = 0; i < KASHA_BINS; ++i) rows[i] += w[i] * le[i];
 #else
@@ -97,7 +81,7 @@ __kernel void camera_pass(KCamera camera, __global const KBvhNode* nodes, __glob
         for (int i = 0; i < KASHA_BINS; ++i) rows[r] += cmf[r * KASHA_BINS + i] * w[i] * le[i];
 #endif
     }
-    const __global KMaterial* m = &materials[tri->material];
+    const __global KMaterial* m = &materials[h.material];
     Surface s;
     load_surface(m, spectra, &s);
     /* Gloss or the Lambert parts, by their energies under equal-energy light (as backward). */

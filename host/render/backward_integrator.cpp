@@ -44,16 +44,7 @@ void BackwardIntegrator::render_pass(int pass, Film& film) {
   const KernelSceneData& d = scene_.data();
   int a = 0;
   kernel_.setArg(a++, camera_);
-  kernel_.setArg(a++, scene_.nodes);
-  kernel_.setArg(a++, scene_.triangles);
-  kernel_.setArg(a++, scene_.materials);
-  kernel_.setArg(a++, scene_.spectra);
-  kernel_.setArg(a++, scene_.lobes);
-  kernel_.setArg(a++, scene_.emitter_radiance);
-  kernel_.setArg(a++, scene_.emitter_area_pdf);
-  kernel_.setArg(a++, scene_.light_tri);
-  kernel_.setArg(a++, scene_.light_cdf);
-  kernel_.setArg(a++, static_cast<int>(d.light_tri.size()));
+  a = scene_.bind(kernel_, a);
   kernel_.setArg(a++, cmf_);
   kernel_.setArg(a++, importance_);
   kernel_.setArg(a++, d.ray_eps);

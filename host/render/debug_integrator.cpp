@@ -37,10 +37,7 @@ DebugIntegrator::DebugIntegrator(ClContext& cl, const Scene& scene, DeviceScene&
 void DebugIntegrator::render_pass(int pass, Film& film) {
   int a = 0;
   kernel_.setArg(a++, camera_);
-  kernel_.setArg(a++, scene_.nodes);
-  kernel_.setArg(a++, scene_.triangles);
-  kernel_.setArg(a++, scene_.materials);
-  kernel_.setArg(a++, scene_.emitter_radiance);
+  a = scene_.bind(kernel_, a);
   kernel_.setArg(a++, cmf_);
   kernel_.setArg(a++, film_);
   kernel_.setArg(a++, static_cast<int>(view_));

@@ -147,6 +147,20 @@ static cl::Buffer upload(ClContext& cl, const std::vector<T>& v) {
   return b;
 }
 
+int DeviceScene::bind(cl::Kernel& k, int a) const {
+  k.setArg(a++, nodes);
+  k.setArg(a++, triangles);
+  k.setArg(a++, materials);
+  k.setArg(a++, spectra);
+  k.setArg(a++, lobes);
+  k.setArg(a++, emitter_radiance);
+  k.setArg(a++, emitter_area_pdf);
+  k.setArg(a++, light_tri);
+  k.setArg(a++, light_cdf);
+  k.setArg(a++, static_cast<int>(data_.light_tri.size()));
+  return a;
+}
+
 DeviceScene::DeviceScene(ClContext& cl, const Scene& scene) : data_(scene) {
   nodes = upload(cl, data_.bvh.nodes);
   triangles = upload(cl, data_.bvh.triangles);

@@ -41,6 +41,9 @@ class DeviceScene {
  public:
   DeviceScene(ClContext& cl, const Scene& scene);
   const KernelSceneData& data() const { return data_; }
+  // Sets the scene's buffers as kernel arguments from `first` on, in the order of
+  // KASHA_SCENE_PARAMS (kernels/scene_params.h); returns the next argument's index.
+  int bind(cl::Kernel& kernel, int first) const;
 
   cl::Buffer nodes, triangles, materials, spectra, lobes, emitter_radiance, light_tri, light_cdf,
       emitter_area_pdf;

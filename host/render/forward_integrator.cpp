@@ -55,16 +55,7 @@ void ForwardIntegrator::render_pass(int pass, Film& film) {
   cl_.queue().enqueueFillBuffer(overflow_buffer_, cl_int(0), 0, sizeof(cl_int));
   int a = 0;
   kernel_.setArg(a++, camera_);
-  kernel_.setArg(a++, scene_.nodes);
-  kernel_.setArg(a++, scene_.triangles);
-  kernel_.setArg(a++, scene_.materials);
-  kernel_.setArg(a++, scene_.spectra);
-  kernel_.setArg(a++, scene_.lobes);
-  kernel_.setArg(a++, scene_.emitter_radiance);
-  kernel_.setArg(a++, scene_.emitter_area_pdf);
-  kernel_.setArg(a++, scene_.light_tri);
-  kernel_.setArg(a++, scene_.light_cdf);
-  kernel_.setArg(a++, static_cast<int>(d.light_tri.size()));
+  a = scene_.bind(kernel_, a);
   kernel_.setArg(a++, cmf_);
   kernel_.setArg(a++, bin_nm_);
   kernel_.setArg(a++, d.ray_eps);

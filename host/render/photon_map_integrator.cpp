@@ -81,16 +81,7 @@ void PhotonMapIntegrator::trace_photons(int pass, std::vector<float>& photons) {
   for (;;) {
     cl_.queue().enqueueFillBuffer(counter_, cl_int(0), 0, sizeof(cl_int));
     int a = 0;
-    photon_kernel_.setArg(a++, scene_.nodes);
-    photon_kernel_.setArg(a++, scene_.triangles);
-    photon_kernel_.setArg(a++, scene_.materials);
-    photon_kernel_.setArg(a++, scene_.spectra);
-    photon_kernel_.setArg(a++, scene_.lobes);
-    photon_kernel_.setArg(a++, scene_.emitter_radiance);
-    photon_kernel_.setArg(a++, scene_.emitter_area_pdf);
-    photon_kernel_.setArg(a++, scene_.light_tri);
-    photon_kernel_.setArg(a++, scene_.light_cdf);
-    photon_kernel_.setArg(a++, static_cast<int>(d.light_tri.size()));
+    a = scene_.bind(photon_kernel_, a);
     photon_kernel_.setArg(a++, bin_nm_);
     photon_kernel_.setArg(a++, d.ray_eps);
     photon_kernel_.setArg(a++, static_cast<int>(settings_.photons));
@@ -127,12 +118,7 @@ void PhotonMapIntegrator::render_pass(int pass, Film& film) {
   auto t0 = Clock::now();
   int a = 0;
   camera_kernel_.setArg(a++, camera_);
-  camera_kernel_.setArg(a++, scene_.nodes);
-  camera_kernel_.setArg(a++, scene_.triangles);
-  camera_kernel_.setArg(a++, scene_.materials);
-  camera_kernel_.setArg(a++, scene_.spectra);
-  camera_kernel_.setArg(a++, scene_.lobes);
-  camera_kernel_.setArg(a++, scene_.emitter_radiance);
+  a = scene_.bind(camera_kernel_, a);
   camera_kernel_.setArg(a++, cmf_);
   camera_kernel_.setArg(a++, importance_);
   camera_kernel_.setArg(a++, d.ray_eps);
