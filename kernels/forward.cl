@@ -60,18 +60,15 @@ __kernel void trace_forward(KCamera camera, KASHA_SCENE_PARAMS, __global const f
   float emitted = 0.0f, absorbed = 0.0f, escaped = 0.0f, in_flight = 0.0f;
   for (int index = first; index < last; ++index) {
     Rng rng = rng_seed(seed, pass, (uint)index);
-    float3 light_normal;
-    int emitter;
-    float area_pdf;
+    LightOrigin o;
     Photon p = emit_photon(tris, light_tri, light_cdf, light_count, emitter_radiance, emitter_area_pdf, bin_nm,
-                           (float)photons, &rng, &light_normal, &emitter, &area_pdf);
-    float total = photon_total(&p);
-    emitted += total;
+                           (float)photons, &rng, &o);
+    emitted += photon_total(&p);
     /* The light point seen directly: Le cos / (p_area · photons). */
     float le[KASHA_BINS];
-    for (int i = 0; i < KASHA_BINS; ++i) le[i] = emitter_radiance[emitter * KASHA_BINS + i];
-    splat_to_camera(&target, p.position, light_normal, le, 1.0f / (area_pdf * (float)photons));
-    p.position += light_normal * ray_eps;
+    for (int i = 0; i < KASHA_BINS; ++i) le[i] = emitter_radiance[o.emitter * KASHA_BINS + i];
+    splat_to_camera(&target, p.position, o.normal, le, 1.0f / (o.area_pdf * (float)photons));
+    p.position += o.normal * ray_eps;
 
     bool alive = true;
     for (int depth = 0; depth < max_depth && alive; ++depth) {

@@ -21,12 +21,10 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, float bin_nm, float ray_eps,
   int first = item * photons_per_item, last = min(first + photons_per_item, photons);
   for (int index = first; index < last; ++index) {
     Rng rng = rng_seed(seed, pass, (uint)index);
-    float3 light_normal;
-    int emitter;
-    float area_pdf;
+    LightOrigin o;
     Photon p = emit_photon(tris, light_tri, light_cdf, light_count, emitter_radiance, emitter_area_pdf, bin_nm,
-                           (float)photons, &rng, &light_normal, &emitter, &area_pdf);
-    p.position += light_normal * ray_eps;
+                           (float)photons, &rng, &o);
+    p.position += o.normal * ray_eps;
     for (int depth = 0; depth < PHOTON_MAX_DEPTH; ++depth) {
       HitPoint h;
       if (!intersect_scene(nodes, tris, p.position, p.direction, &h)) break;

@@ -19,24 +19,31 @@ typedef struct {
 
 enum { BRANCH_ABSORBED = 0, BRANCH_GLOSS = 1, BRANCH_PASSIVE = 2, BRANCH_FLUORESCENT = 3 };
 
+/* Where a photon left its light: the light's normal, its emitter, and the area density p_area
+ * with which the point was chosen. */
+typedef struct {
+  float3 normal;
+  int emitter;
+  float area_pdf;
+} LightOrigin;
+
 /* A photon leaving a light: a triangle chosen by power, a uniform point, a cosine-weighted
  * direction; its spectrum is the emitter's radiance scaled so that the `photons` of a pass carry
- * the lights' total power: Φ_i = Le_i Δλ · π / (p_area · photons). Returns the light point's
- * area density p_area through *area_pdf. */
+ * the lights' total power: Φ_i = Le_i Δλ · π / (p_area · photons). */
 inline Photon emit_photon(const __global KTriangle* tris, const __global int* light_tri,
                           const __global float* light_cdf, int light_count, const __global float* emitter_radiance,
                           const __global float* emitter_area_pdf, float bin_nm, float photons, Rng* rng,
-                          float3* light_normal, int* emitter, float* area_pdf) {
+                          LightOrigin* origin) {
   LightPoint lp = sample_light(tris, light_tri, light_cdf, light_count, rng_next_float(rng), rng_next_float(rng),
                                rng_next_float(rng));
   Photon p;
   p.position = lp.position;
   p.direction = sample_cosine_hemisphere(lp.normal, rng_next_float(rng), rng_next_float(rng));
-  *area_pdf = emitter_area_pdf[lp.emitter];
-  float scale = bin_nm * KASHA_PI / (*area_pdf * photons);
+  origin->normal = lp.normal;
+  origin->emitter = lp.emitter;
+  origin->area_pdf = emitter_area_pdf[lp.emitter];
+  float scale = bin_nm * KASHA_PI / (origin->area_pdf * photons);
   for (int i = 0; i < KASHA_BINS; ++i) p.power[i] = emitter_radiance[lp.emitter * KASHA_BINS + i] * scale;
-  *light_normal = lp.normal;
-  *emitter = lp.emitter;
   return p;
 }
 

@@ -40,14 +40,8 @@ TEST_P(ForwardFurnace, EveryBinMatchesTheAnalyticValue) {
   expect_bins_match(r, forward_furnace_value(r.scene, f), 0.01, GetParam());
 }
 
-INSTANTIATE_TEST_SUITE_P(Forward, ForwardFurnace,
-                         ::testing::Values("furnace_passive.json", "furnace_fluorescent.json",
-                                           "furnace_uv.json", "furnace_self_absorption.json",
-                                           "furnace_mirror.json"),
-                         [](const auto& info) {
-                           std::string s = info.param;
-                           return s.substr(8, s.size() - 13);
-                         });
+INSTANTIATE_TEST_SUITE_P(Forward, ForwardFurnace, ::testing::ValuesIn(kFurnaceScenes),
+                         furnace_test_name);
 
 TEST(Forward, PowerIsConservedInAClosedScene) {
   // Photons cut after 3 bounces: absorbed + still in flight = emitted, and nothing escapes.
@@ -86,24 +80,12 @@ TEST(Forward, ImageDoesNotDependOnHowWorkIsSplit) {
 }
 
 TEST(Forward, AgreesWithBackwardOnTheCornellBox) {
-  std::string path = source_path("scenes/cornell_box.json");
-  Scene scene = load_scene(path);
-  Camera cam = scene.camera;
-  cam.width = cam.height = 48;
-  RenderSettings s;
-  s.camera = cam;
-  s.spectral = false;
-  s.integrator = "forward";
-  s.passes = 24;
-  s.photons = 1 << 19;
-  RenderResult fwd = render_scene(path, s);
-  s.integrator = "backward";
-  s.passes = 16;
-  s.spp = 64;
-  RenderResult bwd = render_scene(path, s);
+  CornellPair pair = render_cornell_against_backward("forward", 24, 1 << 19);
+  const RenderResult &fwd = pair.tested, &bwd = pair.backward;
+  const Camera& cam = pair.camera;
 
   // Regions: the pixels whose centre sees each material (and the lamp), by Embree.
-  std::map<std::string, std::vector<size_t>> regions = primary_hit_regions(scene, cam);
+  std::map<std::string, std::vector<size_t>> regions = primary_hit_regions(fwd.scene, cam);
   EXPECT_EQ(regions.size(), 5u);  // white, red, green, the lamp, the Post-it sphere
   for (const auto& [name, pixels] : regions) {
     BinStats f = pixel_statistics(fwd.image, false, pixels);

@@ -70,33 +70,14 @@ TEST_P(PhotonFurnace, ConvergesToTheAnalyticValue) {
   for (float v : r.image.spectral) ASSERT_TRUE(std::isfinite(v));
 }
 
-INSTANTIATE_TEST_SUITE_P(Photon, PhotonFurnace,
-                         ::testing::Values("furnace_passive.json", "furnace_fluorescent.json",
-                                           "furnace_uv.json", "furnace_self_absorption.json",
-                                           "furnace_mirror.json"),
-                         [](const auto& info) {
-                           std::string s = info.param;
-                           return s.substr(8, s.size() - 13);
-                         });
+INSTANTIATE_TEST_SUITE_P(Photon, PhotonFurnace, ::testing::ValuesIn(kFurnaceScenes),
+                         furnace_test_name);
 
 TEST(Photon, AgreesWithBackwardOnTheCornellBox) {
-  std::string path = source_path("scenes/cornell_box.json");
-  Scene scene = load_scene(path);
-  Camera cam = scene.camera;
-  cam.width = cam.height = 48;
-  RenderSettings s;
-  s.camera = cam;
-  s.spectral = false;
-  s.integrator = "photon";
-  s.passes = 24;
-  s.photons = 1 << 17;
-  RenderResult pm = render_scene(path, s);
-  s.integrator = "backward";
-  s.passes = 16;
-  s.spp = 64;
-  RenderResult bwd = render_scene(path, s);
+  CornellPair pair = render_cornell_against_backward("photon", 24, 1 << 17);
+  const RenderResult &pm = pair.tested, &bwd = pair.backward;
 
-  std::map<std::string, std::vector<size_t>> regions = primary_hit_regions(scene, cam);
+  std::map<std::string, std::vector<size_t>> regions = primary_hit_regions(pm.scene, pair.camera);
   ASSERT_EQ(regions.size(), 5u);
   for (const auto& [name, pixels] : regions) {
     BinStats p = pixel_statistics(pm.image, false, pixels),

@@ -106,6 +106,35 @@ void expect_bins_match(const RenderResult& r, const std::vector<double>& truth, 
   for (float v : r.image.spectral) ASSERT_TRUE(std::isfinite(v)) << label;
 }
 
+const std::vector<const char*> kFurnaceScenes = {"furnace_passive.json", "furnace_fluorescent.json",
+                                                 "furnace_uv.json", "furnace_self_absorption.json",
+                                                 "furnace_mirror.json"};
+
+std::string furnace_test_name(const ::testing::TestParamInfo<const char*>& info) {
+  std::string s = info.param;  // furnace_<name>.json -> <name>
+  return s.substr(8, s.size() - 13);
+}
+
+CornellPair render_cornell_against_backward(const std::string& integrator, int passes,
+                                            long long photons) {
+  const std::string path = source_path("scenes/cornell_box.json");
+  CornellPair pair;
+  pair.camera = load_scene(path).camera;
+  pair.camera.width = pair.camera.height = 48;
+  RenderSettings s;
+  s.camera = pair.camera;
+  s.spectral = false;
+  s.integrator = integrator;
+  s.passes = passes;
+  s.photons = photons;
+  pair.tested = render_scene(path, s);
+  s.integrator = "backward";
+  s.passes = 16;
+  s.spp = 64;
+  pair.backward = render_scene(path, s);
+  return pair;
+}
+
 std::map<std::string, std::vector<size_t>> primary_hit_regions(const Scene& scene,
                                                                const Camera& cam) {
   EmbreeScene embree(scene.triangles);

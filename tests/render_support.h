@@ -1,6 +1,8 @@
 #pragma once
 // Rendering helpers for integrator tests: a scene with its camera moved, a render to an image,
 // per-bin statistics over the pixels.
+#include <gtest/gtest.h>
+
 #include <functional>
 #include <map>
 #include <optional>
@@ -55,6 +57,19 @@ BinStats difference_statistics(const Image& a, const Image& b, bool spectral,
 // estimates) and within `tolerance` relative; bins with next to no light must stay as dark.
 void expect_bins_match(const RenderResult& r, const std::vector<double>& truth, double tolerance,
                        const std::string& label);
+
+// The furnace scenes every integrator is tested in, and a test-name suffix for each.
+extern const std::vector<const char*> kFurnaceScenes;
+std::string furnace_test_name(const ::testing::TestParamInfo<const char*>& info);
+
+// The Cornell box at 48 × 48 (XYZ film) through `integrator` with `passes` passes of `photons`,
+// and through backward (16 passes of 64 paths per pixel) to compare it with; its camera too.
+struct CornellPair {
+  RenderResult tested, backward;
+  Camera camera;
+};
+CornellPair render_cornell_against_backward(const std::string& integrator, int passes,
+                                            long long photons);
 
 // Pixels grouped by what their centre sees first: the material's name, or "lamp" for an emitter
 // (found with Embree, independently of the integrators).
