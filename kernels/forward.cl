@@ -2,8 +2,8 @@
  * at each hit with constant energy (photon_transport.h), and every hit with a Lambert part is
  * connected to the pinhole camera and splatted to the film (film_splat.h). Each photon draws its
  * random numbers from a stream of its own index, so the image does not depend on how photons are
- * spread over work items. Ideal mirrors seen by the camera are out of reach of light tracing: a
- * delta lobe never reflects a photon into a pinhole. */
+ * spread over work items. A tabulated gloss lobe is splatted too; ideal mirrors seen by the camera
+ * are out of reach of light tracing: a delta lobe never reflects a photon into a pinhole. */
 #include "bvh_traversal.h"
 #include "film_splat.h"
 #include "hit_point.h"
@@ -95,6 +95,14 @@ __kernel void trace_forward(KCamera camera, KASHA_SCENE_PARAMS, __global const f
 #endif
         splat_to_camera(&target, x, ns, out, KASHA_INV_PI / bin_nm);
       }
+#if KASHA_GLOSS
+      if (s.g > 0.0f && !s.mirror) {
+        /* A tabulated lobe can be evaluated towards the camera: white, f_g Φ / Δλ. */
+        float3 to_camera = normalize(camera_position(&camera) - x);
+        float f = s.g * lobe_brdf(m, lobes, to_camera, -p.direction, ns);
+        if (f > 0.0f) splat_to_camera(&target, x, ns, p.power, f / bin_nm);
+      }
+#endif
       float before = photon_total(&p);
       if (scatter_photon(&p, &s, m, lobes, x, ns, ray_eps, &rng) == BRANCH_ABSORBED) {
         absorbed += before;

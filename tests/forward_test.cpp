@@ -80,7 +80,7 @@ TEST(Forward, ImageDoesNotDependOnHowWorkIsSplit) {
 }
 
 TEST(Forward, AgreesWithBackwardOnTheCornellBox) {
-  CornellPair pair = render_cornell_against_backward("forward", 24, 1 << 19);
+  ComparedRenders pair = render_against_backward("cornell_box.json", "forward", 24, 1 << 19);
   const RenderResult &fwd = pair.tested, &bwd = pair.backward;
   const Camera& cam = pair.camera;
 

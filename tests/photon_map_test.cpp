@@ -74,7 +74,7 @@ INSTANTIATE_TEST_SUITE_P(Photon, PhotonFurnace, ::testing::ValuesIn(kFurnaceScen
                          furnace_test_name);
 
 TEST(Photon, AgreesWithBackwardOnTheCornellBox) {
-  CornellPair pair = render_cornell_against_backward("photon", 24, 1 << 17);
+  ComparedRenders pair = render_against_backward("cornell_box.json", "photon", 24, 1 << 17);
   const RenderResult &pm = pair.tested, &bwd = pair.backward;
 
   std::map<std::string, std::vector<size_t>> regions = primary_hit_regions(pm.scene, pair.camera);

@@ -115,12 +115,12 @@ std::string furnace_test_name(const ::testing::TestParamInfo<const char*>& info)
   return s.substr(8, s.size() - 13);
 }
 
-CornellPair render_cornell_against_backward(const std::string& integrator, int passes,
-                                            long long photons) {
-  const std::string path = source_path("scenes/cornell_box.json");
-  CornellPair pair;
+ComparedRenders render_against_backward(const std::string& scene, const std::string& integrator,
+                                        int passes, long long photons, int size) {
+  const std::string path = source_path("scenes/" + scene);
+  ComparedRenders pair;
   pair.camera = load_scene(path).camera;
-  pair.camera.width = pair.camera.height = 48;
+  pair.camera.width = pair.camera.height = size;
   RenderSettings s;
   s.camera = pair.camera;
   s.spectral = false;

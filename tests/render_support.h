@@ -62,14 +62,14 @@ void expect_bins_match(const RenderResult& r, const std::vector<double>& truth, 
 extern const std::vector<const char*> kFurnaceScenes;
 std::string furnace_test_name(const ::testing::TestParamInfo<const char*>& info);
 
-// The Cornell box at 48 × 48 (XYZ film) through `integrator` with `passes` passes of `photons`,
-// and through backward (16 passes of 64 paths per pixel) to compare it with; its camera too.
-struct CornellPair {
+// A scene at size × size (XYZ film) through `integrator` with `passes` passes of `photons`, and
+// through backward (16 passes of 64 paths per pixel) to compare it with; the camera used too.
+struct ComparedRenders {
   RenderResult tested, backward;
   Camera camera;
 };
-CornellPair render_cornell_against_backward(const std::string& integrator, int passes,
-                                            long long photons);
+ComparedRenders render_against_backward(const std::string& scene, const std::string& integrator,
+                                        int passes, long long photons, int size = 48);
 
 // Pixels grouped by what their centre sees first: the material's name, or "lamp" for an emitter
 // (found with Embree, independently of the integrators).
