@@ -52,8 +52,8 @@ int run_info(const std::string& scene_path, bool spectral) {
   std::printf("wavelengths: %s\n", scene.grid.describe().c_str());
   std::printf("features: fluorescence %s, gloss %s\n", scene.fluorescent() ? "yes" : "no",
               scene.glossy() ? "yes" : "no");
-  std::printf("materials: %zu; shapes: %d; triangles: %zu; emitters: %zu (%d triangles)\n",
-              scene.materials.size(), scene.shape_count, scene.triangles.size(),
+  std::printf("materials: %zu; shapes: %zu; triangles: %zu; emitters: %zu (%d triangles)\n",
+              scene.materials.size(), scene.shapes.size(), scene.triangles.size(),
               scene.emitters.size(), emitting_triangles);
   std::printf("bvh: %zu nodes, depth %d (Embree SAH)\n", data.bvh.nodes.size(), data.bvh.depth);
   std::printf("camera: %dx%d, fov %g deg\n", scene.camera.width, scene.camera.height,

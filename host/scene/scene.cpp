@@ -147,7 +147,6 @@ Scene load_scene(const std::string& path) {
       k.prim = static_cast<int>(scene.triangles.size());
       scene.triangles.push_back(k);
     }
-    ++scene.shape_count;
   }
   root.finish();
   if (scene.triangles.empty()) root.fail("the scene has no shapes");

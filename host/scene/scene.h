@@ -33,7 +33,6 @@ struct Scene {
   std::vector<KTriangle> triangles;  // scene order: prim == index
   std::vector<Emitter> emitters;
   std::vector<ShapeInfo> shapes;
-  int shape_count = 0;
 
   bool fluorescent() const;  // some shape's material has a fluorescent part
   bool glossy() const;       // some shape's material has a gloss lobe
