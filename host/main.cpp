@@ -1,92 +1,15 @@
 // kasha: the command line of DESIGN §5.
 #include <CLI/CLI.hpp>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
-#include <iostream>
-#include <sstream>
 
+#include "cli/converge_command.h"
+#include "cli/info_command.h"
 #include "cli/measure_command.h"
 #include "cli/render_command.h"
 #include "core/error.h"
-#include "core/interrupt.h"
 #include "opencl/device.h"
-#include "render/convergence_study.h"
-#include "render/device_scene.h"
-#include "render/photon_map_integrator.h"
-#include "render/reference_image.h"
-#include "scene/scene.h"
 
 using namespace kasha;
-
-namespace {
-
-int run_devices() {
-  for (const DeviceInfo& d : list_devices()) {
-    std::printf("%d: %s — %s [%s, %s, %u compute units, %.1f GiB]\n", d.index, d.platform.c_str(),
-                d.name.c_str(), d.type.c_str(), d.version.c_str(), d.compute_units,
-                d.global_mem_bytes / 1073741824.0);
-  }
-  return 0;
-}
-
-std::string bytes_text(double b) {
-  char t[64];
-  if (b >= 1 << 30)
-    std::snprintf(t, sizeof t, "%.2f GiB", b / (1 << 30));
-  else if (b >= 1 << 20)
-    std::snprintf(t, sizeof t, "%.2f MiB", b / (1 << 20));
-  else if (b >= 1 << 10)
-    std::snprintf(t, sizeof t, "%.1f KiB", b / (1 << 10));
-  else
-    std::snprintf(t, sizeof t, "%.0f B", b);
-  return t;
-}
-
-int run_info(const std::string& scene_path, bool spectral) {
-  Scene scene = load_scene(scene_path);
-  KernelSceneData data(scene);
-  int emitting_triangles = 0;
-  for (const Emitter& e : scene.emitters) emitting_triangles += e.triangle_count;
-  std::printf("scene: %s\n", scene_path.c_str());
-  std::printf("wavelengths: %s\n", scene.grid.describe().c_str());
-  std::printf("features: fluorescence %s, gloss %s\n", scene.fluorescent() ? "yes" : "no",
-              scene.glossy() ? "yes" : "no");
-  std::printf("materials: %zu; shapes: %zu; triangles: %zu; emitters: %zu (%d triangles)\n",
-              scene.materials.size(), scene.shapes.size(), scene.triangles.size(),
-              scene.emitters.size(), emitting_triangles);
-  std::printf("bvh: %zu nodes, depth %d (Embree SAH)\n", data.bvh.nodes.size(), data.bvh.depth);
-  std::printf("camera: %dx%d, fov %g deg\n", scene.camera.width, scene.camera.height,
-              scene.camera.fov_deg);
-  std::printf("kernel build options: %s\n", build_options(scene_defines(scene, spectral)).c_str());
-  size_t rows_count = spectral ? scene.grid.bins : 3;
-  std::printf(
-      "photon mapping: %zu bytes per photon (position, normal, %d bins); %zu bytes per visible "
-      "point "
-      "(geometry 8 values%s)\n",
-      photon_record_bytes(scene), scene.grid.bins, visible_point_bytes(scene, spectral),
-      scene.fluorescent()
-          ? (", K = C∘d + c bᵀ: 2N + R = " + std::to_string(2 * scene.grid.bins + rows_count) +
-             " values")
-                .c_str()
-          : (", K = C∘d: N = " + std::to_string(scene.grid.bins) + " values").c_str());
-  size_t pixels = static_cast<size_t>(scene.camera.width) * scene.camera.height;
-  size_t rows = spectral ? scene.grid.bins : 3;
-  std::printf(
-      "memory: scene %s (bvh %s, triangles %s, materials and spectra %s); film %s on the device, "
-      "%s on the host\n",
-      bytes_text(data.bytes()).c_str(),
-      bytes_text(data.bvh.nodes.size() * sizeof(KBvhNode)).c_str(),
-      bytes_text(data.bvh.triangles.size() * sizeof(KTriangle)).c_str(),
-      bytes_text(data.materials.size() * sizeof(KMaterial) +
-                 (data.spectra.size() + data.emitter_radiance.size()) * sizeof(float))
-          .c_str(),
-      bytes_text(pixels * rows * sizeof(float)).c_str(),
-      bytes_text(pixels * rows * sizeof(double)).c_str());
-  return 0;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"kasha: a spectral renderer for fluorescent materials"};
@@ -206,31 +129,10 @@ int main(int argc, char** argv) {
       return run_render(r);
     }
     if (app.got_subcommand("measure")) return run_measure(m);
-    if (app.got_subcommand("converge")) {
-      install_interrupt_handler();
-      study.integrators.clear();
-      std::stringstream list(integrators);
-      for (std::string name; std::getline(list, name, ',');) study.integrators.push_back(name);
-      StudyResult r = run_convergence_study(converge_scene, study);
-      std::printf(
-          "converge: reference %s; wrote "
-          "%s/{summary.md,summary.csv,convergence.png,images.png,log_*.csv}\n",
-          r.reference_description.c_str(), study.out_dir.c_str());
-      std::ifstream summary(study.out_dir + "/summary.md");
-      std::printf("%s", std::string(std::istreambuf_iterator<char>(summary), {}).c_str());
-      return 0;
-    }
-    if (app.got_subcommand("reference")) {
-      install_interrupt_handler();
-      Scene scene = load_scene(reference_scene);
-      ClContext cl(reference_device);
-      ReferenceInfo info;
-      Image image = render_reference(cl, scene, reference_seconds, reference_seed, info, true);
-      write_reference(reference_out, image, info);
-      std::fprintf(stderr, "wrote %s: %s, %.1f s, %lld samples per pixel\n", reference_out.c_str(),
-                   info.integrator.c_str(), info.seconds, info.samples_per_pixel);
-      return 0;
-    }
+    if (app.got_subcommand("converge")) return run_converge(converge_scene, integrators, study);
+    if (app.got_subcommand("reference"))
+      return run_reference(reference_scene, reference_seconds, reference_seed, reference_device,
+                           reference_out);
   } catch (const Error& e) {
     std::fprintf(stderr, "kasha: error: %s\n", e.what());
     return 1;

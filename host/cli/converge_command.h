@@ -1,0 +1,14 @@
+#pragma once
+// `kasha converge` and `kasha reference`: error against run time, and the references it needs.
+#include <string>
+
+#include "render/convergence_study.h"
+
+namespace kasha {
+
+// `integrators` is the comma-separated list from the command line.
+int run_converge(const std::string& scene, const std::string& integrators, StudyOptions study);
+int run_reference(const std::string& scene, double seconds, unsigned seed, int device,
+                  const std::string& out);
+
+}  // namespace kasha

@@ -1,0 +1,80 @@
+#include "cli/info_command.h"
+
+#include <cstdio>
+
+#include "opencl/device.h"
+#include "render/device_scene.h"
+#include "render/photon_map_integrator.h"
+#include "scene/scene.h"
+
+namespace kasha {
+
+namespace {
+std::string bytes_text(double b) {
+  char t[64];
+  if (b >= 1 << 30)
+    std::snprintf(t, sizeof t, "%.2f GiB", b / (1 << 30));
+  else if (b >= 1 << 20)
+    std::snprintf(t, sizeof t, "%.2f MiB", b / (1 << 20));
+  else if (b >= 1 << 10)
+    std::snprintf(t, sizeof t, "%.1f KiB", b / (1 << 10));
+  else
+    std::snprintf(t, sizeof t, "%.0f B", b);
+  return t;
+}
+
+}  // namespace
+
+int run_devices() {
+  for (const DeviceInfo& d : list_devices()) {
+    std::printf("%d: %s — %s [%s, %s, %u compute units, %.1f GiB]\n", d.index, d.platform.c_str(),
+                d.name.c_str(), d.type.c_str(), d.version.c_str(), d.compute_units,
+                d.global_mem_bytes / 1073741824.0);
+  }
+  return 0;
+}
+
+int run_info(const std::string& scene_path, bool spectral) {
+  Scene scene = load_scene(scene_path);
+  KernelSceneData data(scene);
+  int emitting_triangles = 0;
+  for (const Emitter& e : scene.emitters) emitting_triangles += e.triangle_count;
+  std::printf("scene: %s\n", scene_path.c_str());
+  std::printf("wavelengths: %s\n", scene.grid.describe().c_str());
+  std::printf("features: fluorescence %s, gloss %s\n", scene.fluorescent() ? "yes" : "no",
+              scene.glossy() ? "yes" : "no");
+  std::printf("materials: %zu; shapes: %zu; triangles: %zu; emitters: %zu (%d triangles)\n",
+              scene.materials.size(), scene.shapes.size(), scene.triangles.size(),
+              scene.emitters.size(), emitting_triangles);
+  std::printf("bvh: %zu nodes, depth %d (Embree SAH)\n", data.bvh.nodes.size(), data.bvh.depth);
+  std::printf("camera: %dx%d, fov %g deg\n", scene.camera.width, scene.camera.height,
+              scene.camera.fov_deg);
+  std::printf("kernel build options: %s\n", build_options(scene_defines(scene, spectral)).c_str());
+  size_t rows_count = spectral ? scene.grid.bins : 3;
+  std::printf(
+      "photon mapping: %zu bytes per photon (position, normal, %d bins); %zu bytes per visible "
+      "point "
+      "(geometry 8 values%s)\n",
+      photon_record_bytes(scene), scene.grid.bins, visible_point_bytes(scene, spectral),
+      scene.fluorescent()
+          ? (", K = C∘d + c bᵀ: 2N + R = " + std::to_string(2 * scene.grid.bins + rows_count) +
+             " values")
+                .c_str()
+          : (", K = C∘d: N = " + std::to_string(scene.grid.bins) + " values").c_str());
+  size_t pixels = static_cast<size_t>(scene.camera.width) * scene.camera.height;
+  size_t rows = spectral ? scene.grid.bins : 3;
+  std::printf(
+      "memory: scene %s (bvh %s, triangles %s, materials and spectra %s); film %s on the device, "
+      "%s on the host\n",
+      bytes_text(data.bytes()).c_str(),
+      bytes_text(data.bvh.nodes.size() * sizeof(KBvhNode)).c_str(),
+      bytes_text(data.bvh.triangles.size() * sizeof(KTriangle)).c_str(),
+      bytes_text(data.materials.size() * sizeof(KMaterial) +
+                 (data.spectra.size() + data.emitter_radiance.size()) * sizeof(float))
+          .c_str(),
+      bytes_text(pixels * rows * sizeof(float)).c_str(),
+      bytes_text(pixels * rows * sizeof(double)).c_str());
+  return 0;
+}
+
+}  // namespace kasha

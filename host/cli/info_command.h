@@ -1,0 +1,11 @@
+#pragma once
+// `kasha devices` and `kasha info`: what the machine offers and what a scene needs.
+#include <string>
+
+namespace kasha {
+
+int run_devices();
+// Grid, features, geometry, kernel build options, record sizes and a memory estimate.
+int run_info(const std::string& scene_path, bool spectral);
+
+}  // namespace kasha
