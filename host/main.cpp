@@ -50,6 +50,8 @@ int main(int argc, char** argv) {
   render->add_option("--device", r.device, "OpenCL device index (see `kasha devices`)")
       ->check(CLI::NonNegativeNumber);
   render->add_option("--png", r.png, "also write a tone-mapped sRGB PNG preview");
+  render->add_flag("--edge-correction", r.edge_correction,
+                   "photon mapping: divide each gather by the covered fraction of its disc");
   render->add_flag("--spectral", r.spectral, "add one channel per wavelength bin to the EXR");
   render->add_option("--reference", r.reference,
                      "reference EXR for the convergence log's error columns");

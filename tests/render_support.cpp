@@ -31,8 +31,9 @@ RenderResult render_scene(const std::string& path, const RenderSettings& s) {
     r.rejected = it.rejected_samples();
   };
   if (s.integrator == "photon") {
-    PhotonMapIntegrator it(cl, r.scene, ds, film,
-                           PhotonMapSettings{s.photons, s.alpha, s.radius, s.seed});
+    PhotonMapIntegrator it(
+        cl, r.scene, ds, film,
+        PhotonMapSettings{s.photons, s.alpha, s.radius, s.seed, s.edge_correction});
     run(it);
     r.visible_point_buffer_bytes = it.visible_point_buffer_bytes();
   } else if (s.integrator == "forward") {

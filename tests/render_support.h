@@ -34,6 +34,7 @@ struct RenderSettings {
   int max_depth = 1000;                  // forward: photon path cut
   int photons_per_item = 64;             // forward: work per work item
   double alpha = 2.0 / 3.0, radius = 0;  // photon mapping
+  bool edge_correction = false;          // photon mapping
   // Called after every pass with the pass count and the film's image (photon: error over passes).
   std::function<void(int, const Image&)> after_pass;
   std::optional<Camera> camera;  // replaces the scene's camera

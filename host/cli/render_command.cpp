@@ -52,8 +52,9 @@ int run_render(const RenderArgs& a) {
     integrator = std::make_unique<DebugIntegrator>(cl, scene, device_scene, film,
                                                    parse_debug_view(a.view), a.spp, a.seed);
   else
-    integrator = make_integrator(a.integrator, cl, scene, device_scene, film,
-                                 IntegratorSettings{a.spp, a.photons, a.alpha, a.radius, a.seed});
+    integrator = make_integrator(
+        a.integrator, cl, scene, device_scene, film,
+        IntegratorSettings{a.spp, a.photons, a.alpha, a.radius, a.seed, a.edge_correction});
   RenderSummary summary = render_progressive(*integrator, film, options);
   Image image = film.image();
   write_exr(a.output, image);

@@ -13,6 +13,7 @@ struct RenderArgs {
   double alpha = 2.0 / 3.0, radius = 0;
   unsigned seed = 1;
   bool spectral = false;
+  bool edge_correction = false;
   bool view_given = false;  // --view was on the command line
 };
 

@@ -16,7 +16,8 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name, ClContext& 
     return std::make_unique<ForwardIntegrator>(cl, scene, device_scene, film, s.photons, s.seed);
   if (name == "photon")
     return std::make_unique<PhotonMapIntegrator>(
-        cl, scene, device_scene, film, PhotonMapSettings{s.photons, s.alpha, s.radius, s.seed});
+        cl, scene, device_scene, film,
+        PhotonMapSettings{s.photons, s.alpha, s.radius, s.seed, s.edge_correction});
   throw Error("unknown integrator \"" + name + "\" (backward, forward, photon)");
 }
 

@@ -14,6 +14,7 @@ struct IntegratorSettings {
   long long photons = 1 << 18;  // forward, photon: photons per pass
   double alpha = 2.0 / 3.0, radius = 0;
   unsigned seed = 1;
+  bool edge_correction = false;  // photon mapping
 };
 
 // backward, forward or photon; throws kasha::Error naming the known ones otherwise.

@@ -1,6 +1,7 @@
 #include "render/photon_gather.h"
 
 #include <algorithm>
+#include <cmath>
 #include <nanoflann.hpp>
 #include <thread>
 
@@ -64,7 +65,7 @@ GatherResult PhotonKdTree::gather(const float* vps, int vp_floats, size_t pixels
     for (size_t px = begin; px < end; ++px) {
       const float* vp = vps + px * vp_floats;
       if (vp[KASHA_VP_VALID] == 0.0f || impl_->cloud.count == 0) continue;
-      const float r2 = static_cast<float>(radius[px] * radius[px]);
+      const float r = static_cast<float>(radius[px]), r2 = r * r;
       impl_->tree.radiusSearch(vp, r2, matches, nanoflann::SearchParams(32, 0.0f, false));
       std::fill(rows.begin(), rows.end(), 0.0);
       const float* d = vp + KASHA_VP_D;
@@ -73,9 +74,13 @@ GatherResult PhotonKdTree::gather(const float* vps, int vp_floats, size_t pixels
       int found = 0;
       for (const auto& [index, dist2] : matches) {
         const float* ph = photons + static_cast<size_t>(index) * stride;
-        // Same side of the surface, roughly the same orientation: no leaks through thin walls
-        // or around corners.
+        // Same side of the surface, roughly the same orientation, and close to the visible
+        // point's tangent plane: no leaks through thin walls, around corners, or from a nearby
+        // parallel surface (a lamp just under a ceiling).
         if (ph[3] * vp[3] + ph[4] * vp[4] + ph[5] * vp[5] < 0.5f) continue;
+        const float off =
+            (ph[0] - vp[0]) * vp[3] + (ph[1] - vp[1]) * vp[4] + (ph[2] - vp[2]) * vp[5];
+        if (std::abs(off) > kGatherSlab * r) continue;
         const float* phi = ph + KASHA_PHOTON_POWER;
         ++found;
         if (L.spectral_film) {

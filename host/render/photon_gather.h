@@ -7,6 +7,9 @@
 
 namespace kasha {
 
+// Photons count only within this fraction of the radius of a visible point's tangent plane.
+constexpr float kGatherSlab = 0.25f;
+
 struct PhotonGatherLayout {
   int bins = 0, rows = 0;
   bool fluorescent = false;

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "photon_layout.h"
 #include "render/backward_integrator.h"
+#include "render/disc_coverage.h"
 #include "render/photon_gather.h"
 
 namespace kasha {
@@ -69,6 +70,7 @@ PhotonMapIntegrator::PhotonMapIntegrator(ClContext& cl, const Scene& scene,
                std::sqrt(camera_.up[0] * camera_.up[0] + camera_.up[1] * camera_.up[1] +
                          camera_.up[2] * camera_.up[2]) /
                camera_.height;
+  if (settings.edge_correction) embree_ = std::make_unique<EmbreeScene>(scene.triangles);
   radius_.assign(pixels_, 0.0);
   count_.assign(pixels_, 0.0);
   tau_.assign(pixels_ * rows_, 0.0);
@@ -152,6 +154,15 @@ void PhotonMapIntegrator::render_pass(int pass, Film& film) {
   PhotonGatherLayout layout{bins_, static_cast<int>(rows_), fluorescent_, spectral_,
                             cmf_host_.data()};
   GatherResult g = tree.gather(vps.data(), vp_floats_, pixels_, radius_, layout);
+  if (embree_) {
+    // A fresh rotation of the probe pattern each pass, so its stratification leaves no pattern.
+    float rotation = static_cast<float>(
+        2 * M_PI * std::fmod(0.6180339887 * (pass + 1) + 1e-3 * settings_.seed, 1.0));
+    std::vector<float> coverage =
+        disc_coverage(*embree_, vps.data(), vp_floats_, pixels_, radius_, rotation);
+    for (size_t p = 0; p < pixels_; ++p)
+      for (size_t r = 0; r < rows_; ++r) g.flux[p * rows_ + r] /= coverage[p];
+  }
 
   const double alpha = settings_.alpha, k = pass + 1;
   std::vector<double> estimate(pixels_ * rows_);

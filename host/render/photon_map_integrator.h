@@ -3,9 +3,13 @@
 // progressive photon mapping (Hachisuka & Jensen 2009). Each pass: a camera pass storing one
 // visible point per pixel, a photon pass storing photons at Lambert hits, a kd-tree over them and
 // a gather; per pixel the radius shrinks as R' = R·sqrt((n + αm)/(n + m)) and the flux is scaled by
-// R'²/R². The estimate is direct/k + τ/(k·π·R²·Δλ) after k passes.
+// R'²/R². The estimate is direct/k + τ/(k·π·R²·Δλ) after k passes. With edge correction (opt-in),
+// each pass's flux is divided by the fraction of its gather disc on accepted surface
+// (render/disc_coverage.h).
+#include <memory>
 #include <vector>
 
+#include "geometry/embree_scene.h"
 #include "opencl/device.h"
 #include "render/device_scene.h"
 #include "render/integrator.h"
@@ -17,6 +21,7 @@ struct PhotonMapSettings {
   double alpha = 2.0 / 3.0;
   double radius = 0;  // > 0: the initial radius everywhere; else from the pixel footprint
   unsigned seed = 1;
+  bool edge_correction = false;  // divide each pass's flux by its disc's covered fraction
 };
 
 // Where a pass's time went, in seconds, summed over passes.
@@ -58,6 +63,7 @@ class PhotonMapIntegrator : public Integrator {
   cl::Kernel photon_kernel_, camera_kernel_;
   cl::Buffer cmf_, importance_, store_, counter_, vps_, direct_;
   std::vector<float> cmf_host_;
+  std::unique_ptr<EmbreeScene> embree_;  // probes the gather discs' coverage
   // Per-pixel progressive statistics.
   std::vector<double> radius_, count_, tau_, direct_sum_;
   PhotonMapTimes times_;
