@@ -1,15 +1,13 @@
 #include "geometry/cl_traversal.h"
 
 #include "opencl/kernel_program.h"
+#include "opencl/upload.h"
 
 namespace kasha {
 
 ClTraversal::ClTraversal(ClContext& cl, const FlatBvh& bvh) : cl_(cl) {
-  nodes_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                      bvh.nodes.size() * sizeof(KBvhNode), const_cast<KBvhNode*>(bvh.nodes.data()));
-  triangles_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                          bvh.triangles.size() * sizeof(KTriangle),
-                          const_cast<KTriangle*>(bvh.triangles.data()));
+  nodes_ = upload(cl, bvh.nodes);
+  triangles_ = upload(cl, bvh.triangles);
   cl::Program program =
       build_program(cl, assemble_kernel_source("trace_rays.cl"), {}, "trace_rays.cl");
   closest_ = cl::Kernel(program, "trace_closest");
@@ -20,8 +18,7 @@ template <typename Out>
 std::vector<Out> ClTraversal::run(cl::Kernel& kernel, const std::vector<KRay>& rays) {
   std::vector<Out> out(rays.size());
   if (rays.empty()) return out;
-  cl::Buffer in(cl_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, rays.size() * sizeof(KRay),
-                const_cast<KRay*>(rays.data()));
+  cl::Buffer in = upload(cl_, rays);
   cl::Buffer result(cl_.context(), CL_MEM_WRITE_ONLY, rays.size() * sizeof(Out));
   kernel.setArg(0, nodes_);
   kernel.setArg(1, triangles_);

@@ -2,9 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 
 #include "core/error.h"
+#include "core/parallel_for.h"
 #include "geometry/embree_device.h"
 
 namespace kasha {
@@ -86,15 +86,9 @@ bool EmbreeScene::occluded(const KRay& ray) const {
 
 void EmbreeScene::intersect_all(const std::vector<KRay>& rays, std::vector<KHit>& hits) const {
   hits.resize(rays.size());
-  unsigned n = std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> threads;
-  size_t chunk = (rays.size() + n - 1) / n;
-  for (unsigned t = 0; t < n; ++t)
-    threads.emplace_back([&, t] {
-      size_t end = std::min(rays.size(), (t + 1) * chunk);
-      for (size_t i = t * chunk; i < end; ++i) hits[i] = intersect(rays[i]);
-    });
-  for (auto& th : threads) th.join();
+  parallel_for(rays.size(), [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) hits[i] = intersect(rays[i]);
+  });
 }
 
 }  // namespace kasha

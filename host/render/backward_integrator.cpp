@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "opencl/upload.h"
+
 namespace kasha {
 
 std::vector<float> branch_importance(const Film& film) {
@@ -12,12 +14,6 @@ std::vector<float> branch_importance(const Film& film) {
   float peak = *std::max_element(u.begin(), u.end());
   for (float& v : u) v += 0.05f * peak;
   return u;
-}
-
-template <typename T>
-static cl::Buffer upload(ClContext& cl, const std::vector<T>& v) {
-  return cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, v.size() * sizeof(T),
-                    const_cast<T*>(v.data()));
 }
 
 BackwardIntegrator::BackwardIntegrator(ClContext& cl, const Scene& scene, DeviceScene& device_scene,

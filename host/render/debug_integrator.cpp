@@ -1,6 +1,7 @@
 #include "render/debug_integrator.h"
 
 #include "core/error.h"
+#include "opencl/upload.h"
 
 namespace kasha {
 
@@ -28,9 +29,7 @@ DebugIntegrator::DebugIntegrator(ClContext& cl, const Scene& scene, DeviceScene&
   cl::Program program = build_program(cl, assemble_kernel_source("debug_render.cl"),
                                       scene_defines(scene, film.spectral()), "debug_render.cl");
   kernel_ = cl::Kernel(program, "render_debug");
-  std::vector<float> cmf = film.cmf_weights();
-  cmf_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY, cmf.size() * sizeof(float));
-  cl.queue().enqueueWriteBuffer(cmf_, CL_TRUE, 0, cmf.size() * sizeof(float), cmf.data());
+  cmf_ = upload(cl, film.cmf_weights());
   film_ = cl::Buffer(cl.context(), CL_MEM_WRITE_ONLY, pixels_ * rows_ * sizeof(float));
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "color/cie_observer.h"
+#include "opencl/upload.h"
 
 namespace kasha {
 
@@ -136,15 +137,6 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_FLUORESCENCE"] = scene.fluorescent() ? "1" : "0";
   d["KASHA_GLOSS"] = scene.glossy() ? "1" : "0";
   return d;
-}
-
-// OpenCL rejects zero-sized buffers; an absent table gets one element that is never read.
-template <typename T>
-static cl::Buffer upload(ClContext& cl, const std::vector<T>& v) {
-  size_t bytes = std::max<size_t>(sizeof(T), v.size() * sizeof(T));
-  cl::Buffer b(cl.context(), CL_MEM_READ_ONLY, bytes);
-  if (!v.empty()) cl.queue().enqueueWriteBuffer(b, CL_TRUE, 0, v.size() * sizeof(T), v.data());
-  return b;
 }
 
 int DeviceScene::bind(cl::Kernel& k, int a) const {

@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
 
+#include "core/parallel_for.h"
 #include "photon_layout.h"
 #include "render/photon_gather.h"
 
@@ -50,12 +50,7 @@ std::vector<float> disc_coverage(const EmbreeScene& scene, const float* vps, int
       coverage[px] = std::max(1, covered) / static_cast<float>(kRings * kPerRing);
     }
   };
-  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> pool;
-  size_t chunk = (pixels + threads - 1) / threads;
-  for (unsigned k = 0; k < threads; ++k)
-    pool.emplace_back(work, std::min(pixels, k * chunk), std::min(pixels, (k + 1) * chunk));
-  for (auto& th : pool) th.join();
+  parallel_for(pixels, work);
   return coverage;
 }
 

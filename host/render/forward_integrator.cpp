@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "opencl/upload.h"
 
 namespace kasha {
 
@@ -29,8 +30,7 @@ ForwardIntegrator::ForwardIntegrator(ClContext& cl, const Scene& scene, DeviceSc
                                       scene_defines(scene, film.spectral()), "forward.cl");
   kernel_ = cl::Kernel(program, "trace_forward");
   std::vector<float> cmf = film.cmf_weights();
-  cmf_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                    cmf.size() * sizeof(float), cmf.data());
+  cmf_ = upload(cl, cmf);
   // Fixed point: the brightest emitter's film value maps to 2^32, leaving 2^31 of headroom per
   // pixel and pass and a resolution of 2^-32 of it.
   double brightest = 0;

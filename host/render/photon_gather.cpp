@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <nanoflann.hpp>
-#include <thread>
 
+#include "core/parallel_for.h"
 #include "photon_layout.h"
 
 namespace kasha {
@@ -102,12 +102,7 @@ GatherResult PhotonKdTree::gather(const float* vps, int vp_floats, size_t pixels
       for (int r = 0; r < L.rows; ++r) out.flux[px * L.rows + r] = rows[r];
     }
   };
-  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> pool;
-  size_t chunk = (pixels + threads - 1) / threads;
-  for (unsigned t = 0; t < threads; ++t)
-    pool.emplace_back(work, std::min(pixels, t * chunk), std::min(pixels, (t + 1) * chunk));
-  for (auto& th : pool) th.join();
+  parallel_for(pixels, work);
   return out;
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "opencl/upload.h"
 #include "photon_layout.h"
 #include "render/backward_integrator.h"
 #include "render/disc_coverage.h"
@@ -55,11 +56,9 @@ PhotonMapIntegrator::PhotonMapIntegrator(ClContext& cl, const Scene& scene,
   photon_kernel_ = cl::Kernel(program, "trace_photon_map");
   camera_kernel_ = cl::Kernel(program, "camera_pass");
   cmf_host_ = film.cmf_weights();
-  cmf_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                    cmf_host_.size() * sizeof(float), cmf_host_.data());
+  cmf_ = upload(cl, cmf_host_);
   std::vector<float> u = branch_importance(film);
-  importance_ = cl::Buffer(cl.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                           u.size() * sizeof(float), u.data());
+  importance_ = upload(cl, u);
   counter_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, sizeof(cl_int));
   vps_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, pixels_ * vp_floats_ * sizeof(float));
   direct_ = cl::Buffer(cl.context(), CL_MEM_READ_WRITE, pixels_ * rows_ * sizeof(float));
