@@ -16,11 +16,12 @@ std::string build_options(const KernelDefines& defines) {
   return out;
 }
 
-static void inline_file(const std::string& name, std::set<std::string>& seen,
-                        std::ostringstream& out) {
-  if (!seen.insert(name).second) return;
+// Appends `text`, the contents of the kernel file `name`, with its quoted #includes of embedded
+// files inlined, each once (`seen` holds the files already inlined).
+static void inline_text(const std::string& text, const std::string& name,
+                        std::set<std::string>& seen, std::ostringstream& out) {
   static const std::regex include_line(R"(^\s*#\s*include\s+"([^"]+)\"\s*$)");
-  std::istringstream in(embedded_kernel(name));
+  std::istringstream in(text);
   std::string line;
   int line_no = 0;
   out << "#line 1 \"" << name << "\"\n";
@@ -28,7 +29,8 @@ static void inline_file(const std::string& name, std::set<std::string>& seen,
     ++line_no;
     std::smatch m;
     if (std::regex_match(line, m, include_line)) {
-      inline_file(m[1], seen, out);
+      const std::string file = m[1];
+      if (seen.insert(file).second) inline_text(embedded_kernel(file), file, seen, out);
       out << "#line " << line_no + 1 << " \"" << name << "\"\n";
     } else {
       out << line << "\n";
@@ -36,11 +38,15 @@ static void inline_file(const std::string& name, std::set<std::string>& seen,
   }
 }
 
-std::string assemble_kernel_source(const std::string& main_file) {
-  std::set<std::string> seen;
+std::string assemble_kernel_source_text(const std::string& source, const std::string& name) {
+  std::set<std::string> seen{name};
   std::ostringstream out;
-  inline_file(main_file, seen, out);
+  inline_text(source, name, seen, out);
   return out.str();
+}
+
+std::string assemble_kernel_source(const std::string& main_file) {
+  return assemble_kernel_source_text(embedded_kernel(main_file), main_file);
 }
 
 cl::Program build_program(ClContext& cl, const std::string& source, const KernelDefines& defines,
