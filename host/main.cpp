@@ -11,6 +11,21 @@
 
 using namespace kasha;
 
+// The options of IntegratorSettings, each read by the integrators that list it in the registry.
+static void add_integrator_options(CLI::App* app, IntegratorSettings& s) {
+  app->add_option("--spp", s.spp, "camera samples per pixel per pass")->check(CLI::Range(1, 1 << 20));
+  app->add_option("--photons", s.photons, "photons per pass")->check(CLI::Range(1LL, (1LL << 31) - 1));
+  app->add_option("--alpha", s.alpha, "photon mapping: radius reduction α (default 2/3)")
+      ->check(CLI::Range(0.01, 0.99));
+  app->add_option("--radius", s.radius,
+                  "photon mapping: initial gather radius (default: from the pixel footprint)")
+      ->check(CLI::PositiveNumber);
+  app->add_flag("--edge-correction", s.edge_correction,
+                "photon mapping: divide each gather by the covered fraction of its disc");
+  app->add_option("--view", s.view, "debug view: emission, normals or albedo")
+      ->check(CLI::IsMember({"emission", "normals", "albedo"}));
+}
+
 int main(int argc, char** argv) {
   CLI::App app{"kasha: a spectral renderer for fluorescent materials"};
   app.require_subcommand(1);
@@ -28,30 +43,20 @@ int main(int argc, char** argv) {
   CLI::App* render = app.add_subcommand("render", "render a scene to an EXR");
   render->add_option("scene", r.scene, "scene JSON file")->required();
   render->add_option("-o,--output", r.output, "output EXR")->required();
-  render->add_option("--integrator", r.integrator, "photon (default), backward, forward, or debug")
-      ->check(CLI::IsMember({"photon", "backward", "forward", "debug"}));
-  render->add_option("--view", r.view, "debug view: emission, normals or albedo")
-      ->check(CLI::IsMember({"emission", "normals", "albedo"}));
+  std::string integrator_help = "the integrator (default " + std::string(kDefaultIntegrator) + "):";
+  for (const IntegratorInfo& info : IntegratorRegistry::all())
+    integrator_help += "\n  " + info.name + ": " + info.description;
+  render->add_option("--integrator", r.integrator, integrator_help)
+      ->check(CLI::IsMember(IntegratorRegistry::names(false)));
   render->add_option("--time", r.seconds, "stop after this many seconds")
       ->check(CLI::PositiveNumber);
   render->add_option("--passes", r.passes, "stop after this many passes")
       ->check(CLI::PositiveNumber);
-  render->add_option("--spp", r.spp, "camera samples per pixel per pass")
-      ->check(CLI::Range(1, 1 << 20));
-  render->add_option("--alpha", r.alpha, "photon mapping: radius reduction α (default 2/3)")
-      ->check(CLI::Range(0.01, 0.99));
-  render
-      ->add_option("--radius", r.radius,
-                   "photon mapping: initial gather radius (default: from the pixel footprint)")
-      ->check(CLI::PositiveNumber);
-  render->add_option("--photons", r.photons, "photons per pass (forward, photon)")
-      ->check(CLI::Range(1LL, (1LL << 31) - 1));
-  render->add_option("--seed", r.seed, "random seed");
+  add_integrator_options(render, r.settings);
+  render->add_option("--seed", r.settings.seed, "random seed");
   render->add_option("--device", r.device, "OpenCL device index (see `kasha devices`)")
       ->check(CLI::NonNegativeNumber);
   render->add_option("--png", r.png, "also write a tone-mapped sRGB PNG preview");
-  render->add_flag("--edge-correction", r.edge_correction,
-                   "photon mapping: divide each gather by the covered fraction of its disc");
   render->add_flag("--spectral", r.spectral, "add one channel per wavelength bin to the EXR");
   render->add_option("--reference", r.reference,
                      "reference EXR for the convergence log's error columns");
@@ -83,11 +88,11 @@ int main(int argc, char** argv) {
   measure->add_flag("--clip", m.clip, "clip an energy gain instead of failing, and record it");
 
   StudyOptions study;
-  std::string converge_scene, integrators = "backward,forward,photon";
+  std::string converge_scene, integrators;
   CLI::App* converge =
       app.add_subcommand("converge", "error against run time for several integrators");
   converge->add_option("scene", converge_scene, "scene JSON file")->required();
-  converge->add_option("--integrators", integrators, "comma-separated: backward,forward,photon");
+  converge->add_option("--integrators", integrators, "comma-separated (default: every physical one)");
   converge->add_option("--time", study.seconds, "rendering seconds per integrator and run")
       ->required();
   converge->add_option("--reference", study.reference,
@@ -98,8 +103,10 @@ int main(int argc, char** argv) {
                        "runs per integrator, seeds 1..K, for error bars");
   converge->add_option("--target", study.target,
                        "RMSE whose time to reach is reported (default: the worst final)");
-  converge->add_option("--spp", study.settings.spp, "backward: camera samples per pixel per pass");
-  converge->add_option("--photons", study.settings.photons, "forward, photon: photons per pass");
+  converge->add_option("--spp", study.settings.spp, "camera samples per pixel per pass")
+      ->check(CLI::Range(1, 1 << 20));
+  converge->add_option("--photons", study.settings.photons, "photons per pass")
+      ->check(CLI::Range(1LL, (1LL << 31) - 1));
   converge->add_option("--device", study.device, "OpenCL device index");
   converge->add_option("-o,--output", study.out_dir, "directory for logs, plot, images and summary")
       ->required();
@@ -127,7 +134,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("devices")) return run_devices();
     if (app.got_subcommand("info")) return run_info(info_scene, info_spectral);
     if (app.got_subcommand("render")) {
-      r.view_given = render->count("--view") > 0;
+      for (const std::string& option : IntegratorRegistry::options())
+        if (render->count(option) > 0) r.integrator_options_given.push_back(option);
       return run_render(r);
     }
     if (app.got_subcommand("measure")) return run_measure(m);

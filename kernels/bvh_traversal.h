@@ -5,8 +5,6 @@
 
 #include "shared_types.h"
 
-#define KASHA_BVH_STACK 64
-
 inline float3 load_float3(const __global float* p) { return (float3)(p[0], p[1], p[2]); }
 
 /* Slab test; the far distance is widened by 2 ulps-ish (Ize 2013) so rounding never culls a box the
@@ -53,7 +51,7 @@ inline int bvh_traverse(const __global KBvhNode* nodes, const __global KTriangle
   int best = -1;
   float best_t = tmax;
   if (box_entry(&nodes[0], org, inv_dir, tmin, best_t) == INFINITY) return -1;
-  int stack[KASHA_BVH_STACK];
+  int stack[KASHA_BVH_MAX_DEPTH];
   int sp = 0;
   int node = 0;
   for (;;) {

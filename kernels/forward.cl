@@ -4,107 +4,103 @@
  * random numbers from a stream of its own index, so the image does not depend on how photons are
  * spread over work items. A tabulated gloss lobe is splatted too; ideal mirrors seen by the camera
  * are out of reach of light tracing: a delta lobe never reflects a photon into a pinhole. */
-#include "bvh_traversal.h"
 #include "film_splat.h"
+#include "film_view.h"
 #include "hit_point.h"
 #include "photon_transport.h"
-#include "scene_params.h"
-
-#define FORWARD_MAX_DEPTH 1000 /* a guard: absorption ends photons long before */
+#include "scene_view.h"
 
 typedef struct {
-  KCamera camera;
-  const __global KBvhNode* nodes;
-  const __global KTriangle* tris;
-  const __global float* cmf;
   __global long* film;
   float film_scale;
-  float ray_eps;
   int overflow;
 } SplatTarget;
 
-/* Adds radiance leaving x towards the camera (per nm, already times cos at x) to the film. */
-inline void splat_to_camera(SplatTarget* t, float3 x, float3 ns, const float* radiance, float extra) {
+/* Whether x (normal ns on the lit side) sees the camera: its pixel, and the factor cos·importance
+ * that turns radiance leaving x (per nm, before that factor) into the pixel's average. */
+inline bool camera_connection(const SceneView* s, float3 x, float3 ns, int* pixel, float* k) {
   float importance;
-  int pixel = camera_pixel(&t->camera, x, &importance);
-  if (pixel < 0) return;
-  float3 to_camera = camera_position(&t->camera) - x;
+  *pixel = camera_pixel(&s->camera, x, &importance);
+  if (*pixel < 0) return false;
+  float3 to_camera = camera_position(&s->camera) - x;
   float dist = length(to_camera);
   float3 dir = to_camera / dist;
   float cos_x = dot(ns, dir);
-  if (cos_x <= 0.0f) return;
-  if (bvh_occluded(t->nodes, t->tris, x + ns * t->ray_eps, dir, 0.0f, dist - t->ray_eps)) return;
-  float k = cos_x * importance * extra;
-  __global long* cell = t->film + (long)pixel * KASHA_FILM_ROWS;
-#if KASHA_SPECTRAL_FILM
-  for (int i = 0; i < KASHA_BINS; ++i)
-    if (radiance[i] != 0.0f) splat_fixed(cell + i, radiance[i] * k, t->film_scale, &t->overflow);
-#else
-  for (int r = 0; r < 3; ++r) {
-    float s = 0.0f;
-    for (int i = 0; i < KASHA_BINS; ++i) s += t->cmf[r * KASHA_BINS + i] * radiance[i];
-    if (s != 0.0f) splat_fixed(cell + r, s * k, t->film_scale, &t->overflow);
-  }
-#endif
+  if (cos_x <= 0.0f) return false;
+  if (bvh_occluded(s->nodes, s->tris, x + ns * s->ray_eps, dir, 0.0f, dist - s->ray_eps)) return false;
+  *k = cos_x * importance;
+  return true;
 }
 
-__kernel void trace_forward(KCamera camera, KASHA_SCENE_PARAMS, __global const float* cmf,
-                            float bin_nm, float ray_eps, int photons, int photons_per_item, int max_depth,
-                            __global long* film, float film_scale,
+inline void splat_rows(SplatTarget* t, int pixel, const float* rows) {
+  __global long* cell = t->film + (long)pixel * KASHA_FILM_ROWS;
+  for (int r = 0; r < KASHA_FILM_ROWS; ++r)
+    if (rows[r] != 0.0f) splat_fixed(cell + r, rows[r], t->film_scale, &t->overflow);
+}
+
+__kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, int photons_per_item,
+                            int max_depth, __global long* film, float film_scale,
                             __global float* stats, /* per item: emitted, absorbed, escaped, in flight (W) */
                             __global int* overflow, uint seed, uint pass) {
+  KASHA_SCENE_VIEW(s);
+  KASHA_FILM_VIEW(f);
   int item = get_global_id(0);
   int first = item * photons_per_item, last = min(first + photons_per_item, photons);
   if (first >= last) return;
-  SplatTarget target = {camera, nodes, tris, cmf, film, film_scale, ray_eps, 0};
+  SplatTarget target = {film, film_scale, 0};
   float emitted = 0.0f, absorbed = 0.0f, escaped = 0.0f, in_flight = 0.0f;
+  float rows[KASHA_FILM_ROWS];
   for (int index = first; index < last; ++index) {
     Rng rng = rng_seed(seed, pass, (uint)index);
     LightOrigin o;
-    Photon p = emit_photon(tris, light_tri, light_cdf, light_count, emitter_radiance, emitter_area_pdf, bin_nm,
-                           (float)photons, &rng, &o);
+    Photon p = emit_photon(&s, (float)photons, &rng, &o);
     emitted += photon_total(&p);
     /* The light point seen directly: Le cos / (p_area · photons). */
-    float le[KASHA_BINS];
-    for (int i = 0; i < KASHA_BINS; ++i) le[i] = emitter_radiance[o.emitter * KASHA_BINS + i];
-    splat_to_camera(&target, p.position, o.normal, le, 1.0f / (o.area_pdf * (float)photons));
+    int pixel;
+    float k;
+    if (camera_connection(&s, p.position, o.normal, &pixel, &k)) {
+      film_rows_clear(rows);
+      film_rows(&f, 0, emitter_spectrum(&s, o.emitter), 0, k / (o.area_pdf * (float)photons), rows);
+      splat_rows(&target, pixel, rows);
+    }
     p.position += o.normal * ray_eps;
 
     bool alive = true;
     for (int depth = 0; depth < max_depth && alive; ++depth) {
       HitPoint h;
-      if (!intersect_scene(nodes, tris, p.position, p.direction, &h)) {
+      if (!intersect_scene(&s, p.position, p.direction, &h)) {
         escaped += photon_total(&p);
         alive = false;
         break;
       }
       float3 ns = h.ns, x = h.x;
-      const __global KMaterial* m = &materials[h.material];
-      Surface s;
-      load_surface(m, spectra, &s);
-      if (surface_has_lambert(&s)) {
+      Surface surf;
+      load_surface(&s, h.material, &surf);
+#if KASHA_GLOSS
+      bool glossy = surf.g > 0.0f && !surf.mirror;
+#else
+      bool glossy = false;
+#endif
+      if ((surface_has_lambert(&surf) || glossy) && camera_connection(&s, x, ns, &pixel, &k)) {
         /* Radiance per nm leaving x per unit flux: (ρ_i Φ_i + ê_i (a·Φ)) / (π Δλ). */
-        float out[KASHA_BINS];
-        for (int i = 0; i < KASHA_BINS; ++i) out[i] = s.rho[i] * p.power[i];
+        film_rows_clear(rows);
+        float lambert = k * KASHA_INV_PI / bin_nm;
+        film_rows(&f, p.power, surf.rho, 0, lambert, rows);
 #if KASHA_FLUORESCENCE
-        if (s.fluorescent) {
-          float absorbed_for_fluorescence = 0.0f;
-          for (int i = 0; i < KASHA_BINS; ++i) absorbed_for_fluorescence += s.a[i] * p.power[i];
-          for (int i = 0; i < KASHA_BINS; ++i) out[i] += s.ehat[i] * absorbed_for_fluorescence;
+        if (surf.fluorescent) film_rows(&f, 0, surf.ehat, 0, spectrum_dot(KASHA_BINS, p.power, surf.a, 0) * lambert, rows);
+#endif
+#if KASHA_GLOSS
+        if (glossy) {
+          /* A tabulated lobe can be evaluated towards the camera: white, f_g Φ / Δλ. */
+          float3 to_camera = normalize(camera_position(&camera) - x);
+          float fg = surf.g * lobe_brdf(surf.m, lobes, to_camera, -p.direction, ns);
+          if (fg > 0.0f) film_rows(&f, p.power, 0, 0, fg * k / bin_nm, rows);
         }
 #endif
-        splat_to_camera(&target, x, ns, out, KASHA_INV_PI / bin_nm);
+        splat_rows(&target, pixel, rows);
       }
-#if KASHA_GLOSS
-      if (s.g > 0.0f && !s.mirror) {
-        /* A tabulated lobe can be evaluated towards the camera: white, f_g Φ / Δλ. */
-        float3 to_camera = normalize(camera_position(&camera) - x);
-        float f = s.g * lobe_brdf(m, lobes, to_camera, -p.direction, ns);
-        if (f > 0.0f) splat_to_camera(&target, x, ns, p.power, f / bin_nm);
-      }
-#endif
       float before = photon_total(&p);
-      if (scatter_photon(&p, &s, m, lobes, x, ns, ray_eps, &rng) == BRANCH_ABSORBED) {
+      if (scatter_photon(&p, &surf, &s, x, ns, &rng) == BRANCH_ABSORBED) {
         absorbed += before;
         alive = false;
       }

@@ -4,6 +4,7 @@
 #define KASHA_HIT_POINT_H
 
 #include "bvh_traversal.h"
+#include "scene_view.h"
 
 typedef struct {
   float3 x;      /* the hit point */
@@ -15,12 +16,11 @@ typedef struct {
   int emitter;   /* -1: the triangle does not emit */
 } HitPoint;
 
-inline bool intersect_scene(const __global KBvhNode* nodes, const __global KTriangle* tris, float3 org, float3 dir,
-                            HitPoint* h) {
+inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint* h) {
   float t, u, v;
-  int hit = bvh_closest(nodes, tris, org, dir, 0.0f, INFINITY, &t, &u, &v);
+  int hit = bvh_closest(s->nodes, s->tris, org, dir, 0.0f, INFINITY, &t, &u, &v);
   if (hit < 0) return false;
-  const __global KTriangle* tri = &tris[hit];
+  const __global KTriangle* tri = &s->tris[hit];
   float3 v0 = load_float3(tri->v0);
   h->n = normalize(cross(load_float3(tri->v1) - v0, load_float3(tri->v2) - v0));
   h->front = dot(h->n, dir) < 0.0f;
@@ -30,6 +30,12 @@ inline bool intersect_scene(const __global KBvhNode* nodes, const __global KTria
   h->material = tri->material;
   h->emitter = tri->emitter;
   return true;
+}
+
+/* Whether anything blocks the segment from x (offset off its surface along ns) to dist along wi,
+ * short of the far end's own offset. */
+inline bool segment_occluded(const SceneView* s, float3 x, float3 ns, float3 wi, float dist) {
+  return bvh_occluded(s->nodes, s->tris, x + ns * s->ray_eps, wi, 0.0f, dist - 2.0f * s->ray_eps);
 }
 
 #endif

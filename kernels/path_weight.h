@@ -2,12 +2,12 @@
  * current vertex to the pixel's film rows. Diagonal mode T = C∘w (N values) until the first
  * fluorescent bounce, then rank-1 mode T = c bᵀ (R + N values, b kept at max 1). With
  * KASHA_FULL_MATRIX (a test-only reference) T is carried as the full R×N matrix instead.
+ * Spectra it is applied to stay in global memory: T·(y∘z) for two of them (null for ones).
  * Defines: KASHA_BINS (N), KASHA_FILM_ROWS (R), KASHA_SPECTRAL_FILM, KASHA_FLUORESCENCE. */
 #ifndef KASHA_PATH_WEIGHT_H
 #define KASHA_PATH_WEIGHT_H
 
-#include "film_rows.h"
-#include "surface.h"
+#include "film_view.h"
 
 #ifndef KASHA_FULL_MATRIX
 #define KASHA_FULL_MATRIX 0
@@ -26,10 +26,13 @@ typedef struct {
 #endif
 } PathWeight;
 
-inline void pw_init(PathWeight* p, const __global float* cmf) {
+#define PW_FACTOR(v, i) ((v) ? (v)[i] : 1.0f)
+
+inline void pw_init(PathWeight* p, const FilmView* f) {
 #if KASHA_FULL_MATRIX
   for (int r = 0; r < KASHA_FILM_ROWS; ++r)
-    for (int i = 0; i < KASHA_BINS; ++i) p->T[r][i] = film_row_weight(cmf, r, i);
+    for (int i = 0; i < KASHA_BINS; ++i)
+      p->T[r][i] = KASHA_SPECTRAL_FILM ? (r == i ? 1.0f : 0.0f) : f->cmf[r * KASHA_BINS + i];
 #else
   for (int i = 0; i < KASHA_BINS; ++i) p->w[i] = 1.0f;
 #if KASHA_FLUORESCENCE
@@ -38,84 +41,72 @@ inline void pw_init(PathWeight* p, const __global float* cmf) {
 #endif
 }
 
-/* rows += scale · T·v */
-inline void pw_add(const PathWeight* p, const __global float* cmf, const float* v, float scale, float* rows) {
+/* rows += scale · T·(y∘z) */
+inline void pw_add(const PathWeight* p, const FilmView* f, const __global float* y, const __global float* z,
+                   float scale, float* rows) {
 #if KASHA_FULL_MATRIX
   for (int r = 0; r < KASHA_FILM_ROWS; ++r) {
     float s = 0.0f;
-    for (int i = 0; i < KASHA_BINS; ++i) s += p->T[r][i] * v[i];
+    for (int i = 0; i < KASHA_BINS; ++i) s += p->T[r][i] * PW_FACTOR(y, i) * PW_FACTOR(z, i);
     rows[r] += scale * s;
   }
 #else
 #if KASHA_FLUORESCENCE
   if (p->rank1) {
-    float s = 0.0f;
-    for (int i = 0; i < KASHA_BINS; ++i) s += p->b[i] * v[i];
+    float s = spectrum_dot(KASHA_BINS, p->b, y, z);
     for (int r = 0; r < KASHA_FILM_ROWS; ++r) rows[r] += scale * s * p->c[r];
     return;
   }
 #endif
-#if KASHA_SPECTRAL_FILM
-  for (int i = 0; i < KASHA_BINS; ++i) rows[i] += scale * p->w[i] * v[i];
-#else
-  for (int r = 0; r < 3; ++r) {
-    float s = 0.0f;
-    for (int i = 0; i < KASHA_BINS; ++i) s += cmf[r * KASHA_BINS + i] * p->w[i] * v[i];
-    rows[r] += scale * s;
-  }
-#endif
+  film_rows(f, p->w, y, z, scale, rows);
 #endif
 }
 
 /* Energy the path would carry to the film under equal-energy light after scattering by diag(d)
- * (or, for d == 0, the identity): Σ_i u_i w_i d_i in diagonal mode, Σ_i b_i d_i in rank-1 mode
- * (c is common to every branch), Σ_ri T_ri d_i for the full matrix. */
-inline float pw_energy(const PathWeight* p, const __global float* importance, const float* d) {
-  float s = 0.0f;
+ * (d null: the identity): Σ_i u_i w_i d_i in diagonal mode, Σ_i b_i d_i in rank-1 mode (c is
+ * common to every branch), Σ_ri T_ri d_i for the full matrix. */
+inline float pw_energy(const PathWeight* p, const FilmView* f, const __global float* d) {
 #if KASHA_FULL_MATRIX
+  float s = 0.0f;
   for (int r = 0; r < KASHA_FILM_ROWS; ++r)
-    for (int i = 0; i < KASHA_BINS; ++i) s += p->T[r][i] * (d ? d[i] : 1.0f);
+    for (int i = 0; i < KASHA_BINS; ++i) s += p->T[r][i] * PW_FACTOR(d, i);
+  return s;
 #else
 #if KASHA_FLUORESCENCE
-  if (p->rank1) {
-    for (int i = 0; i < KASHA_BINS; ++i) s += p->b[i] * (d ? d[i] : 1.0f);
-    return s;
-  }
+  if (p->rank1) return spectrum_dot(KASHA_BINS, p->b, d, 0);
 #endif
-  for (int i = 0; i < KASHA_BINS; ++i) s += importance[i] * p->w[i] * (d ? d[i] : 1.0f);
+  return spectrum_dot(KASHA_BINS, p->w, f->importance, d);
 #endif
-  return s;
 }
 
-/* T ← T·diag(d)·scale: a passive bounce (d = ρ), or a gloss bounce (d == 0: white). */
-inline void pw_scatter_diagonal(PathWeight* p, const float* d, float scale) {
+/* T ← T·diag(d)·scale: a passive bounce (d = ρ), or a gloss bounce (d null: white). */
+inline void pw_scatter_diagonal(PathWeight* p, const __global float* d, float scale) {
 #if KASHA_FULL_MATRIX
   for (int r = 0; r < KASHA_FILM_ROWS; ++r)
-    for (int i = 0; i < KASHA_BINS; ++i) p->T[r][i] *= scale * (d ? d[i] : 1.0f);
+    for (int i = 0; i < KASHA_BINS; ++i) p->T[r][i] *= scale * PW_FACTOR(d, i);
 #else
 #if KASHA_FLUORESCENCE
   if (p->rank1) {
     /* Scale goes to c; b stays normalized to a maximum of 1. */
-    float m = 0.0f;
+    float m = 1.0f;
     if (d) {
+      m = 0.0f;
       for (int i = 0; i < KASHA_BINS; ++i) m = fmax(m, p->b[i] *= d[i]);
       if (m > 0.0f)
         for (int i = 0; i < KASHA_BINS; ++i) p->b[i] /= m;
-    } else {
-      m = 1.0f;
     }
     for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->c[r] *= scale * m;
     return;
   }
 #endif
-  for (int i = 0; i < KASHA_BINS; ++i) p->w[i] *= scale * (d ? d[i] : 1.0f);
+  for (int i = 0; i < KASHA_BINS; ++i) p->w[i] *= scale * PW_FACTOR(d, i);
 #endif
 }
 
 #if KASHA_FLUORESCENCE
 /* T ← T·ê·aᵀ·scale: a fluorescent bounce. The result is rank-1 whatever T was. */
-inline void pw_scatter_fluorescent(PathWeight* p, const __global float* cmf, const float* ehat, const float* a,
-                                   float scale) {
+inline void pw_scatter_fluorescent(PathWeight* p, const FilmView* f, const __global float* ehat,
+                                   const __global float* a, float scale) {
 #if KASHA_FULL_MATRIX
   for (int r = 0; r < KASHA_FILM_ROWS; ++r) {
     float te = 0.0f;
@@ -124,16 +115,12 @@ inline void pw_scatter_fluorescent(PathWeight* p, const __global float* cmf, con
   }
 #else
   if (p->rank1) {
-    float be = 0.0f;
-    for (int i = 0; i < KASHA_BINS; ++i) be += p->b[i] * ehat[i];
+    float be = spectrum_dot(KASHA_BINS, p->b, ehat, 0);
     for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->c[r] *= scale * be;
   } else {
-    /* c = C·(w∘ê), b = a */
-    for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->c[r] = 0.0f;
-    float rows_tmp[KASHA_FILM_ROWS];
-    for (int r = 0; r < KASHA_FILM_ROWS; ++r) rows_tmp[r] = 0.0f;
-    pw_add(p, cmf, ehat, scale, rows_tmp);
-    for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->c[r] = rows_tmp[r];
+    /* c = C·(w∘ê) */
+    film_rows_clear(p->c);
+    film_rows(f, p->w, ehat, 0, scale, p->c);
     p->rank1 = true;
   }
   float m = 0.0f;
@@ -144,7 +131,6 @@ inline void pw_scatter_fluorescent(PathWeight* p, const __global float* cmf, con
   }
 #endif
 }
-
 #endif
 
 #endif

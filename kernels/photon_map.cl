@@ -2,37 +2,34 @@
  * Photon pass: photons as in forward transport, stored at every hit with a Lambert part (before
  * they scatter); gloss bounces are followed, not stored. Camera pass: one path per pixel through
  * gloss bounces to the first vertex with a Lambert part, where it stores a visible point with the
- * compact factor K; emission seen along the way goes straight to the pixel. */
-#include "bvh_traversal.h"
+ * compact factor K (vertex_factor.h); emission seen along the way goes straight to the pixel. */
 #include "camera.h"
-#include "film_rows.h"
+#include "film_view.h"
 #include "hit_point.h"
 #include "photon_layout.h"
 #include "photon_transport.h"
-#include "scene_params.h"
+#include "scene_view.h"
+#include "vertex_factor.h"
 
-#define PHOTON_MAX_DEPTH 1000
-#define CAMERA_MAX_DEPTH 64
+#define CAMERA_MAX_DEPTH 64 /* gloss bounces before a visible point */
 
-__kernel void trace_photon_map(KASHA_SCENE_PARAMS, float bin_nm, float ray_eps,
-                               int photons, int photons_per_item, __global float* store, __global int* stored,
-                               int capacity, uint seed, uint pass) {
+__kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, int photons_per_item, __global float* store,
+                               __global int* stored, int capacity, uint seed, uint pass) {
+  KASHA_SCENE_VIEW(s);
   int item = get_global_id(0);
   int first = item * photons_per_item, last = min(first + photons_per_item, photons);
   for (int index = first; index < last; ++index) {
     Rng rng = rng_seed(seed, pass, (uint)index);
     LightOrigin o;
-    Photon p = emit_photon(tris, light_tri, light_cdf, light_count, emitter_radiance, emitter_area_pdf, bin_nm,
-                           (float)photons, &rng, &o);
+    Photon p = emit_photon(&s, (float)photons, &rng, &o);
     p.position += o.normal * ray_eps;
-    for (int depth = 0; depth < PHOTON_MAX_DEPTH; ++depth) {
+    for (int depth = 0; depth < KASHA_MAX_PATH_DEPTH; ++depth) {
       HitPoint h;
-      if (!intersect_scene(nodes, tris, p.position, p.direction, &h)) break;
+      if (!intersect_scene(&s, p.position, p.direction, &h)) break;
       float3 ns = h.ns, x = h.x;
-      const __global KMaterial* m = &materials[h.material];
-      Surface s;
-      load_surface(m, spectra, &s);
-      if (surface_has_lambert(&s)) {
+      Surface surf;
+      load_surface(&s, h.material, &surf);
+      if (surface_has_lambert(&surf)) {
         int slot = atomic_inc(stored);
         if (slot < capacity) {
           __global float* rec = store + (long)slot * KASHA_PHOTON_FLOATS(KASHA_BINS);
@@ -41,21 +38,23 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, float bin_nm, float ray_eps,
           for (int i = 0; i < KASHA_BINS; ++i) rec[KASHA_PHOTON_POWER + i] = p.power[i];
         }
       }
-      if (scatter_photon(&p, &s, m, lobes, x, ns, ray_eps, &rng) == BRANCH_ABSORBED) break;
+      if (scatter_photon(&p, &surf, &s, x, ns, &rng) == BRANCH_ABSORBED) break;
     }
   }
 }
 
-__kernel void camera_pass(KCamera camera, KASHA_SCENE_PARAMS,
-                          __global const float* cmf, __global const float* importance, float ray_eps,
-                          __global float* visible_points, __global float* direct, uint seed, uint pass) {
+__kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float* visible_points,
+                          __global float* direct, /* pixels × KASHA_FILM_ROWS: emission seen directly */
+                          uint seed, uint pass) {
+  KASHA_SCENE_VIEW(s);
+  KASHA_FILM_VIEW(f);
   int pixel = get_global_id(0);
   if (pixel >= camera.width * camera.height) return;
   const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
   __global float* vp = visible_points + (long)pixel * vp_floats;
   vp[KASHA_VP_VALID] = 0.0f;
   float rows[KASHA_FILM_ROWS];
-  for (int r = 0; r < KASHA_FILM_ROWS; ++r) rows[r] = 0.0f;
+  film_rows_clear(rows);
   /* A seed stream apart from the photons' (whose items count photons, not pixels). */
   Rng rng = rng_seed(seed ^ 0x5bd1e995u, pass, (uint)pixel);
   int px = pixel % camera.width, py = pixel / camera.width;
@@ -67,62 +66,44 @@ __kernel void camera_pass(KCamera camera, KASHA_SCENE_PARAMS,
 
   for (int depth = 0; depth < CAMERA_MAX_DEPTH; ++depth) {
     HitPoint h;
-    if (!intersect_scene(nodes, tris, org, dir, &h)) break;
+    if (!intersect_scene(&s, org, dir, &h)) break;
     travelled += h.t;
     float3 wo = -dir, ns = h.ns, x = h.x;
-    if (h.emitter >= 0 && h.front) {
-      const __global float* le = emitter_radiance + h.emitter * KASHA_BINS;
-#if KASHA_SPECTRAL_FILM
-      for (int i = 0; i < KASHA_BINS; ++i) rows[i] += w[i] * le[i];
-#else
-      for (int r = 0; r < 3; ++r)
-        for (int i = 0; i < KASHA_BINS; ++i) rows[r] += cmf[r * KASHA_BINS + i] * w[i] * le[i];
-#endif
-    }
-    const __global KMaterial* m = &materials[h.material];
-    Surface s;
-    load_surface(m, spectra, &s);
+    if (h.emitter >= 0 && h.front) film_rows(&f, w, emitter_spectrum(&s, h.emitter), 0, 1.0f, rows);
+    Surface surf;
+    load_surface(&s, h.material, &surf);
     /* Gloss or the Lambert parts, by their energies under equal-energy light (as backward). */
-    float w0 = 0.0f, wl = 0.0f, we = 0.0f;
-    for (int i = 0; i < KASHA_BINS; ++i) {
-      w0 += importance[i] * w[i];
-      wl += importance[i] * w[i] * s.rho[i];
+    float w0 = spectrum_dot(KASHA_BINS, w, importance, 0);
+    float wl = spectrum_dot(KASHA_BINS, w, importance, surf.rho);
 #if KASHA_FLUORESCENCE
-      we += importance[i] * w[i] * s.ehat[i];
+    wl += spectrum_dot(KASHA_BINS, w, importance, surf.ehat) * surf.a_sum;
 #endif
-    }
-#if KASHA_FLUORESCENCE
-    wl += we * s.a_sum;
-#endif
-    bool lambert = surface_has_lambert(&s) && wl > 0.0f;
-    float wg = s.g * w0;
-    float p_gloss = lambert ? wg / (wg + wl) : (s.g > 0.0f ? 1.0f : 0.0f);
+    bool lambert = surface_has_lambert(&surf) && wl > 0.0f;
+    float wg = surf.g * w0;
+    float p_gloss = lambert ? wg / (wg + wl) : (surf.g > 0.0f ? 1.0f : 0.0f);
     if (lambert && rng_next_float(&rng) >= p_gloss) {
-      /* The visible point: K = C∘d + c bᵀ, d = w∘ρ/π, c = C·(w∘ê)/π, b = a, over 1 − P_gloss. */
-      float k = KASHA_INV_PI / (1.0f - p_gloss);
+      /* The visible point, K over 1 − P_gloss. */
       vp[0] = x.x, vp[1] = x.y, vp[2] = x.z;
       vp[3] = ns.x, vp[4] = ns.y, vp[5] = ns.z;
       vp[KASHA_VP_VALID] = 1.0f;
       vp[KASHA_VP_DISTANCE] = travelled;
-      for (int i = 0; i < KASHA_BINS; ++i) vp[KASHA_VP_D + i] = w[i] * s.rho[i] * k;
+      VertexFactorLayout layout = {KASHA_BINS, KASHA_FILM_ROWS, KASHA_SPECTRAL_FILM, KASHA_FLUORESCENCE, cmf};
 #if KASHA_FLUORESCENCE
-      for (int r = 0; r < KASHA_FILM_ROWS; ++r) {
-        float c = 0.0f;
-        for (int i = 0; i < KASHA_BINS; ++i) c += film_row_weight(cmf, r, i) * w[i] * s.ehat[i];
-        vp[KASHA_VP_C(KASHA_BINS) + r] = c * k;
-      }
-      for (int i = 0; i < KASHA_BINS; ++i) vp[KASHA_VP_B(KASHA_BINS, KASHA_FILM_ROWS) + i] = s.a[i];
+      vf_build(layout, vp, w, surf.rho, surf.ehat, surf.a, KASHA_INV_PI / (1.0f - p_gloss));
+#else
+      vf_build(layout, vp, w, surf.rho, 0, 0, KASHA_INV_PI / (1.0f - p_gloss));
 #endif
       break;
     }
     if (p_gloss <= 0.0f) break;
     float3 mirror = reflect_dir(dir, ns);
-    float weight = s.g / p_gloss;
-    if (s.mirror) {
+    float weight = surf.g / p_gloss;
+    if (surf.mirror) {
       dir = mirror;
     } else {
       float pdf;
-      float3 wi = sample_lobe(m, lobes, mirror, rng_next_float(&rng), rng_next_float(&rng), rng_next_float(&rng), &pdf);
+      float3 wi =
+          sample_lobe(surf.m, lobes, mirror, rng_next_float(&rng), rng_next_float(&rng), rng_next_float(&rng), &pdf);
       float ci = dot(wi, ns), co = dot(wo, ns);
       if (ci <= 0.0f) break;
       weight *= 2.0f * ci / (ci + co);
@@ -131,5 +112,5 @@ __kernel void camera_pass(KCamera camera, KASHA_SCENE_PARAMS,
     for (int i = 0; i < KASHA_BINS; ++i) w[i] *= weight;
     org = x + ns * ray_eps;
   }
-  for (int r = 0; r < KASHA_FILM_ROWS; ++r) direct[pixel * KASHA_FILM_ROWS + r] = rows[r];
+  film_add(direct, pixel, rows);
 }

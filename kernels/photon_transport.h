@@ -9,6 +9,8 @@
 #include "lights.h"
 #include "rng.h"
 #include "sampling.h"
+#include "scene_view.h"
+#include "spectral_product.h"
 #include "surface.h"
 
 typedef struct {
@@ -30,20 +32,18 @@ typedef struct {
 /* A photon leaving a light: a triangle chosen by power, a uniform point, a cosine-weighted
  * direction; its spectrum is the emitter's radiance scaled so that the `photons` of a pass carry
  * the lights' total power: Φ_i = Le_i Δλ · π / (p_area · photons). */
-inline Photon emit_photon(const __global KTriangle* tris, const __global int* light_tri,
-                          const __global float* light_cdf, int light_count, const __global float* emitter_radiance,
-                          const __global float* emitter_area_pdf, float bin_nm, float photons, Rng* rng,
-                          LightOrigin* origin) {
-  LightPoint lp = sample_light(tris, light_tri, light_cdf, light_count, rng_next_float(rng), rng_next_float(rng),
-                               rng_next_float(rng));
+inline Photon emit_photon(const SceneView* s, float photons, Rng* rng, LightOrigin* origin) {
+  LightPoint lp = sample_light(s->tris, s->light_tri, s->light_cdf, s->light_count, rng_next_float(rng),
+                               rng_next_float(rng), rng_next_float(rng));
   Photon p;
   p.position = lp.position;
   p.direction = sample_cosine_hemisphere(lp.normal, rng_next_float(rng), rng_next_float(rng));
   origin->normal = lp.normal;
   origin->emitter = lp.emitter;
-  origin->area_pdf = emitter_area_pdf[lp.emitter];
-  float scale = bin_nm * KASHA_PI / (origin->area_pdf * photons);
-  for (int i = 0; i < KASHA_BINS; ++i) p.power[i] = emitter_radiance[lp.emitter * KASHA_BINS + i] * scale;
+  origin->area_pdf = s->emitter_area_pdf[lp.emitter];
+  float scale = s->bin_nm * KASHA_PI / (origin->area_pdf * photons);
+  const __global float* le = emitter_spectrum(s, lp.emitter);
+  for (int i = 0; i < KASHA_BINS; ++i) p.power[i] = le[i] * scale;
   return p;
 }
 
@@ -57,15 +57,13 @@ inline float photon_total(const Photon* p) {
  * or fluorescent re-emission with probability P_k / ΣΦ, P_g = g ΣΦ, P_p = Σ ρ_i Φ_i,
  * P_f = Σ a_i Φ_i, or absorption; the new spectrum (g Φ, ρ∘Φ or ê (a·Φ)) is rescaled by ΣΦ/P_k so
  * the photon keeps its power (the cone lobe's cosine ratio aside). Returns the branch. */
-inline int scatter_photon(Photon* p, const Surface* s, const __global KMaterial* m, const __global float* lobes,
-                          float3 x, float3 ns, float ray_eps, Rng* rng) {
+inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, float3 x, float3 ns, Rng* rng) {
+  const float ray_eps = scene->ray_eps;
   float total = photon_total(p);
   float pg = s->g * total, pp = 0.0f, pf = 0.0f;
-  if (s->passive)
-    for (int i = 0; i < KASHA_BINS; ++i) pp += s->rho[i] * p->power[i];
+  if (s->passive) pp = spectrum_dot(KASHA_BINS, p->power, s->rho, 0);
 #if KASHA_FLUORESCENCE
-  if (s->fluorescent)
-    for (int i = 0; i < KASHA_BINS; ++i) pf += s->a[i] * p->power[i];
+  if (s->fluorescent) pf = spectrum_dot(KASHA_BINS, p->power, s->a, 0);
 #endif
   float xi = rng_next_float(rng) * total;
   float u1 = rng_next_float(rng), u2 = rng_next_float(rng);
@@ -76,7 +74,7 @@ inline int scatter_photon(Photon* p, const Surface* s, const __global KMaterial*
       p->direction = mirror;
     } else {
       float pdf;
-      float3 wo = sample_lobe(m, lobes, mirror, u1, u2, rng_next_float(rng), &pdf);
+      float3 wo = sample_lobe(s->m, scene->lobes, mirror, u1, u2, rng_next_float(rng), &pdf);
       float co = dot(wo, ns), ci = -dot(d_in, ns);
       if (co <= 0.0f) return BRANCH_ABSORBED;
       float k = 2.0f * co / (ci + co);

@@ -9,9 +9,21 @@
 namespace kasha {
 typedef std::uint32_t uint;
 #define KASHA_STATIC_SIZE(T, bytes) static_assert(sizeof(T) == (bytes), #T " layout changed")
+/* Headers that host and kernels share: global pointers are plain pointers on the host, and sums
+ * are carried in double there. */
+#define KASHA_GLOBAL
+typedef double kasha_real;
 #else
 #define KASHA_STATIC_SIZE(T, bytes)
+#define KASHA_GLOBAL __global
+typedef float kasha_real;
 #endif
+
+/* The deepest BVH the builder may make; the traversal's stack holds one node per level. */
+#define KASHA_BVH_MAX_DEPTH 64
+
+/* A guard on path length in every kernel: Russian roulette ends paths long before. */
+#define KASHA_MAX_PATH_DEPTH 1000
 
 /* One node of the flattened binary BVH, in depth-first order. Interior: count == 0, the left child
  * is the next node and `offset` is the right child. Leaf: triangles [offset, offset + count). */
@@ -68,7 +80,8 @@ typedef struct {
 KASHA_STATIC_SIZE(KCamera, 64);
 
 /* Per-material data the kernels read; spectra live in one float buffer at the given offsets
- * (N values each, -1 when the part is absent). */
+ * (N values each, -1 when the part is absent; the buffer starts with N zeros that kernels read
+ * in place of an absent part). */
 typedef struct {
   int passive;    /* rho(lambda) */
   int excitation; /* a(lambda) */

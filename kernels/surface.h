@@ -1,15 +1,17 @@
-/* A hit point's material on the wavelength grid, loaded into private memory once per vertex, and
- * the energies that choose its branch. Defines: KASHA_BINS, KASHA_FLUORESCENCE, KASHA_GLOSS. */
+/* A hit point's material as the kernels use it: pointers to its spectra in global memory (the
+ * scene's zero spectrum for an absent part), so nothing of size N is copied per vertex.
+ * Defines: KASHA_BINS, KASHA_FLUORESCENCE, KASHA_GLOSS. */
 #ifndef KASHA_SURFACE_H
 #define KASHA_SURFACE_H
 
-#include "shared_types.h"
+#include "scene_view.h"
 
 typedef struct {
-  float rho[KASHA_BINS];
+  const __global KMaterial* m;
+  const __global float* rho;
 #if KASHA_FLUORESCENCE
-  float a[KASHA_BINS];
-  float ehat[KASHA_BINS];
+  const __global float* a;
+  const __global float* ehat;
   float a_sum;
   bool fluorescent;
 #endif
@@ -18,19 +20,19 @@ typedef struct {
   bool mirror;
 } Surface;
 
-inline void load_surface(const __global KMaterial* m, const __global float* spectra, Surface* s) {
-  s->passive = m->passive >= 0;
-  for (int i = 0; i < KASHA_BINS; ++i) s->rho[i] = s->passive ? spectra[m->passive + i] : 0.0f;
+inline void load_surface(const SceneView* s, int material, Surface* out) {
+  const __global KMaterial* m = &s->materials[material];
+  out->m = m;
+  out->passive = m->passive >= 0;
+  out->rho = s->spectra + max(m->passive, 0);
 #if KASHA_FLUORESCENCE
-  s->fluorescent = m->excitation >= 0;
-  for (int i = 0; i < KASHA_BINS; ++i) {
-    s->a[i] = s->fluorescent ? spectra[m->excitation + i] : 0.0f;
-    s->ehat[i] = s->fluorescent ? spectra[m->emission + i] : 0.0f;
-  }
-  s->a_sum = m->excitation_sum;
+  out->fluorescent = m->excitation >= 0;
+  out->a = s->spectra + max(m->excitation, 0);
+  out->ehat = s->spectra + max(m->emission, 0);
+  out->a_sum = m->excitation_sum;
 #endif
-  s->g = m->gloss;
-  s->mirror = m->lobe < 0;
+  out->g = m->gloss;
+  out->mirror = m->lobe < 0;
 }
 
 inline bool surface_has_lambert(const Surface* s) {

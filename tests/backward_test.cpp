@@ -1,64 +1,15 @@
-// The backward integrator against the analytic fluorescent furnace (DESIGN §1), against a
-// brute-force full-matrix path state, and for finiteness and convergence.
+// The backward integrator against a brute-force full-matrix path state, and for finiteness and
+// convergence (its furnace tests are in integrator_furnace_test.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "render/furnace.h"
+#include "study/furnace.h"
 #include "render_support.h"
 #include "test_support.h"
 
 using namespace kasha;
 using namespace kasha::test;
-
-namespace {
-
-struct FurnaceCase {
-  const char* scene;
-  std::array<double, 3> position, look_at;  // a second camera placement
-};
-
-void expect_furnace(const std::string& path, const RenderSettings& settings) {
-  RenderResult r = render_scene(path, settings);
-  Furnace f = analyze_furnace(r.scene);
-  ASSERT_TRUE(f.qualifies) << f.why_not;
-  expect_bins_match(r, f.radiance, 0.01, path);
-}
-
-void PrintTo(const FurnaceCase& c, std::ostream* os) {
-  *os << c.scene;
-}
-
-class FurnaceTest : public ::testing::TestWithParam<FurnaceCase> {};
-
-}  // namespace
-
-TEST_P(FurnaceTest, EveryBinMatchesTheAnalyticValueFromTwoCameras) {
-  const FurnaceCase& c = GetParam();
-  std::string path = source_path(std::string("scenes/") + c.scene);
-  RenderSettings settings;
-  settings.passes = 8;
-  settings.spp = 64;
-  expect_furnace(path, settings);
-  Camera moved;
-  moved.position = c.position;
-  moved.look_at = c.look_at;
-  moved.width = 24;
-  moved.height = 16;
-  settings.camera = moved;
-  expect_furnace(path, settings);
-}
-
-INSTANTIATE_TEST_SUITE_P(
-    Backward, FurnaceTest,
-    ::testing::Values(FurnaceCase{"furnace_passive.json", {-1.2, 0.8, 0.4}, {0, -1, 0}},
-                      FurnaceCase{"furnace_fluorescent.json", {0.8, -0.8, 1.8}, {-1, 1, -1}},
-                      FurnaceCase{"furnace_uv.json", {0.7, 0.7, 0.0}, {-1, 0, 1}},
-                      FurnaceCase{"furnace_self_absorption.json", {-0.9, 0.9, 1.4}, {1, -1, -1}},
-                      FurnaceCase{"furnace_mirror.json", {0.5, -0.5, 0.3}, {-1, 0, 0}}),
-    [](const auto& info) {
-      return std::string(info.param.scene).substr(8, std::string(info.param.scene).size() - 13);
-    });
 
 TEST(Backward, RankOneAlgebraMatchesTheFullMatrixReference) {
   // The rank-1 kernel against a test-only kernel that carries the full 3 × N matrix along each
@@ -72,10 +23,10 @@ TEST(Backward, RankOneAlgebraMatchesTheFullMatrixReference) {
     s.camera = cam;
     s.spectral = false;
     s.passes = 32;
-    s.spp = 64;
+    s.integrator_settings.spp = 64;
     RenderResult rank1 = render_scene(path, s);
-    s.full_matrix = true;
-    s.seed = 2;
+    s.integrator_settings.full_matrix = true;
+    s.integrator_settings.seed = 2;
     RenderResult full = render_scene(path, s);
     // Whole image and its four quadrants, X, Y and Z.
     std::vector<std::vector<size_t>> regions(5);
@@ -106,7 +57,7 @@ TEST(Backward, EveryScenePathIsFinite) {
     RenderSettings s;
     s.camera = cam;
     s.passes = 2;
-    s.spp = 8;
+    s.integrator_settings.spp = 8;
     RenderResult r = render_scene(source_path(std::string("scenes/") + scene), s);
     EXPECT_EQ(r.rejected, 0) << scene;
     for (float v : r.image.spectral) ASSERT_TRUE(std::isfinite(v) && v >= 0) << scene;
@@ -123,7 +74,7 @@ TEST(Backward, ErrorFallsAsTheInverseSquareRootOfSamples) {
   Image truth = furnace_image(scene, f.radiance, false);
   RenderSettings s;
   s.spectral = false;
-  s.spp = 2;
+  s.integrator_settings.spp = 2;
   std::vector<double> x, y;
   for (int passes : {1, 2, 4, 8, 16, 32, 64}) {
     s.passes = passes;

@@ -45,9 +45,9 @@ TEST(Cli, LogHasARowPerPassWithErrorsAgainstAReference) {
   std::string ref = (test::scratch_dir() / "ref.exr").string(),
               out = (test::scratch_dir() / "o.exr").string();
   std::string log = (test::scratch_dir() / "log.csv").string();
-  ASSERT_EQ(run_kasha("render " + scene + " --passes 1 --spp 64 -o " + shell_quoted(ref)).exit_code,
+  ASSERT_EQ(run_kasha("render " + scene + " --passes 1 --photons 65536 -o " + shell_quoted(ref)).exit_code,
             0);
-  auto r = run_kasha("render " + scene + " --passes 3 --spp 1 --seed 9 -o " + shell_quoted(out) +
+  auto r = run_kasha("render " + scene + " --passes 3 --photons 4096 --seed 9 -o " + shell_quoted(out) +
                      " --reference " + shell_quoted(ref) + " --log " + shell_quoted(log));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::ifstream in(log);
@@ -86,7 +86,13 @@ TEST(Cli, BadInputsGiveOneLineAndNoOutput) {
                         "directory /nonexistent/dir does not exist");
   expect_one_line_error(
       run_kasha("render " + scene + " --passes 1 --view normals -o " + shell_quoted(out)),
-      "--view applies to --integrator debug only");
+      "--view: the photon integrator does not take this option");
+  expect_one_line_error(run_kasha("render " + scene + " --integrator backward --alpha 0.5 --passes 1 -o " +
+                                  shell_quoted(out)),
+                        "--alpha: the backward integrator does not take this option (it takes --spp)");
+  expect_one_line_error(run_kasha("render " + scene + " --integrator forward --edge-correction --passes 1 -o " +
+                                  shell_quoted(out)),
+                        "--edge-correction: the forward integrator does not take this option");
   expect_one_line_error(
       run_kasha("render " + scene + " --integrator debug --passes 1 --view normals --spectral -o " +
                 shell_quoted(out)),
@@ -132,7 +138,7 @@ TEST(Cli, CtrlCWritesTheImageSoFar) {
   std::string out = (test::scratch_dir() / "i.exr").string();
   auto r = test::run_kasha_env("",
                                "render " + shell_quoted(test::source_path("scenes/torus.json")) +
-                                   " --time 120 --spp 1 -o " + shell_quoted(out),
+                                   " --time 120 --photons 4096 -o " + shell_quoted(out),
                                /*interrupt_after_s=*/3);
   EXPECT_EQ(r.exit_code, 130) << r.err;
   EXPECT_NE(r.err.find("interrupted: writing the image after"), std::string::npos) << r.err;

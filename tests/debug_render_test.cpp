@@ -6,7 +6,7 @@
 
 #include "color/cie_observer.h"
 #include "film/film.h"
-#include "render/debug_integrator.h"
+#include "render/render_job.h"
 #include "render/device_scene.h"
 #include "scene/scene.h"
 #include "test_support.h"
@@ -37,11 +37,14 @@ Rendered render(bool facing_camera, bool spectral, int passes) {
   Rendered r{load_scene(path), {}, 0};
   ClContext cl(0);
   DeviceScene ds(cl, r.scene);
-  Film film(128, 64, r.scene.grid, spectral);
-  DebugIntegrator integrator(cl, r.scene, ds, film, DebugView::emission, 16, 7);
-  for (int p = 0; p < passes; ++p) integrator.render_pass(p, film);
-  r.image = film.image();
-  r.spp = film.samples_per_pixel();
+  IntegratorSettings settings;
+  settings.view = "emission";
+  settings.spp = 16;
+  settings.seed = 7;
+  RenderJob job(cl, r.scene, ds, "debug", settings, spectral);
+  for (int p = 0; p < passes; ++p) job.pass(p);
+  r.image = job.film().image();
+  r.spp = job.film().samples_per_pixel();
   return r;
 }
 

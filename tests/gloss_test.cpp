@@ -1,7 +1,5 @@
-// A tabulated gloss lobe (not only the ideal mirror the furnace checks): the three integrators
-// sample and evaluate it independently — backward by lobe sampling and next-event estimation,
-// forward by scattering photons and splatting the lobe towards the camera, photon mapping by
-// camera paths through it — and must agree on a Cornell box with a glossy floor.
+// The tabulated gloss lobe's table (the integrators' agreement on a glossy floor is in
+// integrator_agreement_test.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -31,23 +29,4 @@ TEST(Gloss, LobeTableIsANormalizedDensityWithItsCdf) {
     }
   }
   EXPECT_NEAR(total, 1.0, 1e-5);
-}
-
-TEST(Gloss, IntegratorsAgreeOnAGlossyFloor) {
-  for (const char* integrator : {"forward", "photon"}) {
-    ComparedRenders pair =
-        render_against_backward("glossy_cornell_box.json", integrator, 24,
-                                std::string(integrator) == "forward" ? 1 << 19 : 1 << 17);
-    std::map<std::string, std::vector<size_t>> regions =
-        primary_hit_regions(pair.tested.scene, pair.camera);
-    ASSERT_TRUE(regions.count("glossy_white"));
-    for (const auto& [name, pixels] : regions) {
-      BinStats t = pixel_statistics(pair.tested.image, false, pixels);
-      BinStats b = pixel_statistics(pair.backward.image, false, pixels);
-      for (int c = 0; c < 3; ++c)
-        EXPECT_LT(std::abs(t.mean[c] - b.mean[c]), 0.03 * b.mean[c])
-            << integrator << " " << name << " row " << c << ": " << t.mean[c] << " vs backward "
-            << b.mean[c];
-    }
-  }
 }

@@ -73,15 +73,48 @@ TEST(Exr, RgbIsLinearSrgbOfXyz) {
 TEST(Film, AveragesPassesAndDerivesXyzFromBins) {
   WavelengthGrid g{380, 10, 40};
   Film film(2, 1, g, true);
-  std::vector<float> pass(2 * 40, 0.0f);
-  pass[17] = 4.0f;  // pixel 0, bin 17: two samples of 2
-  film.add_pass(pass, 2);
-  film.add_pass(std::vector<float>(2 * 40, 0.0f), 2);
+  PassResult pass;
+  pass.samples = 2;
+  pass.sums.assign(2 * 40, 0.0);
+  pass.sums[17] = 4.0;  // pixel 0, bin 17: two samples of 2
+  pass.tallies["rejected samples"] = 1;
+  film.accumulate(pass);
+  pass.sums.assign(2 * 40, 0.0);
+  film.accumulate(pass);
   Image img = film.image();
   EXPECT_FLOAT_EQ(img.spectral[17], 1.0f);
   BinnedObserver obs(g);
   EXPECT_NEAR(img.xyz[1], obs.y[17] * 10.0, 1e-6);
   EXPECT_EQ(img.xyz[4], 0.0f);
+  EXPECT_EQ(film.tally("rejected samples"), 2.0);
+}
+
+TEST(Film, PhotonGathersFollowStochasticProgressivePhotonMapping) {
+  // One pixel, XYZ film. Pass 1 finds 4 photons in radius 2, pass 2 finds none, pass 3 finds 8:
+  // n = 0 + 4α, R² = 4·4α/4, τ = φ1·R²/4; then n = 4α + 8α, R'² = R²(12α)/(4α + 8), τ' = (τ + φ3)·R'²/R².
+  WavelengthGrid g{380, 10, 40};
+  Film film(1, 1, g, false);
+  const double alpha = 0.5;
+  auto gather = [&](double radius, int found, double flux) {
+    PassResult p;
+    p.samples = 1;
+    p.sums = {1.0, 2.0, 3.0};  // what the pass saw directly
+    p.gather = GatherPass{alpha, {radius}, {flux, 2 * flux, 0.0}, {found}};
+    film.accumulate(p);
+  };
+  gather(2.0, 4, 10.0);
+  double n = 4 * alpha, r2 = 4.0 * n / 4, tau = 10.0 * r2 / 4;
+  EXPECT_NEAR(film.photon_radius()[0], std::sqrt(r2), 1e-12);
+  gather(film.photon_radius()[0], 0, 0.0);
+  EXPECT_NEAR(film.photon_radius()[0], std::sqrt(r2), 1e-12);
+  gather(film.photon_radius()[0], 8, 6.0);
+  double n2 = n + 8 * alpha, r2b = r2 * n2 / (n + 8);
+  tau = (tau + 6.0) * r2b / r2;
+  EXPECT_NEAR(film.photon_radius()[0], std::sqrt(r2b), 1e-12);
+  Image img = film.image();
+  EXPECT_NEAR(img.xyz[0], 1.0 + tau / (3 * M_PI * r2b * 10.0), 1e-6);
+  EXPECT_NEAR(img.xyz[1], 2.0 + 2 * tau / (3 * M_PI * r2b * 10.0), 1e-6);
+  EXPECT_NEAR(img.xyz[2], 3.0, 1e-6);
 }
 
 TEST(Output, FailedWritesLeaveNothingBehind) {

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "film/image.h"
-#include "render/forward_integrator.h"
+#include "render/integrator_registry.h"
 #include "scene/scene.h"
 
 namespace kasha::test {
@@ -19,25 +19,21 @@ struct RenderResult {
   Scene scene;
   Image image;
   long long rejected = 0;
-  double seconds = 0;
-  PhotonLedger ledger;                    // forward
-  size_t visible_point_buffer_bytes = 0;  // photon
+  std::map<std::string, double> tallies;          // the film's counters (PassResult::tallies)
+  std::map<std::string, size_t> device_buffers;  // the integrator's
 };
 
 struct RenderSettings {
   std::string integrator = "backward";
-  int passes = 4, spp = 16;
+  int passes = 4;
   bool spectral = true;
-  unsigned seed = 1;
-  bool full_matrix = false;              // backward's test-only full-matrix path state
-  long long photons = 1 << 18;           // forward: photons per pass
-  int max_depth = 1000;                  // forward: photon path cut
-  int photons_per_item = 64;             // forward: work per work item
-  double alpha = 2.0 / 3.0, radius = 0;  // photon mapping
-  bool edge_correction = false;          // photon mapping
+  IntegratorSettings integrator_settings;  // spp, photons, seed and the rest, by name
   // Called after every pass with the pass count and the film's image (photon: error over passes).
   std::function<void(int, const Image&)> after_pass;
-  std::optional<Camera> camera;  // replaces the scene's camera
+  // Called after every pass too: rendering stops early once it returns true.
+  std::function<bool(int, const Image&)> until;
+  std::optional<Camera> camera;                // replaces the scene's camera
+  std::optional<GridRequest> grid;             // replaces the scene's wavelength grid
 };
 
 RenderResult render_scene(const std::string& path, const RenderSettings& settings);
@@ -54,10 +50,11 @@ BinStats pixel_statistics(const Image& image, bool spectral,
 BinStats difference_statistics(const Image& a, const Image& b, bool spectral,
                                const std::vector<size_t>& pixels = {});
 
-// Every bin of the image mean against `truth`: within 4 standard errors (pixels are independent
-// estimates) and within `tolerance` relative; bins with next to no light must stay as dark.
+// Every bin of the image mean against `truth`: within `tolerance` relative and, for an unbiased
+// estimator, within 4 standard errors (pixels are independent estimates); bins with next to no
+// light must stay as dark.
 void expect_bins_match(const RenderResult& r, const std::vector<double>& truth, double tolerance,
-                       const std::string& label);
+                       const std::string& label, bool unbiased = true);
 
 // The furnace scenes every integrator is tested in, and a test-name suffix for each.
 extern const std::vector<const char*> kFurnaceScenes;

@@ -43,7 +43,7 @@ struct Agreement {
 
 Agreement compare_closest(const Scene& scene, std::uint64_t seed) {
   FlatBvh bvh = build_bvh(scene.triangles);
-  EXPECT_LE(bvh.depth, kMaxBvhDepth);
+  EXPECT_LE(bvh.depth, KASHA_BVH_MAX_DEPTH);
   EmbreeScene embree(scene.triangles);
   ClTraversal traversal(device(), bvh);
   std::vector<KRay> rays = random_rays(scene.triangles, kRays, seed);

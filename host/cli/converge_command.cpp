@@ -6,15 +6,17 @@
 #include <sstream>
 
 #include "core/interrupt.h"
-#include "render/reference_image.h"
+#include "study/reference_image.h"
 
 namespace kasha {
 
 int run_converge(const std::string& scene, const std::string& integrators, StudyOptions study) {
   install_interrupt_handler();
-  study.integrators.clear();
-  std::stringstream list(integrators);
-  for (std::string name; std::getline(list, name, ',');) study.integrators.push_back(name);
+  if (!integrators.empty()) {  // else every physical integrator
+    study.integrators.clear();
+    std::stringstream list(integrators);
+    for (std::string name; std::getline(list, name, ',');) study.integrators.push_back(name);
+  }
   StudyResult r = run_convergence_study(scene, study);
   std::printf(
       "converge: reference %s; wrote "

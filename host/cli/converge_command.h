@@ -2,7 +2,7 @@
 // `kasha converge` and `kasha reference`: error against run time, and the references it needs.
 #include <string>
 
-#include "render/convergence_study.h"
+#include "study/convergence_study.h"
 
 namespace kasha {
 

@@ -4,7 +4,7 @@
 
 #include "opencl/device.h"
 #include "render/device_scene.h"
-#include "render/photon_map_integrator.h"
+#include "integrators/photon/photon_records.h"
 #include "scene/scene.h"
 
 namespace kasha {

@@ -1,5 +1,6 @@
 #include "cli/render_command.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -9,11 +10,8 @@
 #include "film/film.h"
 #include "image/exr_io.h"
 #include "image/png_preview.h"
-#include "render/debug_integrator.h"
-#include "render/furnace.h"
-#include "render/integrator_factory.h"
-#include "render/photon_map_integrator.h"
-#include "render/progressive_render.h"
+#include "render/render_job.h"
+#include "study/furnace.h"
 
 namespace kasha {
 
@@ -30,8 +28,7 @@ int run_render(const RenderArgs& a) {
   check_writable(a.png, "--png");
   check_writable(a.log, "--log");
   if (a.passes <= 0 && a.seconds <= 0) throw Error("render: give --time SECONDS or --passes N");
-  if (a.view_given && a.integrator != "debug")
-    throw Error("--view applies to --integrator debug only");
+  IntegratorRegistry::check_options(a.integrator, a.integrator_options_given);
   Scene scene = load_scene(a.scene);
   RenderOptions options;
   options.stop = {a.seconds, a.passes};
@@ -46,35 +43,28 @@ int run_render(const RenderArgs& a) {
   }
   ClContext cl(a.device);
   DeviceScene device_scene(cl, scene);
-  Film film(scene.camera.width, scene.camera.height, scene.grid, a.spectral);
-  std::unique_ptr<Integrator> integrator;
-  if (a.integrator == "debug")
-    integrator = std::make_unique<DebugIntegrator>(cl, scene, device_scene, film,
-                                                   parse_debug_view(a.view), a.spp, a.seed);
-  else
-    integrator = make_integrator(
-        a.integrator, cl, scene, device_scene, film,
-        IntegratorSettings{a.spp, a.photons, a.alpha, a.radius, a.seed, a.edge_correction});
-  RenderSummary summary = render_progressive(*integrator, film, options);
+  RenderJob job(cl, scene, device_scene, a.integrator, a.settings, a.spectral);
+  RenderSummary summary = job.run(options);
+  const Film& film = job.film();
   Image image = film.image();
   write_exr(a.output, image);
   if (!a.png.empty()) write_png_preview(a.png, image);
   std::fprintf(stderr, "wrote %s%s%s: %d passes, %lld samples per pixel, %.2f s on %s\n",
                a.output.c_str(), a.png.empty() ? "" : " and ", a.png.c_str(), summary.passes,
                film.samples_per_pixel(), summary.seconds, cl.info().name.c_str());
-  if (auto* pm = dynamic_cast<PhotonMapIntegrator*>(integrator.get())) {
-    const PhotonMapTimes& t = pm->times();
-    double total = t.photon_tracing + t.kd_tree + t.camera_pass + t.gather;
-    if (total > 0)
-      std::fprintf(stderr,
-                   "photon mapping time: photon tracing %.0f %%, kd-tree %.0f %%, camera pass %.0f "
-                   "%%, gather %.0f %%\n",
-                   100 * t.photon_tracing / total, 100 * t.kd_tree / total,
-                   100 * t.camera_pass / total, 100 * t.gather / total);
-  }
-  if (integrator->rejected_samples() > 0)
-    std::fprintf(stderr, "kasha: warning: %lld samples were not finite and were left out\n",
-                 integrator->rejected_samples());
+  // Where a pass's time went, for integrators that time their stages ("time: <stage> (s)").
+  double total = 0;
+  std::string shares;
+  for (const auto& [name, value] : film.tallies())
+    if (name.rfind("time: ", 0) == 0) total += value;
+  for (const auto& [name, value] : film.tallies())
+    if (name.rfind("time: ", 0) == 0 && total > 0)
+      shares += (shares.empty() ? "" : ", ") + name.substr(6, name.size() - 10) + " " +
+                std::to_string(static_cast<int>(std::lround(100 * value / total))) + " %";
+  if (!shares.empty()) std::fprintf(stderr, "%s time: %s\n", a.integrator.c_str(), shares.c_str());
+  if (film.tally("rejected samples") > 0)
+    std::fprintf(stderr, "kasha: warning: %.0f samples were not finite and were left out\n",
+                 film.tally("rejected samples"));
   return summary.interrupted ? 130 : 0;
 }
 

@@ -2,19 +2,20 @@
 // `kasha render`: a scene through one integrator to an EXR (and PNG), with progress, Ctrl-C, a
 // convergence log and a reference.
 #include <string>
+#include <vector>
+
+#include "render/integrator_registry.h"
 
 namespace kasha {
 
 struct RenderArgs {
-  std::string scene, output, png, integrator = "photon", view = "emission", reference, log;
+  std::string scene, output, png, integrator = kDefaultIntegrator, reference, log;
   double seconds = 0;
-  int passes = 0, spp = 16, device = 0;
-  long long photons = 1 << 18;
-  double alpha = 2.0 / 3.0, radius = 0;
-  unsigned seed = 1;
+  int passes = 0, device = 0;
   bool spectral = false;
-  bool edge_correction = false;
-  bool view_given = false;  // --view was on the command line
+  IntegratorSettings settings;
+  // The integrator-specific options given on the command line (the chosen one must take them).
+  std::vector<std::string> integrator_options_given;
 };
 
 int run_render(const RenderArgs& args);

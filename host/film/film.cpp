@@ -12,26 +12,27 @@ Film::Film(int width, int height, const WavelengthGrid& grid, bool spectral)
       observer_(grid),
       sum_(pixels() * rows(), 0.0) {}
 
-void Film::add_pass(const std::vector<float>& sums, long long samples_per_pixel) {
-  if (sums.size() != sum_.size()) throw std::logic_error("film pass has the wrong size");
-  for (size_t i = 0; i < sum_.size(); ++i) sum_[i] += sums[i];
-  samples_ += samples_per_pixel;
-}
-
-void Film::set_estimate(const std::vector<double>& mean, long long samples) {
-  if (mean.size() != sum_.size()) throw std::logic_error("film estimate has the wrong size");
-  samples_ = samples;
-  for (size_t i = 0; i < sum_.size(); ++i) sum_[i] = mean[i] * samples;
-}
-
-std::vector<float> Film::cmf_weights() const {
-  std::vector<float> w(3 * grid_.bins);
-  for (int i = 0; i < grid_.bins; ++i) {
-    w[i] = static_cast<float>(observer_.x[i] * grid_.bin_nm);
-    w[grid_.bins + i] = static_cast<float>(observer_.y[i] * grid_.bin_nm);
-    w[2 * grid_.bins + i] = static_cast<float>(observer_.z[i] * grid_.bin_nm);
+void Film::accumulate(const PassResult& pass) {
+  if (!pass.sums.empty()) {
+    if (pass.sums.size() != sum_.size()) throw std::logic_error("film pass has the wrong size");
+    for (size_t i = 0; i < sum_.size(); ++i) sum_[i] += pass.sums[i];
   }
-  return w;
+  samples_ += pass.samples;
+  ++passes_;
+  for (const auto& [name, value] : pass.tallies) tallies_[name] += value;
+  if (pass.gather) {
+    if (!sppm_) sppm_.emplace(pixels(), rows());
+    sppm_->update(*pass.gather);
+  }
+}
+
+double Film::tally(const std::string& name) const {
+  auto it = tallies_.find(name);
+  return it == tallies_.end() ? 0.0 : it->second;
+}
+
+std::vector<double> Film::photon_radius() const {
+  return sppm_ ? sppm_->radius() : std::vector<double>{};
 }
 
 Image Film::image() const {
@@ -40,19 +41,21 @@ Image Film::image() const {
   img.height = height_;
   img.grid = grid_;
   img.xyz.assign(3 * pixels(), 0.0f);
-  double inv = samples_ > 0 ? 1.0 / samples_ : 0.0;
+  const double inv = samples_ > 0 ? 1.0 / samples_ : 0.0;
+  const int R = rows();
   if (spectral_) img.spectral.assign(pixels() * grid_.bins, 0.0f);
+  std::vector<double> value(R);
   for (size_t p = 0; p < pixels(); ++p) {
+    for (int r = 0; r < R; ++r) {
+      value[r] = sum_[p * R + r] * inv;
+      if (sppm_) value[r] += sppm_->radiance(p, r, grid_.bin_nm);
+    }
     if (spectral_) {
-      std::vector<double> bins(grid_.bins);
-      for (int i = 0; i < grid_.bins; ++i) {
-        bins[i] = sum_[p * grid_.bins + i] * inv;
-        img.spectral[p * grid_.bins + i] = static_cast<float>(bins[i]);
-      }
-      auto xyz = observer_.xyz(bins, grid_.bin_nm);
+      for (int i = 0; i < R; ++i) img.spectral[p * R + i] = static_cast<float>(value[i]);
+      auto xyz = observer_.xyz(value, grid_.bin_nm);
       for (int k = 0; k < 3; ++k) img.xyz[3 * p + k] = static_cast<float>(xyz[k]);
     } else {
-      for (int k = 0; k < 3; ++k) img.xyz[3 * p + k] = static_cast<float>(sum_[3 * p + k] * inv);
+      for (int k = 0; k < 3; ++k) img.xyz[3 * p + k] = static_cast<float>(value[k]);
     }
   }
   return img;

@@ -1,10 +1,17 @@
 #pragma once
 // Accumulates a render's passes per pixel in double precision. Film rows are X,Y,Z, or the N bins
-// of a spectral film (XYZ is then derived from the bins on output).
+// of a spectral film (XYZ is then derived from the bins on output). Every integrator's pass
+// arrives as a PassResult and is accumulated the same way: sums add up, counters add up, and
+// photon mapping's gathers update the SPPM statistics that the image adds to the sums' mean.
+#include <map>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "color/cie_observer.h"
 #include "film/image.h"
+#include "film/pass_result.h"
+#include "film/sppm_statistics.h"
 #include "spectrum/wavelength_grid.h"
 
 namespace kasha {
@@ -13,20 +20,23 @@ class Film {
  public:
   Film(int width, int height, const WavelengthGrid& grid, bool spectral);
 
+  int width() const { return width_; }
+  int height() const { return height_; }
   int rows() const { return spectral_ ? grid_.bins : 3; }
   bool spectral() const { return spectral_; }
+  const WavelengthGrid& grid() const { return grid_; }
   size_t pixels() const { return static_cast<size_t>(width_) * height_; }
 
-  // Adds a pass: `sums` holds pixels × rows values, each the sum of `samples_per_pixel` samples.
-  void add_pass(const std::vector<float>& sums, long long samples_per_pixel);
+  void accumulate(const PassResult& pass);
   long long samples_per_pixel() const { return samples_; }
-  // Replaces the film's content by a per-pixel estimate (pixels × rows) worth `samples` samples,
-  // for integrators whose estimate is not a plain average of passes (photon mapping).
-  void set_estimate(const std::vector<double>& mean, long long samples);
-  // Per-bin XYZ weights (x̄ȳz̄ times bin width), 3 × N, as kernels take them.
-  std::vector<float> cmf_weights() const;
+  int passes() const { return passes_; }
+  // Sums of every pass's counters, by name (PassResult::tallies).
+  const std::map<std::string, double>& tallies() const { return tallies_; }
+  double tally(const std::string& name) const;
+  // Photon mapping's current gather radius per pixel; empty before its first pass.
+  std::vector<double> photon_radius() const;
 
-  Image image() const;  // the current estimate (mean over samples)
+  Image image() const;  // the current estimate
 
  private:
   int width_, height_;
@@ -35,6 +45,9 @@ class Film {
   BinnedObserver observer_;
   std::vector<double> sum_;
   long long samples_ = 0;
+  int passes_ = 0;
+  std::map<std::string, double> tallies_;
+  std::optional<SppmStatistics> sppm_;
 };
 
 }  // namespace kasha

@@ -117,7 +117,7 @@ FlatBvh build_bvh(const std::vector<KTriangle>& triangles) {
   RTCBuildArguments args = rtcDefaultBuildArguments();
   args.buildQuality = RTC_BUILD_QUALITY_MEDIUM;  // SAH binning, no spatial splits
   args.maxBranchingFactor = 2;
-  args.maxDepth = kMaxBvhDepth;
+  args.maxDepth = KASHA_BVH_MAX_DEPTH;
   args.minLeafSize = 1;
   args.maxLeafSize = 4;
   args.traversalCost = 1.0f;

@@ -13,8 +13,6 @@ struct FlatBvh {
   int depth = 0;
 };
 
-constexpr int kMaxBvhDepth = 60;  // the traversal kernel's stack holds this many nodes
-
 FlatBvh build_bvh(const std::vector<KTriangle>& triangles);
 
 }  // namespace kasha

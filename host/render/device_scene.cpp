@@ -71,8 +71,13 @@ std::vector<float> gloss_lobe_table(const GlossDesc& gloss) {
   return table;
 }
 
-KernelSceneData::KernelSceneData(const Scene& scene) : bvh(build_bvh(scene.triangles)) {
+KernelSceneData::KernelSceneData(const Scene& scene)
+    : bvh(build_bvh(scene.triangles)),
+      camera(scene.camera.to_kernel()),
+      bin_nm(static_cast<float>(scene.grid.bin_nm)) {
   BinnedObserver obs(scene.grid);
+  // The zero spectrum that kernels read in place of a material's absent part (offset 0).
+  spectra.assign(scene.grid.bins, 0.0f);
   for (const Material& m : scene.materials) {
     KMaterial k{};
     k.passive = append(spectra, m.rho);
@@ -140,6 +145,7 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
 }
 
 int DeviceScene::bind(cl::Kernel& k, int a) const {
+  k.setArg(a++, data_.camera);
   k.setArg(a++, nodes);
   k.setArg(a++, triangles);
   k.setArg(a++, materials);
@@ -150,6 +156,8 @@ int DeviceScene::bind(cl::Kernel& k, int a) const {
   k.setArg(a++, light_tri);
   k.setArg(a++, light_cdf);
   k.setArg(a++, static_cast<int>(data_.light_tri.size()));
+  k.setArg(a++, data_.bin_nm);
+  k.setArg(a++, data_.ray_eps);
   return a;
 }
 

@@ -14,8 +14,10 @@ namespace kasha {
 // Host-side arrays in kernel layout; cheap to build, so `kasha info` uses them for its figures.
 struct KernelSceneData {
   FlatBvh bvh;
+  KCamera camera;
+  float bin_nm;
   std::vector<KMaterial> materials;
-  std::vector<float> spectra;           // material spectra at KMaterial offsets
+  std::vector<float> spectra;           // N zeros, then material spectra at KMaterial offsets
   std::vector<float> lobes;             // gloss lobe tables at KMaterial::lobe
   std::vector<float> emitter_radiance;  // emitters x N
   // Next-event estimation: emitting triangles (leaf order) with the CDF of their power, and per
@@ -41,8 +43,8 @@ class DeviceScene {
  public:
   DeviceScene(ClContext& cl, const Scene& scene);
   const KernelSceneData& data() const { return data_; }
-  // Sets the scene's buffers as kernel arguments from `first` on, in the order of
-  // KASHA_SCENE_PARAMS (kernels/scene_params.h); returns the next argument's index.
+  // Sets the scene's camera, buffers and constants as kernel arguments from `first` on, in the
+  // order of KASHA_SCENE_PARAMS (kernels/scene_view.h); returns the next argument's index.
   int bind(cl::Kernel& kernel, int first) const;
 
   cl::Buffer nodes, triangles, materials, spectra, lobes, emitter_radiance, light_tri, light_cdf,

@@ -1,21 +1,28 @@
 #pragma once
-// What the progressive render loop asks of an integrator: one more pass into the film.
+// What the progressive loop asks of an integrator: the result of one more pass, which the film
+// accumulates (film/pass_result.h). Integrators are made by name from the registry
+// (render/integrator_registry.h).
+#include <map>
 #include <string>
 
-#include "film/film.h"
+#include "film/pass_result.h"
 
 namespace kasha {
 
 class Integrator {
  public:
   virtual ~Integrator() = default;
-  virtual std::string name() const = 0;
-  // Adds pass number `pass` (0, 1, ...) to the film; each pass uses fresh random numbers.
-  virtual void render_pass(int pass, Film& film) = 0;
+  const std::string& name() const { return name_; }
+  // Computes pass number `pass` (0, 1, ...) with fresh random numbers; accumulates nothing itself.
+  virtual PassResult render_pass(int pass) = 0;
   virtual long long camera_paths_per_pass() const = 0;
   virtual long long photons_per_pass() const = 0;
-  // Samples left out of the film because they were not finite (reported, never hidden).
-  virtual long long rejected_samples() const { return 0; }
+  // The device buffers it allocated beyond the scene's and the film's tables: bytes by purpose.
+  virtual std::map<std::string, size_t> device_buffers() const { return {}; }
+
+ private:
+  friend class IntegratorRegistry;
+  std::string name_;
 };
 
 }  // namespace kasha

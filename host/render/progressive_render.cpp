@@ -5,7 +5,7 @@
 
 #include "core/error.h"
 #include "core/interrupt.h"
-#include "render/image_error.h"
+#include "study/image_error.h"
 
 namespace kasha {
 
@@ -18,7 +18,7 @@ RenderSummary render_progressive(Integrator& integrator, Film& film, const Rende
   for (int pass = 0;; ++pass) {
     // Only rendering counts towards the time: evaluating the error for the log does not.
     const auto pass_start = clock::now();
-    integrator.render_pass(pass, film);
+    film.accumulate(integrator.render_pass(pass));
     summary.passes = pass + 1;
     summary.seconds += std::chrono::duration<double>(clock::now() - pass_start).count();
 

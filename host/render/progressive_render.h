@@ -7,7 +7,7 @@
 
 #include "film/film.h"
 #include "film/image.h"
-#include "render/convergence_log.h"
+#include "study/convergence_log.h"
 #include "render/integrator.h"
 
 namespace kasha {

@@ -84,7 +84,7 @@ static std::vector<Triangle> shape_triangles(const JsonNode& shape, const std::s
   return tris;
 }
 
-Scene load_scene(const std::string& path) {
+Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid) {
   JsonNode root = JsonNode::load_file(path);
   if (!root.is_object()) root.fail("expected a scene object");
   Scene scene;
@@ -94,6 +94,7 @@ Scene load_scene(const std::string& path) {
 
   GridRequest request;
   if (auto w = root.find("wavelengths")) request = parse_grid_request(*w);
+  if (grid) request = *grid;
   scene.camera = parse_camera(root.at("camera"));
 
   JsonNode materials = root.at("materials");

@@ -1,6 +1,7 @@
 #pragma once
 // A scene as loaded from its JSON file (DESIGN §5): camera, materials on the chosen wavelength
 // grid, and every shape turned into triangles.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,6 +40,7 @@ struct Scene {
   int material_index(const std::string& name) const;  // -1 when absent
 };
 
-Scene load_scene(const std::string& path);
+// `grid`, when given, replaces the scene's own "wavelengths" (the same scene on another grid).
+Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid = std::nullopt);
 
 }  // namespace kasha

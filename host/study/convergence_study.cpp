@@ -1,7 +1,8 @@
-#include "render/convergence_study.h"
+#include "study/convergence_study.h"
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,9 +16,9 @@
 #include "film/film.h"
 #include "image/exr_io.h"
 #include "image/png_preview.h"
-#include "render/furnace.h"
-#include "render/progressive_render.h"
-#include "render/reference_image.h"
+#include "study/furnace.h"
+#include "render/render_job.h"
+#include "study/reference_image.h"
 
 namespace kasha {
 
@@ -154,12 +155,14 @@ void write_summary(const std::string& dir, const std::string& scene_path, const 
 }  // namespace
 
 StudyResult run_convergence_study(const std::string& scene_path, const StudyOptions& o) {
-  if (o.integrators.empty())
-    throw Error("--integrators: give at least one of backward, forward, photon");
+  const std::vector<std::string> physical = IntegratorRegistry::names(true);
+  std::string known;
+  for (const std::string& name : physical) known += (known.empty() ? "" : ", ") + name;
+  if (o.integrators.empty()) throw Error("--integrators: give at least one of " + known);
   for (const std::string& name : o.integrators)
-    if (name != "backward" && name != "forward" && name != "photon")
-      throw Error("--integrators: unknown integrator \"" + name + "\" (backward, forward, photon)");
-  if (!(o.seconds > 0)) throw Error("--time must be positive");
+    if (std::find(physical.begin(), physical.end(), name) == physical.end())
+      throw Error("--integrators: unknown integrator \"" + name + "\" (" + known + ")");
+  if (!(o.seconds > 0) && o.passes <= 0) throw Error("--time must be positive");
   if (o.repeats < 1) throw Error("--repeats must be at least 1");
   check_directory(o.out_dir);
   Scene scene = load_scene(scene_path);
@@ -182,17 +185,16 @@ StudyResult run_convergence_study(const std::string& scene_path, const StudyOpti
   std::vector<Image> finals;
   for (size_t k = 0; k < o.integrators.size(); ++k) {
     for (int run = 0; run < o.repeats; ++run) {
-      Film film(scene.camera.width, scene.camera.height, scene.grid, false);
       IntegratorSettings settings = o.settings;
       settings.seed = o.settings.seed + run;
-      std::unique_ptr<Integrator> integrator =
-          make_integrator(o.integrators[k], cl, scene, device_scene, film, settings);
+      RenderJob job(cl, scene, device_scene, o.integrators[k], settings, false);
+      Film& film = job.film();
       RenderOptions ro;
-      ro.stop.seconds = o.seconds;
+      ro.stop = o.passes > 0 ? StopCondition{0, o.passes} : StopCondition{o.seconds, 0};
       ro.reference = reference;
       ro.keep_log = true;
       ro.show_progress = o.show_progress;
-      RenderSummary summary = render_progressive(*integrator, film, ro);
+      RenderSummary summary = job.run(ro);
       write_convergence_log((fs::path(o.out_dir) /
                              ("log_" + o.integrators[k] + "_" + std::to_string(run + 1) + ".csv"))
                                 .string(),
@@ -225,8 +227,9 @@ StudyResult run_convergence_study(const std::string& scene_path, const StudyOpti
       relmse.push_back(last.relmse);
       std::vector<LogRow> fit = without_startup(log);
       startup.push_back(startup_seconds(log));
-      slope.push_back(loglog_slope(fit, false, kSlopeFitFrom * o.seconds));
-      slope_rel.push_back(loglog_slope(fit, true, kSlopeFitFrom * o.seconds));
+      const double budget = o.passes > 0 ? last.seconds : o.seconds;
+      slope.push_back(loglog_slope(fit, false, kSlopeFitFrom * budget));
+      slope_rel.push_back(loglog_slope(fit, true, kSlopeFitFrom * budget));
       double t = time_to_reach(log, result.target);
       if (t >= 0) reach.push_back(t), ++s.reached_target;
       paths.push_back(last.camera_paths / last.seconds);

@@ -1,4 +1,4 @@
-#include "render/reference_image.h"
+#include "study/reference_image.h"
 
 #include <fstream>
 #include <functional>
@@ -7,9 +7,8 @@
 #include "core/error.h"
 #include "film/film.h"
 #include "image/exr_io.h"
-#include "render/backward_integrator.h"
 #include "render/device_scene.h"
-#include "render/progressive_render.h"
+#include "render/render_job.h"
 
 namespace kasha {
 
@@ -29,13 +28,15 @@ std::string scene_fingerprint(const std::string& scene_path) {
 Image render_reference(ClContext& cl, const Scene& scene, double seconds, unsigned seed,
                        ReferenceInfo& info, bool show_progress) {
   DeviceScene device_scene(cl, scene);
-  Film film(scene.camera.width, scene.camera.height, scene.grid, false);
-  BackwardIntegrator integrator(cl, scene, device_scene, film, 16, seed);
+  IntegratorSettings settings;
+  settings.seed = seed;
+  RenderJob job(cl, scene, device_scene, IntegratorRegistry::reference(), settings, false);
   RenderOptions options;
   options.stop.seconds = seconds;
   options.show_progress = show_progress;
-  RenderSummary summary = render_progressive(integrator, film, options);
-  info.integrator = integrator.name();
+  RenderSummary summary = job.run(options);
+  Film& film = job.film();
+  info.integrator = job.integrator().name();
   info.seconds = summary.seconds;
   info.samples_per_pixel = film.samples_per_pixel();
   info.scene_fingerprint = scene_fingerprint(scene.file);

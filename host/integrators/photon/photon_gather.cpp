@@ -1,11 +1,10 @@
-#include "render/photon_gather.h"
+#include "integrators/photon/photon_gather.h"
 
 #include <algorithm>
 #include <cmath>
 #include <nanoflann.hpp>
 
 #include "core/parallel_for.h"
-#include "photon_layout.h"
 
 namespace kasha {
 
@@ -53,24 +52,20 @@ PhotonKdTree::~PhotonKdTree() {
 
 GatherResult PhotonKdTree::gather(const float* vps, int vp_floats, size_t pixels,
                                   const std::vector<double>& radius,
-                                  const PhotonGatherLayout& L) const {
+                                  const VertexFactorLayout& L) const {
   GatherResult out;
   out.flux.assign(pixels * L.rows, 0.0);
   out.found.assign(pixels, 0);
-  const int N = L.bins, stride = impl_->cloud.stride;
+  const int stride = impl_->cloud.stride;
   const float* photons = impl_->cloud.data;
-  auto work = [&](size_t begin, size_t end) {
+  parallel_for(pixels, [&](size_t begin, size_t end) {
     std::vector<std::pair<uint32_t, float>> matches;
-    std::vector<double> rows(L.rows);
     for (size_t px = begin; px < end; ++px) {
       const float* vp = vps + px * vp_floats;
       if (vp[KASHA_VP_VALID] == 0.0f || impl_->cloud.count == 0) continue;
       const float r = static_cast<float>(radius[px]), r2 = r * r;
       impl_->tree.radiusSearch(vp, r2, matches, nanoflann::SearchParams(32, 0.0f, false));
-      std::fill(rows.begin(), rows.end(), 0.0);
-      const float* d = vp + KASHA_VP_D;
-      const float* c = vp + KASHA_VP_C(N);
-      const float* b = vp + KASHA_VP_B(N, L.rows);
+      double* rows = &out.flux[px * L.rows];
       int found = 0;
       for (const auto& [index, dist2] : matches) {
         const float* ph = photons + static_cast<size_t>(index) * stride;
@@ -81,28 +76,12 @@ GatherResult PhotonKdTree::gather(const float* vps, int vp_floats, size_t pixels
         const float off =
             (ph[0] - vp[0]) * vp[3] + (ph[1] - vp[1]) * vp[4] + (ph[2] - vp[2]) * vp[5];
         if (std::abs(off) > kGatherSlab * r) continue;
-        const float* phi = ph + KASHA_PHOTON_POWER;
         ++found;
-        if (L.spectral_film) {
-          for (int i = 0; i < N; ++i) rows[i] += static_cast<double>(d[i]) * phi[i];
-        } else {
-          for (int r = 0; r < 3; ++r) {
-            double s = 0;
-            for (int i = 0; i < N; ++i) s += static_cast<double>(L.cmf[r * N + i]) * d[i] * phi[i];
-            rows[r] += s;
-          }
-        }
-        if (L.fluorescent) {
-          double bphi = 0;
-          for (int i = 0; i < N; ++i) bphi += static_cast<double>(b[i]) * phi[i];
-          for (int r = 0; r < L.rows; ++r) rows[r] += c[r] * bphi;
-        }
+        vf_apply(L, vp, ph + KASHA_PHOTON_POWER, rows);
       }
       out.found[px] = found;
-      for (int r = 0; r < L.rows; ++r) out.flux[px * L.rows + r] = rows[r];
     }
-  };
-  parallel_for(pixels, work);
+  });
   return out;
 }
 

@@ -1,4 +1,4 @@
-#include "render/furnace.h"
+#include "study/furnace.h"
 
 #include <cmath>
 

@@ -1,11 +1,11 @@
-#include "render/disc_coverage.h"
+#include "integrators/photon/disc_coverage.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "core/parallel_for.h"
 #include "photon_layout.h"
-#include "render/photon_gather.h"
+#include "integrators/photon/photon_gather.h"
 
 namespace kasha {
 

@@ -1,4 +1,4 @@
-#include "render/convergence_log.h"
+#include "study/convergence_log.h"
 
 #include <algorithm>
 #include <cmath>

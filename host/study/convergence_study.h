@@ -7,13 +7,14 @@
 #include <string>
 #include <vector>
 
-#include "render/integrator_factory.h"
+#include "render/integrator_registry.h"
 
 namespace kasha {
 
 struct StudyOptions {
-  std::vector<std::string> integrators{"backward", "forward", "photon"};
+  std::vector<std::string> integrators = IntegratorRegistry::names(true);  // the physical ones
   double seconds = 10;
+  int passes = 0;  // > 0: every run stops after this many passes instead (tests)
   int repeats = 1;
   std::string reference;         // "furnace", an EXR, or empty: cached next to the scene
   double reference_seconds = 0;  // for a new cached reference; <= 0: 4 × seconds × integrators

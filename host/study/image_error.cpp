@@ -1,4 +1,4 @@
-#include "render/image_error.h"
+#include "study/image_error.h"
 
 #include <cmath>
 

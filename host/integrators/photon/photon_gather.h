@@ -1,21 +1,16 @@
 #pragma once
 // The gather of photon mapping on the host: a kd-tree (nanoflann) over one pass's photons, and
-// for each visible point the sum of K·Φ over the photons within its radius on the same side of the
-// surface, spread over the host's threads.
+// for each visible point the sum of K·Φ (kernels/vertex_factor.h, the same code the kernels use)
+// over the photons within its radius on the same side of the surface, on the host's threads.
 #include <cstddef>
 #include <vector>
+
+#include "vertex_factor.h"
 
 namespace kasha {
 
 // Photons count only within this fraction of the radius of a visible point's tangent plane.
 constexpr float kGatherSlab = 0.25f;
-
-struct PhotonGatherLayout {
-  int bins = 0, rows = 0;
-  bool fluorescent = false;
-  bool spectral_film = false;
-  const float* cmf = nullptr;  // 3 × N film row weights (XYZ film)
-};
 
 struct GatherResult {
   std::vector<double> flux;  // pixels × rows: Σ K·Φ over the photons found
@@ -31,7 +26,7 @@ class PhotonKdTree {
 
   // Gathers for every pixel with a valid visible point, within radius[pixel].
   GatherResult gather(const float* visible_points, int vp_floats, size_t pixels,
-                      const std::vector<double>& radius, const PhotonGatherLayout& layout) const;
+                      const std::vector<double>& radius, const VertexFactorLayout& layout) const;
 
  private:
   struct Impl;

@@ -1,0 +1,29 @@
+#pragma once
+// What one pass computes, kept apart from accumulating it into the film: sums that add up over
+// passes in a fixed order, so that passes computed elsewhere (other devices, other processes) give
+// the same image once accumulated.
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace kasha {
+
+// Photon mapping's gather in one pass, per pixel: the radius it gathered within, the photons found
+// and their flux Σ K·Φ (pixels × rows, per bin of power). The film turns these into SPPM statistics.
+struct GatherPass {
+  double alpha = 2.0 / 3.0;  // SPPM's fraction of new photons kept
+  std::vector<double> radius, flux;
+  std::vector<int> found;
+};
+
+struct PassResult {
+  int pass = 0;
+  long long samples = 0;     // samples per pixel that `sums` adds up
+  std::vector<double> sums;  // pixels × film rows
+  std::optional<GatherPass> gather;
+  // Counters that add over passes: "rejected samples", power and time figures, by name.
+  std::map<std::string, double> tallies;
+};
+
+}  // namespace kasha

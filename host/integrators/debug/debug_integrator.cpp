@@ -1,0 +1,51 @@
+// `--integrator debug`: first-hit views for checking a scene before rendering it for real.
+// "emission" estimates the directly visible emitted radiance (an unbiased estimate of that term
+// alone); "normals" shows geometric normals as colour; "albedo" the colour of each material's
+// Lambert parts under equal-energy light, fluorescence included.
+#include "core/error.h"
+#include "render/kernel_integrator.h"
+
+namespace kasha {
+
+static int debug_view(const std::string& v) {
+  if (v == "emission") return 0;
+  if (v == "normals") return 1;
+  if (v == "albedo") return 2;
+  throw Error("--view " + v + ": unknown debug view (emission, normals, albedo)");
+}
+
+class DebugIntegrator : public KernelIntegrator {
+ public:
+  explicit DebugIntegrator(const IntegratorSetup& s)
+      : KernelIntegrator(s, "debug_render.cl"),
+        view_(debug_view(s.settings.view)),
+        spp_(s.settings.spp),
+        seed_(s.settings.seed),
+        kernel_(program_, "render_debug") {
+    if (film_.spectral() && view_ != 0)
+      throw Error("--spectral: the " + s.settings.view + " view has no spectrum; use --view emission");
+  }
+
+  PassResult render_pass(int pass) override {
+    film_.clear_pixel_sums();
+    launch(kernel_, film_.pixels(), film_.pixel_sums(), view_, spp_, seed_, static_cast<cl_uint>(pass));
+    return PassResult{pass, spp_, film_.read_pixel_sums(), {}, {}};
+  }
+
+  long long camera_paths_per_pass() const override {
+    return static_cast<long long>(film_.pixels()) * spp_;
+  }
+  long long photons_per_pass() const override { return 0; }
+
+ private:
+  int view_, spp_;
+  unsigned seed_;
+  cl::Kernel kernel_;
+};
+
+KASHA_REGISTER_INTEGRATOR(DebugIntegrator, "debug",
+                          "first-hit views of the scene: emission, normals or albedo (--view)",
+                          {"--spp", "--view"}, IntegratorTraits{/*physical*/ false, /*unbiased*/ false,
+                                                                /*sees camera mirrors*/ false, /*reference*/ false});
+
+}  // namespace kasha

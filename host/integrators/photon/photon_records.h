@@ -1,0 +1,20 @@
+#pragma once
+// Bytes of photon mapping's records for a scene and film (kernels/photon_layout.h): a stored
+// photon holds (6 + N) floats, a visible point 8 + N, or 8 + 2N + R in a fluorescent scene.
+#include <cstddef>
+
+#include "photon_layout.h"
+#include "scene/scene.h"
+
+namespace kasha {
+
+inline size_t photon_record_bytes(const Scene& scene) {
+  return KASHA_PHOTON_FLOATS(scene.grid.bins) * sizeof(float);
+}
+
+inline size_t visible_point_bytes(const Scene& scene, bool spectral_film) {
+  const int rows = spectral_film ? scene.grid.bins : 3;
+  return KASHA_VP_FLOATS(scene.grid.bins, rows, scene.fluorescent()) * sizeof(float);
+}
+
+}  // namespace kasha

@@ -1,0 +1,51 @@
+#include "render/device_film.h"
+
+#include <algorithm>
+
+#include "color/cie_observer.h"
+#include "opencl/upload.h"
+
+namespace kasha {
+
+DeviceFilm::DeviceFilm(ClContext& cl, const Film& film)
+    : cl_(cl), pixels_(film.pixels()), rows_(film.rows()), spectral_(film.spectral()) {
+  const WavelengthGrid& grid = film.grid();
+  BinnedObserver obs(grid);
+  const int n = grid.bins;
+  cmf_.resize(3 * n);
+  importance_.resize(n);
+  for (int i = 0; i < n; ++i) {
+    cmf_[i] = static_cast<float>(obs.x[i] * grid.bin_nm);
+    cmf_[n + i] = static_cast<float>(obs.y[i] * grid.bin_nm);
+    cmf_[2 * n + i] = static_cast<float>(obs.z[i] * grid.bin_nm);
+    importance_[i] = cmf_[i] + cmf_[n + i] + cmf_[2 * n + i];
+  }
+  float peak = *std::max_element(importance_.begin(), importance_.end());
+  for (float& v : importance_) v += 0.05f * peak;
+  cmf_buffer_ = upload(cl, cmf_);
+  importance_buffer_ = upload(cl, importance_);
+}
+
+int DeviceFilm::bind(cl::Kernel& k, int a) const {
+  k.setArg(a++, cmf_buffer_);
+  k.setArg(a++, importance_buffer_);
+  return a;
+}
+
+cl::Buffer& DeviceFilm::pixel_sums() {
+  if (!sums_())
+    sums_ = cl::Buffer(cl_.context(), CL_MEM_READ_WRITE, pixels_ * rows_ * sizeof(float));
+  return sums_;
+}
+
+void DeviceFilm::clear_pixel_sums() {
+  cl_.queue().enqueueFillBuffer(pixel_sums(), 0.0f, 0, pixels_ * rows_ * sizeof(float));
+}
+
+std::vector<double> DeviceFilm::read_pixel_sums() {
+  std::vector<float> sums(pixels_ * rows_);
+  cl_.queue().enqueueReadBuffer(pixel_sums(), CL_TRUE, 0, sums.size() * sizeof(float), sums.data());
+  return std::vector<double>(sums.begin(), sums.end());
+}
+
+}  // namespace kasha

@@ -1,0 +1,43 @@
+#pragma once
+// The film on a device: the tables every kernel reads (the film rows' weights C and the branch
+// importance per bin), uploaded once and bound in the order of KASHA_FILM_PARAMS
+// (kernels/film_view.h), and the per-pixel sums buffer of kernels whose work items own a pixel.
+#include <vector>
+
+#include "film/film.h"
+#include "opencl/device.h"
+
+namespace kasha {
+
+class DeviceFilm {
+ public:
+  DeviceFilm(ClContext& cl, const Film& film);
+
+  size_t pixels() const { return pixels_; }
+  int rows() const { return rows_; }
+  bool spectral() const { return spectral_; }
+  // Per-bin XYZ weights (x̄ȳz̄ times the bin width), 3 × N, as the kernels read them.
+  const std::vector<float>& cmf() const { return cmf_; }
+  // Per bin, what it is worth to the film when a path chooses a branch: x̄ + ȳ + z̄ times the bin
+  // width plus 5 % of its peak, so bins no row sees directly (UV feeding fluorescence, a spectral
+  // film's edges) keep a chance and the estimator stays unbiased for every row.
+  const std::vector<float>& importance() const { return importance_; }
+
+  // Sets KASHA_FILM_PARAMS from argument `first` on; returns the next argument's index.
+  int bind(cl::Kernel& kernel, int first) const;
+
+  // pixels × rows floats that kernels add to with film_add; zeroed by clear_pixel_sums.
+  cl::Buffer& pixel_sums();
+  void clear_pixel_sums();
+  std::vector<double> read_pixel_sums();
+
+ private:
+  ClContext& cl_;
+  size_t pixels_;
+  int rows_;
+  bool spectral_;
+  std::vector<float> cmf_, importance_;
+  cl::Buffer cmf_buffer_, importance_buffer_, sums_;
+};
+
+}  // namespace kasha

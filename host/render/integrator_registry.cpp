@@ -1,0 +1,76 @@
+#include "render/integrator_registry.h"
+
+#include <algorithm>
+#include <set>
+
+#include "core/error.h"
+
+namespace kasha {
+
+std::vector<IntegratorInfo>& IntegratorRegistry::entries() {
+  static std::vector<IntegratorInfo> registry;  // filled during static initialization
+  return registry;
+}
+
+IntegratorRegistry::Registrar::Registrar(IntegratorInfo info) {
+  auto& e = entries();
+  e.insert(std::upper_bound(e.begin(), e.end(), info,
+                            [](const IntegratorInfo& a, const IntegratorInfo& b) {
+                              return a.name < b.name;
+                            }),
+           std::move(info));
+}
+
+const std::vector<IntegratorInfo>& IntegratorRegistry::all() {
+  return entries();
+}
+
+static std::string join(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+const IntegratorInfo& IntegratorRegistry::find(const std::string& name) {
+  for (const IntegratorInfo& info : entries())
+    if (info.name == name) return info;
+  throw Error("unknown integrator \"" + name + "\" (" + join(names(false)) + ")");
+}
+
+std::vector<std::string> IntegratorRegistry::names(bool physical_only) {
+  std::vector<std::string> out;
+  for (const IntegratorInfo& info : entries())
+    if (!physical_only || info.traits.physical) out.push_back(info.name);
+  return out;
+}
+
+std::string IntegratorRegistry::reference() {
+  for (const IntegratorInfo& info : entries())
+    if (info.traits.reference) return info.name;
+  throw Error("no reference integrator is registered");
+}
+
+std::unique_ptr<Integrator> IntegratorRegistry::make(const std::string& name,
+                                                     const IntegratorSetup& setup) {
+  std::unique_ptr<Integrator> integrator = find(name).make(setup);
+  integrator->name_ = name;
+  return integrator;
+}
+
+std::vector<std::string> IntegratorRegistry::options() {
+  std::set<std::string> all;
+  for (const IntegratorInfo& info : entries()) all.insert(info.options.begin(), info.options.end());
+  return {all.begin(), all.end()};
+}
+
+void IntegratorRegistry::check_options(const std::string& name,
+                                       const std::vector<std::string>& given) {
+  const IntegratorInfo& info = find(name);
+  for (const std::string& option : given)
+    if (std::find(info.options.begin(), info.options.end(), option) == info.options.end())
+      throw Error(option + ": the " + name + " integrator does not take this option" +
+                  (info.options.empty() ? std::string(" (it takes none of its own)")
+                                        : " (it takes " + join(info.options) + ")"));
+}
+
+}  // namespace kasha

@@ -1,0 +1,35 @@
+/* The film as every kernel sees it: the tables DeviceFilm uploads once (the film rows' weights C
+ * and the branch importance u per bin). Kernels take KASHA_FILM_PARAMS after the scene's and
+ * gather them into one FilmView with KASHA_FILM_VIEW. Defines: KASHA_BINS, KASHA_FILM_ROWS,
+ * KASHA_SPECTRAL_FILM. */
+#ifndef KASHA_FILM_VIEW_H
+#define KASHA_FILM_VIEW_H
+
+#include "spectral_product.h"
+
+typedef struct {
+  const __global float* cmf;        /* 3 × N: x̄ȳz̄ of each bin times its width */
+  const __global float* importance; /* N: what a bin is worth to the film, for branch choices */
+} FilmView;
+
+#define KASHA_FILM_PARAMS __global const float *cmf, __global const float *importance
+#define KASHA_FILM_VIEW(name) FilmView name = {cmf, importance}
+
+/* rows += scale · C·(x∘y∘z), each factor null for ones (spectral_product.h). */
+inline void film_rows(const FilmView* f, const float* x, const __global float* y, const __global float* z,
+                      float scale, float* rows) {
+  film_rows_add(f->cmf, KASHA_SPECTRAL_FILM, KASHA_BINS, x, y, z, scale, rows);
+}
+
+inline void film_rows_clear(float* rows) {
+  for (int r = 0; r < KASHA_FILM_ROWS; ++r) rows[r] = 0.0f;
+}
+
+/* Adds a work item's rows to its own pixel of a pass's per-pixel sums (no other item writes
+ * there, so no atomics). */
+inline void film_add(__global float* sums, int pixel, const float* rows) {
+  __global float* cell = sums + (long)pixel * KASHA_FILM_ROWS;
+  for (int r = 0; r < KASHA_FILM_ROWS; ++r) cell[r] += rows[r];
+}
+
+#endif

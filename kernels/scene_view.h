@@ -1,0 +1,41 @@
+/* The scene as every kernel sees it: camera, BVH, materials and their spectra, emitters and the
+ * light-sampling tables. Kernels take KASHA_SCENE_PARAMS first (DeviceScene::bind sets them in
+ * this order) and gather them into one SceneView with KASHA_SCENE_VIEW, which every routine takes. */
+#ifndef KASHA_SCENE_VIEW_H
+#define KASHA_SCENE_VIEW_H
+
+#include "shared_types.h"
+
+typedef struct {
+  KCamera camera;
+  const __global KBvhNode* nodes;
+  const __global KTriangle* tris;
+  const __global KMaterial* materials;
+  const __global float* spectra; /* material spectra; the first N values are zeros */
+  const __global float* lobes;
+  const __global float* emitter_radiance; /* emitters × N */
+  const __global float* emitter_area_pdf;
+  const __global int* light_tri;
+  const __global float* light_cdf;
+  int light_count;
+  float bin_nm;
+  float ray_eps; /* offset of secondary ray origins */
+} SceneView;
+
+#define KASHA_SCENE_PARAMS                                                                                    \
+  KCamera camera, __global const KBvhNode *nodes, __global const KTriangle *tris,                             \
+      __global const KMaterial *materials, __global const float *spectra, __global const float *lobes,        \
+      __global const float *emitter_radiance, __global const float *emitter_area_pdf,                         \
+      __global const int *light_tri, __global const float *light_cdf, int light_count, float bin_nm,          \
+      float ray_eps
+
+#define KASHA_SCENE_VIEW(name)                                                                                 \
+  SceneView name = {camera,          nodes,     tris,      materials,   spectra, lobes, emitter_radiance,       \
+                    emitter_area_pdf, light_tri, light_cdf, light_count, bin_nm,  ray_eps}
+
+/* An emitter's spectral radiance, N values. */
+inline const __global float* emitter_spectrum(const SceneView* s, int emitter) {
+  return s->emitter_radiance + emitter * KASHA_BINS;
+}
+
+#endif
