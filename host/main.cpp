@@ -13,8 +13,10 @@ using namespace kasha;
 
 // The options of IntegratorSettings, each read by the integrators that list it in the registry.
 static void add_integrator_options(CLI::App* app, IntegratorSettings& s) {
-  app->add_option("--spp", s.spp, "camera samples per pixel per pass")->check(CLI::Range(1, 1 << 20));
-  app->add_option("--photons", s.photons, "photons per pass")->check(CLI::Range(1LL, (1LL << 31) - 1));
+  app->add_option("--spp", s.spp, "camera samples per pixel per pass")
+      ->check(CLI::Range(1, 1 << 20));
+  app->add_option("--photons", s.photons, "photons per pass")
+      ->check(CLI::Range(1LL, (1LL << 31) - 1));
   app->add_option("--alpha", s.alpha, "photon mapping: radius reduction α (default 2/3)")
       ->check(CLI::Range(0.01, 0.99));
   app->add_option("--radius", s.radius,
@@ -92,7 +94,8 @@ int main(int argc, char** argv) {
   CLI::App* converge =
       app.add_subcommand("converge", "error against run time for several integrators");
   converge->add_option("scene", converge_scene, "scene JSON file")->required();
-  converge->add_option("--integrators", integrators, "comma-separated (default: every physical one)");
+  converge->add_option("--integrators", integrators,
+                       "comma-separated (default: every physical one)");
   converge->add_option("--time", study.seconds, "rendering seconds per integrator and run")
       ->required();
   converge->add_option("--reference", study.reference,

@@ -32,8 +32,8 @@ inline float3 branch_probabilities(const PathWeight* p, const FilmView* f, const
 /* Next-event estimation at x (shading normal ns on the viewer's side, wo towards the viewer). */
 inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* f, const Surface* surf, float3 x,
                        float3 ns, float3 wo, float3 probs, Rng* rng, float* rows) {
-  LightPoint lp = sample_light(s->tris, s->light_tri, s->light_cdf, s->light_count, rng_next_float(rng),
-                               rng_next_float(rng), rng_next_float(rng));
+  float3 u = rng_next_float3(rng);
+  LightPoint lp = sample_light(s->tris, s->light_tri, s->light_cdf, s->light_count, u.x, u.y, u.z);
   float3 to = lp.position - x;
   float dist = length(to);
   if (!(dist > 2.0f * s->ray_eps)) return;
@@ -137,15 +137,12 @@ __kernel void render_backward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
   KASHA_FILM_VIEW(f);
   int pixel = get_global_id(0);
   if (pixel >= camera.width * camera.height) return;
-  int px = pixel % camera.width, py = pixel / camera.width;
   Rng rng = rng_seed(seed, pass, (uint)pixel);
   int bad = 0;
-  float3 org = camera_position(&camera);
   for (int k = 0; k < spp; ++k) {
-    float3 dir = camera_direction(&camera, px + rng_next_float(&rng), py + rng_next_float(&rng));
     float rows[KASHA_FILM_ROWS];
     film_rows_clear(rows);
-    trace_camera_path(&s, &f, org, dir, &rng, rows);
+    trace_camera_path(&s, &f, camera_position(&camera), camera_sample(&camera, pixel, &rng), &rng, rows);
     bool finite = true;
     for (int r = 0; r < KASHA_FILM_ROWS; ++r) finite = finite && isfinite(rows[r]);
     if (finite)

@@ -2,6 +2,7 @@
 #ifndef KASHA_CAMERA_H
 #define KASHA_CAMERA_H
 
+#include "rng.h"
 #include "shared_types.h"
 
 /* Direction through image position (x, y) in pixels, (0, 0) the top-left corner. */
@@ -16,6 +17,14 @@ inline float3 camera_direction(const KCamera* c, float x, float y) {
 
 inline float3 camera_position(const KCamera* c) {
   return (float3)(c->position[0], c->position[1], c->position[2]);
+}
+
+/* A primary ray direction through a uniformly jittered point of pixel `pixel` (row-major). */
+inline float3 camera_sample(const KCamera* c, int pixel, Rng* rng) {
+  int px = pixel % c->width, py = pixel / c->width;
+  float u = rng_next_float(rng); /* in this order on every compiler: arguments have none */
+  float v = rng_next_float(rng);
+  return camera_direction(c, px + u, py + v);
 }
 
 #endif

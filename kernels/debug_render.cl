@@ -27,16 +27,12 @@ __kernel void render_debug(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
   KASHA_FILM_VIEW(f);
   int pixel = get_global_id(0);
   if (pixel >= camera.width * camera.height) return;
-  int px = pixel % camera.width, py = pixel / camera.width;
   Rng rng = rng_seed(seed, pass, (uint)pixel);
   float rows[KASHA_FILM_ROWS];
   film_rows_clear(rows);
-  float3 org = camera_position(&camera);
-
   for (int k = 0; k < spp; ++k) {
-    float3 dir = camera_direction(&camera, px + rng_next_float(&rng), py + rng_next_float(&rng));
     HitPoint h;
-    if (!intersect_scene(&s, org, dir, &h)) continue;
+    if (!intersect_scene(&s, camera_position(&camera), camera_sample(&camera, pixel, &rng), &h)) continue;
     if (view == VIEW_EMISSION) {
       /* Emitters radiate from their front side only. */
       if (h.emitter >= 0 && h.front) film_rows(&f, 0, emitter_spectrum(&s, h.emitter), 0, 1.0f, rows);

@@ -57,9 +57,8 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
   film_rows_clear(rows);
   /* A seed stream apart from the photons' (whose items count photons, not pixels). */
   Rng rng = rng_seed(seed ^ 0x5bd1e995u, pass, (uint)pixel);
-  int px = pixel % camera.width, py = pixel / camera.width;
   float3 org = camera_position(&camera);
-  float3 dir = camera_direction(&camera, px + rng_next_float(&rng), py + rng_next_float(&rng));
+  float3 dir = camera_sample(&camera, pixel, &rng);
   float w[KASHA_BINS];
   for (int i = 0; i < KASHA_BINS; ++i) w[i] = 1.0f;
   float travelled = 0.0f;
@@ -102,8 +101,8 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
       dir = mirror;
     } else {
       float pdf;
-      float3 wi =
-          sample_lobe(surf.m, lobes, mirror, rng_next_float(&rng), rng_next_float(&rng), rng_next_float(&rng), &pdf);
+      float3 u = rng_next_float3(&rng);
+      float3 wi = sample_lobe(surf.m, lobes, mirror, u.x, u.y, u.z, &pdf);
       float ci = dot(wi, ns), co = dot(wo, ns);
       if (ci <= 0.0f) break;
       weight *= 2.0f * ci / (ci + co);

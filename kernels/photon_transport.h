@@ -33,11 +33,12 @@ typedef struct {
  * direction; its spectrum is the emitter's radiance scaled so that the `photons` of a pass carry
  * the lights' total power: Φ_i = Le_i Δλ · π / (p_area · photons). */
 inline Photon emit_photon(const SceneView* s, float photons, Rng* rng, LightOrigin* origin) {
-  LightPoint lp = sample_light(s->tris, s->light_tri, s->light_cdf, s->light_count, rng_next_float(rng),
-                               rng_next_float(rng), rng_next_float(rng));
+  float3 u = rng_next_float3(rng);
+  LightPoint lp = sample_light(s->tris, s->light_tri, s->light_cdf, s->light_count, u.x, u.y, u.z);
   Photon p;
   p.position = lp.position;
-  p.direction = sample_cosine_hemisphere(lp.normal, rng_next_float(rng), rng_next_float(rng));
+  float2 d = rng_next_float2(rng);
+  p.direction = sample_cosine_hemisphere(lp.normal, d.x, d.y);
   origin->normal = lp.normal;
   origin->emitter = lp.emitter;
   origin->area_pdf = s->emitter_area_pdf[lp.emitter];

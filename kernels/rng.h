@@ -19,6 +19,18 @@ inline uint rng_next_uint(Rng* r) {
 /* Uniform in [0, 1). */
 inline float rng_next_float(Rng* r) { return (float)(rng_next_uint(r) >> 8) * (1.0f / 16777216.0f); }
 
+/* Two and three numbers in a fixed order (function arguments are evaluated in none). */
+inline float2 rng_next_float2(Rng* r) {
+  float a = rng_next_float(r);
+  float b = rng_next_float(r);
+  return (float2)(a, b);
+}
+inline float3 rng_next_float3(Rng* r) {
+  float2 ab = rng_next_float2(r);
+  float c = rng_next_float(r);
+  return (float3)(ab.x, ab.y, c);
+}
+
 inline Rng rng_seed(uint seed, uint pass, uint item) {
   Rng r;
   r.state = 0UL;

@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "study/furnace.h"
 #include "render_support.h"
+#include "study/furnace.h"
 #include "test_support.h"
 
 using namespace kasha;

@@ -45,10 +45,12 @@ TEST(Cli, LogHasARowPerPassWithErrorsAgainstAReference) {
   std::string ref = (test::scratch_dir() / "ref.exr").string(),
               out = (test::scratch_dir() / "o.exr").string();
   std::string log = (test::scratch_dir() / "log.csv").string();
-  ASSERT_EQ(run_kasha("render " + scene + " --passes 1 --photons 65536 -o " + shell_quoted(ref)).exit_code,
+  ASSERT_EQ(run_kasha("render " + scene + " --passes 1 --photons 65536 -o " + shell_quoted(ref))
+                .exit_code,
             0);
-  auto r = run_kasha("render " + scene + " --passes 3 --photons 4096 --seed 9 -o " + shell_quoted(out) +
-                     " --reference " + shell_quoted(ref) + " --log " + shell_quoted(log));
+  auto r =
+      run_kasha("render " + scene + " --passes 3 --photons 4096 --seed 9 -o " + shell_quoted(out) +
+                " --reference " + shell_quoted(ref) + " --log " + shell_quoted(log));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::ifstream in(log);
   std::string line;
@@ -87,12 +89,14 @@ TEST(Cli, BadInputsGiveOneLineAndNoOutput) {
   expect_one_line_error(
       run_kasha("render " + scene + " --passes 1 --view normals -o " + shell_quoted(out)),
       "--view: the photon integrator does not take this option");
-  expect_one_line_error(run_kasha("render " + scene + " --integrator backward --alpha 0.5 --passes 1 -o " +
-                                  shell_quoted(out)),
-                        "--alpha: the backward integrator does not take this option (it takes --spp)");
-  expect_one_line_error(run_kasha("render " + scene + " --integrator forward --edge-correction --passes 1 -o " +
-                                  shell_quoted(out)),
-                        "--edge-correction: the forward integrator does not take this option");
+  expect_one_line_error(
+      run_kasha("render " + scene + " --integrator backward --alpha 0.5 --passes 1 -o " +
+                shell_quoted(out)),
+      "--alpha: the backward integrator does not take this option (it takes --spp)");
+  expect_one_line_error(
+      run_kasha("render " + scene + " --integrator forward --edge-correction --passes 1 -o " +
+                shell_quoted(out)),
+      "--edge-correction: the forward integrator does not take this option");
   expect_one_line_error(
       run_kasha("render " + scene + " --integrator debug --passes 1 --view normals --spectral -o " +
                 shell_quoted(out)),

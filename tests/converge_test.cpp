@@ -2,8 +2,8 @@
 // promises, and bad arguments give one clear line.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 
 #include "study/convergence_log.h"
@@ -25,7 +25,8 @@ double slope_over_passes(const std::vector<LogRow>& log, bool relative) {
     }
   double mx = 0, my = 0, sxy = 0, sxx = 0;
   for (size_t i = 0; i < x.size(); ++i) mx += x[i] / x.size(), my += y[i] / y.size();
-  for (size_t i = 0; i < x.size(); ++i) sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
+  for (size_t i = 0; i < x.size(); ++i)
+    sxy += (x[i] - mx) * (y[i] - my), sxx += (x[i] - mx) * (x[i] - mx);
   return sxy / sxx;
 }
 }  // namespace
@@ -49,7 +50,8 @@ TEST(Converge, FurnaceSlopesMatchTheory) {
     EXPECT_NEAR(slope, theory, 0.1) << s.integrator;
     EXPECT_NEAR(slope_rel, 2 * theory, 0.2) << s.integrator;
     EXPECT_EQ(s.reached_target, 1) << s.integrator;  // the worst final RMSE is every run's target
-    std::printf("  %s: RMSE slope %.3f, relMSE slope %.3f over passes\n", s.integrator.c_str(), slope, slope_rel);
+    std::printf("  %s: RMSE slope %.3f, relMSE slope %.3f over passes\n", s.integrator.c_str(),
+                slope, slope_rel);
   }
   for (const char* f :
        {"summary.md", "summary.csv", "convergence.png", "images.png", "log_backward_1.csv",

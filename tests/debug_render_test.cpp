@@ -6,8 +6,8 @@
 
 #include "color/cie_observer.h"
 #include "film/film.h"
-#include "render/render_job.h"
 #include "render/device_scene.h"
+#include "render/render_job.h"
 #include "scene/scene.h"
 #include "test_support.h"
 

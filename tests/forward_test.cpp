@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "study/furnace.h"
 #include "render_support.h"
+#include "study/furnace.h"
 #include "test_support.h"
 
 using namespace kasha;
@@ -20,8 +20,10 @@ TEST(Forward, PowerIsConservedInAClosedScene) {
   s.integrator_settings.max_depth = 3;
   for (const char* scene : {"furnace_fluorescent.json", "furnace_mirror.json", "furnace_uv.json"}) {
     RenderResult r = render_scene(source_path(std::string("scenes/") + scene), s);
-    const double emitted = r.tallies.at("power emitted (W)"), absorbed = r.tallies.at("power absorbed (W)"),
-                 escaped = r.tallies.at("power escaped (W)"), in_flight = r.tallies.at("power in flight (W)");
+    const double emitted = r.tallies.at("power emitted (W)"),
+                 absorbed = r.tallies.at("power absorbed (W)"),
+                 escaped = r.tallies.at("power escaped (W)"),
+                 in_flight = r.tallies.at("power in flight (W)");
     EXPECT_NEAR(absorbed + in_flight, emitted, 1e-5 * emitted) << scene;
     EXPECT_EQ(escaped, 0) << scene;
     EXPECT_GT(in_flight, 0.05 * emitted) << scene;  // the cut leaves photons in flight

@@ -91,7 +91,8 @@ TEST(Film, AveragesPassesAndDerivesXyzFromBins) {
 
 TEST(Film, PhotonGathersFollowStochasticProgressivePhotonMapping) {
   // One pixel, XYZ film. Pass 1 finds 4 photons in radius 2, pass 2 finds none, pass 3 finds 8:
-  // n = 0 + 4α, R² = 4·4α/4, τ = φ1·R²/4; then n = 4α + 8α, R'² = R²(12α)/(4α + 8), τ' = (τ + φ3)·R'²/R².
+  // n = 0 + 4α, R² = 4·4α/4, τ = φ1·R²/4; then n = 4α + 8α, R'² = R²(12α)/(4α + 8), τ' = (τ +
+  // φ3)·R'²/R².
   WavelengthGrid g{380, 10, 40};
   Film film(1, 1, g, false);
   const double alpha = 0.5;

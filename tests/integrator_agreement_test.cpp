@@ -4,7 +4,8 @@
 // estimation, forward splats towards the camera and photon mapping follows from the camera).
 // Regions are the pixels whose centre sees each material or the lamp (found with Embree). An
 // unbiased integrator must agree within 4 standard errors of the difference, in every region and
-// in every 6 × 6 block; a consistent one within a few per cent, what its bias leaves at this budget.
+// in every 6 × 6 block; a consistent one within a few per cent, what its bias leaves at this
+// budget.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,6 +24,10 @@ struct AgreementCase {
   double tolerance;  // relative, per region and row
 };
 
+void PrintTo(const AgreementCase& c, std::ostream* os) {
+  *os << c.integrator << " on " << c.scene;
+}
+
 std::vector<AgreementCase> all_cases() {
   std::vector<AgreementCase> cases;
   for (const std::string& integrator : IntegratorRegistry::names(true)) {
@@ -39,7 +44,8 @@ class IntegratorAgreement : public ::testing::TestWithParam<AgreementCase> {};
 TEST_P(IntegratorAgreement, RegionsMatchTheReferenceIntegrator) {
   const AgreementCase& c = GetParam();
   const bool unbiased = IntegratorRegistry::find(c.integrator).traits.unbiased;
-  ComparedRenders pair = render_against_backward(c.scene, c.integrator, 24, unbiased ? 1 << 19 : 1 << 17);
+  ComparedRenders pair =
+      render_against_backward(c.scene, c.integrator, 24, unbiased ? 1 << 19 : 1 << 17);
   const RenderResult &tested = pair.tested, &ref = pair.backward;
   const Camera& cam = pair.camera;
 
@@ -48,9 +54,11 @@ TEST_P(IntegratorAgreement, RegionsMatchTheReferenceIntegrator) {
   for (const auto& [name, pixels] : regions) {
     BinStats t = pixel_statistics(tested.image, false, pixels);
     BinStats d = difference_statistics(tested.image, ref.image, false, pixels);
-    std::printf("  %-13s %s/%s - 1: X %+.2f %%, Y %+.2f %%, Z %+.2f %%\n", name.c_str(), c.integrator.c_str(),
-                IntegratorRegistry::reference().c_str(), 100 * d.mean[0] / (t.mean[0] - d.mean[0]),
-                100 * d.mean[1] / (t.mean[1] - d.mean[1]), 100 * d.mean[2] / (t.mean[2] - d.mean[2]));
+    std::printf("  %-13s %s/%s - 1: X %+.2f %%, Y %+.2f %%, Z %+.2f %%\n", name.c_str(),
+                c.integrator.c_str(), IntegratorRegistry::reference().c_str(),
+                100 * d.mean[0] / (t.mean[0] - d.mean[0]),
+                100 * d.mean[1] / (t.mean[1] - d.mean[1]),
+                100 * d.mean[2] / (t.mean[2] - d.mean[2]));
     for (int k = 0; k < 3; ++k) {
       double b = t.mean[k] - d.mean[k];
       EXPECT_LT(std::abs(d.mean[k]), c.tolerance * b)
@@ -66,16 +74,19 @@ TEST_P(IntegratorAgreement, RegionsMatchTheReferenceIntegrator) {
     for (int bx = 0; bx < cam.width / 6; ++bx) {
       std::vector<size_t> block;
       for (int y = 6 * by; y < 6 * by + 6; ++y)
-        for (int x = 6 * bx; x < 6 * bx + 6; ++x) block.push_back(static_cast<size_t>(y) * cam.width + x);
+        for (int x = 6 * bx; x < 6 * bx + 6; ++x)
+          block.push_back(static_cast<size_t>(y) * cam.width + x);
       BinStats d = difference_statistics(tested.image, ref.image, false, block);
       for (int k = 0; k < 3; ++k)
-        EXPECT_LE(std::abs(d.mean[k]), 5 * d.standard_error[k]) << "block " << bx << "," << by << " row " << k;
+        EXPECT_LE(std::abs(d.mean[k]), 5 * d.standard_error[k])
+            << "block " << bx << "," << by << " row " << k;
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(Registry, IntegratorAgreement, ::testing::ValuesIn(all_cases()), [](const auto& info) {
-  const AgreementCase& c = info.param;
-  return c.integrator + "_" + c.scene.substr(0, c.scene.size() - 5);
-});
+INSTANTIATE_TEST_SUITE_P(Registry, IntegratorAgreement, ::testing::ValuesIn(all_cases()),
+                         [](const auto& info) {
+                           const AgreementCase& c = info.param;
+                           return c.integrator + "_" + c.scene.substr(0, c.scene.size() - 5);
+                         });
 
 }  // namespace

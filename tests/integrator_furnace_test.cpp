@@ -25,6 +25,10 @@ struct FurnaceCase {
   bool fine_grid;  // 1 nm bins over 300–780 nm
 };
 
+void PrintTo(const FurnaceCase& c, std::ostream* os) {
+  *os << c.integrator << " in " << c.scene << (c.fine_grid ? " at 1 nm" : " at 10 nm");
+}
+
 std::vector<FurnaceCase> all_cases() {
   std::vector<FurnaceCase> cases;
   for (const std::string& integrator : IntegratorRegistry::names(true))
@@ -35,12 +39,12 @@ std::vector<FurnaceCase> all_cases() {
 
 // A second camera placement per furnace: another position, direction and aspect.
 Camera second_camera(const std::string& scene) {
-  static const std::map<std::string, std::pair<std::array<double, 3>, std::array<double, 3>>> placements = {
-      {"furnace_passive.json", {{-1.2, 0.8, 0.4}, {0, -1, 0}}},
-      {"furnace_fluorescent.json", {{0.8, -0.8, 1.8}, {-1, 1, -1}}},
-      {"furnace_uv.json", {{0.7, 0.7, 0.0}, {-1, 0, 1}}},
-      {"furnace_self_absorption.json", {{-0.9, 0.9, 1.4}, {1, -1, -1}}},
-      {"furnace_mirror.json", {{0.5, -0.5, 0.3}, {-1, 0, 0}}}};
+  static const std::map<std::string, std::pair<std::array<double, 3>, std::array<double, 3>>>
+      placements = {{"furnace_passive.json", {{-1.2, 0.8, 0.4}, {0, -1, 0}}},
+                    {"furnace_fluorescent.json", {{0.8, -0.8, 1.8}, {-1, 1, -1}}},
+                    {"furnace_uv.json", {{0.7, 0.7, 0.0}, {-1, 0, 1}}},
+                    {"furnace_self_absorption.json", {{-0.9, 0.9, 1.4}, {1, -1, -1}}},
+                    {"furnace_mirror.json", {{0.5, -0.5, 0.3}, {-1, 0, 0}}}};
   Camera c;
   c.position = placements.at(scene).first;
   c.look_at = placements.at(scene).second;
@@ -97,7 +101,8 @@ class IntegratorFurnace : public ::testing::TestWithParam<FurnaceCase> {
         for (double& v : truth) v *= 1 - m.gloss_reflectance();
     }
 
-    std::vector<double> rms;  // consistent integrators: per-pixel error after 1, 4, 16 passes and at the end
+    std::vector<double>
+        rms;  // consistent integrators: per-pixel error after 1, 4, 16 passes and at the end
     int passes = 0;
     if (info.traits.unbiased) {
       // Passes until the image mean's standard error is 0.2 % in every lit bin (at most 200).
@@ -110,16 +115,20 @@ class IntegratorFurnace : public ::testing::TestWithParam<FurnaceCase> {
       s.passes = c.fine_grid ? 24 : 40;
       s.after_pass = [&](int pass, const Image& img) {
         passes = pass;
-        if (pass == 1 || pass == 4 || pass == 16 || pass == s.passes) rms.push_back(pixel_rms_error(img, truth));
+        if (pass == 1 || pass == 4 || pass == 16 || pass == s.passes)
+          rms.push_back(pixel_rms_error(img, truth));
       };
     }
     RenderResult r = render_scene(path, s);
-    std::printf("  %s, %s%s: %d passes, worst error bar %.4f\n", c.integrator.c_str(), c.scene.c_str(),
-                camera ? " (second camera)" : "", passes, worst_relative_error_bar(r.image, truth));
-    expect_bins_match(r, truth, info.traits.unbiased ? 0.01 : 0.02, c.integrator + " " + c.scene, info.traits.unbiased);
+    std::printf("  %s, %s%s: %d passes, worst error bar %.4f\n", c.integrator.c_str(),
+                c.scene.c_str(), camera ? " (second camera)" : "", passes,
+                worst_relative_error_bar(r.image, truth));
+    expect_bins_match(r, truth, info.traits.unbiased ? 0.01 : 0.02, c.integrator + " " + c.scene,
+                      info.traits.unbiased);
     if (!info.traits.unbiased) {
       ASSERT_EQ(rms.size(), 4u);
-      for (size_t k = 1; k < rms.size(); ++k) EXPECT_LT(rms[k], rms[k - 1]) << "the per-pixel error falls with passes";
+      for (size_t k = 1; k < rms.size(); ++k)
+        EXPECT_LT(rms[k], rms[k - 1]) << "the per-pixel error falls with passes";
     }
   }
 };
@@ -129,9 +138,11 @@ TEST_P(IntegratorFurnace, EveryBinMatchesTheAnalyticValue) {
   if (!GetParam().fine_grid) check(second_camera(GetParam().scene));
 }
 
-INSTANTIATE_TEST_SUITE_P(Registry, IntegratorFurnace, ::testing::ValuesIn(all_cases()), [](const auto& info) {
-  const FurnaceCase& c = info.param;
-  return c.integrator + "_" + c.scene.substr(8, c.scene.size() - 13) + (c.fine_grid ? "_1nm" : "_10nm");
-});
+INSTANTIATE_TEST_SUITE_P(Registry, IntegratorFurnace, ::testing::ValuesIn(all_cases()),
+                         [](const auto& info) {
+                           const FurnaceCase& c = info.param;
+                           return c.integrator + "_" + c.scene.substr(8, c.scene.size() - 13) +
+                                  (c.fine_grid ? "_1nm" : "_10nm");
+                         });
 
 }  // namespace

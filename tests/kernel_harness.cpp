@@ -49,6 +49,14 @@ void TestKernel::run(size_t items) {
   cl_.queue().finish();
 }
 
+std::vector<float> TestKernel::sample(int in, const std::vector<float>& uniforms, int out,
+                                      size_t per_item, size_t items) {
+  input(in, uniforms);
+  output(out, per_item * items);
+  run(items);
+  return read(out);
+}
+
 std::vector<float> TestKernel::read(int index) {
   auto it = output_count_.find(index);
   if (it == output_count_.end())

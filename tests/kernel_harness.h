@@ -41,6 +41,10 @@ class TestKernel {
   void run(size_t items);
   // The contents of output buffer `index` after run().
   std::vector<float> read(int index);
+  // The usual sampling run: `uniforms` as argument `in`, `per_item` floats out per work item as
+  // argument `out`, `items` work items; returns what they wrote.
+  std::vector<float> sample(int in, const std::vector<float>& uniforms, int out, size_t per_item,
+                            size_t items);
 
  private:
   void set_buffer(int index, cl::Buffer buffer);

@@ -191,11 +191,7 @@ TEST(KernelSampling, CosineHemisphereFitsItsDensity) {
     std::vector<float> n = {float(normal.x()), float(normal.y()), float(normal.z())};
     const Vector3d nf(n[0], n[1], n[2]);  // the normal as the device has it
     kernel.input(0, n);
-    kernel.input(1, uniforms(2 * kSamples, seed++));
-    kernel.output(2, 4 * kSamples);
-    kernel.run(kSamples);
-    std::vector<float> out = kernel.read(2);
-
+    std::vector<float> out = kernel.sample(1, uniforms(2 * kSamples, seed++), 2, 4, kSamples);
     Vector3d s, t;
     frame(nf.normalized(), s, t);
     std::vector<double> observed(kCos * kPhi, 0.0), expected(kCos * kPhi), uniform(kCos * kPhi);
@@ -295,11 +291,7 @@ TEST(KernelSampling, GlossLobeFitsItsTable) {
     std::vector<float> mf = {float(mirror.x()), float(mirror.y()), float(mirror.z())};
     const Vector3d md(mf[0], mf[1], mf[2]);
     kernel.input(2, mf);
-    kernel.input(3, uniforms(3 * kSamples, seed++));
-    kernel.output(4, 5 * kSamples);
-    kernel.run(kSamples);
-    std::vector<float> out = kernel.read(4);
-
+    std::vector<float> out = kernel.sample(3, uniforms(3 * kSamples, seed++), 4, 5, kSamples);
     Vector3d s, t;
     frame(md.normalized(), s, t);
     std::vector<double> observed(expected.size(), 0.0);
@@ -376,10 +368,7 @@ TEST(KernelSampling, TriangleIsUniformOverItsArea) {
   constexpr size_t kSamples = 500000;
   constexpr int kGrid = 16;
   TestKernel kernel(kTriangleSource, "triangle_test.cl", "triangle");
-  kernel.input(0, uniforms(2 * kSamples, 7));
-  kernel.output(1, 2 * kSamples);
-  kernel.run(kSamples);
-  std::vector<float> out = kernel.read(1);
+  std::vector<float> out = kernel.sample(0, uniforms(2 * kSamples, 7), 1, 2, kSamples);
 
   std::vector<double> observed(kGrid * kGrid + 1, 0.0);  // the last cell: outside
   for (size_t i = 0; i < kSamples; ++i) {
@@ -476,10 +465,7 @@ TEST(KernelSampling, LightsByPowerAndUniformOnEach) {
   kernel.scalar(3, lights);
   kernel.input(4, emitter_area_pdf);
   kernel.input(5, std::vector<float>{float(x.x()), float(x.y()), float(x.z())});
-  kernel.input(6, uniforms(3 * kSamples, 42));
-  kernel.output(7, 8 * kSamples);
-  kernel.run(kSamples);
-  std::vector<float> out = kernel.read(7);
+  std::vector<float> out = kernel.sample(6, uniforms(3 * kSamples, 42), 7, 8, kSamples);
 
   const int cells = kGrid * kGrid;
   std::vector<double> observed(lights * cells + 1, 0.0), chosen(lights, 0.0);

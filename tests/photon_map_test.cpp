@@ -6,8 +6,8 @@
 
 #include "integrators/photon/photon_records.h"
 #include "render/device_scene.h"
-#include "study/furnace.h"
 #include "render_support.h"
+#include "study/furnace.h"
 #include "test_support.h"
 
 using namespace kasha;

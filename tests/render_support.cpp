@@ -79,7 +79,7 @@ void expect_bins_match(const RenderResult& r, const std::vector<double>& truth, 
     if (unbiased) {
       EXPECT_LT(std::abs(s.mean[i] - truth[i]), 4 * s.standard_error[i] + 1e-6 * truth[i])
           << label << " bin " << nm << " nm: " << s.mean[i] << " vs " << truth[i] << " ± "
-        << s.standard_error[i];
+          << s.standard_error[i];
     }
     EXPECT_LT(std::abs(s.mean[i] - truth[i]), tolerance * truth[i])
         << label << " bin " << nm << " nm";

@@ -19,7 +19,7 @@ struct RenderResult {
   Scene scene;
   Image image;
   long long rejected = 0;
-  std::map<std::string, double> tallies;          // the film's counters (PassResult::tallies)
+  std::map<std::string, double> tallies;         // the film's counters (PassResult::tallies)
   std::map<std::string, size_t> device_buffers;  // the integrator's
 };
 
@@ -32,8 +32,8 @@ struct RenderSettings {
   std::function<void(int, const Image&)> after_pass;
   // Called after every pass too: rendering stops early once it returns true.
   std::function<bool(int, const Image&)> until;
-  std::optional<Camera> camera;                // replaces the scene's camera
-  std::optional<GridRequest> grid;             // replaces the scene's wavelength grid
+  std::optional<Camera> camera;     // replaces the scene's camera
+  std::optional<GridRequest> grid;  // replaces the scene's wavelength grid
 };
 
 RenderResult render_scene(const std::string& path, const RenderSettings& settings);

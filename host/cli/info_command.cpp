@@ -2,9 +2,9 @@
 
 #include <cstdio>
 
+#include "integrators/photon/photon_records.h"
 #include "opencl/device.h"
 #include "render/device_scene.h"
-#include "integrators/photon/photon_records.h"
 #include "scene/scene.h"
 
 namespace kasha {

@@ -10,7 +10,8 @@
 namespace kasha {
 
 // Photon mapping's gather in one pass, per pixel: the radius it gathered within, the photons found
-// and their flux Σ K·Φ (pixels × rows, per bin of power). The film turns these into SPPM statistics.
+// and their flux Σ K·Φ (pixels × rows, per bin of power). The film turns these into SPPM
+// statistics.
 struct GatherPass {
   double alpha = 2.0 / 3.0;  // SPPM's fraction of new photons kept
   std::vector<double> radius, flux;

@@ -6,7 +6,11 @@
 namespace kasha {
 
 SppmStatistics::SppmStatistics(size_t pixels, int rows)
-    : pixels_(pixels), rows_(rows), radius_(pixels, 0.0), count_(pixels, 0.0), tau_(pixels * rows, 0.0) {}
+    : pixels_(pixels),
+      rows_(rows),
+      radius_(pixels, 0.0),
+      count_(pixels, 0.0),
+      tau_(pixels * rows, 0.0) {}
 
 void SppmStatistics::update(const GatherPass& g) {
   if (g.radius.size() != pixels_ || g.found.size() != pixels_ || g.flux.size() != pixels_ * rows_)

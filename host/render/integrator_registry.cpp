@@ -14,10 +14,9 @@ std::vector<IntegratorInfo>& IntegratorRegistry::entries() {
 
 IntegratorRegistry::Registrar::Registrar(IntegratorInfo info) {
   auto& e = entries();
-  e.insert(std::upper_bound(e.begin(), e.end(), info,
-                            [](const IntegratorInfo& a, const IntegratorInfo& b) {
-                              return a.name < b.name;
-                            }),
+  e.insert(std::upper_bound(
+               e.begin(), e.end(), info,
+               [](const IntegratorInfo& a, const IntegratorInfo& b) { return a.name < b.name; }),
            std::move(info));
 }
 

@@ -20,17 +20,17 @@ namespace kasha {
 
 // Every integrator's settings, filled by name; each integrator reads the ones it takes.
 struct IntegratorSettings {
-  int spp = 16;                      // --spp: camera paths per pixel per pass
-  long long photons = 1 << 18;       // --photons: photons per pass
-  double alpha = 2.0 / 3.0;          // --alpha: SPPM radius reduction
-  double radius = 0;                 // --radius: initial gather radius (0: from the pixel footprint)
-  bool edge_correction = false;      // --edge-correction
-  std::string view = "emission";     // --view: the debug view
-  unsigned seed = 1;                 // --seed (every integrator)
+  int spp = 16;                   // --spp: camera paths per pixel per pass
+  long long photons = 1 << 18;    // --photons: photons per pass
+  double alpha = 2.0 / 3.0;       // --alpha: SPPM radius reduction
+  double radius = 0;              // --radius: initial gather radius (0: from the pixel footprint)
+  bool edge_correction = false;   // --edge-correction
+  std::string view = "emission";  // --view: the debug view
+  unsigned seed = 1;              // --seed (every integrator)
   // Test hooks, not on the command line.
-  bool full_matrix = false;             // backward: carry the full rows × N path matrix
+  bool full_matrix = false;              // backward: carry the full rows × N path matrix
   int max_depth = KASHA_MAX_PATH_DEPTH;  // forward: cut photon paths after this many bounces
-  int photons_per_item = 64;            // forward: photons per work item
+  int photons_per_item = 64;             // forward: photons per work item
 };
 
 // What an integrator is given: the device, the scene on it, the film's tables on it, the film it
@@ -45,10 +45,11 @@ struct IntegratorSetup {
 };
 
 struct IntegratorTraits {
-  bool physical = true;   // estimates the scene's light transport: converge, furnace and agreement tests
-  bool unbiased = true;   // its mean is the image (else consistent: its bias falls with passes)
+  bool physical =
+      true;  // estimates the scene's light transport: converge, furnace and agreement tests
+  bool unbiased = true;  // its mean is the image (else consistent: its bias falls with passes)
   bool sees_camera_mirrors = true;  // estimates what the camera sees in an ideal mirror
-  bool reference = false;  // the one `kasha reference` renders with
+  bool reference = false;           // the one `kasha reference` renders with
 };
 
 struct IntegratorInfo {

@@ -7,8 +7,8 @@
 
 #include "film/film.h"
 #include "film/image.h"
-#include "study/convergence_log.h"
 #include "render/integrator.h"
+#include "study/convergence_log.h"
 
 namespace kasha {
 

@@ -14,15 +14,17 @@ namespace kasha {
 
 class RenderJob {
  public:
-  RenderJob(ClContext& cl, const Scene& scene, DeviceScene& device_scene, const std::string& integrator,
-            const IntegratorSettings& settings, bool spectral_film);
+  RenderJob(ClContext& cl, const Scene& scene, DeviceScene& device_scene,
+            const std::string& integrator, const IntegratorSettings& settings, bool spectral_film);
   RenderJob(const RenderJob&) = delete;
   RenderJob& operator=(const RenderJob&) = delete;
 
   Film& film() { return film_; }
   Integrator& integrator() { return *integrator_; }
   // The progressive loop (render/progressive_render.h) over this job.
-  RenderSummary run(const RenderOptions& options) { return render_progressive(*integrator_, film_, options); }
+  RenderSummary run(const RenderOptions& options) {
+    return render_progressive(*integrator_, film_, options);
+  }
   // One pass, accumulated.
   void pass(int index) { film_.accumulate(integrator_->render_pass(index)); }
 

@@ -16,8 +16,8 @@
 #include "film/film.h"
 #include "image/exr_io.h"
 #include "image/png_preview.h"
-#include "study/furnace.h"
 #include "render/render_job.h"
+#include "study/furnace.h"
 #include "study/reference_image.h"
 
 namespace kasha {

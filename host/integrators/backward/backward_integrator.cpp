@@ -8,8 +8,9 @@ namespace kasha {
 class BackwardIntegrator : public KernelIntegrator {
  public:
   explicit BackwardIntegrator(const IntegratorSetup& s)
-      : KernelIntegrator(s, "backward.cl",
-                         s.settings.full_matrix ? KernelDefines{{"KASHA_FULL_MATRIX", "1"}} : KernelDefines{}),
+      : KernelIntegrator(
+            s, "backward.cl",
+            s.settings.full_matrix ? KernelDefines{{"KASHA_FULL_MATRIX", "1"}} : KernelDefines{}),
         spp_(s.settings.spp),
         seed_(s.settings.seed),
         kernel_(program_, "render_backward"),
@@ -17,10 +18,12 @@ class BackwardIntegrator : public KernelIntegrator {
 
   PassResult render_pass(int pass) override {
     film_.clear_pixel_sums();
-    launch(kernel_, film_.pixels(), film_.pixel_sums(), rejected_, spp_, seed_, static_cast<cl_uint>(pass));
+    launch(kernel_, film_.pixels(), film_.pixel_sums(), rejected_, spp_, seed_,
+           static_cast<cl_uint>(pass));
     PassResult r{pass, spp_, film_.read_pixel_sums(), {}, {}};
     std::vector<cl_int> rejected(film_.pixels());
-    cl_.queue().enqueueReadBuffer(rejected_, CL_TRUE, 0, rejected.size() * sizeof(cl_int), rejected.data());
+    cl_.queue().enqueueReadBuffer(rejected_, CL_TRUE, 0, rejected.size() * sizeof(cl_int),
+                                  rejected.data());
     double bad = 0;
     for (cl_int n : rejected) bad += n;
     r.tallies["rejected samples"] = bad;
@@ -43,9 +46,10 @@ class BackwardIntegrator : public KernelIntegrator {
   cl::Buffer rejected_;
 };
 
-KASHA_REGISTER_INTEGRATOR(BackwardIntegrator, "backward",
-                          "camera paths with next-event estimation and MIS, diagonal/rank-1 path colour",
-                          {"--spp"}, IntegratorTraits{/*physical*/ true, /*unbiased*/ true,
-                                                      /*sees camera mirrors*/ true, /*reference*/ true});
+KASHA_REGISTER_INTEGRATOR(
+    BackwardIntegrator, "backward",
+    "camera paths with next-event estimation and MIS, diagonal/rank-1 path colour", {"--spp"},
+    IntegratorTraits{/*physical*/ true, /*unbiased*/ true,
+                     /*sees camera mirrors*/ true, /*reference*/ true});
 
 }  // namespace kasha

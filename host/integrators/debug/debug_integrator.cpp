@@ -23,12 +23,14 @@ class DebugIntegrator : public KernelIntegrator {
         seed_(s.settings.seed),
         kernel_(program_, "render_debug") {
     if (film_.spectral() && view_ != 0)
-      throw Error("--spectral: the " + s.settings.view + " view has no spectrum; use --view emission");
+      throw Error("--spectral: the " + s.settings.view +
+                  " view has no spectrum; use --view emission");
   }
 
   PassResult render_pass(int pass) override {
     film_.clear_pixel_sums();
-    launch(kernel_, film_.pixels(), film_.pixel_sums(), view_, spp_, seed_, static_cast<cl_uint>(pass));
+    launch(kernel_, film_.pixels(), film_.pixel_sums(), view_, spp_, seed_,
+           static_cast<cl_uint>(pass));
     return PassResult{pass, spp_, film_.read_pixel_sums(), {}, {}};
   }
 
@@ -45,7 +47,8 @@ class DebugIntegrator : public KernelIntegrator {
 
 KASHA_REGISTER_INTEGRATOR(DebugIntegrator, "debug",
                           "first-hit views of the scene: emission, normals or albedo (--view)",
-                          {"--spp", "--view"}, IntegratorTraits{/*physical*/ false, /*unbiased*/ false,
-                                                                /*sees camera mirrors*/ false, /*reference*/ false});
+                          {"--spp", "--view"},
+                          IntegratorTraits{/*physical*/ false, /*unbiased*/ false,
+                                           /*sees camera mirrors*/ false, /*reference*/ false});
 
 }  // namespace kasha

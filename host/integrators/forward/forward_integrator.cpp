@@ -19,7 +19,8 @@ class ForwardIntegrator : public KernelIntegrator {
         photons_per_item_(s.settings.photons_per_item),
         items_((photons_ + photons_per_item_ - 1) / photons_per_item_) {
     if (photons_ > (1LL << 31) - 1) throw Error("--photons: at most 2^31 - 1 photons per pass");
-    if (scene_.data().light_tri.empty()) throw Error("forward: the scene has no emitter with power");
+    if (scene_.data().light_tri.empty())
+      throw Error("forward: the scene has no emitter with power");
     kernel_ = cl::Kernel(program_, "trace_forward");
     // Fixed point: the brightest emitter's film value maps to 2^32, leaving 2^31 of headroom per
     // pixel and pass and a resolution of 2^-32 of it.
@@ -30,7 +31,8 @@ class ForwardIntegrator : public KernelIntegrator {
     for (size_t e = 0; e * n < le.size(); ++e)
       for (int r = 0; r < film_.rows(); ++r) {
         double v = 0;
-        for (int i = 0; i < n; ++i) v += (film_.spectral() ? (r == i) : cmf[r * n + i]) * le[e * n + i];
+        for (int i = 0; i < n; ++i)
+          v += (film_.spectral() ? (r == i) : cmf[r * n + i]) * le[e * n + i];
         brightest = std::max(brightest, v);
       }
     film_scale_ = static_cast<float>(std::ldexp(1.0, 32) / std::max(brightest, 1e-30));
@@ -42,8 +44,8 @@ class ForwardIntegrator : public KernelIntegrator {
   PassResult render_pass(int pass) override {
     cl_.queue().enqueueFillBuffer(fixed_, cl_long(0), 0, cells() * sizeof(cl_long));
     cl_.queue().enqueueFillBuffer(overflow_, cl_int(0), 0, sizeof(cl_int));
-    launch(kernel_, items_, static_cast<cl_int>(photons_), photons_per_item_, max_depth_, fixed_, film_scale_,
-           stats_, overflow_, seed_, static_cast<cl_uint>(pass));
+    launch(kernel_, items_, static_cast<cl_int>(photons_), photons_per_item_, max_depth_, fixed_,
+           film_scale_, stats_, overflow_, seed_, static_cast<cl_uint>(pass));
 
     std::vector<cl_long> fixed(cells());
     std::vector<float> stats(items_ * 4);
@@ -55,7 +57,8 @@ class ForwardIntegrator : public KernelIntegrator {
     r.pass = pass;
     r.samples = 1;  // the pass's splats are one estimate of every pixel
     r.sums.resize(fixed.size());
-    for (size_t i = 0; i < fixed.size(); ++i) r.sums[i] = fixed[i] / static_cast<double>(film_scale_);
+    for (size_t i = 0; i < fixed.size(); ++i)
+      r.sums[i] = fixed[i] / static_cast<double>(film_scale_);
     double power[4] = {0, 0, 0, 0};
     for (size_t i = 0; i < items_; ++i)
       for (int k = 0; k < 4; ++k) power[k] += stats[4 * i + k];
@@ -70,7 +73,8 @@ class ForwardIntegrator : public KernelIntegrator {
   long long camera_paths_per_pass() const override { return 0; }
   long long photons_per_pass() const override { return photons_; }
   std::map<std::string, size_t> device_buffers() const override {
-    return {{"fixed-point film", cells() * sizeof(cl_long)}, {"power ledger", items_ * 4 * sizeof(float)}};
+    return {{"fixed-point film", cells() * sizeof(cl_long)},
+            {"power ledger", items_ * 4 * sizeof(float)}};
   }
 
  private:
@@ -85,9 +89,11 @@ class ForwardIntegrator : public KernelIntegrator {
   cl::Buffer fixed_, stats_, overflow_;
 };
 
-KASHA_REGISTER_INTEGRATOR(ForwardIntegrator, "forward",
-                          "light tracing: photons from the lights splatted to the camera, constant-energy branching",
-                          {"--photons"}, IntegratorTraits{/*physical*/ true, /*unbiased*/ true,
-                                                          /*sees camera mirrors*/ false, /*reference*/ false});
+KASHA_REGISTER_INTEGRATOR(
+    ForwardIntegrator, "forward",
+    "light tracing: photons from the lights splatted to the camera, constant-energy branching",
+    {"--photons"},
+    IntegratorTraits{/*physical*/ true, /*unbiased*/ true,
+                     /*sees camera mirrors*/ false, /*reference*/ false});
 
 }  // namespace kasha

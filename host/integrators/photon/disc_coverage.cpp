@@ -4,8 +4,8 @@
 #include <cmath>
 
 #include "core/parallel_for.h"
-#include "photon_layout.h"
 #include "integrators/photon/photon_gather.h"
+#include "photon_layout.h"
 
 namespace kasha {
 

@@ -37,7 +37,8 @@ class PhotonMapIntegrator : public KernelIntegrator {
         seed_(s.settings.seed),
         photon_floats_(KASHA_PHOTON_FLOATS(s.scene.grid.bins)),
         vp_floats_(KASHA_VP_FLOATS(s.scene.grid.bins, film_.rows(), s.scene.fluorescent())),
-        layout_{s.scene.grid.bins, film_.rows(), film_.spectral(), s.scene.fluorescent(), film_.cmf().data()} {
+        layout_{s.scene.grid.bins, film_.rows(), film_.spectral(), s.scene.fluorescent(),
+                film_.cmf().data()} {
     if (photons_ > (1LL << 31) - 1) throw Error("--photons: at most 2^31 - 1 photons per pass");
     if (!(alpha_ > 0 && alpha_ < 1)) throw Error("--alpha must lie in (0, 1)");
     if (scene_.data().light_tri.empty()) throw Error("photon: the scene has no emitter with power");
@@ -47,16 +48,19 @@ class PhotonMapIntegrator : public KernelIntegrator {
     vps_ = cl::Buffer(cl_.context(), CL_MEM_READ_WRITE, vp_bytes());
     // Room for a few stored photons each; a pass that needs more is traced again with more room.
     capacity_ = static_cast<size_t>(photons_) * 4;
-    store_ = cl::Buffer(cl_.context(), CL_MEM_READ_WRITE, capacity_ * photon_floats_ * sizeof(float));
+    store_ =
+        cl::Buffer(cl_.context(), CL_MEM_READ_WRITE, capacity_ * photon_floats_ * sizeof(float));
     const KCamera& c = scene_.data().camera;
-    footprint_ = 2.0 * std::sqrt(c.up[0] * c.up[0] + c.up[1] * c.up[1] + c.up[2] * c.up[2]) / c.height;
+    footprint_ =
+        2.0 * std::sqrt(c.up[0] * c.up[0] + c.up[1] * c.up[1] + c.up[2] * c.up[2]) / c.height;
     if (s.settings.edge_correction) embree_ = std::make_unique<EmbreeScene>(s.scene.triangles);
   }
 
   PassResult render_pass(int pass) override {
     auto t0 = Clock::now();
     film_.clear_pixel_sums();
-    launch(camera_kernel_, film_.pixels(), vps_, film_.pixel_sums(), seed_, static_cast<cl_uint>(pass));
+    launch(camera_kernel_, film_.pixels(), vps_, film_.pixel_sums(), seed_,
+           static_cast<cl_uint>(pass));
     std::vector<float> vps(film_.pixels() * vp_floats_);
     cl_.queue().enqueueReadBuffer(vps_, CL_TRUE, 0, vp_bytes(), vps.data());
     PassResult r{pass, 1, film_.read_pixel_sums(), GatherPass{}, {}};
@@ -85,7 +89,8 @@ class PhotonMapIntegrator : public KernelIntegrator {
     GatherResult found = tree.gather(vps.data(), vp_floats_, film_.pixels(), g.radius, layout_);
     if (embree_) {
       // A fresh rotation of the probe pattern each pass, so its stratification leaves no pattern.
-      float rotation = static_cast<float>(2 * M_PI * std::fmod(0.6180339887 * (pass + 1) + 1e-3 * seed_, 1.0));
+      float rotation =
+          static_cast<float>(2 * M_PI * std::fmod(0.6180339887 * (pass + 1) + 1e-3 * seed_, 1.0));
       std::vector<float> coverage =
           disc_coverage(*embree_, vps.data(), vp_floats_, film_.pixels(), g.radius, rotation);
       for (size_t p = 0; p < film_.pixels(); ++p)
@@ -97,7 +102,9 @@ class PhotonMapIntegrator : public KernelIntegrator {
     return r;
   }
 
-  long long camera_paths_per_pass() const override { return static_cast<long long>(film_.pixels()); }
+  long long camera_paths_per_pass() const override {
+    return static_cast<long long>(film_.pixels());
+  }
   long long photons_per_pass() const override { return photons_; }
   std::map<std::string, size_t> device_buffers() const override {
     return {{"visible points", vp_bytes()},
@@ -113,21 +120,24 @@ class PhotonMapIntegrator : public KernelIntegrator {
     const size_t items = (photons_ + kPhotonsPerItem - 1) / kPhotonsPerItem;
     for (;;) {
       cl_.queue().enqueueFillBuffer(counter_, cl_int(0), 0, sizeof(cl_int));
-      launch(photon_kernel_, items, static_cast<cl_int>(photons_), kPhotonsPerItem, store_, counter_,
-             static_cast<cl_int>(capacity_), seed_, static_cast<cl_uint>(pass));
+      launch(photon_kernel_, items, static_cast<cl_int>(photons_), kPhotonsPerItem, store_,
+             counter_, static_cast<cl_int>(capacity_), seed_, static_cast<cl_uint>(pass));
       cl_int stored = 0;
       cl_.queue().enqueueReadBuffer(counter_, CL_TRUE, 0, sizeof(cl_int), &stored);
       if (stored >= 0 && static_cast<size_t>(stored) <= capacity_) {
         std::vector<float> photons(static_cast<size_t>(stored) * photon_floats_);
         if (stored > 0)
-          cl_.queue().enqueueReadBuffer(store_, CL_TRUE, 0, photons.size() * sizeof(float), photons.data());
+          cl_.queue().enqueueReadBuffer(store_, CL_TRUE, 0, photons.size() * sizeof(float),
+                                        photons.data());
         return photons;
       }
       // Not all photons fit: the same pass again (same random numbers) with room for them all.
       size_t wanted = stored > 0 ? static_cast<size_t>(stored) : capacity_ * 2;
       capacity_ = wanted + wanted / 4;
-      if (capacity_ > (1u << 31) - 1) throw Error("photon: more than 2^31 photons stored in one pass; lower --photons");
-      store_ = cl::Buffer(cl_.context(), CL_MEM_READ_WRITE, capacity_ * photon_floats_ * sizeof(float));
+      if (capacity_ > (1u << 31) - 1)
+        throw Error("photon: more than 2^31 photons stored in one pass; lower --photons");
+      store_ =
+          cl::Buffer(cl_.context(), CL_MEM_READ_WRITE, capacity_ * photon_floats_ * sizeof(float));
     }
   }
 
@@ -144,11 +154,12 @@ class PhotonMapIntegrator : public KernelIntegrator {
   std::unique_ptr<EmbreeScene> embree_;  // probes the gather discs' coverage
 };
 
-KASHA_REGISTER_INTEGRATOR(PhotonMapIntegrator, "photon",
-                          "bidirectional photon mapping (SPPM): visible points with compact rank-1 factors, "
-                          "photons gathered on the host",
-                          {"--photons", "--alpha", "--radius", "--edge-correction"},
-                          IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
-                                           /*reference*/ false});
+KASHA_REGISTER_INTEGRATOR(
+    PhotonMapIntegrator, "photon",
+    "bidirectional photon mapping (SPPM): visible points with compact rank-1 factors, "
+    "photons gathered on the host",
+    {"--photons", "--alpha", "--radius", "--edge-correction"},
+    IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
+                     /*reference*/ false});
 
 }  // namespace kasha
