@@ -56,6 +56,9 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   add_integrator_options(render, r.settings);
   render->add_option("--seed", r.settings.seed, "random seed");
+  render->add_option("--sampler", r.settings.sampler,
+                     "sobol (default: Owen-scrambled Sobol points) or independent (PCG streams)")
+      ->check(CLI::IsMember({"sobol", "independent"}));
   render->add_option("--device", r.device, "OpenCL device index (see `kasha devices`)")
       ->check(CLI::NonNegativeNumber);
   render->add_option("--png", r.png, "also write a tone-mapped sRGB PNG preview");
@@ -111,6 +114,8 @@ int main(int argc, char** argv) {
   converge->add_option("--photons", study.settings.photons, "photons per pass")
       ->check(CLI::Range(1LL, (1LL << 31) - 1));
   converge->add_option("--device", study.device, "OpenCL device index");
+  converge->add_option("--sampler", study.settings.sampler, "sobol (default) or independent")
+      ->check(CLI::IsMember({"sobol", "independent"}));
   converge->add_option("-o,--output", study.out_dir, "directory for logs, plot, images and summary")
       ->required();
 

@@ -10,12 +10,17 @@
 #include "hit_point.h"
 #include "lights.h"
 #include "path_weight.h"
-#include "rng.h"
+#include "sampler.h"
 #include "sampling.h"
 #include "scene_view.h"
 #include "surface.h"
 
-/* Branch probabilities at a vertex: P_g, P_p, P_f; 1 − their sum is absorption. */
+/* Dimension pairs of the sampler per path vertex: (light choice, branch choice), the light
+ * point, the direction, (the lobe's azimuth, roulette); pair 0 is the pixel position. */
+#define PAIRS_PER_VERTEX 4
+
+/* Branch probabilities at a vertex, P_g, P_p, P_f, in proportion to the energy each brings to
+ * the film under equal-energy light; they sum to 1 (absorption is left to Russian roulette). */
 inline float3 branch_probabilities(const PathWeight* p, const FilmView* f, const Surface* surf) {
   float w0 = pw_energy(p, f, 0);
   if (!(w0 > 0.0f)) return (float3)(0.0f);
@@ -25,15 +30,16 @@ inline float3 branch_probabilities(const PathWeight* p, const FilmView* f, const
 #if KASHA_FLUORESCENCE
   if (surf->fluorescent) wf = pw_energy(p, f, surf->ehat) * surf->a_sum;
 #endif
-  float total = fmax(w0, wg + wp + wf);
-  return (float3)(wg, wp, wf) / total;
+  float total = wg + wp + wf;
+  return total > 0.0f ? (float3)(wg, wp, wf) / total : (float3)(0.0f);
 }
 
 /* Next-event estimation at x (shading normal ns on the viewer's side, wo towards the viewer). */
 inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* f, const Surface* surf, float3 x,
-                       float3 ns, float3 wo, float3 probs, Rng* rng, float* rows) {
-  float3 u = rng_next_float3(rng);
-  LightPoint lp = sample_light(s->tris, s->light_tri, s->light_cdf, s->light_count, u.x, u.y, u.z);
+                       float3 ns, float3 wo, float3 probs, float u_light, float2 u_point, float* rows) {
+  float pdf_light;
+  LightPoint lp = sample_light_from(s, x, u_light, u_point, &pdf_light);
+  if (!(pdf_light > 0.0f)) return;
   float3 to = lp.position - x;
   float dist = length(to);
   if (!(dist > 2.0f * s->ray_eps)) return;
@@ -41,7 +47,6 @@ inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* 
   float cos_x = dot(ns, wi), cos_l = -dot(lp.normal, wi);
   if (cos_x <= 0.0f || cos_l <= 0.0f) return;
   if (segment_occluded(s, x, ns, wi, dist)) return;
-  float pdf_light = light_pdf_solid_angle(s->emitter_area_pdf, lp.emitter, dist, cos_l);
   const __global float* le = emitter_spectrum(s, lp.emitter);
   float lambert_pdf = cosine_hemisphere_pdf(cos_x);
   float base = cos_x / pdf_light;
@@ -66,10 +71,11 @@ inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* 
 }
 
 /* One camera path; adds its estimate to rows. */
-inline void trace_camera_path(const SceneView* s, const FilmView* f, float3 org, float3 dir, Rng* rng,
+inline void trace_camera_path(const SceneView* s, const FilmView* f, float3 org, float3 dir, Sampler* sampler,
                               float* rows) {
   PathWeight p;
   pw_init(&p, f);
+  const float start = pw_magnitude(&p, f);
   bool specular = true; /* the camera ray, or a mirror bounce: emission is not also sampled by NEE */
   float prev_pdf = 0.0f;
   for (int depth = 0; depth < KASHA_MAX_PATH_DEPTH; ++depth) {
@@ -79,8 +85,7 @@ inline void trace_camera_path(const SceneView* s, const FilmView* f, float3 org,
 
     if (h.emitter >= 0 && h.front) {
       float weight = 1.0f;
-      if (!specular)
-        weight = mis_weight(prev_pdf, light_pdf_solid_angle(s->emitter_area_pdf, h.emitter, h.t, dot(h.n, wo)));
+      if (!specular) weight = mis_weight(prev_pdf, light_pdf_from(s, h.tri, org, x, dot(h.n, wo)));
       pw_add(&p, f, emitter_spectrum(s, h.emitter), 0, weight, rows);
     }
 
@@ -88,11 +93,13 @@ inline void trace_camera_path(const SceneView* s, const FilmView* f, float3 org,
     load_surface(s, h.material, &surf);
     float3 probs = branch_probabilities(&p, f, &surf);
     if (probs.x + probs.y + probs.z <= 0.0f) return;
+    sampler_at(sampler, 1 + depth * PAIRS_PER_VERTEX);
+    float2 u_choice = sample_2d(sampler), u_point = sample_2d(sampler), u_dir = sample_2d(sampler),
+           u_more = sample_2d(sampler);
     if (s->light_count > 0 && (surface_has_lambert(&surf) || (surf.g > 0.0f && !surf.mirror)))
-      next_event(&p, s, f, &surf, x, ns, wo, probs, rng, rows);
+      next_event(&p, s, f, &surf, x, ns, wo, probs, u_choice.x, u_point, rows);
 
-    float choice = rng_next_float(rng);
-    float u1 = rng_next_float(rng), u2 = rng_next_float(rng);
+    float choice = u_choice.y;
     if (choice < probs.x) {
       /* Gloss: white, weight g (times the lobe's cosine ratio), below the horizon absorbed. */
       float3 mirror = reflect_dir(dir, ns);
@@ -102,7 +109,7 @@ inline void trace_camera_path(const SceneView* s, const FilmView* f, float3 org,
         pw_scatter_diagonal(&p, 0, surf.g / probs.x);
       } else {
         float pdf;
-        float3 wi = sample_lobe(surf.m, s->lobes, mirror, u1, u2, rng_next_float(rng), &pdf);
+        float3 wi = sample_lobe(surf.m, s->lobes, mirror, u_dir.x, u_dir.y, u_more.x, &pdf);
         float ci = dot(wi, ns), co = dot(wo, ns);
         if (ci <= 0.0f) return;
         dir = wi;
@@ -110,20 +117,25 @@ inline void trace_camera_path(const SceneView* s, const FilmView* f, float3 org,
         prev_pdf = probs.x * pdf;
         pw_scatter_diagonal(&p, 0, surf.g * 2.0f * ci / (ci + co) / probs.x);
       }
-    } else if (choice < probs.x + probs.y) {
-      dir = sample_cosine_hemisphere(ns, u1, u2);
+    } else if (choice < probs.x + probs.y || probs.z <= 0.0f) {
+      dir = sample_cosine_hemisphere(ns, u_dir.x, u_dir.y);
       specular = false;
       prev_pdf = probs.y * cosine_hemisphere_pdf(dot(dir, ns));
       pw_scatter_diagonal(&p, surf.rho, 1.0f / probs.y);
 #if KASHA_FLUORESCENCE
-    } else if (choice < probs.x + probs.y + probs.z) {
-      dir = sample_cosine_hemisphere(ns, u1, u2);
+    } else {
+      dir = sample_cosine_hemisphere(ns, u_dir.x, u_dir.y);
       specular = false;
       prev_pdf = probs.z * cosine_hemisphere_pdf(dot(dir, ns));
       pw_scatter_fluorescent(&p, f, surf.ehat, surf.a, 1.0f / probs.z);
 #endif
-    } else {
-      return; /* absorbed */
+    }
+    /* Russian roulette on what the path still carries, from the second bounce on (the first is
+     * never cut; a path that carries more than at the camera is never cut). */
+    if (depth >= 1) {
+      float survive = fmin(1.0f, pw_magnitude(&p, f) / start);
+      if (!(u_more.y < survive)) return;
+      pw_scatter_diagonal(&p, 0, 1.0f / survive);
     }
     org = x + ns * s->ray_eps;
   }
@@ -137,12 +149,14 @@ __kernel void render_backward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
   KASHA_FILM_VIEW(f);
   int pixel = get_global_id(0);
   if (pixel >= camera.width * camera.height) return;
-  Rng rng = rng_seed(seed, pass, (uint)pixel);
   int bad = 0;
+  Sampler sampler = sampler_start(seed, (uint)pixel, 0, pass, (uint)pixel);
   for (int k = 0; k < spp; ++k) {
+    sampler_next_sample(&sampler, pass * (uint)spp + (uint)k);
     float rows[KASHA_FILM_ROWS];
     film_rows_clear(rows);
-    trace_camera_path(&s, &f, camera_position(&camera), camera_sample(&camera, pixel, &rng), &rng, rows);
+    trace_camera_path(&s, &f, camera_position(&camera), camera_sample(&camera, pixel, sample_2d(&sampler)),
+                      &sampler, rows);
     bool finite = true;
     for (int r = 0; r < KASHA_FILM_ROWS; ++r) finite = finite && isfinite(rows[r]);
     if (finite)

@@ -2,7 +2,6 @@
 #ifndef KASHA_CAMERA_H
 #define KASHA_CAMERA_H
 
-#include "rng.h"
 #include "shared_types.h"
 
 /* Direction through image position (x, y) in pixels, (0, 0) the top-left corner. */
@@ -19,12 +18,10 @@ inline float3 camera_position(const KCamera* c) {
   return (float3)(c->position[0], c->position[1], c->position[2]);
 }
 
-/* A primary ray direction through a uniformly jittered point of pixel `pixel` (row-major). */
-inline float3 camera_sample(const KCamera* c, int pixel, Rng* rng) {
+/* A primary ray direction through the point u ∈ [0,1)² of pixel `pixel` (row-major). */
+inline float3 camera_sample(const KCamera* c, int pixel, float2 u) {
   int px = pixel % c->width, py = pixel / c->width;
-  float u = rng_next_float(rng); /* in this order on every compiler: arguments have none */
-  float v = rng_next_float(rng);
-  return camera_direction(c, px + u, py + v);
+  return camera_direction(c, px + u.x, py + u.y);
 }
 
 #endif

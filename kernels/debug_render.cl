@@ -6,7 +6,7 @@
 #include "color_constants.h"
 #include "film_view.h"
 #include "hit_point.h"
-#include "rng.h"
+#include "sampler.h"
 #include "scene_view.h"
 
 #define VIEW_EMISSION 0
@@ -27,12 +27,14 @@ __kernel void render_debug(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
   KASHA_FILM_VIEW(f);
   int pixel = get_global_id(0);
   if (pixel >= camera.width * camera.height) return;
-  Rng rng = rng_seed(seed, pass, (uint)pixel);
+  Sampler sampler = sampler_start(seed, (uint)pixel, 0, pass, (uint)pixel);
   float rows[KASHA_FILM_ROWS];
   film_rows_clear(rows);
   for (int k = 0; k < spp; ++k) {
+    sampler_next_sample(&sampler, pass * (uint)spp + (uint)k);
     HitPoint h;
-    if (!intersect_scene(&s, camera_position(&camera), camera_sample(&camera, pixel, &rng), &h)) continue;
+    if (!intersect_scene(&s, camera_position(&camera), camera_sample(&camera, pixel, sample_2d(&sampler)), &h))
+      continue;
     if (view == VIEW_EMISSION) {
       /* Emitters radiate from their front side only. */
       if (h.emitter >= 0 && h.front) film_rows(&f, 0, emitter_spectrum(&s, h.emitter), 0, 1.0f, rows);

@@ -51,9 +51,11 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
   float emitted = 0.0f, absorbed = 0.0f, escaped = 0.0f, in_flight = 0.0f;
   float rows[KASHA_FILM_ROWS];
   for (int index = first; index < last; ++index) {
-    Rng rng = rng_seed(seed, pass, (uint)index);
+    /* One sampler stream over all passes' photons: photon `index` of pass `pass` is sample
+     * pass·photons + index (32 bits, wrapping after 2^32 photons). */
+    Sampler sampler = sampler_start(seed, 0u, pass * (uint)photons + (uint)index, pass, (uint)index);
     LightOrigin o;
-    Photon p = emit_photon(&s, (float)photons, &rng, &o);
+    Photon p = emit_photon(&s, (float)photons, &sampler, &o);
     emitted += photon_total(&p);
     /* The light point seen directly: Le cos / (p_area · photons). */
     int pixel;
@@ -99,10 +101,14 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
 #endif
         splat_rows(&target, pixel, rows);
       }
+      /* "Absorbed": the power a hit takes away, absorption and roulette (negative when roulette
+       * scales a survivor up), so emitted = absorbed + escaped + in flight exactly. */
       float before = photon_total(&p);
-      if (scatter_photon(&p, &surf, &s, x, ns, &rng) == BRANCH_ABSORBED) {
+      if (scatter_photon(&p, &surf, &s, x, ns, &sampler, depth) == BRANCH_ABSORBED) {
         absorbed += before;
         alive = false;
+      } else {
+        absorbed += before - photon_total(&p);
       }
     }
     if (alive) in_flight += photon_total(&p);

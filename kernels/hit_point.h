@@ -14,6 +14,7 @@ typedef struct {
   float t;       /* distance along the (unit) direction */
   int material;
   int emitter;   /* -1: the triangle does not emit */
+  int tri;       /* the triangle, in leaf order */
 } HitPoint;
 
 inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint* h) {
@@ -29,6 +30,7 @@ inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint
   h->t = t;
   h->material = tri->material;
   h->emitter = tri->emitter;
+  h->tri = hit;
   return true;
 }
 

@@ -1,5 +1,7 @@
 /* Next-event estimation: emitting triangles chosen in proportion to their power (a CDF over the
- * emitting triangles), a uniform point on the chosen one. Since a triangle's power is its area
+ * emitting triangles), then a point on the chosen one: uniform in the solid angle it subtends from
+ * the shading point (Arvo 1995, as pbrt-v4 does) when that angle lies between
+ * KASHA_MIN_SPHERICAL_SOLID_ANGLE and KASHA_MAX_SPHERICAL_SOLID_ANGLE, uniform in area otherwise. Since a triangle's power is its area
  * times pi times its emitter's band-integrated radiance, the area density of a light point,
  * p(triangle)/area, depends only on the emitter: emitter_area_pdf[e]. */
 #ifndef KASHA_LIGHTS_H
@@ -7,6 +9,7 @@
 
 #include "bvh_traversal.h"
 #include "sampling.h"
+#include "scene_view.h"
 
 typedef struct {
   float3 position;
@@ -36,6 +39,94 @@ inline LightPoint sample_light(const __global KTriangle* tris, const __global in
  * with the direction back to the shading point. */
 inline float light_pdf_solid_angle(const __global float* emitter_area_pdf, int emitter, float dist, float cos_light) {
   return cos_light > 0.0f ? emitter_area_pdf[emitter] * dist * dist / cos_light : 0.0f;
+}
+
+#define KASHA_MIN_SPHERICAL_SOLID_ANGLE 3e-4f /* below: float trouble, and area sampling is as good */
+#define KASHA_MAX_SPHERICAL_SOLID_ANGLE 6.22f /* above: the triangle nearly fills the hemisphere */
+
+/* The angle between unit vectors, accurate near 0 and π. */
+inline float angle_between(float3 a, float3 b) {
+  if (dot(a, b) < 0.0f) return KASHA_PI - 2.0f * asin(fmin(1.0f, 0.5f * length(a + b)));
+  return 2.0f * asin(fmin(1.0f, 0.5f * length(b - a)));
+}
+
+/* Solid angle of the triangle (v0, v1, v2) seen from p (Van Oosterom & Strackee 1983). */
+inline float triangle_solid_angle(float3 p, float3 v0, float3 v1, float3 v2) {
+  float3 a = normalize(v0 - p), b = normalize(v1 - p), c = normalize(v2 - p);
+  return 2.0f * atan2(fabs(dot(a, cross(b, c))), 1.0f + dot(a, b) + dot(a, c) + dot(b, c));
+}
+
+inline bool spherical_sampling(float solid_angle) {
+  return solid_angle > KASHA_MIN_SPHERICAL_SOLID_ANGLE && solid_angle < KASHA_MAX_SPHERICAL_SOLID_ANGLE;
+}
+
+/* A direction from p uniform in the solid angle of the triangle (Arvo 1995): u.x picks the area
+ * of a sub-triangle a-b-c' (c' on the arc a-c), u.y a point on the arc from b to c'. */
+inline float3 sample_spherical_triangle(float3 p, float3 v0, float3 v1, float3 v2, float2 u) {
+  float3 a = normalize(v0 - p), b = normalize(v1 - p), c = normalize(v2 - p);
+  float3 n_ab = normalize(cross(a, b)), n_bc = normalize(cross(b, c)), n_ca = normalize(cross(c, a));
+  float alpha = angle_between(n_ab, -n_ca), beta = angle_between(n_bc, -n_ab), gamma = angle_between(n_ca, -n_bc);
+  /* The sub-triangle's area A' = u.x·A, through its angle sum A' + π. */
+  float area_pi = KASHA_PI + u.x * (alpha + beta + gamma - KASHA_PI);
+  float cos_alpha = cos(alpha), sin_alpha = sin(alpha);
+  float sin_phi = sin(area_pi) * cos_alpha - cos(area_pi) * sin_alpha;
+  float cos_phi = cos(area_pi) * cos_alpha + sin(area_pi) * sin_alpha;
+  float k1 = cos_phi + cos_alpha;
+  float k2 = sin_phi - sin_alpha * dot(a, b);
+  float cos_bp = (k2 + (k2 * cos_phi - k1 * sin_phi) * cos_alpha) / ((k2 * sin_phi + k1 * cos_phi) * sin_alpha);
+  cos_bp = clamp(cos_bp, -1.0f, 1.0f);
+  float sin_bp = sqrt(fmax(0.0f, 1.0f - cos_bp * cos_bp));
+  float3 cp = cos_bp * a + sin_bp * normalize(c - dot(c, a) * a);
+  float cos_t = 1.0f - u.y * (1.0f - dot(cp, b));
+  float sin_t = sqrt(fmax(0.0f, 1.0f - cos_t * cos_t));
+  return cos_t * b + sin_t * normalize(cp - dot(cp, b) * b);
+}
+
+/* A light point for next-event estimation at x, with the solid-angle density of having sampled
+ * its direction (0 when the sample failed). u0 picks the triangle, u the point. */
+inline LightPoint sample_light_from(const SceneView* s, float3 x, float u0, float2 u, float* pdf) {
+  int lo = 0, hi = s->light_count - 1;
+  while (lo < hi) {
+    int mid = (lo + hi) / 2;
+    if (s->light_cdf[mid] > u0) hi = mid;
+    else lo = mid + 1;
+  }
+  const __global KTriangle* t = &s->tris[s->light_tri[lo]];
+  float3 v0 = load_float3(t->v0), v1 = load_float3(t->v1), v2 = load_float3(t->v2);
+  float3 cr = cross(v1 - v0, v2 - v0);
+  float area = 0.5f * length(cr);
+  LightPoint p;
+  p.normal = normalize(cr);
+  p.emitter = t->emitter;
+  float area_pdf = s->emitter_area_pdf[t->emitter]; /* p(triangle) / area */
+  float omega = triangle_solid_angle(x, v0, v1, v2);
+  *pdf = 0.0f;
+  if (spherical_sampling(omega)) {
+    float3 w = sample_spherical_triangle(x, v0, v1, v2, u);
+    float along = dot(p.normal, w);
+    float dist = along != 0.0f ? dot(p.normal, v0 - x) / along : 0.0f;
+    p.position = x + dist * w;
+    if (dist > 0.0f && isfinite(dist)) *pdf = area_pdf * area / omega;
+  } else {
+    float2 b = sample_triangle(u.x, u.y);
+    p.position = v0 + b.x * (v1 - v0) + b.y * (v2 - v0);
+    float3 to = p.position - x;
+    float d2 = dot(to, to), cos_l = -dot(p.normal, to) / sqrt(d2);
+    if (cos_l > 0.0f) *pdf = area_pdf * d2 / cos_l;
+  }
+  return p;
+}
+
+/* The solid-angle density with which sample_light_from at x would pick the point y on leaf
+ * triangle `tri` (front side seen, cos_light > 0), for multiple importance sampling. */
+inline float light_pdf_from(const SceneView* s, int tri, float3 x, float3 y, float cos_light) {
+  const __global KTriangle* t = &s->tris[tri];
+  float3 v0 = load_float3(t->v0), v1 = load_float3(t->v1), v2 = load_float3(t->v2);
+  float area_pdf = s->emitter_area_pdf[t->emitter];
+  float omega = triangle_solid_angle(x, v0, v1, v2);
+  if (spherical_sampling(omega)) return area_pdf * 0.5f * length(cross(v1 - v0, v2 - v0)) / omega;
+  float3 to = y - x;
+  return cos_light > 0.0f ? area_pdf * dot(to, to) / cos_light : 0.0f;
 }
 
 #endif

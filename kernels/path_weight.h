@@ -79,6 +79,24 @@ inline float pw_energy(const PathWeight* p, const FilmView* f, const __global fl
 #endif
 }
 
+/* How much the path still carries: the film rows' total response to equal-energy radiance,
+ * Σ_r (T·1)_r, with the branch importance u standing in for the rows in diagonal mode. Russian
+ * roulette compares it with its value at the camera, Σ_i u_i. */
+inline float pw_magnitude(const PathWeight* p, const FilmView* f) {
+#if KASHA_FULL_MATRIX
+  return pw_energy(p, f, 0);
+#else
+#if KASHA_FLUORESCENCE
+  if (p->rank1) {
+    float c = 0.0f;
+    for (int r = 0; r < KASHA_FILM_ROWS; ++r) c += p->c[r];
+    return c * spectrum_dot(KASHA_BINS, p->b, 0, 0);
+  }
+#endif
+  return spectrum_dot(KASHA_BINS, p->w, f->importance, 0);
+#endif
+}
+
 /* T ← T·diag(d)·scale: a passive bounce (d = ρ), or a gloss bounce (d null: white). */
 inline void pw_scatter_diagonal(PathWeight* p, const __global float* d, float scale) {
 #if KASHA_FULL_MATRIX

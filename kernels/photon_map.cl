@@ -19,9 +19,9 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
   int item = get_global_id(0);
   int first = item * photons_per_item, last = min(first + photons_per_item, photons);
   for (int index = first; index < last; ++index) {
-    Rng rng = rng_seed(seed, pass, (uint)index);
+    Sampler sampler = sampler_start(seed, 0u, pass * (uint)photons + (uint)index, pass, (uint)index);
     LightOrigin o;
-    Photon p = emit_photon(&s, (float)photons, &rng, &o);
+    Photon p = emit_photon(&s, (float)photons, &sampler, &o);
     p.position += o.normal * ray_eps;
     for (int depth = 0; depth < KASHA_MAX_PATH_DEPTH; ++depth) {
       HitPoint h;
@@ -38,7 +38,7 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
           for (int i = 0; i < KASHA_BINS; ++i) rec[KASHA_PHOTON_POWER + i] = p.power[i];
         }
       }
-      if (scatter_photon(&p, &surf, &s, x, ns, &rng) == BRANCH_ABSORBED) break;
+      if (scatter_photon(&p, &surf, &s, x, ns, &sampler, depth) == BRANCH_ABSORBED) break;
     }
   }
 }
@@ -55,10 +55,10 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
   vp[KASHA_VP_VALID] = 0.0f;
   float rows[KASHA_FILM_ROWS];
   film_rows_clear(rows);
-  /* A seed stream apart from the photons' (whose items count photons, not pixels). */
-  Rng rng = rng_seed(seed ^ 0x5bd1e995u, pass, (uint)pixel);
+  /* The pixel's stream (one sample per pass); a seed apart from the photons'. */
+  Sampler sampler = sampler_start(seed ^ 0x5bd1e995u, (uint)pixel, pass, pass, (uint)pixel);
   float3 org = camera_position(&camera);
-  float3 dir = camera_sample(&camera, pixel, &rng);
+  float3 dir = camera_sample(&camera, pixel, sample_2d(&sampler));
   float w[KASHA_BINS];
   for (int i = 0; i < KASHA_BINS; ++i) w[i] = 1.0f;
   float travelled = 0.0f;
@@ -80,7 +80,9 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
     bool lambert = surface_has_lambert(&surf) && wl > 0.0f;
     float wg = surf.g * w0;
     float p_gloss = lambert ? wg / (wg + wl) : (surf.g > 0.0f ? 1.0f : 0.0f);
-    if (lambert && rng_next_float(&rng) >= p_gloss) {
+    sampler_at(&sampler, 1 + 2 * depth); /* per vertex: (choice, lobe azimuth), direction */
+    float2 u_choice = sample_2d(&sampler), u_dir = sample_2d(&sampler);
+    if (lambert && u_choice.x >= p_gloss) {
       /* The visible point, K over 1 − P_gloss. */
       vp[0] = x.x, vp[1] = x.y, vp[2] = x.z;
       vp[3] = ns.x, vp[4] = ns.y, vp[5] = ns.z;
@@ -101,8 +103,7 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
       dir = mirror;
     } else {
       float pdf;
-      float3 u = rng_next_float3(&rng);
-      float3 wi = sample_lobe(surf.m, lobes, mirror, u.x, u.y, u.z, &pdf);
+      float3 wi = sample_lobe(surf.m, lobes, mirror, u_dir.x, u_dir.y, u_choice.y, &pdf);
       float ci = dot(wi, ns), co = dot(wo, ns);
       if (ci <= 0.0f) break;
       weight *= 2.0f * ci / (ci + co);

@@ -7,7 +7,7 @@
 
 #include "gloss_lobe.h"
 #include "lights.h"
-#include "rng.h"
+#include "sampler.h"
 #include "sampling.h"
 #include "scene_view.h"
 #include "spectral_product.h"
@@ -16,8 +16,15 @@
 typedef struct {
   float3 position;
   float3 direction;
+  float start; /* the power it left its light with (W), Russian roulette's yardstick */
   float power[KASHA_BINS];
 } Photon;
+
+inline float photon_total(const Photon* p) {
+  float s = 0.0f;
+  for (int i = 0; i < KASHA_BINS; ++i) s += p->power[i];
+  return s;
+}
 
 enum { BRANCH_ABSORBED = 0, BRANCH_GLOSS = 1, BRANCH_PASSIVE = 2, BRANCH_FLUORESCENT = 3 };
 
@@ -32,12 +39,13 @@ typedef struct {
 /* A photon leaving a light: a triangle chosen by power, a uniform point, a cosine-weighted
  * direction; its spectrum is the emitter's radiance scaled so that the `photons` of a pass carry
  * the lights' total power: Φ_i = Le_i Δλ · π / (p_area · photons). */
-inline Photon emit_photon(const SceneView* s, float photons, Rng* rng, LightOrigin* origin) {
-  float3 u = rng_next_float3(rng);
-  LightPoint lp = sample_light(s->tris, s->light_tri, s->light_cdf, s->light_count, u.x, u.y, u.z);
+inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, LightOrigin* origin) {
+  sampler_at(sampler, 0);
+  float u0 = sample_2d(sampler).x;
+  float2 u = sample_2d(sampler), d = sample_2d(sampler);
+  LightPoint lp = sample_light(s->tris, s->light_tri, s->light_cdf, s->light_count, u0, u.x, u.y);
   Photon p;
   p.position = lp.position;
-  float2 d = rng_next_float2(rng);
   p.direction = sample_cosine_hemisphere(lp.normal, d.x, d.y);
   origin->normal = lp.normal;
   origin->emitter = lp.emitter;
@@ -45,20 +53,25 @@ inline Photon emit_photon(const SceneView* s, float photons, Rng* rng, LightOrig
   float scale = s->bin_nm * KASHA_PI / (origin->area_pdf * photons);
   const __global float* le = emitter_spectrum(s, lp.emitter);
   for (int i = 0; i < KASHA_BINS; ++i) p.power[i] = le[i] * scale;
+  p.start = photon_total(&p);
   return p;
 }
 
-inline float photon_total(const Photon* p) {
-  float s = 0.0f;
-  for (int i = 0; i < KASHA_BINS; ++i) s += p->power[i];
-  return s;
-}
+/* Dimension pairs of the sampler: (light choice, —), the light point and the direction at the
+ * light, then per hit (branch choice, roulette), the direction, (the lobe's azimuth, —). */
+#define PHOTON_PAIRS_AT_LIGHT 3
+#define PHOTON_PAIRS_PER_HIT 3
 
-/* Scatters the photon at x (ns: the normal on the side it arrived from). Chooses gloss, passive
- * or fluorescent re-emission with probability P_k / ΣΦ, P_g = g ΣΦ, P_p = Σ ρ_i Φ_i,
- * P_f = Σ a_i Φ_i, or absorption; the new spectrum (g Φ, ρ∘Φ or ê (a·Φ)) is rescaled by ΣΦ/P_k so
- * the photon keeps its power (the cone lobe's cosine ratio aside). Returns the branch. */
-inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, float3 x, float3 ns, Rng* rng) {
+/* Scatters the photon at its depth-th hit x (ns: the normal on the side it arrived from).
+ * Chooses gloss, passive or fluorescent re-emission with probability P_k / ΣP, P_g = g ΣΦ,
+ * P_p = Σ ρ_i Φ_i, P_f = Σ a_i Φ_i; the new spectrum (g Φ, ρ∘Φ or ê (a·Φ)) is divided by that
+ * probability, so the photon's power becomes ΣP: the first bounces are never cut. From the second
+ * hit on, Russian roulette keeps a photon that carries less than it left its light with
+ * with probability (its power / that power), scaled back up to it. Returns the branch. */
+inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, float3 x, float3 ns, Sampler* sampler,
+                          int depth) {
+  sampler_at(sampler, PHOTON_PAIRS_AT_LIGHT + depth * PHOTON_PAIRS_PER_HIT);
+  float2 u_choice = sample_2d(sampler), u_dir = sample_2d(sampler), u_more = sample_2d(sampler);
   const float ray_eps = scene->ray_eps;
   float total = photon_total(p);
   float pg = s->g * total, pp = 0.0f, pf = 0.0f;
@@ -66,42 +79,46 @@ inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, f
 #if KASHA_FLUORESCENCE
   if (s->fluorescent) pf = spectrum_dot(KASHA_BINS, p->power, s->a, 0);
 #endif
-  float xi = rng_next_float(rng) * total;
-  float u1 = rng_next_float(rng), u2 = rng_next_float(rng);
+  float sum = pg + pp + pf;
+  if (!(sum > 0.0f)) return BRANCH_ABSORBED;
+  float xi = u_choice.x * sum;
   float3 d_in = p->direction;
+  int branch;
   if (xi < pg) {
     float3 mirror = reflect_dir(d_in, ns);
+    float k = sum / total;
     if (s->mirror) {
       p->direction = mirror;
     } else {
       float pdf;
-      float3 wo = sample_lobe(s->m, scene->lobes, mirror, u1, u2, rng_next_float(rng), &pdf);
+      float3 wo = sample_lobe(s->m, scene->lobes, mirror, u_dir.x, u_dir.y, u_more.x, &pdf);
       float co = dot(wo, ns), ci = -dot(d_in, ns);
       if (co <= 0.0f) return BRANCH_ABSORBED;
-      float k = 2.0f * co / (ci + co);
-      for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= k;
+      k *= 2.0f * co / (ci + co);
       p->direction = wo;
     }
-    p->position = x + ns * ray_eps;
-    return BRANCH_GLOSS;
-  }
-  if (xi < pg + pp) {
-    float k = total / pp;
+    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= k;
+    branch = BRANCH_GLOSS;
+  } else if (xi < pg + pp || pf <= 0.0f) {
+    float k = sum / pp;
     for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= s->rho[i] * k;
-    p->direction = sample_cosine_hemisphere(ns, u1, u2);
-    p->position = x + ns * ray_eps;
-    return BRANCH_PASSIVE;
-  }
+    p->direction = sample_cosine_hemisphere(ns, u_dir.x, u_dir.y);
+    branch = BRANCH_PASSIVE;
 #if KASHA_FLUORESCENCE
-  if (xi < pg + pp + pf) {
-    /* The photon changes colour: all its power re-emitted with the emission spectrum. */
-    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] = s->ehat[i] * total;
-    p->direction = sample_cosine_hemisphere(ns, u1, u2);
-    p->position = x + ns * ray_eps;
-    return BRANCH_FLUORESCENT;
-  }
+  } else {
+    /* The photon changes colour: its power re-emitted with the emission spectrum. */
+    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] = s->ehat[i] * sum;
+    p->direction = sample_cosine_hemisphere(ns, u_dir.x, u_dir.y);
+    branch = BRANCH_FLUORESCENT;
 #endif
-  return BRANCH_ABSORBED;
+  }
+  p->position = x + ns * ray_eps;
+  if (depth >= 1) {
+    float survive = fmin(1.0f, photon_total(p) / p->start);
+    if (!(u_choice.y < survive)) return BRANCH_ABSORBED;
+    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] /= survive;
+  }
+  return branch;
 }
 
 #endif

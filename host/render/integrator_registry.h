@@ -27,6 +27,7 @@ struct IntegratorSettings {
   bool edge_correction = false;   // --edge-correction
   std::string view = "emission";  // --view: the debug view
   unsigned seed = 1;              // --seed (every integrator)
+  std::string sampler = "sobol";  // --sampler (every integrator): sobol or independent
   // Test hooks, not on the command line.
   bool full_matrix = false;              // backward: carry the full rows × N path matrix
   int max_depth = KASHA_MAX_PATH_DEPTH;  // forward: cut photon paths after this many bounces

@@ -1,11 +1,16 @@
 #include "render/kernel_integrator.h"
 
+#include "core/error.h"
+
 namespace kasha {
 
 KernelIntegrator::KernelIntegrator(const IntegratorSetup& s, const std::string& file,
                                    KernelDefines extra)
     : cl_(s.cl), scene_(s.device_scene), film_(s.device_film) {
   KernelDefines defines = scene_defines(s.scene, film_.spectral());
+  if (s.settings.sampler != "sobol" && s.settings.sampler != "independent")
+    throw Error("--sampler " + s.settings.sampler + ": unknown sampler (sobol, independent)");
+  defines["KASHA_SOBOL"] = s.settings.sampler == "sobol" ? "1" : "0";
   for (const auto& [name, value] : extra) defines[name] = value;
   program_ = build_program(cl_, assemble_kernel_source(file), defines, file);
 }
