@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "cli/compare_command.h"
 #include "cli/converge_command.h"
 #include "cli/info_command.h"
 #include "cli/measure_command.h"
@@ -119,6 +120,13 @@ int main(int argc, char** argv) {
   converge->add_option("-o,--output", study.out_dir, "directory for logs, plot, images and summary")
       ->required();
 
+  std::string compare_image, compare_reference, compare_scene;
+  CLI::App* compare = app.add_subcommand("compare", "error of an image against a reference");
+  compare->add_option("image", compare_image, "EXR to measure")->required();
+  compare->add_option("reference", compare_reference, "reference EXR")->required();
+  compare->add_option("--scene", compare_scene,
+                      "the scene: also report the error without the pixels that see an emitter");
+
   std::string reference_scene, reference_out;
   double reference_seconds = 0;
   unsigned reference_seed = 1;
@@ -148,6 +156,7 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("measure")) return run_measure(m);
     if (app.got_subcommand("converge")) return run_converge(converge_scene, integrators, study);
+    if (app.got_subcommand("compare")) return run_compare(compare_image, compare_reference, compare_scene);
     if (app.got_subcommand("reference"))
       return run_reference(reference_scene, reference_seconds, reference_seed, reference_device,
                            reference_out);

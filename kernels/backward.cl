@@ -1,8 +1,9 @@
 /* Backward Monte Carlo ray tracing (DESIGN §2.2): camera paths whose colour is a diagonal spectrum
  * or, after a fluorescent bounce, a rank-1 factor (path_weight.h). At each vertex: emission,
- * next-event estimation to an emitting triangle (MIS with the branch that could have hit it),
- * then one branch — gloss, passive, fluorescent — chosen in proportion to the energy it would
- * bring to the film under equal-energy light; the rest is absorption (Russian roulette).
+ * next-event estimation to an emitting triangle (by solid angle where it subtends enough; MIS with
+ * the branch that could have hit it), then one branch — gloss, passive, fluorescent — chosen in
+ * proportion to the energy it would bring to the film under equal-energy light, and Russian
+ * roulette after the first bounces (roulette.h). Sample values come from sampler.h.
  * One work item renders one pixel's samples of a pass, so the film needs no atomics. */
 #include "camera.h"
 #include "film_view.h"
@@ -10,13 +11,15 @@
 #include "hit_point.h"
 #include "lights.h"
 #include "path_weight.h"
+#include "roulette.h"
 #include "sampler.h"
 #include "sampling.h"
 #include "scene_view.h"
 #include "surface.h"
 
-/* Dimension pairs of the sampler per path vertex: (light choice, branch choice), the light
- * point, the direction, (the lobe's azimuth, roulette); pair 0 is the pixel position. */
+/* Dimension pairs of the sampler per path vertex: (branch choice, roulette), the light (triangle
+ * and point), the direction, and (the lobe's azimuth, —) drawn only for a lobe; pair 0 is the
+ * pixel position. */
 #define PAIRS_PER_VERTEX 4
 
 /* Branch probabilities at a vertex, P_g, P_p, P_f, in proportion to the energy each brings to
@@ -36,9 +39,9 @@ inline float3 branch_probabilities(const PathWeight* p, const FilmView* f, const
 
 /* Next-event estimation at x (shading normal ns on the viewer's side, wo towards the viewer). */
 inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* f, const Surface* surf, float3 x,
-                       float3 ns, float3 wo, float3 probs, float u_light, float2 u_point, float* rows) {
+                       float3 ns, float3 wo, float3 probs, float2 u_light, float* rows) {
   float pdf_light;
-  LightPoint lp = sample_light_from(s, x, u_light, u_point, &pdf_light);
+  LightPoint lp = sample_light_from(s, x, u_light, &pdf_light);
   if (!(pdf_light > 0.0f)) return;
   float3 to = lp.position - x;
   float dist = length(to);
@@ -78,6 +81,7 @@ inline void trace_camera_path(const SceneView* s, const FilmView* f, float3 org,
   const float start = pw_magnitude(&p, f);
   bool specular = true; /* the camera ray, or a mirror bounce: emission is not also sampled by NEE */
   float prev_pdf = 0.0f;
+  float3 prev_x = org; /* the previous vertex itself (org is offset off its surface) */
   for (int depth = 0; depth < KASHA_MAX_PATH_DEPTH; ++depth) {
     HitPoint h;
     if (!intersect_scene(s, org, dir, &h)) return;
@@ -85,7 +89,7 @@ inline void trace_camera_path(const SceneView* s, const FilmView* f, float3 org,
 
     if (h.emitter >= 0 && h.front) {
       float weight = 1.0f;
-      if (!specular) weight = mis_weight(prev_pdf, light_pdf_from(s, h.tri, org, x, dot(h.n, wo)));
+      if (!specular) weight = mis_weight(prev_pdf, light_pdf_from(s, h.tri, prev_x, x, dot(h.n, wo)));
       pw_add(&p, f, emitter_spectrum(s, h.emitter), 0, weight, rows);
     }
 
@@ -94,12 +98,11 @@ inline void trace_camera_path(const SceneView* s, const FilmView* f, float3 org,
     float3 probs = branch_probabilities(&p, f, &surf);
     if (probs.x + probs.y + probs.z <= 0.0f) return;
     sampler_at(sampler, 1 + depth * PAIRS_PER_VERTEX);
-    float2 u_choice = sample_2d(sampler), u_point = sample_2d(sampler), u_dir = sample_2d(sampler),
-           u_more = sample_2d(sampler);
+    float2 u_choice = sample_2d(sampler), u_light = sample_2d(sampler), u_dir = sample_2d(sampler);
     if (s->light_count > 0 && (surface_has_lambert(&surf) || (surf.g > 0.0f && !surf.mirror)))
-      next_event(&p, s, f, &surf, x, ns, wo, probs, u_choice.x, u_point, rows);
+      next_event(&p, s, f, &surf, x, ns, wo, probs, u_light, rows);
 
-    float choice = u_choice.y;
+    float choice = u_choice.x;
     if (choice < probs.x) {
       /* Gloss: white, weight g (times the lobe's cosine ratio), below the horizon absorbed. */
       float3 mirror = reflect_dir(dir, ns);
@@ -109,7 +112,7 @@ inline void trace_camera_path(const SceneView* s, const FilmView* f, float3 org,
         pw_scatter_diagonal(&p, 0, surf.g / probs.x);
       } else {
         float pdf;
-        float3 wi = sample_lobe(surf.m, s->lobes, mirror, u_dir.x, u_dir.y, u_more.x, &pdf);
+        float3 wi = sample_lobe(surf.m, s->lobes, mirror, u_dir.x, u_dir.y, sample_2d(sampler).x, &pdf);
         float ci = dot(wi, ns), co = dot(wo, ns);
         if (ci <= 0.0f) return;
         dir = wi;
@@ -130,13 +133,10 @@ inline void trace_camera_path(const SceneView* s, const FilmView* f, float3 org,
       pw_scatter_fluorescent(&p, f, surf.ehat, surf.a, 1.0f / probs.z);
 #endif
     }
-    /* Russian roulette on what the path still carries, from the second bounce on (the first is
-     * never cut; a path that carries more than at the camera is never cut). */
-    if (depth >= 1) {
-      float survive = fmin(1.0f, pw_magnitude(&p, f) / start);
-      if (!(u_more.y < survive)) return;
-      pw_scatter_diagonal(&p, 0, 1.0f / survive);
-    }
+    float keep = roulette(depth, KASHA_CAMERA_ROULETTE_FROM, pw_magnitude(&p, f) / start, u_choice.y);
+    if (keep == 0.0f) return;
+    if (keep != 1.0f) pw_scatter_diagonal(&p, 0, keep);
+    prev_x = x;
     org = x + ns * s->ray_eps;
   }
 }

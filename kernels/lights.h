@@ -44,12 +44,6 @@ inline float light_pdf_solid_angle(const __global float* emitter_area_pdf, int e
 #define KASHA_MIN_SPHERICAL_SOLID_ANGLE 3e-4f /* below: float trouble, and area sampling is as good */
 #define KASHA_MAX_SPHERICAL_SOLID_ANGLE 6.22f /* above: the triangle nearly fills the hemisphere */
 
-/* The angle between unit vectors, accurate near 0 and π. */
-inline float angle_between(float3 a, float3 b) {
-  if (dot(a, b) < 0.0f) return KASHA_PI - 2.0f * asin(fmin(1.0f, 0.5f * length(a + b)));
-  return 2.0f * asin(fmin(1.0f, 0.5f * length(b - a)));
-}
-
 /* Solid angle of the triangle (v0, v1, v2) seen from p (Van Oosterom & Strackee 1983). */
 inline float triangle_solid_angle(float3 p, float3 v0, float3 v1, float3 v2) {
   float3 a = normalize(v0 - p), b = normalize(v1 - p), c = normalize(v2 - p);
@@ -60,17 +54,17 @@ inline bool spherical_sampling(float solid_angle) {
   return solid_angle > KASHA_MIN_SPHERICAL_SOLID_ANGLE && solid_angle < KASHA_MAX_SPHERICAL_SOLID_ANGLE;
 }
 
-/* A direction from p uniform in the solid angle of the triangle (Arvo 1995): u.x picks the area
- * of a sub-triangle a-b-c' (c' on the arc a-c), u.y a point on the arc from b to c'. */
-inline float3 sample_spherical_triangle(float3 p, float3 v0, float3 v1, float3 v2, float2 u) {
+/* A direction from p uniform in the solid angle `omega` of the triangle (Arvo 1995): u.x picks the
+ * area u.x·Ω of a sub-triangle a-b-c' (c' on the arc a-c), u.y a point on the arc from b to c'.
+ * The angle α at a enters through its cosine and sine alone, and Ω is the solid angle the caller
+ * already has, so one sincos is all the trigonometry. */
+inline float3 sample_spherical_triangle(float3 p, float3 v0, float3 v1, float3 v2, float omega, float2 u) {
   float3 a = normalize(v0 - p), b = normalize(v1 - p), c = normalize(v2 - p);
-  float3 n_ab = normalize(cross(a, b)), n_bc = normalize(cross(b, c)), n_ca = normalize(cross(c, a));
-  float alpha = angle_between(n_ab, -n_ca), beta = angle_between(n_bc, -n_ab), gamma = angle_between(n_ca, -n_bc);
-  /* The sub-triangle's area A' = u.x·A, through its angle sum A' + π. */
-  float area_pi = KASHA_PI + u.x * (alpha + beta + gamma - KASHA_PI);
-  float cos_alpha = cos(alpha), sin_alpha = sin(alpha);
-  float sin_phi = sin(area_pi) * cos_alpha - cos(area_pi) * sin_alpha;
-  float cos_phi = cos(area_pi) * cos_alpha + sin(area_pi) * sin_alpha;
+  float3 n_ab = normalize(cross(a, b)), n_ca = normalize(cross(c, a));
+  float cos_alpha = -dot(n_ab, n_ca), sin_alpha = length(cross(n_ab, n_ca));
+  float cos_area, sin_area = sincos(KASHA_PI + u.x * omega, &cos_area); /* of A' + π */
+  float sin_phi = sin_area * cos_alpha - cos_area * sin_alpha;
+  float cos_phi = cos_area * cos_alpha + sin_area * sin_alpha;
   float k1 = cos_phi + cos_alpha;
   float k2 = sin_phi - sin_alpha * dot(a, b);
   float cos_bp = (k2 + (k2 * cos_phi - k1 * sin_phi) * cos_alpha) / ((k2 * sin_phi + k1 * cos_phi) * sin_alpha);
@@ -83,14 +77,18 @@ inline float3 sample_spherical_triangle(float3 p, float3 v0, float3 v1, float3 v
 }
 
 /* A light point for next-event estimation at x, with the solid-angle density of having sampled
- * its direction (0 when the sample failed). u0 picks the triangle, u the point. */
-inline LightPoint sample_light_from(const SceneView* s, float3 x, float u0, float2 u, float* pdf) {
+ * its direction (0 when the sample failed). u.x picks the triangle and, rescaled to the part of
+ * [0, 1) that picked it, goes on with u.y to pick the point: the 2-D sample stays stratified over
+ * all the emitting triangles together (a quad lamp's two triangles included). */
+inline LightPoint sample_light_from(const SceneView* s, float3 x, float2 u, float* pdf) {
   int lo = 0, hi = s->light_count - 1;
   while (lo < hi) {
     int mid = (lo + hi) / 2;
-    if (s->light_cdf[mid] > u0) hi = mid;
+    if (s->light_cdf[mid] > u.x) hi = mid;
     else lo = mid + 1;
   }
+  float below = lo > 0 ? s->light_cdf[lo - 1] : 0.0f, width = s->light_cdf[lo] - below;
+  u.x = width > 0.0f ? clamp((u.x - below) / width, 0.0f, 0.99999994f) : 0.5f;
   const __global KTriangle* t = &s->tris[s->light_tri[lo]];
   float3 v0 = load_float3(t->v0), v1 = load_float3(t->v1), v2 = load_float3(t->v2);
   float3 cr = cross(v1 - v0, v2 - v0);
@@ -102,7 +100,7 @@ inline LightPoint sample_light_from(const SceneView* s, float3 x, float u0, floa
   float omega = triangle_solid_angle(x, v0, v1, v2);
   *pdf = 0.0f;
   if (spherical_sampling(omega)) {
-    float3 w = sample_spherical_triangle(x, v0, v1, v2, u);
+    float3 w = sample_spherical_triangle(x, v0, v1, v2, omega, u);
     float along = dot(p.normal, w);
     float dist = along != 0.0f ? dot(p.normal, v0 - x) / along : 0.0f;
     p.position = x + dist * w;

@@ -7,6 +7,7 @@
 
 #include "gloss_lobe.h"
 #include "lights.h"
+#include "roulette.h"
 #include "sampler.h"
 #include "sampling.h"
 #include "scene_view.h"
@@ -58,20 +59,20 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
 }
 
 /* Dimension pairs of the sampler: (light choice, —), the light point and the direction at the
- * light, then per hit (branch choice, roulette), the direction, (the lobe's azimuth, —). */
+ * light, then per hit (branch choice, roulette), the direction, and (the lobe's azimuth, —) drawn
+ * only for a lobe. */
 #define PHOTON_PAIRS_AT_LIGHT 3
 #define PHOTON_PAIRS_PER_HIT 3
 
 /* Scatters the photon at its depth-th hit x (ns: the normal on the side it arrived from).
  * Chooses gloss, passive or fluorescent re-emission with probability P_k / ΣP, P_g = g ΣΦ,
  * P_p = Σ ρ_i Φ_i, P_f = Σ a_i Φ_i; the new spectrum (g Φ, ρ∘Φ or ê (a·Φ)) is divided by that
- * probability, so the photon's power becomes ΣP: the first bounces are never cut. From the second
- * hit on, Russian roulette keeps a photon that carries less than it left its light with
- * with probability (its power / that power), scaled back up to it. Returns the branch. */
+ * probability, so the photon's power becomes ΣP; then Russian roulette (roulette.h) against the
+ * power it left its light with. Returns the branch. */
 inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, float3 x, float3 ns, Sampler* sampler,
                           int depth) {
   sampler_at(sampler, PHOTON_PAIRS_AT_LIGHT + depth * PHOTON_PAIRS_PER_HIT);
-  float2 u_choice = sample_2d(sampler), u_dir = sample_2d(sampler), u_more = sample_2d(sampler);
+  float2 u_choice = sample_2d(sampler), u_dir = sample_2d(sampler);
   const float ray_eps = scene->ray_eps;
   float total = photon_total(p);
   float pg = s->g * total, pp = 0.0f, pf = 0.0f;
@@ -91,7 +92,7 @@ inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, f
       p->direction = mirror;
     } else {
       float pdf;
-      float3 wo = sample_lobe(s->m, scene->lobes, mirror, u_dir.x, u_dir.y, u_more.x, &pdf);
+      float3 wo = sample_lobe(s->m, scene->lobes, mirror, u_dir.x, u_dir.y, sample_2d(sampler).x, &pdf);
       float co = dot(wo, ns), ci = -dot(d_in, ns);
       if (co <= 0.0f) return BRANCH_ABSORBED;
       k *= 2.0f * co / (ci + co);
@@ -113,11 +114,10 @@ inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, f
 #endif
   }
   p->position = x + ns * ray_eps;
-  if (depth >= 1) {
-    float survive = fmin(1.0f, photon_total(p) / p->start);
-    if (!(u_choice.y < survive)) return BRANCH_ABSORBED;
-    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] /= survive;
-  }
+  float keep = roulette(depth, KASHA_PHOTON_ROULETTE_FROM, photon_total(p) / p->start, u_choice.y);
+  if (keep == 0.0f) return BRANCH_ABSORBED;
+  if (keep != 1.0f)
+    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= keep;
   return branch;
 }
 

@@ -31,12 +31,22 @@ inline float3 rng_next_float3(Rng* r) {
   return (float3)(ab.x, ab.y, c);
 }
 
+/* splitmix64's finalizer: nearby inputs give unrelated outputs. */
+inline ulong mix64(ulong z) {
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9UL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebUL;
+  return z ^ (z >> 31);
+}
+
+/* State and increment both hashed from (seed, pass, item), so neighbouring items' streams are
+ * unrelated (increments that differ in one bit give correlated PCG streams). */
 inline Rng rng_seed(uint seed, uint pass, uint item) {
+  ulong key = mix64(((ulong)seed << 32 | pass) + 0x9e3779b97f4a7c15UL);
   Rng r;
   r.state = 0UL;
-  r.inc = ((((ulong)seed << 32) ^ (ulong)item) << 1u) | 1u;
+  r.inc = (mix64(key ^ item) << 1) | 1UL;
   rng_next_uint(&r);
-  r.state += ((ulong)pass << 32) ^ (ulong)item * 0x9E3779B97F4A7C15UL;
+  r.state += mix64(key + 0x632be59bd9b4e019UL * ((ulong)item + 1UL));
   rng_next_uint(&r);
   return r;
 }

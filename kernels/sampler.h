@@ -52,18 +52,25 @@ inline uint nested_uniform_scramble(uint x, uint seed) {
   return reverse_bits_u32(lk_permutation(reverse_bits_u32(x), seed));
 }
 
-/* Sobol dimension 1: direction numbers v_0 = 2^31, v_{k+1} = v_k ^ (v_k >> 1). */
-inline uint sobol_dimension1(uint index) {
-  uint x = 0, v = 0x80000000u;
-  for (; index; index >>= 1, v ^= v >> 1)
-    if (index & 1u) x ^= v;
-  return x;
+/* Sobol dimension 1 before its bits are reversed: its generator matrix is Pascal's triangle mod 2,
+ * so output bit i is the parity of the index bits j ⊇ i (Lucas), a superset transform over the
+ * five bits of a bit position: five shift-mask-xor steps instead of a loop over 32 bits. */
+inline uint sobol_dimension1_reversed(uint index) {
+  index ^= (index >> 1) & 0x55555555u;
+  index ^= (index >> 2) & 0x33333333u;
+  index ^= (index >> 4) & 0x0f0f0f0fu;
+  index ^= (index >> 8) & 0x00ff00ffu;
+  index ^= (index >> 16) & 0x0000ffffu;
+  return index;
 }
 
+/* Dimensions 0 (van der Corput: the reversed index) and 1 of Sobol's sequence, each Owen-scrambled,
+ * at a shuffled index. Owen scrambling of a reversed-bits value v is reverse(LK(reverse(v))), so a
+ * coordinate whose reversed bits are at hand costs one reversal. */
 inline float2 scrambled_sobol_2d(uint index, uint seed) {
   index = nested_uniform_scramble(index, seed);
-  uint x = nested_uniform_scramble(reverse_bits_u32(index), hash_combine(seed, 1u));
-  uint y = nested_uniform_scramble(sobol_dimension1(index), hash_combine(seed, 2u));
+  uint x = reverse_bits_u32(lk_permutation(index, hash_combine(seed, 1u)));
+  uint y = reverse_bits_u32(lk_permutation(sobol_dimension1_reversed(index), hash_combine(seed, 2u)));
   /* 24 bits, so the float is exactly representable and below 1. */
   return (float2)((float)(x >> 8), (float)(y >> 8)) * (1.0f / 16777216.0f);
 }

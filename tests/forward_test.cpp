@@ -12,7 +12,9 @@ using namespace kasha;
 using namespace kasha::test;
 
 TEST(Forward, PowerIsConservedInAClosedScene) {
-  // Photons cut after 3 bounces: absorbed + still in flight = emitted, and nothing escapes.
+  // Photons cut after 3 bounces: absorbed (what hits took away, roulette included) + escaped +
+  // still in flight = emitted exactly. Next to nothing escapes a closed scene: a photon in about
+  // 10^5 slips through the float cracks of a tessellated sphere (issue 12's ray offsets).
   RenderSettings s;
   s.integrator = "forward";
   s.passes = 2;
@@ -24,8 +26,8 @@ TEST(Forward, PowerIsConservedInAClosedScene) {
                  absorbed = r.tallies.at("power absorbed (W)"),
                  escaped = r.tallies.at("power escaped (W)"),
                  in_flight = r.tallies.at("power in flight (W)");
-    EXPECT_NEAR(absorbed + in_flight, emitted, 1e-5 * emitted) << scene;
-    EXPECT_EQ(escaped, 0) << scene;
+    EXPECT_NEAR(absorbed + escaped + in_flight, emitted, 1e-5 * emitted) << scene;
+    EXPECT_LT(escaped, 1e-5 * emitted) << scene;
     EXPECT_GT(in_flight, 0.05 * emitted) << scene;  // the cut leaves photons in flight
     // A pass's photons carry the lights' total power.
     KernelSceneData data(r.scene);

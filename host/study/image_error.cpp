@@ -6,18 +6,21 @@
 
 namespace kasha {
 
-ImageError image_error(const Image& image, const Image& reference) {
+ImageError image_error(const Image& image, const Image& reference, const std::vector<bool>& leave_out) {
   if (image.width != reference.width || image.height != reference.height)
     throw Error("reference is " + std::to_string(reference.width) + "x" +
                 std::to_string(reference.height) + " but the image is " +
                 std::to_string(image.width) + "x" + std::to_string(image.height));
   double se = 0, rel = 0;
-  size_t n = image.xyz.size();
-  for (size_t i = 0; i < n; ++i) {
+  size_t n = 0;
+  for (size_t i = 0; i < image.xyz.size(); ++i) {
+    if (!leave_out.empty() && leave_out[i / 3]) continue;
+    ++n;
     double d = static_cast<double>(image.xyz[i]) - reference.xyz[i];
     se += d * d;
     rel += d * d / (static_cast<double>(reference.xyz[i]) * reference.xyz[i] + 0.01);
   }
+  if (n == 0) return {0, 0};
   return {std::sqrt(se / n), rel / n};
 }
 

@@ -1,6 +1,8 @@
 #pragma once
 // Error of an image against a reference, as the convergence log reports it (DESIGN §5): RMSE over
 // all pixels and X, Y, Z; relMSE = mean of (x − r)² / (r² + 0.01).
+#include <vector>
+
 #include "film/image.h"
 
 namespace kasha {
@@ -9,7 +11,9 @@ struct ImageError {
   double rmse = 0, relmse = 0;
 };
 
-// Throws kasha::Error when the sizes differ.
-ImageError image_error(const Image& image, const Image& reference);
+// Throws kasha::Error when the sizes differ. With `leave_out` (a flag per pixel), those pixels
+// are not counted.
+ImageError image_error(const Image& image, const Image& reference,
+                       const std::vector<bool>& leave_out = {});
 
 }  // namespace kasha
