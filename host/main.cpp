@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "cli/colorimetry_command.h"
 #include "cli/converge_command.h"
 #include "cli/info_command.h"
 #include "cli/measure_command.h"
@@ -89,6 +90,28 @@ int main(int argc, char** argv) {
   measure->add_option("--name", m.name, "material name (default: the output file's stem)");
   measure->add_flag("--clip", m.clip, "clip an energy gain instead of failing, and record it");
 
+  ColorimetryArgs col;
+  CLI::App* colorimetry = app.add_subcommand(
+      "colorimetry",
+      "a material's total radiance factor, XYZ, CIELAB and CIE whiteness/tint under illuminants");
+  colorimetry->add_option("material", col.material, "material JSON file")->required();
+  colorimetry->add_option(
+      "--illuminant", col.illuminants,
+      "a spectrum: built-in name (D65, A, F11, …), CSV file or JSON value; repeat for a table "
+      "(default D65)");
+  colorimetry->add_option("--observer", col.observer, "CIE 1931 2° or CIE 1964 10° (default 2)")
+      ->check(CLI::IsMember({2, 10}));
+  colorimetry->add_option("--bin-nm", col.bin_nm, "wavelength bin width (default 10)")
+      ->check(CLI::Range(0.1, 100.0));
+  colorimetry->add_option("--as-is", col.as_is,
+                          "compare with the material taken \"as is\": its radiance factor under "
+                          "this lamp as a plain reflectance (ΔE2000 per illuminant)");
+  colorimetry->add_option("--write-as-is", col.write_as_is,
+                          "write that \"as is\" material as a material file");
+  colorimetry->add_option("--json", col.json, "results as JSON");
+  colorimetry->add_option("--csv", col.csv, "results as CSV, a row per illuminant");
+  colorimetry->add_option("--plot", col.plot, "radiance factors as a PNG figure");
+
   StudyOptions study;
   std::string converge_scene, integrators;
   CLI::App* converge =
@@ -142,6 +165,7 @@ int main(int argc, char** argv) {
       return run_render(r);
     }
     if (app.got_subcommand("measure")) return run_measure(m);
+    if (app.got_subcommand("colorimetry")) return run_colorimetry(col);
     if (app.got_subcommand("converge")) return run_converge(converge_scene, integrators, study);
     if (app.got_subcommand("reference"))
       return run_reference(reference_scene, reference_seconds, reference_seed, reference_device,
