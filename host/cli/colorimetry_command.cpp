@@ -62,8 +62,11 @@ int run_colorimetry(const ColorimetryArgs& a) {
   const std::vector<std::string> names =
       a.illuminants.empty() ? std::vector<std::string>{"D65"} : a.illuminants;
   for (const std::string& text : names)
-    request.illuminants.push_back({text, parse_spectrum_argument(text, "--illuminant")});
-  if (!a.as_is.empty()) request.as_is_lamp = {a.as_is, parse_spectrum_argument(a.as_is, "--as-is")};
+    request.illuminants.push_back(
+        {text, parse_spectrum_argument(text, "--illuminant"), "--illuminant " + text});
+  if (!a.as_is.empty())
+    request.as_is_lamp = {a.as_is, parse_spectrum_argument(a.as_is, "--as-is"),
+                          "--as-is " + a.as_is};
 
   Colorimetry c = evaluate_colorimetry(request);
   nlohmann::json result = colorimetry_json(c, a.material);

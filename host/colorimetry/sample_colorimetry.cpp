@@ -46,15 +46,16 @@ Colorimetry evaluate_colorimetry(const ColorimetryRequest& q) {
     r.illuminant = s.label;
     r.lamp = c.grid.resample(*s.spectrum);
     r.beta = radiance_factor(c.material, r.lamp);
-    r.white = relative_xyz(observer, r.lamp, r.lamp, c.grid.bin_nm, s.label);
-    r.xyz = relative_xyz(observer, leaving_radiance(c.material, r.lamp), r.lamp, c.grid.bin_nm,
-                         s.label);
+    const std::string where = s.where.empty() ? s.label : s.where;
+    r.white = relative_xyz(observer, r.lamp, r.lamp, c.grid.bin_nm, where);
+    r.xyz =
+        relative_xyz(observer, leaving_radiance(c.material, r.lamp), r.lamp, c.grid.bin_nm, where);
     r.lab = xyz_to_lab(r.xyz, r.white);
     r.whiteness = cie_whiteness(r.xyz, r.white, q.observer);
     if (c.as_is) {
       AsIsColour a;
       a.xyz = relative_xyz(observer, passive_leaving(c.as_is->reflectance, r.lamp), r.lamp,
-                           c.grid.bin_nm, s.label);
+                           c.grid.bin_nm, where);
       a.lab = xyz_to_lab(a.xyz, r.white);
       a.delta_e00 = ciede2000(r.lab, a.lab);
       r.as_is = a;

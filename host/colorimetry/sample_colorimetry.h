@@ -18,6 +18,7 @@ namespace kasha {
 struct NamedSpectrum {
   std::string label;  // as given (a built-in name, a file, a JSON value)
   SpectrumPtr spectrum;
+  std::string where;  // for messages (the command-line option); the label when empty
 };
 
 struct ColorimetryRequest {
