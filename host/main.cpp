@@ -35,12 +35,13 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("devices", "list OpenCL platforms and devices");
 
-  std::string info_scene;
+  std::string info_scene, info_lamp;
   bool info_spectral = false;
   CLI::App* info = app.add_subcommand(
       "info", "what a scene needs: bins, features, memory, kernel build options");
   info->add_option("scene", info_scene, "scene JSON file")->required();
   info->add_flag("--spectral", info_spectral, "report for a spectral film");
+  info->add_option("--lamp", info_lamp, "switch on this one of the scene's \"lamps\"");
 
   RenderArgs r;
   CLI::App* render = app.add_subcommand("render", "render a scene to an EXR");
@@ -59,6 +60,7 @@ int main(int argc, char** argv) {
   render->add_option("--seed", r.settings.seed, "random seed");
   render->add_option("--device", r.device, "OpenCL device index (see `kasha devices`)")
       ->check(CLI::NonNegativeNumber);
+  render->add_option("--lamp", r.lamp, "switch on this one of the scene's \"lamps\"");
   render->add_option("--png", r.png, "also write a tone-mapped sRGB PNG preview");
   render->add_flag("--spectral", r.spectral, "add one channel per wavelength bin to the EXR");
   render->add_option("--reference", r.reference,
@@ -158,7 +160,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("devices")) return run_devices();
-    if (app.got_subcommand("info")) return run_info(info_scene, info_spectral);
+    if (app.got_subcommand("info")) return run_info(info_scene, info_spectral, info_lamp);
     if (app.got_subcommand("render")) {
       for (const std::string& option : IntegratorRegistry::options())
         if (render->count(option) > 0) r.integrator_options_given.push_back(option);

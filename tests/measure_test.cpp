@@ -20,18 +20,6 @@ using namespace kasha::test;
 
 namespace {
 
-TrueMaterial brightened_paper() {
-  TrueMaterial m;
-  m.rho = [](double l) { return 0.15 + 0.65 / (1 + std::exp(-(l - 420) / 15)); };
-  m.excitation = [](double l) { return 0.3 * gaussian(l, 370, 60); };
-  m.emission = emission_gaussian(445, 50);
-  return m;
-}
-
-SpectralFunction etalon_rho() {
-  return [](double l) { return 0.97 + 0.02 * (l - 300) / 500; };
-}
-
 // The etalon's reflectance as a spectrum, as `--etalon-reflectance` would read it.
 SpectrumPtr etalon_spectrum() {
   std::vector<double> nm, v;
@@ -52,17 +40,8 @@ MeasuredMaterial measure(const Instrument& in, const TrueMaterial& truth, bool g
   return material_from_fluorimeter(input);
 }
 
-// Writes what the instrument measures of `truth` and of the etalon, the etalon's reflectance and
-// the detector's sensitivity into the scratch directory; returns the matching measure options.
 std::string instrument_files(const Instrument& in, const TrueMaterial& truth) {
-  std::string d = scratch_dir().string();
-  write_eem_csv(d + "/s.csv", in.measure(truth, nullptr, "s.csv"));
-  write_eem_csv(d + "/e.csv", in.measure(TrueMaterial{}, etalon_rho(), "e.csv"));
-  std::ofstream(d + "/rho.csv") << "nm,rho\n250,0.969\n850,0.981\n";
-  std::ofstream c(d + "/c.csv");
-  for (double l = 250; l <= 850; l += 5) c << l << "," << in.sensitivity(l) << "\n";
-  return "--sample " + d + "/s.csv --etalon " + d + "/e.csv --etalon-reflectance " + d +
-         "/rho.csv --sensitivity " + d + "/c.csv";
+  return write_instrument_files(scratch_dir().string(), in, truth);
 }
 
 void expect_recovered(const MeasuredMaterial& m, const TrueMaterial& truth) {

@@ -34,6 +34,17 @@ struct Instrument {
                                    const std::string& name) const;
 };
 
+// The material `kasha measure` is tested on: a paper with an optical brightener (excited in the
+// UV, emitting blue), and the white etalon it is measured against.
+TrueMaterial brightened_paper();
+SpectralFunction etalon_rho();
+
+// Writes what the instrument measures of `truth` (s.csv) and of the etalon (e.csv), the etalon's
+// reflectance (rho.csv) and the detector's sensitivity (c.csv) into `dir`; returns the matching
+// `kasha measure` options.
+std::string write_instrument_files(const std::string& dir, const Instrument& in,
+                                   const TrueMaterial& truth);
+
 double gaussian(double x, double center, double fwhm);
 // A normalized gaussian emission (∫ = 1).
 SpectralFunction emission_gaussian(double center, double fwhm);
