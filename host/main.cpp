@@ -4,8 +4,11 @@
 
 #include "cli/colorimetry_command.h"
 #include "cli/converge_command.h"
+#include "cli/delta_e_command.h"
 #include "cli/info_command.h"
 #include "cli/measure_command.h"
+#include "cli/preview_command.h"
+#include "cli/regions_command.h"
 #include "cli/render_command.h"
 #include "core/error.h"
 #include "opencl/device.h"
@@ -114,6 +117,39 @@ int main(int argc, char** argv) {
   colorimetry->add_option("--csv", col.csv, "results as CSV, a row per illuminant");
   colorimetry->add_option("--plot", col.plot, "radiance factors as a PNG figure");
 
+  std::string lab1, lab2;
+  CLI::App* delta_e =
+      app.add_subcommand("delta-e", "the CIEDE2000 colour difference between two CIELAB colours");
+  delta_e->add_option("lab1", lab1, "L*,a*,b*")->required();
+  delta_e->add_option("lab2", lab2, "L*,a*,b*")->required();
+
+  std::string preview_exr, preview_png;
+  double preview_scale = 0;
+  CLI::App* preview = app.add_subcommand("preview", "an EXR as a tone-mapped sRGB PNG");
+  preview->add_option("image", preview_exr, "EXR image")->required();
+  preview->add_option("-o,--output", preview_png, "PNG to write")->required();
+  preview
+      ->add_option("--scale", preview_scale,
+                   "multiply XYZ by this (Y = 1 is white) instead of exposing by the log-average "
+                   "luminance")
+      ->check(CLI::PositiveNumber);
+
+  RegionsArgs reg;
+  CLI::App* regions = app.add_subcommand(
+      "regions", "an image's mean XYZ over each shape of its scene, from pixels well inside it");
+  regions->add_option("scene", reg.scene, "scene JSON file (its camera made the image)")
+      ->required();
+  regions->add_option("image", reg.image, "EXR image")->required();
+  regions
+      ->add_option("--margin", reg.margin_px,
+                   "pixels count when the shape is also seen this many pixels around their centre "
+                   "(default 1)")
+      ->check(CLI::NonNegativeNumber);
+  regions->add_option("--white", reg.white,
+                      "white-reference EXR (the samples replaced by a perfect white): adds XYZ "
+                      "relative to it (Y = 100) and CIELAB");
+  regions->add_option("--json", reg.json, "the regions as JSON");
+
   StudyOptions study;
   std::string converge_scene, integrators;
   CLI::App* converge =
@@ -168,6 +204,9 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("measure")) return run_measure(m);
     if (app.got_subcommand("colorimetry")) return run_colorimetry(col);
+    if (app.got_subcommand("regions")) return run_regions(reg);
+    if (app.got_subcommand("delta-e")) return run_delta_e(lab1, lab2);
+    if (app.got_subcommand("preview")) return run_preview(preview_exr, preview_png, preview_scale);
     if (app.got_subcommand("converge")) return run_converge(converge_scene, integrators, study);
     if (app.got_subcommand("reference"))
       return run_reference(reference_scene, reference_seconds, reference_seed, reference_device,

@@ -191,7 +191,9 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
     bool inward = false;
     if (auto in = shape.find("inward")) inward = in->boolean();
     shape.finish();
-    scene.shapes.push_back(ShapeInfo{type, inward, material, emitter});
+    scene.shapes.push_back(ShapeInfo{type, inward, material, emitter,
+                                     static_cast<int>(scene.triangles.size()),
+                                     static_cast<int>(tris.size())});
     for (const Triangle& t : tris) {
       KTriangle k{};
       for (int c = 0; c < 3; ++c) {

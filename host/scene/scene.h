@@ -23,6 +23,7 @@ struct ShapeInfo {
   std::string type;  // obj, quad, box, sphere
   bool inward = false;
   int material = -1, emitter = -1;
+  int first_triangle = 0, triangle_count = 0;  // in scene (primitive) order
 };
 
 struct Scene {
