@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "core/csv_table.h"
 #include "material/material.h"
@@ -266,4 +267,26 @@ TEST(Measure, JascoExportsAreReadAsSpectraAndMatrices) {
   EXPECT_EQ(m.em_nm, (std::vector<double>{400, 410, 420}));
   EXPECT_EQ(m.value(0, 1), 3);
   EXPECT_EQ(m.value(2, 0), 0.5);
+}
+
+// scenes/materials/brightened_paper.json is what its note (scenes/materials/SOURCES.md) says: the
+// simulated fluorimeter's files for the brightened paper through `kasha measure`.
+TEST(Measure, ShippedBrightenedPaperIsReproduced) {
+  const std::string d = scratch_dir().string();
+  auto r = run_kasha(
+      "measure " + write_instrument_files(d, Instrument::visible_scan(), brightened_paper()) +
+      " -o " + d + "/paper.json --name \"Brightened paper (simulated fluorimeter)\"");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json made = nlohmann::json::parse(std::ifstream(d + "/paper.json"));
+  nlohmann::json shipped =
+      nlohmann::json::parse(std::ifstream(source_path("scenes/materials/brightened_paper.json")));
+  EXPECT_EQ(made["name"], shipped["name"]);
+  for (const char* part :
+       {"/passive/reflectance", "/fluorescence/excitation", "/fluorescence/emission"}) {
+    const auto& a = made[nlohmann::json::json_pointer(part)];
+    const auto& b = shipped[nlohmann::json::json_pointer(part)];
+    ASSERT_EQ(a["nm"], b["nm"]) << part;
+    for (size_t k = 0; k < a["value"].size(); ++k)
+      EXPECT_NEAR(a["value"][k].get<double>(), b["value"][k].get<double>(), 1e-9) << part << k;
+  }
 }

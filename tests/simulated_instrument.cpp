@@ -54,6 +54,13 @@ Instrument Instrument::typical(bool with_sensitivity) {
   return in;
 }
 
+Instrument Instrument::visible_scan() {
+  Instrument in = typical(true);
+  in.ex_nm.clear();
+  for (double l = 300; l <= 780 + 1e-9; l += 5) in.ex_nm.push_back(l);
+  return in;
+}
+
 ExcitationEmissionMatrix Instrument::measure(const TrueMaterial& m,
                                              const SpectralFunction& etalon_rho,
                                              const std::string& name) const {

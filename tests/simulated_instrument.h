@@ -30,6 +30,9 @@ struct Instrument {
   unsigned seed = 1;
 
   static Instrument typical(bool with_sensitivity);
+  // The typical instrument with the excitation scanned over 300–780 nm, so that the passive
+  // reflectance covers the visible range (how scenes/materials/brightened_paper.json was measured).
+  static Instrument visible_scan();
   ExcitationEmissionMatrix measure(const TrueMaterial& m, const SpectralFunction& etalon_rho,
                                    const std::string& name) const;
 };

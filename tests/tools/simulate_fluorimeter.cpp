@@ -14,9 +14,8 @@ int main(int argc, char** argv) {
   }
   std::filesystem::create_directories(argv[1]);
   using namespace kasha::test;
-  Instrument in = Instrument::typical(true);
-  in.ex_nm.clear();
-  for (double l = 300; l <= 780 + 1e-9; l += 5) in.ex_nm.push_back(l);
-  std::printf("%s\n", write_instrument_files(argv[1], in, brightened_paper()).c_str());
+  std::printf(
+      "%s\n",
+      write_instrument_files(argv[1], Instrument::visible_scan(), brightened_paper()).c_str());
   return 0;
 }
