@@ -1,6 +1,8 @@
 #include "colorimetry/colorimetry_report.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <iomanip>
 #include <sstream>
 
 namespace kasha {
@@ -111,17 +113,20 @@ std::string colorimetry_table(const Colorimetry& c, const std::string& material_
       o << ", clipped to 1 at" << numbers(c.as_is->clipped_nm, " %g") << " nm";
     o << "\n";
   }
+  // The label column fits the longest illuminant as given (a name, a file, a JSON value).
+  size_t width = 10;
+  for (const IlluminantColorimetry& r : c.illuminants) width = std::max(width, r.illuminant.size());
   char line[256];
-  std::snprintf(line, sizeof line, "%-16s %8s %8s %8s %7s %7s %7s %7s %6s%s\n", "illuminant", "X",
-                "Y", "Z", "L*", "a*", "b*", "W", "T", c.as_is ? "  ΔE00 as is" : "");
-  o << line;
+  std::snprintf(line, sizeof line, " %8s %8s %8s %7s %7s %7s %7s %6s%s\n", "X", "Y", "Z", "L*",
+                "a*", "b*", "W", "T", c.as_is ? "  ΔE00 as is" : "");
+  o << std::left << std::setw(static_cast<int>(width)) << "illuminant" << line;
   bool any_out = false;
   for (const IlluminantColorimetry& r : c.illuminants) {
     any_out = any_out || !r.whiteness.in_range;
-    std::snprintf(line, sizeof line, "%-16s %8.3f %8.3f %8.3f %7.2f %7.2f %7.2f %7.2f %6.2f%s",
-                  r.illuminant.c_str(), r.xyz[0], r.xyz[1], r.xyz[2], r.lab[0], r.lab[1], r.lab[2],
-                  r.whiteness.w, r.whiteness.t, r.whiteness.in_range ? "" : "*");
-    o << line;
+    std::snprintf(line, sizeof line, " %8.3f %8.3f %8.3f %7.2f %7.2f %7.2f %7.2f %6.2f%s", r.xyz[0],
+                  r.xyz[1], r.xyz[2], r.lab[0], r.lab[1], r.lab[2], r.whiteness.w, r.whiteness.t,
+                  r.whiteness.in_range ? "" : "*");
+    o << std::setw(static_cast<int>(width)) << r.illuminant << line;
     if (r.as_is) {
       std::snprintf(line, sizeof line, " %12.2f", r.as_is->delta_e00);
       o << line;
