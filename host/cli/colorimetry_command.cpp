@@ -25,7 +25,9 @@ static void check_output(const std::string& path, const std::string& option,
     throw Error(option + " " + path + ": directory " + dir.string() + " does not exist");
   if (!fs::exists(p)) return;
   if (!fs::is_regular_file(p)) throw Error(option + " " + path + ": not a regular file");
-  if (fs::equivalent(p, input)) throw Error(option + " " + path + ": would overwrite the input");
+  std::error_code ec;
+  if (fs::equivalent(p, input, ec))
+    throw Error(option + " " + path + ": would overwrite the input");
 }
 
 // The figure is drawn from the JSON result in a scratch directory, then renamed into place.
