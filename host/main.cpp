@@ -2,10 +2,14 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "cli/colorimetry_command.h"
 #include "cli/compare_command.h"
 #include "cli/converge_command.h"
+#include "cli/delta_e_command.h"
 #include "cli/info_command.h"
 #include "cli/measure_command.h"
+#include "cli/preview_command.h"
+#include "cli/regions_command.h"
 #include "cli/render_command.h"
 #include "core/error.h"
 #include "opencl/device.h"
@@ -35,12 +39,13 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("devices", "list OpenCL platforms and devices");
 
-  std::string info_scene;
+  std::string info_scene, info_lamp;
   bool info_spectral = false;
   CLI::App* info = app.add_subcommand(
       "info", "what a scene needs: bins, features, memory, kernel build options");
   info->add_option("scene", info_scene, "scene JSON file")->required();
   info->add_flag("--spectral", info_spectral, "report for a spectral film");
+  info->add_option("--lamp", info_lamp, "switch on this one of the scene's \"lamps\"");
 
   RenderArgs r;
   CLI::App* render = app.add_subcommand("render", "render a scene to an EXR");
@@ -62,6 +67,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"sobol", "independent"}));
   render->add_option("--device", r.device, "OpenCL device index (see `kasha devices`)")
       ->check(CLI::NonNegativeNumber);
+  render->add_option("--lamp", r.lamp, "switch on this one of the scene's \"lamps\"");
   render->add_option("--png", r.png, "also write a tone-mapped sRGB PNG preview");
   render->add_flag("--spectral", r.spectral, "add one channel per wavelength bin to the EXR");
   render->add_option("--reference", r.reference,
@@ -92,6 +98,61 @@ int main(int argc, char** argv) {
   measure->add_option("--plots", m.plots, "write the method's figures (PNG) into this directory");
   measure->add_option("--name", m.name, "material name (default: the output file's stem)");
   measure->add_flag("--clip", m.clip, "clip an energy gain instead of failing, and record it");
+
+  ColorimetryArgs col;
+  CLI::App* colorimetry = app.add_subcommand(
+      "colorimetry",
+      "a material's total radiance factor, XYZ, CIELAB and CIE whiteness/tint under illuminants");
+  colorimetry->add_option("material", col.material, "material JSON file")->required();
+  colorimetry->add_option(
+      "--illuminant", col.illuminants,
+      "a spectrum: built-in name (D65, A, F11, …), CSV file or JSON value; repeat for a table "
+      "(default D65)");
+  colorimetry->add_option("--observer", col.observer, "CIE 1931 2° or CIE 1964 10° (default 2)")
+      ->check(CLI::IsMember({2, 10}));
+  colorimetry->add_option("--bin-nm", col.bin_nm, "wavelength bin width (default 10)")
+      ->check(CLI::Range(0.1, 100.0));
+  colorimetry->add_option("--as-is", col.as_is,
+                          "compare with the material taken \"as is\": its radiance factor under "
+                          "this lamp as a plain reflectance (ΔE2000 per illuminant)");
+  colorimetry->add_option("--write-as-is", col.write_as_is,
+                          "write that \"as is\" material as a material file");
+  colorimetry->add_option("--json", col.json, "results as JSON");
+  colorimetry->add_option("--csv", col.csv, "results as CSV, a row per illuminant");
+  colorimetry->add_option("--plot", col.plot, "radiance factors as a PNG figure");
+
+  std::string lab1, lab2;
+  CLI::App* delta_e =
+      app.add_subcommand("delta-e", "the CIEDE2000 colour difference between two CIELAB colours");
+  delta_e->add_option("lab1", lab1, "L*,a*,b*")->required();
+  delta_e->add_option("lab2", lab2, "L*,a*,b*")->required();
+
+  std::string preview_exr, preview_png;
+  double preview_scale = 0;
+  CLI::App* preview = app.add_subcommand("preview", "an EXR as a tone-mapped sRGB PNG");
+  preview->add_option("image", preview_exr, "EXR image")->required();
+  preview->add_option("-o,--output", preview_png, "PNG to write")->required();
+  preview
+      ->add_option("--scale", preview_scale,
+                   "multiply XYZ by this (Y = 1 is white) instead of exposing by the log-average "
+                   "luminance")
+      ->check(CLI::PositiveNumber);
+
+  RegionsArgs reg;
+  CLI::App* regions = app.add_subcommand(
+      "regions", "an image's mean XYZ over each shape of its scene, from pixels well inside it");
+  regions->add_option("scene", reg.scene, "scene JSON file (its camera made the image)")
+      ->required();
+  regions->add_option("image", reg.image, "EXR image")->required();
+  regions
+      ->add_option("--margin", reg.margin_px,
+                   "pixels count when the shape is also seen this many pixels around their centre "
+                   "(default 1)")
+      ->check(CLI::NonNegativeNumber);
+  regions->add_option("--white", reg.white,
+                      "white-reference EXR (the samples replaced by a perfect white): adds XYZ "
+                      "relative to it (Y = 100) and CIELAB");
+  regions->add_option("--json", reg.json, "the regions as JSON");
 
   StudyOptions study;
   std::string converge_scene, integrators;
@@ -148,13 +209,17 @@ int main(int argc, char** argv) {
   }
   try {
     if (app.got_subcommand("devices")) return run_devices();
-    if (app.got_subcommand("info")) return run_info(info_scene, info_spectral);
+    if (app.got_subcommand("info")) return run_info(info_scene, info_spectral, info_lamp);
     if (app.got_subcommand("render")) {
       for (const std::string& option : IntegratorRegistry::options())
         if (render->count(option) > 0) r.integrator_options_given.push_back(option);
       return run_render(r);
     }
     if (app.got_subcommand("measure")) return run_measure(m);
+    if (app.got_subcommand("colorimetry")) return run_colorimetry(col);
+    if (app.got_subcommand("regions")) return run_regions(reg);
+    if (app.got_subcommand("delta-e")) return run_delta_e(lab1, lab2);
+    if (app.got_subcommand("preview")) return run_preview(preview_exr, preview_png, preview_scale);
     if (app.got_subcommand("converge")) return run_converge(converge_scene, integrators, study);
     if (app.got_subcommand("compare")) return run_compare(compare_image, compare_reference, compare_scene);
     if (app.got_subcommand("reference"))

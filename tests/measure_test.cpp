@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 
 #include "core/csv_table.h"
 #include "material/material.h"
@@ -19,18 +20,6 @@ using namespace kasha;
 using namespace kasha::test;
 
 namespace {
-
-TrueMaterial brightened_paper() {
-  TrueMaterial m;
-  m.rho = [](double l) { return 0.15 + 0.65 / (1 + std::exp(-(l - 420) / 15)); };
-  m.excitation = [](double l) { return 0.3 * gaussian(l, 370, 60); };
-  m.emission = emission_gaussian(445, 50);
-  return m;
-}
-
-SpectralFunction etalon_rho() {
-  return [](double l) { return 0.97 + 0.02 * (l - 300) / 500; };
-}
 
 // The etalon's reflectance as a spectrum, as `--etalon-reflectance` would read it.
 SpectrumPtr etalon_spectrum() {
@@ -52,17 +41,8 @@ MeasuredMaterial measure(const Instrument& in, const TrueMaterial& truth, bool g
   return material_from_fluorimeter(input);
 }
 
-// Writes what the instrument measures of `truth` and of the etalon, the etalon's reflectance and
-// the detector's sensitivity into the scratch directory; returns the matching measure options.
 std::string instrument_files(const Instrument& in, const TrueMaterial& truth) {
-  std::string d = scratch_dir().string();
-  write_eem_csv(d + "/s.csv", in.measure(truth, nullptr, "s.csv"));
-  write_eem_csv(d + "/e.csv", in.measure(TrueMaterial{}, etalon_rho(), "e.csv"));
-  std::ofstream(d + "/rho.csv") << "nm,rho\n250,0.969\n850,0.981\n";
-  std::ofstream c(d + "/c.csv");
-  for (double l = 250; l <= 850; l += 5) c << l << "," << in.sensitivity(l) << "\n";
-  return "--sample " + d + "/s.csv --etalon " + d + "/e.csv --etalon-reflectance " + d +
-         "/rho.csv --sensitivity " + d + "/c.csv";
+  return write_instrument_files(scratch_dir().string(), in, truth);
 }
 
 void expect_recovered(const MeasuredMaterial& m, const TrueMaterial& truth) {
@@ -287,4 +267,26 @@ TEST(Measure, JascoExportsAreReadAsSpectraAndMatrices) {
   EXPECT_EQ(m.em_nm, (std::vector<double>{400, 410, 420}));
   EXPECT_EQ(m.value(0, 1), 3);
   EXPECT_EQ(m.value(2, 0), 0.5);
+}
+
+// scenes/materials/brightened_paper.json is what its note (scenes/materials/SOURCES.md) says: the
+// simulated fluorimeter's files for the brightened paper through `kasha measure`.
+TEST(Measure, ShippedBrightenedPaperIsReproduced) {
+  const std::string d = scratch_dir().string();
+  auto r = run_kasha(
+      "measure " + write_instrument_files(d, Instrument::visible_scan(), brightened_paper()) +
+      " -o " + d + "/paper.json --name \"Brightened paper (simulated fluorimeter)\"");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json made = nlohmann::json::parse(std::ifstream(d + "/paper.json"));
+  nlohmann::json shipped =
+      nlohmann::json::parse(std::ifstream(source_path("scenes/materials/brightened_paper.json")));
+  EXPECT_EQ(made["name"], shipped["name"]);
+  for (const char* part :
+       {"/passive/reflectance", "/fluorescence/excitation", "/fluorescence/emission"}) {
+    const auto& a = made[nlohmann::json::json_pointer(part)];
+    const auto& b = shipped[nlohmann::json::json_pointer(part)];
+    ASSERT_EQ(a["nm"], b["nm"]) << part;
+    for (size_t k = 0; k < a["value"].size(); ++k)
+      EXPECT_NEAR(a["value"][k].get<double>(), b["value"][k].get<double>(), 1e-9) << part << k;
+  }
 }

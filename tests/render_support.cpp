@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "geometry/embree_scene.h"
 #include "render/device_scene.h"
 #include "render/render_job.h"
+#include "study/image_regions.h"
 #include "test_support.h"
 
 namespace kasha::test {
@@ -120,22 +120,13 @@ ComparedRenders render_against_backward(const std::string& scene, const std::str
 
 std::map<std::string, std::vector<size_t>> primary_hit_regions(const Scene& scene,
                                                                const Camera& cam) {
-  EmbreeScene embree(scene.triangles);
-  KCamera k = cam.to_kernel();
   std::map<std::string, std::vector<size_t>> regions;
-  for (int y = 0; y < cam.height; ++y)
-    for (int x = 0; x < cam.width; ++x) {
-      float sx = 2.0f * (x + 0.5f) / cam.width - 1, sy = 1 - 2.0f * (y + 0.5f) / cam.height;
-      KRay r{};
-      for (int c = 0; c < 3; ++c)
-        r.org[c] = k.position[c], r.dir[c] = k.forward[c] + sx * k.right[c] + sy * k.up[c];
-      r.tmax = INFINITY;
-      KHit h = embree.intersect(r);
-      if (h.prim < 0) continue;
-      const KTriangle& t = scene.triangles[h.prim];
-      regions[t.emitter >= 0 ? "lamp" : scene.material_descs[t.material].name].push_back(
-          static_cast<size_t>(y) * cam.width + x);
-    }
+  for (const ShapeRegion& r : shape_regions(scene, cam)) {
+    const ShapeInfo& shape = scene.shapes[r.shape];
+    auto& into = regions[shape.emitter >= 0 ? "lamp" : scene.material_descs[shape.material].name];
+    into.insert(into.end(), r.pixels.begin(), r.pixels.end());
+  }
+  for (auto& [name, pixels] : regions) std::sort(pixels.begin(), pixels.end());
   return regions;
 }
 

@@ -15,6 +15,33 @@ SpectralFunction emission_gaussian(double center, double fwhm) {
   return [=](double l) { return gaussian(l, center, fwhm) / (s * std::sqrt(2 * M_PI)); };
 }
 
+TrueMaterial brightened_paper() {
+  TrueMaterial m;
+  m.rho = [](double l) { return 0.15 + 0.65 / (1 + std::exp(-(l - 420) / 15)); };
+  m.excitation = [](double l) { return 0.3 * gaussian(l, 370, 60); };
+  m.emission = emission_gaussian(445, 50);
+  return m;
+}
+
+SpectralFunction etalon_rho() {
+  return [](double l) { return 0.97 + 0.02 * (l - 300) / 500; };
+}
+
+std::string write_instrument_files(const std::string& d, const Instrument& in,
+                                   const TrueMaterial& truth) {
+  write_eem_csv(d + "/s.csv", in.measure(truth, nullptr, "s.csv"));
+  write_eem_csv(d + "/e.csv", in.measure(TrueMaterial{}, etalon_rho(), "e.csv"));
+  std::ofstream rho(d + "/rho.csv"), c(d + "/c.csv");
+  rho << "nm,rho\n";
+  c << "nm,sensitivity\n";
+  for (double l = 250; l <= 850; l += 5) {
+    rho << l << "," << etalon_rho()(l) << "\n";
+    c << l << "," << in.sensitivity(l) << "\n";
+  }
+  return "--sample " + d + "/s.csv --etalon " + d + "/e.csv --etalon-reflectance " + d +
+         "/rho.csv --sensitivity " + d + "/c.csv";
+}
+
 Instrument Instrument::typical(bool with_sensitivity) {
   Instrument in;
   for (double l = 300; l <= 600 + 1e-9; l += 5) in.ex_nm.push_back(l);
@@ -24,6 +51,13 @@ Instrument Instrument::typical(bool with_sensitivity) {
   in.sensitivity = with_sensitivity
                        ? SpectralFunction([](double l) { return 1.2 - 0.9 * (l - 300) / 500; })
                        : SpectralFunction([](double) { return 1.0; });
+  return in;
+}
+
+Instrument Instrument::visible_scan() {
+  Instrument in = typical(true);
+  in.ex_nm.clear();
+  for (double l = 300; l <= 780 + 1e-9; l += 5) in.ex_nm.push_back(l);
   return in;
 }
 

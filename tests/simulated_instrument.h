@@ -30,9 +30,23 @@ struct Instrument {
   unsigned seed = 1;
 
   static Instrument typical(bool with_sensitivity);
+  // The typical instrument with the excitation scanned over 300–780 nm, so that the passive
+  // reflectance covers the visible range (how scenes/materials/brightened_paper.json was measured).
+  static Instrument visible_scan();
   ExcitationEmissionMatrix measure(const TrueMaterial& m, const SpectralFunction& etalon_rho,
                                    const std::string& name) const;
 };
+
+// The material `kasha measure` is tested on: a paper with an optical brightener (excited in the
+// UV, emitting blue), and the white etalon it is measured against.
+TrueMaterial brightened_paper();
+SpectralFunction etalon_rho();
+
+// Writes what the instrument measures of `truth` (s.csv) and of the etalon (e.csv), the etalon's
+// reflectance (rho.csv) and the detector's sensitivity (c.csv) into `dir`; returns the matching
+// `kasha measure` options.
+std::string write_instrument_files(const std::string& dir, const Instrument& in,
+                                   const TrueMaterial& truth);
 
 double gaussian(double x, double center, double fwhm);
 // A normalized gaussian emission (∫ = 1).

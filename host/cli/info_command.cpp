@@ -34,8 +34,8 @@ int run_devices() {
   return 0;
 }
 
-int run_info(const std::string& scene_path, bool spectral) {
-  Scene scene = load_scene(scene_path);
+int run_info(const std::string& scene_path, bool spectral, const std::string& lamp) {
+  Scene scene = load_scene(scene_path, std::nullopt, lamp);
   KernelSceneData data(scene);
   int emitting_triangles = 0;
   for (const Emitter& e : scene.emitters) emitting_triangles += e.triangle_count;
@@ -46,6 +46,11 @@ int run_info(const std::string& scene_path, bool spectral) {
   std::printf("materials: %zu; shapes: %zu; triangles: %zu; emitters: %zu (%d triangles)\n",
               scene.materials.size(), scene.shapes.size(), scene.triangles.size(),
               scene.emitters.size(), emitting_triangles);
+  if (!scene.lamp_names.empty()) {
+    std::string names;
+    for (const std::string& n : scene.lamp_names) names += (names.empty() ? "" : ", ") + n;
+    std::printf("lamp: %s (lamps: %s)\n", scene.lamp.c_str(), names.c_str());
+  }
   std::printf("bvh: %zu nodes, depth %d (Embree SAH)\n", data.bvh.nodes.size(), data.bvh.depth);
   std::printf("camera: %dx%d, fov %g deg\n", scene.camera.width, scene.camera.height,
               scene.camera.fov_deg);

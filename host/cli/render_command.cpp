@@ -29,7 +29,7 @@ int run_render(const RenderArgs& a) {
   check_writable(a.log, "--log");
   if (a.passes <= 0 && a.seconds <= 0) throw Error("render: give --time SECONDS or --passes N");
   IntegratorRegistry::check_options(a.integrator, a.integrator_options_given);
-  Scene scene = load_scene(a.scene);
+  Scene scene = load_scene(a.scene, std::nullopt, a.lamp);
   RenderOptions options;
   options.stop = {a.seconds, a.passes};
   options.log_path = a.log;

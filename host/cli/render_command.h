@@ -9,7 +9,7 @@
 namespace kasha {
 
 struct RenderArgs {
-  std::string scene, output, png, integrator = kDefaultIntegrator, reference, log;
+  std::string scene, output, png, integrator = kDefaultIntegrator, reference, log, lamp;
   double seconds = 0;
   int passes = 0, device = 0;
   bool spectral = false;

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "core/error.h"
 
@@ -29,6 +30,14 @@ void write_atomically(const std::string& path,
     fs::remove(tmp, ec);
     throw Error(path + ": cannot write: " + e.what());
   }
+}
+
+void write_text_atomically(const std::string& path, const std::string& text) {
+  write_atomically(path, [&](const std::string& tmp) {
+    std::ofstream out(tmp);
+    out << text;
+    if (!out) throw Error(path + ": write failed");
+  });
 }
 
 }  // namespace kasha

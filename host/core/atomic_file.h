@@ -10,5 +10,7 @@ namespace kasha {
 // rethrows (kasha::Error naming `path` for non-kasha errors).
 void write_atomically(const std::string& path,
                       const std::function<void(const std::string&)>& write);
+// The same for a text that is ready in memory.
+void write_text_atomically(const std::string& path, const std::string& text);
 
 }  // namespace kasha

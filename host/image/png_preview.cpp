@@ -25,8 +25,8 @@ static double exposure_for(const Image& image) {
   return n ? 0.18 / std::exp(sum / n) : 1.0;
 }
 
-void write_png_preview(const std::string& path, const Image& image) {
-  const double scale = exposure_for(image);
+void write_png_preview(const std::string& path, const Image& image, double exposure) {
+  const double scale = exposure > 0 ? exposure : exposure_for(image);
   std::vector<unsigned char> pixels(3 * image.pixels());
   for (size_t p = 0; p < image.pixels(); ++p) {
     Vec3d rgb = xyz_to_linear_srgb(

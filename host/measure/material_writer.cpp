@@ -1,10 +1,8 @@
 #include "measure/material_writer.h"
 
-#include <fstream>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
-#include "core/error.h"
 
 namespace kasha {
 
@@ -43,11 +41,7 @@ void write_material_file(const std::string& path, const std::string& name,
   d["emission_grid"] = grid_summary(m.em_nm);
   d["notes"] = m.notes;
   j["diagnostics"] = d;
-  write_atomically(path, [&](const std::string& tmp) {
-    std::ofstream out(tmp);
-    out << j.dump(1) << "\n";
-    if (!out) throw Error(path + ": write failed");
-  });
+  write_text_atomically(path, j.dump(1) + "\n");
 }
 
 }  // namespace kasha

@@ -1,13 +1,10 @@
 #include "measure/measurement_plots.h"
 
-#include <sys/wait.h>
-
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
-#include "core/embedded_file.h"
 #include "core/error.h"
+#include "core/python_script.h"
 
 namespace kasha {
 
@@ -50,16 +47,8 @@ void write_measurement_plots(const std::string& dir, const MeasuredMaterial& m) 
   write_spectrum(d / "excitation.csv", m.excitation);
   write_spectrum(d / "emission.csv", m.emission);
 
-  fs::path script = d / "plot_measurement.py";
-  std::ofstream(script) << embedded_data("plot_measurement.py");
-  std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + d.string() + "' " +
-                    std::to_string(m.rank1_residual) + " > '" + (d / "plot.log").string() +
-                    "' 2>&1";
-  int status = std::system(cmd.c_str());
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-    throw Error("--plots " + dir +
-                ": plotting failed (needs /usr/bin/python3 with python3-matplotlib; see " +
-                (d / "plot.log").string() + ")");
+  run_embedded_python("plot_measurement.py", d.string(),
+                      {d.string(), std::to_string(m.rank1_residual)}, "--plots " + dir);
 }
 
 }  // namespace kasha

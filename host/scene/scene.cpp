@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 
 #include "core/error.h"
 #include "scene/shape_mesh.h"
@@ -84,7 +85,46 @@ static std::vector<Triangle> shape_triangles(const JsonNode& shape, const std::s
   return tris;
 }
 
-Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid) {
+// The emission of the shapes marked "lamp": true — the chosen one of the scene's named "lamps",
+// each parsed (so a bad one is reported whichever is on). Empty without "lamps".
+struct LampChoice {
+  SpectrumPtr spectrum;
+  std::string where;
+};
+
+static LampChoice choose_lamp(const JsonNode& root, const std::string& requested, Scene& scene) {
+  auto lamps = root.find("lamps");
+  if (!lamps) {
+    if (root.has("lamp")) root.at("lamp").fail("\"lamp\" needs the scene's \"lamps\"");
+    if (!requested.empty())
+      throw Error("--lamp " + requested + ": " + scene.file + " has no \"lamps\" to switch");
+    return {};
+  }
+  if (!lamps->is_object()) lamps->fail("expected an object of named emission spectra");
+  std::map<std::string, LampChoice> parsed;
+  for (const std::string& name : lamps->keys()) {
+    JsonNode n = lamps->at(name);
+    parsed[name] = {parse_spectrum(n), n.file() + ": " + n.path()};
+    scene.lamp_names.push_back(name);
+  }
+  if (parsed.empty()) lamps->fail("no lamps");
+  std::string known;
+  for (const std::string& name : scene.lamp_names) known += (known.empty() ? "" : ", ") + name;
+  JsonNode chosen = root.at("lamp");
+  scene.lamp = chosen.string();
+  if (!parsed.count(scene.lamp))
+    chosen.fail("no lamp named \"" + scene.lamp + "\" (" + known + ")");
+  if (!requested.empty()) {
+    if (!parsed.count(requested))
+      throw Error("--lamp " + requested + ": " + scene.file + " has no lamp of that name (" +
+                  known + ")");
+    scene.lamp = requested;
+  }
+  return parsed.at(scene.lamp);
+}
+
+Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid,
+                 const std::string& lamp) {
   JsonNode root = JsonNode::load_file(path);
   if (!root.is_object()) root.fail("expected a scene object");
   Scene scene;
@@ -96,6 +136,8 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
   if (auto w = root.find("wavelengths")) request = parse_grid_request(*w);
   if (grid) request = *grid;
   scene.camera = parse_camera(root.at("camera"));
+  const LampChoice lamp_on = choose_lamp(root, lamp, scene);
+  bool lamp_used = false;
 
   JsonNode materials = root.at("materials");
   for (const std::string& name : materials.keys()) {
@@ -123,10 +165,24 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
     std::vector<Triangle> tris = shape_triangles(shape, type);
 
     int emitter = -1;
-    if (auto emission = shape.find("emission")) {
+    auto emission = shape.find("emission");
+    bool emits_lamp = false;
+    if (auto is_lamp = shape.find("lamp")) {
+      if (emission) is_lamp->fail("a shape takes \"emission\" or \"lamp\", not both");
+      if (!lamp_on.spectrum) is_lamp->fail("\"lamp\" needs the scene's \"lamps\"");
+      if (!is_lamp->boolean())
+        is_lamp->fail("expected true (a shape that emits the lamp that is on)");
+      emits_lamp = lamp_used = true;
+    }
+    if (emission || emits_lamp) {
       Emitter e;
-      e.where = emission->file() + ": " + emission->path();
-      e.radiance = parse_spectrum(*emission);
+      if (emission) {
+        e.where = emission->file() + ": " + emission->path();
+        e.radiance = parse_spectrum(*emission);
+      } else {
+        e.where = lamp_on.where;
+        e.radiance = lamp_on.spectrum;
+      }
       e.first_triangle = static_cast<int>(scene.triangles.size());
       e.triangle_count = static_cast<int>(tris.size());
       emitter = static_cast<int>(scene.emitters.size());
@@ -135,7 +191,9 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
     bool inward = false;
     if (auto in = shape.find("inward")) inward = in->boolean();
     shape.finish();
-    scene.shapes.push_back(ShapeInfo{type, inward, material, emitter});
+    scene.shapes.push_back(ShapeInfo{type, inward, material, emitter,
+                                     static_cast<int>(scene.triangles.size()),
+                                     static_cast<int>(tris.size())});
     for (const Triangle& t : tris) {
       KTriangle k{};
       for (int c = 0; c < 3; ++c) {
@@ -151,6 +209,8 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
   }
   root.finish();
   if (scene.triangles.empty()) root.fail("the scene has no shapes");
+  if (lamp_on.spectrum && !lamp_used)
+    root.at("lamps").fail("no shape emits the lamps (give one \"lamp\": true)");
 
   // The grid covers what the emitters and the materials in use need.
   std::vector<SpectralSupport> emitting, exciting;

@@ -23,6 +23,7 @@ struct ShapeInfo {
   std::string type;  // obj, quad, box, sphere
   bool inward = false;
   int material = -1, emitter = -1;
+  int first_triangle = 0, triangle_count = 0;  // in scene (primitive) order
 };
 
 struct Scene {
@@ -34,13 +35,18 @@ struct Scene {
   std::vector<KTriangle> triangles;  // scene order: prim == index
   std::vector<Emitter> emitters;
   std::vector<ShapeInfo> shapes;
+  // Switchable lamps (the scene's "lamps"): their names, and the one that is on.
+  std::vector<std::string> lamp_names;
+  std::string lamp;
 
   bool fluorescent() const;  // some shape's material has a fluorescent part
   bool glossy() const;       // some shape's material has a gloss lobe
   int material_index(const std::string& name) const;  // -1 when absent
 };
 
-// `grid`, when given, replaces the scene's own "wavelengths" (the same scene on another grid).
-Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid = std::nullopt);
+// `grid`, when given, replaces the scene's own "wavelengths" (the same scene on another grid);
+// `lamp`, when not empty, switches on that lamp of the scene's "lamps" instead of its "lamp".
+Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid = std::nullopt,
+                 const std::string& lamp = "");
 
 }  // namespace kasha

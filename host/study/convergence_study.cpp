@@ -1,7 +1,5 @@
 #include "study/convergence_study.h"
 
-#include <sys/wait.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -11,8 +9,8 @@
 #include <sstream>
 
 #include "core/atomic_file.h"
-#include "core/embedded_file.h"
 #include "core/error.h"
+#include "core/python_script.h"
 #include "film/film.h"
 #include "image/exr_io.h"
 #include "image/png_preview.h"
@@ -262,15 +260,7 @@ StudyResult run_convergence_study(const std::string& scene_path, const StudyOpti
   write_png_preview((fs::path(o.out_dir) / "images.png").string(), row);
 
   if (o.plot) {
-    fs::path script = fs::path(o.out_dir) / "plot_convergence.py";
-    std::ofstream(script) << embedded_data("plot_convergence.py");
-    std::string cmd = "/usr/bin/python3 '" + script.string() + "' '" + o.out_dir + "' > '" +
-                      (fs::path(o.out_dir) / "plot.log").string() + "' 2>&1";
-    int status = std::system(cmd.c_str());
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0)
-      throw Error(
-          "converge: plotting failed (needs /usr/bin/python3 with python3-matplotlib; see " +
-          (fs::path(o.out_dir) / "plot.log").string() + ")");
+    run_embedded_python("plot_convergence.py", o.out_dir, {o.out_dir}, "converge");
   }
   return result;
 }

@@ -1,0 +1,31 @@
+#include "cli/delta_e_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "colorimetry/ciede2000.h"
+#include "core/error.h"
+
+namespace kasha {
+
+// "L,a,b": three finite numbers separated by commas.
+static Vec3d parse_lab(const std::string& text) {
+  Vec3d lab{0, 0, 0};
+  const char* p = text.c_str();
+  for (int k = 0; k < 3; ++k) {
+    char* end = nullptr;
+    lab[k] = std::strtod(p, &end);
+    if (end == p || !std::isfinite(lab[k]) || *end != (k < 2 ? ',' : '\0'))
+      throw Error("delta-e " + text + ": expected L*,a*,b* (three numbers separated by commas)");
+    p = end + (k < 2 ? 1 : 0);
+  }
+  return lab;
+}
+
+int run_delta_e(const std::string& lab1, const std::string& lab2) {
+  std::printf("%.4f\n", ciede2000(parse_lab(lab1), parse_lab(lab2)));
+  return 0;
+}
+
+}  // namespace kasha

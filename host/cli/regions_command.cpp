@@ -1,0 +1,82 @@
+#include "cli/regions_command.h"
+
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <optional>
+
+#include "colorimetry/cie_lab.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "image/exr_io.h"
+#include "study/image_regions.h"
+
+namespace kasha {
+
+static Image read_image_of(const Scene& scene, const std::string& path) {
+  Image image = read_exr(path);
+  if (image.width != scene.camera.width || image.height != scene.camera.height)
+    throw Error(path + ": " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                " pixels, but the camera of " + scene.file + " is " +
+                std::to_string(scene.camera.width) + "x" + std::to_string(scene.camera.height));
+  return image;
+}
+
+static Vec3d scaled(const Vec3d& v, double k) {
+  return {k * v[0], k * v[1], k * v[2]};
+}
+
+int run_regions(const RegionsArgs& a) {
+  Scene scene = load_scene(a.scene);
+  Image image = read_image_of(scene, a.image);
+  std::optional<Image> white;
+  if (!a.white.empty()) white = read_image_of(scene, a.white);
+  nlohmann::json regions = nlohmann::json::array();
+  std::printf("%5s  %-6s  %-24s %7s  %s\n", "shape", "type", "material", "pixels",
+              white ? "X, Y, Z relative to the white (Y = 100) ± standard error; L*, a*, b*"
+                    : "mean X, Y, Z ± standard error");
+  for (const ShapeRegion& r : shape_regions(scene, scene.camera, a.margin_px)) {
+    const ShapeInfo& shape = scene.shapes[r.shape];
+    const std::string& material = scene.material_descs[shape.material].name;
+    RegionXyz xyz = region_xyz(image, r.pixels);
+    nlohmann::json region = {{"shape", r.shape},
+                             {"type", shape.type},
+                             {"material", material},
+                             {"emitter", shape.emitter >= 0},
+                             {"pixels", r.pixels.size()},
+                             {"XYZ", xyz.mean},
+                             {"standard_error", xyz.standard_error}};
+    std::string lab;
+    if (white) {
+      // The white's own noise is left out of the relative standard error: give it more samples.
+      RegionXyz w = region_xyz(*white, r.pixels);
+      if (!(w.mean[1] > 0)) continue;  // the white is dark there (e.g. a lamp's own face)
+      const double k = 100 / w.mean[1];
+      Vec3d relative = scaled(xyz.mean, k), l = xyz_to_lab(relative, scaled(w.mean, k));
+      region["white_XYZ"] = w.mean;
+      region["XYZ_relative"] = relative;
+      region["standard_error_relative"] = scaled(xyz.standard_error, k);
+      region["Lab"] = l;
+      xyz.mean = relative;
+      xyz.standard_error = scaled(xyz.standard_error, k);
+      char text[96];
+      std::snprintf(text, sizeof text, "; %.2f, %.2f, %.2f", l[0], l[1], l[2]);
+      lab = text;
+    }
+    regions.push_back(region);
+    std::printf("%5d  %-6s  %-24s %7zu  %.6g ± %.2g, %.6g ± %.2g, %.6g ± %.2g%s\n", r.shape,
+                shape.type.c_str(), material.c_str(), r.pixels.size(), xyz.mean[0],
+                xyz.standard_error[0], xyz.mean[1], xyz.standard_error[1], xyz.mean[2],
+                xyz.standard_error[2], lab.c_str());
+  }
+  if (!a.json.empty())
+    write_text_atomically(a.json, nlohmann::json{{"scene", a.scene},
+                                                 {"image", a.image},
+                                                 {"white", a.white},
+                                                 {"margin_px", a.margin_px},
+                                                 {"regions", regions}}
+                                          .dump(1) +
+                                      "\n");
+  return 0;
+}
+
+}  // namespace kasha

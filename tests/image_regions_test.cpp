@@ -1,0 +1,114 @@
+// Measuring an image over the shapes of its scene: which pixels lie well inside each shape, their
+// mean XYZ and standard error, relative to a white reference; `kasha regions`, `kasha preview`
+// and `kasha delta-e` on the command line.
+#include "study/image_regions.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "colorimetry/cie_lab.h"
+#include "image/exr_io.h"
+#include "test_support.h"
+
+using namespace kasha;
+using namespace kasha::test;
+
+namespace {
+
+// Two quads side by side filling an 8 × 8 view exactly: x ∈ [0, 2] ("left", on the image's left
+// since the camera looks along +z with up +y) and x ∈ [−2, 0] ("right").
+std::string two_quads() {
+  return write_file("two.json", R"({"kasha_scene": 1,
+    "camera": {"position": [0, 0, -2], "look_at": [0, 0, 0], "fov_deg": 90, "width": 8, "height": 8},
+    "materials": {"left": {"passive": {"reflectance": 0.2}}, "right": {"passive": {"reflectance": 0.5}}},
+    "shapes": [{"type": "quad", "corner": [0, -2, 0], "u": [2, 0, 0], "v": [0, 4, 0], "material": "left"},
+               {"type": "quad", "corner": [-2, -2, 0], "u": [2, 0, 0], "v": [0, 4, 0], "material": "right"}]})");
+}
+
+Image constant_halves(const Vec3d& left, const Vec3d& right) {
+  Image img;
+  img.width = img.height = 8;
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x)
+      for (int c = 0; c < 3; ++c) img.xyz.push_back(static_cast<float>(x < 4 ? left[c] : right[c]));
+  return img;
+}
+
+}  // namespace
+
+TEST(ImageRegions, PixelsWellInsideEachShape) {
+  Scene scene = load_scene(two_quads());
+  std::vector<ShapeRegion> all = shape_regions(scene, scene.camera);
+  ASSERT_EQ(all.size(), 2u);
+  for (const ShapeRegion& r : all) {
+    EXPECT_EQ(r.pixels.size(), 32u);
+    for (size_t p : r.pixels) EXPECT_EQ(p % 8 < 4, r.shape == 0) << p;  // shape 0 on the left
+  }
+  // A margin of one pixel drops the column beside the other quad and the image's border (beyond
+  // it the rays miss): 2 columns × 6 rows.
+  std::vector<ShapeRegion> inside = shape_regions(scene, scene.camera, 1.0);
+  ASSERT_EQ(inside.size(), 2u);
+  for (const ShapeRegion& r : inside) {
+    EXPECT_EQ(r.pixels.size(), 12u);
+    for (size_t p : r.pixels) {
+      const size_t x = p % 8, y = p / 8;
+      EXPECT_TRUE(y >= 1 && y <= 6) << p;
+      EXPECT_TRUE(r.shape == 0 ? (x == 1 || x == 2) : (x == 5 || x == 6)) << p;
+    }
+  }
+  Image img = constant_halves({1, 2, 3}, {4, 5, 6});
+  img.xyz[3 * 9 + 1] = 4;  // one pixel of the left region (x 1, y 1) brighter in Y
+  RegionXyz m = region_xyz(img, inside[0].pixels);
+  EXPECT_DOUBLE_EQ(m.mean[0], 1);
+  EXPECT_DOUBLE_EQ(m.mean[1], 2 + 2.0 / 12);
+  EXPECT_DOUBLE_EQ(m.standard_error[0], 0);
+  // Sample standard deviation of eleven 2s and one 4, over √12.
+  EXPECT_NEAR(m.standard_error[1],
+              std::sqrt((11 * std::pow(2.0 / 12, 2) + std::pow(2 - 2.0 / 12, 2)) / 11 / 12), 1e-12);
+}
+
+TEST(ImageRegions, CommandMeasuresRelativeToAWhiteReference) {
+  const std::string scene = two_quads(), d = scratch_dir().string();
+  write_exr(d + "/image.exr", constant_halves({20, 30, 40}, {50, 50, 50}));
+  const Vec3d white{95.047 * 2, 200, 108.883 * 2};
+  write_exr(d + "/white.exr", constant_halves(white, white));
+  auto r = run_kasha("regions " + scene + " " + d + "/image.exr --white " + d +
+                     "/white.exr --margin 1 --json " + d + "/regions.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(d + "/regions.json"));
+  ASSERT_EQ(j["regions"].size(), 2u);
+  const nlohmann::json& left = j["regions"][0];
+  EXPECT_EQ(left["material"], "left");
+  EXPECT_EQ(left["pixels"], 12);
+  const Vec3d relative{10, 15, 20};
+  Vec3d lab = xyz_to_lab(relative, {95.047, 100, 108.883});
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_NEAR(left["XYZ_relative"][k].get<double>(), relative[k], 1e-4);
+    EXPECT_NEAR(left["Lab"][k].get<double>(), lab[k], 1e-4);
+  }
+  // An image from another camera is refused.
+  Image small = constant_halves({1, 1, 1}, {1, 1, 1});
+  small.width = 4;
+  small.xyz.resize(3 * 4 * 8);
+  write_exr(d + "/small.exr", small);
+  r = run_kasha("regions " + scene + " " + d + "/small.exr");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("small.exr: 4x8 pixels, but the camera of"), std::string::npos) << r.err;
+}
+
+TEST(ImageRegions, PreviewAndDeltaECommands) {
+  const std::string d = scratch_dir().string();
+  write_exr(d + "/image.exr", constant_halves({20, 30, 40}, {50, 50, 50}));
+  auto r = run_kasha("preview " + d + "/image.exr -o " + d + "/image.png --scale 0.01");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_GT(std::filesystem::file_size(d + "/image.png"), 50u);
+  r = run_kasha("delta-e 50,2.6772,-79.7751 50,0,-82.7485");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "2.0425\n");  // Sharma, Wu and Dalal (2005), pair 1
+  r = run_kasha("delta-e 50,2.6772 50,0,-82.7485");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("kasha: error: delta-e 50,2.6772: expected L*,a*,b*"), std::string::npos)
+      << r.err;
+}
