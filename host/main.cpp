@@ -62,8 +62,9 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   add_integrator_options(render, r.settings);
   render->add_option("--seed", r.settings.seed, "random seed");
-  render->add_option("--sampler", r.settings.sampler,
-                     "sobol (default: Owen-scrambled Sobol points) or independent (PCG streams)")
+  render
+      ->add_option("--sampler", r.settings.sampler,
+                   "sobol (default: Owen-scrambled Sobol points) or independent (PCG streams)")
       ->check(CLI::IsMember({"sobol", "independent"}));
   render->add_option("--device", r.device, "OpenCL device index (see `kasha devices`)")
       ->check(CLI::NonNegativeNumber);
@@ -221,7 +222,8 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("delta-e")) return run_delta_e(lab1, lab2);
     if (app.got_subcommand("preview")) return run_preview(preview_exr, preview_png, preview_scale);
     if (app.got_subcommand("converge")) return run_converge(converge_scene, integrators, study);
-    if (app.got_subcommand("compare")) return run_compare(compare_image, compare_reference, compare_scene);
+    if (app.got_subcommand("compare"))
+      return run_compare(compare_image, compare_reference, compare_scene);
     if (app.got_subcommand("reference"))
       return run_reference(reference_scene, reference_seconds, reference_seed, reference_device,
                            reference_out);

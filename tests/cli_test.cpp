@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-
 #include <filesystem>
 #include <fstream>
 
@@ -154,32 +153,39 @@ TEST(Cli, CtrlCWritesTheImageSoFar) {
 
 TEST(Cli, CompareReportsErrorsWithAndWithoutTheLampPixels) {
   std::string scene = test::source_path("scenes/cornell_classic.json");
-  std::string a = (test::scratch_dir() / "a.exr").string(), b = (test::scratch_dir() / "b.exr").string();
-  ASSERT_EQ(run_kasha("render " + shell_quoted(scene) + " --integrator debug --passes 1 --spp 1 -o " +
-                      shell_quoted(a))
+  std::string a = (test::scratch_dir() / "a.exr").string(),
+              b = (test::scratch_dir() / "b.exr").string();
+  ASSERT_EQ(run_kasha("render " + shell_quoted(scene) +
+                      " --integrator debug --passes 1 --spp 1 -o " + shell_quoted(a))
                 .exit_code,
             0);
-  ASSERT_EQ(run_kasha("render " + shell_quoted(scene) + " --integrator debug --passes 1 --spp 1 --seed 2 -o " +
-                      shell_quoted(b))
+  ASSERT_EQ(run_kasha("render " + shell_quoted(scene) +
+                      " --integrator debug --passes 1 --spp 1 --seed 2 -o " + shell_quoted(b))
                 .exit_code,
             0);
-  auto same = run_kasha("compare " + shell_quoted(a) + " " + shell_quoted(a) + " --scene " + shell_quoted(scene));
+  auto same = run_kasha("compare " + shell_quoted(a) + " " + shell_quoted(a) + " --scene " +
+                        shell_quoted(scene));
   ASSERT_EQ(same.exit_code, 0) << same.err;
-  EXPECT_EQ(same.out, "rmse 0 relmse 0 | without the 612 pixels that see an emitter: rmse 0 relmse 0\n");
+  EXPECT_EQ(same.out,
+            "rmse 0 relmse 0 | without the 612 pixels that see an emitter: rmse 0 relmse 0\n");
   // Two emission views differ only at the lamp's edges: the error is nearly all in its pixels.
-  auto other = run_kasha("compare " + shell_quoted(a) + " " + shell_quoted(b) + " --scene " + shell_quoted(scene));
+  auto other = run_kasha("compare " + shell_quoted(a) + " " + shell_quoted(b) + " --scene " +
+                         shell_quoted(scene));
   ASSERT_EQ(other.exit_code, 0) << other.err;
   double all = -1, rel = -1, rest = -1, rest_rel = -1;
   int lamp = 0;
-  ASSERT_EQ(std::sscanf(other.out.c_str(),
-                        "rmse %lf relmse %lf | without the %d pixels that see an emitter: rmse %lf relmse %lf",
-                        &all, &rel, &lamp, &rest, &rest_rel),
-            5)
+  ASSERT_EQ(
+      std::sscanf(
+          other.out.c_str(),
+          "rmse %lf relmse %lf | without the %d pixels that see an emitter: rmse %lf relmse %lf",
+          &all, &rel, &lamp, &rest, &rest_rel),
+      5)
       << other.out;
   EXPECT_EQ(lamp, 612);
   EXPECT_GT(all, 0);
   EXPECT_LT(rest, 0.05 * all) << other.out;
-  expect_one_line_error(run_kasha("compare " + shell_quoted(a) + " " + shell_quoted(a) + " --scene " +
-                                  shell_quoted(test::source_path("scenes/torus.json"))),
-                        "its camera is");
+  expect_one_line_error(
+      run_kasha("compare " + shell_quoted(a) + " " + shell_quoted(a) + " --scene " +
+                shell_quoted(test::source_path("scenes/torus.json"))),
+      "its camera is");
 }

@@ -14,9 +14,11 @@ std::vector<bool> emitter_pixels(const Scene& scene) {
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
       for (int j = 0; j < n * n && !mask[static_cast<size_t>(y) * w + x]; ++j) {
-        float sx = 2.0f * (x + (j % n + 0.5f) / n) / w - 1, sy = 1 - 2.0f * (y + (j / n + 0.5f) / n) / h;
+        float sx = 2.0f * (x + (j % n + 0.5f) / n) / w - 1,
+              sy = 1 - 2.0f * (y + (j / n + 0.5f) / n) / h;
         KRay r{};
-        for (int c = 0; c < 3; ++c) r.org[c] = k.position[c], r.dir[c] = k.forward[c] + sx * k.right[c] + sy * k.up[c];
+        for (int c = 0; c < 3; ++c)
+          r.org[c] = k.position[c], r.dir[c] = k.forward[c] + sx * k.right[c] + sy * k.up[c];
         r.tmax = INFINITY;
         KHit hit = embree.intersect(r);
         if (hit.prim < 0) continue;

@@ -6,7 +6,8 @@
 
 namespace kasha {
 
-ImageError image_error(const Image& image, const Image& reference, const std::vector<bool>& leave_out) {
+ImageError image_error(const Image& image, const Image& reference,
+                       const std::vector<bool>& leave_out) {
   if (image.width != reference.width || image.height != reference.height)
     throw Error("reference is " + std::to_string(reference.width) + "x" +
                 std::to_string(reference.height) + " but the image is " +
