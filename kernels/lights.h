@@ -41,8 +41,6 @@ inline float light_pdf_solid_angle(const __global float* emitter_area_pdf, int e
   return cos_light > 0.0f ? emitter_area_pdf[emitter] * dist * dist / cos_light : 0.0f;
 }
 
-#define KASHA_MIN_SPHERICAL_SOLID_ANGLE 3e-4f /* below: float trouble, and area sampling is as good */
-#define KASHA_MAX_SPHERICAL_SOLID_ANGLE 6.22f /* above: the triangle nearly fills the hemisphere */
 
 /* Solid angle of the triangle (v0, v1, v2) seen from p (Van Oosterom & Strackee 1983). */
 inline float triangle_solid_angle(float3 p, float3 v0, float3 v1, float3 v2) {

@@ -18,6 +18,7 @@
 
 #include "chi2.h"
 #include "kernel_harness.h"
+#include "shared_types.h"
 
 using namespace kasha;
 using namespace kasha::test;
@@ -72,7 +73,7 @@ TEST(KernelLightSampler, SolidAngleMatchesDoublePrecision) {
   TestKernel kernel(kSolidAngleSource, "solid_angle_test.cl", "solid_angle");
   const std::vector<float> out = kernel.sample(0, in, 1, 1, kCases);
   // The largest relative and absolute errors in ranges of the float inputs' exact solid angle,
-  // and the cases that take the other side of KASHA_MIN_SPHERICAL_SOLID_ANGLE = 3e-4.
+  // and the cases that take the other side of KASHA_MIN_SPHERICAL_SOLID_ANGLE.
   const double edges[] = {0, 1e-5, 3e-4, 1e-2, 1, 7};
   double worst[5] = {0, 0, 0, 0, 0}, worst_abs[5] = {0, 0, 0, 0, 0}, flip_ratio = 1;
   int count[5] = {0, 0, 0, 0, 0}, flips = 0;
@@ -86,9 +87,10 @@ TEST(KernelLightSampler, SolidAngleMatchesDoublePrecision) {
         worst[d] = std::max(worst[d], err / want), worst_abs[d] = std::max(worst_abs[d], err);
         ++count[d];
       }
-    if ((out[i] > 3e-4f) != (want > 3e-4)) {
+    const double min_sa = KASHA_MIN_SPHERICAL_SOLID_ANGLE;
+    if ((out[i] > KASHA_MIN_SPHERICAL_SOLID_ANGLE) != (want > min_sa)) {
       ++flips;
-      flip_ratio = std::max({flip_ratio, want / 3e-4, 3e-4 / want});
+      flip_ratio = std::max({flip_ratio, want / min_sa, min_sa / want});
     }
   }
   for (int d = 0; d < 5; ++d)
@@ -97,13 +99,13 @@ TEST(KernelLightSampler, SolidAngleMatchesDoublePrecision) {
         "%.2g absolute\n",
         edges[d], edges[d + 1], count[d], worst[d], worst_abs[d]);
   std::printf(
-      "[ omega    ] %d cases on the other side of 3e-4 than in double, all within a "
+      "[ omega    ] %d cases on the other side of %g than in double, all within a "
       "factor %.6f of it\n",
-      flips, flip_ratio);
+      flips, KASHA_MIN_SPHERICAL_SOLID_ANGLE, flip_ratio);
   EXPECT_LT(flip_ratio, 1.01);
   EXPECT_LT(worst_abs[0] + worst_abs[1], 1e-6);
   // Where the solid angle chooses spherical sampling and sets its pdf (above
-  // KASHA_MIN_SPHERICAL_SOLID_ANGLE = 3e-4), float agrees with double to 1e-3.
+  // 3e-4 sr), float agrees with double to 1e-3.
   EXPECT_LT(worst[2], 1e-3);
   EXPECT_LT(worst[3], 1e-4);
   EXPECT_LT(worst[4], 1e-4);
@@ -173,8 +175,8 @@ TEST(KernelLightSampler, PointsFollowTheClaimedDensity) {
   constexpr int kGrid = 8;  // barycentric cells per triangle
   const Vector3d x(0.3, -0.2, 0.1);
   // Solid angles from x: 2.55 (large, close), 0.155 (grazing, cos_light ~0.2), 0.36 (seen from
-  // behind), 1.3e-3 (small, still spherical), 9e-5 and 1.8e-4 (area sampling; the second seen
-  // from behind).
+  // behind), 1.3e-3 (small), 9e-5 and 1.8e-4 (the second seen from behind); the last three are
+  // sampled by area (below KASHA_MIN_SPHERICAL_SOLID_ANGLE).
   std::vector<TestLight> lights = {
       {"large close", {-0.8, -1.0, 0.7}, {-0.9, 1.3, 0.7}, {1.6, -0.7, 0.7}, 0.3, true},
       {"grazing", {1.2, -0.6, -0.4}, {1.0, 0.5, 0.6}, {2.2, 0.3, -0.3}, 0.15, true},
@@ -240,7 +242,7 @@ TEST(KernelLightSampler, PointsFollowTheClaimedDensity) {
     const TestLight& l = lights[j];
     p_light[j] = double(light_cdf[j]) - (j > 0 ? double(light_cdf[j - 1]) : 0.0);
     omega[j] = solid_angle(x, l.v0, l.v1, l.v2);
-    spherical[j] = omega[j] > 3e-4 && omega[j] < 6.22;
+    spherical[j] = omega[j] > KASHA_MIN_SPHERICAL_SOLID_ANGLE && omega[j] < KASHA_MAX_SPHERICAL_SOLID_ANGLE;
     share[j] = spherical[j] ? triangle_cell_solid_angle(x, l.v0, l.v1, l.v2, kGrid)
                             : triangle_cell_area(kGrid);
     Eigen::Matrix<double, 3, 2> e;
@@ -251,8 +253,8 @@ TEST(KernelLightSampler, PointsFollowTheClaimedDensity) {
                 l.name.c_str(), omega[j], p_light[j], spherical[j] ? "spherical" : "area",
                 normal[j].dot(x - l.v0) > 0 ? "the front" : "behind");
   }
-  EXPECT_TRUE(spherical[0] && spherical[1] && spherical[2] && spherical[3]);
-  EXPECT_FALSE(spherical[4] || spherical[5]);
+  EXPECT_TRUE(spherical[0] && spherical[1] && spherical[2]);  // both branches are covered
+  EXPECT_FALSE(spherical[3] || spherical[4] || spherical[5]);
 
   std::vector<std::vector<double>> observed(lights_n, std::vector<double>(cells + 1, 0.0));
   std::vector<double> chosen(lights_n, 0.0);
@@ -268,8 +270,9 @@ TEST(KernelLightSampler, PointsFollowTheClaimedDensity) {
     chosen[j] += 1;
     const Vector3d p = at(out, 10 * i), r = p - l.v0;
     // On the light's plane, and its barycentrics (within rounding of the triangle: clamped in).
-    // Spherical sampling of the small triangle lands up to 4e-5 outside (float rounding in
-    // Arvo's construction grows as the solid angle shrinks: 1.3e-4 at 3.7e-4 sr).
+    // Spherical sampling lands slightly outside small triangles (float rounding in Arvo's
+    // construction grows as the solid angle shrinks: 1.3e-4 at 3.7e-4 sr on PoCL, 1.1e-4 at 1.3e-3
+    // sr on an NVIDIA H100), hence the threshold of 1e-2 sr.
     const double plane = std::abs(normal[j].dot(r)) / (1 + (p - x).norm());
     max_plane[j] = std::max(max_plane[j], plane);
     Eigen::Vector2d b = to_bary[j] * r;
