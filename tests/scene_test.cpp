@@ -132,6 +132,21 @@ TEST(Scene, UvExcitationExtendsTheGrid) {
   EXPECT_FALSE(s.glossy());
 }
 
+TEST(Scene, OnlyMaterialsInUseSwitchOnFeaturesAndTheGrid) {
+  // A fluorescent, glossy material that no shape uses compiles no fluorescence or gloss and does
+  // not extend the grid into the UV.
+  Scene s = load(R"({"kasha_scene": 1, "camera": {"position": [0,0,-5], "look_at": [0,0,0]},
+    "materials": {"grey": {"passive": {"reflectance": 0.5}},
+                  "ink": {"fluorescence": {"excitation": {"nm": [300, 350, 400], "value": [0, 0.2, 0]},
+                                           "emission": {"gaussian_nm": 440, "fwhm_nm": 40}},
+                          "gloss": {"reflectance": 0.1, "mirror": true}}},
+    "shapes": [{"type": "sphere", "center": [0,0,0], "radius": 1, "material": "grey", "inward": true,
+                "emission": {"line_nm": 365}}]})");
+  EXPECT_FALSE(s.fluorescent());
+  EXPECT_FALSE(s.glossy());
+  EXPECT_EQ(s.grid.min_nm, 380);
+}
+
 TEST(Scene, BadScenesGiveOneClearLine) {
   auto check = [](const std::string& text, const std::string& expected) {
     std::string msg = error_of([&] { load(text); });

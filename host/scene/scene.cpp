@@ -11,15 +11,17 @@
 
 namespace kasha {
 
+// Only materials that some shape uses count: a declared but unused fluorescent or glossy material
+// must not switch on kernels and buffers the scene does not need.
 bool Scene::fluorescent() const {
-  for (const Material& m : materials)
-    if (m.fluorescent()) return true;
+  for (const ShapeInfo& s : shapes)
+    if (materials[s.material].fluorescent()) return true;
   return false;
 }
 
 bool Scene::glossy() const {
-  for (const Material& m : materials)
-    if (m.gloss) return true;
+  for (const ShapeInfo& s : shapes)
+    if (materials[s.material].gloss) return true;
   return false;
 }
 
