@@ -189,3 +189,24 @@ TEST(Cli, CompareReportsErrorsWithAndWithoutTheLampPixels) {
                 shell_quoted(test::source_path("scenes/torus.json"))),
       "its camera is");
 }
+
+TEST(Cli, EveryPhysicalIntegratorRefusesASceneWithoutLight) {
+  // The only emitter's line lies below the grid: the same one line from each physical integrator,
+  // and nothing written (the debug views still render).
+  std::string scene = test::write_file("dark.json", R"({"kasha_scene": 1,
+    "camera": {"position": [0, 0, -3], "look_at": [0, 0, 0], "width": 8, "height": 8},
+    "materials": {"grey": {"passive": {"reflectance": 0.5}}},
+    "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0],
+                "material": "grey", "emission": {"line_nm": 150}}]})");
+  std::string out = (test::scratch_dir() / "dark.exr").string();
+  for (const char* integrator : {"backward", "forward", "photon"}) {
+    expect_one_line_error(run_kasha("render " + shell_quoted(scene) + " --integrator " +
+                                    integrator + " --passes 1 -o " + shell_quoted(out)),
+                          "no emitter has power on the wavelength grid");
+    EXPECT_FALSE(std::filesystem::exists(out)) << integrator;
+  }
+  EXPECT_EQ(run_kasha("render " + shell_quoted(scene) + " --integrator debug --passes 1 -o " +
+                      shell_quoted(out))
+                .exit_code,
+            0);
+}

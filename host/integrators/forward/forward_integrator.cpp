@@ -19,8 +19,6 @@ class ForwardIntegrator : public KernelIntegrator {
         photons_per_item_(s.settings.photons_per_item),
         items_((photons_ + photons_per_item_ - 1) / photons_per_item_) {
     if (photons_ > (1LL << 31) - 1) throw Error("--photons: at most 2^31 - 1 photons per pass");
-    if (scene_.data().light_tri.empty())
-      throw Error("forward: the scene has no emitter with power");
     kernel_ = cl::Kernel(program_, "trace_forward");
     // Fixed point: the brightest emitter's film value maps to 2^32, leaving 2^31 of headroom per
     // pixel and pass and a resolution of 2^-32 of it.

@@ -41,7 +41,6 @@ class PhotonMapIntegrator : public KernelIntegrator {
                 film_.cmf().data()} {
     if (photons_ > (1LL << 31) - 1) throw Error("--photons: at most 2^31 - 1 photons per pass");
     if (!(alpha_ > 0 && alpha_ < 1)) throw Error("--alpha must lie in (0, 1)");
-    if (scene_.data().light_tri.empty()) throw Error("photon: the scene has no emitter with power");
     photon_kernel_ = cl::Kernel(program_, "trace_photon_map");
     camera_kernel_ = cl::Kernel(program_, "camera_pass");
     counter_ = cl::Buffer(cl_.context(), CL_MEM_READ_WRITE, sizeof(cl_int));
