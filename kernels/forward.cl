@@ -51,9 +51,7 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
   float emitted = 0.0f, absorbed = 0.0f, escaped = 0.0f, in_flight = 0.0f;
   float rows[KASHA_FILM_ROWS];
   for (int index = first; index < last; ++index) {
-    /* One sampler stream over all passes' photons: photon `index` of pass `pass` is sample
-     * pass·photons + index (32 bits, wrapping after 2^32 photons). */
-    Sampler sampler = sampler_start(seed, 0u, pass * (uint)photons + (uint)index, pass, (uint)index);
+    Sampler sampler = photon_sampler(seed, pass, photons, index);
     LightOrigin o;
     Photon p = emit_photon(&s, (float)photons, &sampler, &o);
     emitted += photon_total(&p);

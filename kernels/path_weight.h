@@ -80,7 +80,8 @@ inline float pw_energy(const PathWeight* p, const FilmView* f, const __global fl
 }
 
 /* How much the path still carries: the film rows' total response to equal-energy radiance,
- * Σ_r (T·1)_r, with the branch importance u standing in for the rows in diagonal mode. Russian
+ * Σ_r (T·1)_r, with the branch importance u standing in for the rows in diagonal mode (and
+ * weighing the rows of a spectral film in rank-1 mode, so both modes measure alike). Russian
  * roulette compares it with its value at the camera, Σ_i u_i. */
 inline float pw_magnitude(const PathWeight* p, const FilmView* f) {
 #if KASHA_FULL_MATRIX
@@ -88,8 +89,13 @@ inline float pw_magnitude(const PathWeight* p, const FilmView* f) {
 #else
 #if KASHA_FLUORESCENCE
   if (p->rank1) {
+#if KASHA_SPECTRAL_FILM
+    /* The rows are bins: weighed by their importance, as diagonal mode weighs them. */
+    float c = spectrum_dot(KASHA_BINS, p->c, f->importance, 0);
+#else
     float c = 0.0f;
     for (int r = 0; r < KASHA_FILM_ROWS; ++r) c += p->c[r];
+#endif
     return c * spectrum_dot(KASHA_BINS, p->b, 0, 0);
   }
 #endif

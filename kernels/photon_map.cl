@@ -19,7 +19,7 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
   int item = get_global_id(0);
   int first = item * photons_per_item, last = min(first + photons_per_item, photons);
   for (int index = first; index < last; ++index) {
-    Sampler sampler = sampler_start(seed, 0u, pass * (uint)photons + (uint)index, pass, (uint)index);
+    Sampler sampler = photon_sampler(seed, pass, photons, index);
     LightOrigin o;
     Photon p = emit_photon(&s, (float)photons, &sampler, &o);
     p.position += o.normal * ray_eps;

@@ -4,7 +4,8 @@
  * nested-uniform shuffle of the sample index and a nested-uniform scramble of each coordinate, all
  * seeded by a hash of (seed, stream, pair). A stream is a pixel (camera paths: index = the pixel's
  * sample number over all passes, so pass k continues pass k − 1 and every prefix of 2^m samples
- * stays stratified) or a pass's whole set of photons (index = the photon's number over all passes).
+ * stays stratified) or the photons (index = the photon's number over all passes, a new stream every
+ * 2^32 photons).
  * Pixels get independent scrambles, so they stay independent estimates. Everything is integer
  * hashing of (seed, stream, index, pair): the same numbers on any device or process.
  * `--sampler independent` (KASHA_SOBOL 0) draws PCG32 numbers from one stream per work item. */
@@ -97,6 +98,14 @@ inline Sampler sampler_start(uint seed, uint stream, uint index, uint pass, uint
   s.rng = rng_seed(seed, pass, item);
 #endif
   return s;
+}
+
+/* The sampler of photon `index` of pass `pass`: its number over all passes, pass·photons + index,
+ * in 64 bits; each 2^32 photons are a stream of their own (the high half picks it), so the
+ * sequence never repeats. */
+inline Sampler photon_sampler(uint seed, uint pass, int photons, int index) {
+  ulong number = (ulong)pass * (ulong)photons + (ulong)index;
+  return sampler_start(seed, (uint)(number >> 32), (uint)number, pass, (uint)index);
 }
 
 /* Moves to sample `index` of the stream, from its first dimension pair (the independent sampler

@@ -242,7 +242,8 @@ TEST(KernelLightSampler, PointsFollowTheClaimedDensity) {
     const TestLight& l = lights[j];
     p_light[j] = double(light_cdf[j]) - (j > 0 ? double(light_cdf[j - 1]) : 0.0);
     omega[j] = solid_angle(x, l.v0, l.v1, l.v2);
-    spherical[j] = omega[j] > KASHA_MIN_SPHERICAL_SOLID_ANGLE && omega[j] < KASHA_MAX_SPHERICAL_SOLID_ANGLE;
+    spherical[j] =
+        omega[j] > KASHA_MIN_SPHERICAL_SOLID_ANGLE && omega[j] < KASHA_MAX_SPHERICAL_SOLID_ANGLE;
     share[j] = spherical[j] ? triangle_cell_solid_angle(x, l.v0, l.v1, l.v2, kGrid)
                             : triangle_cell_area(kGrid);
     Eigen::Matrix<double, 3, 2> e;
@@ -376,6 +377,13 @@ __kernel void entry_points(uint seed, uint stream, uint first, __global float* o
   }
   uint key = hash_combine(hash_u32(seed), stream);
   for (uint k = 0; k < 4; ++k) vstore2(scrambled_sobol_2d(index, hash_combine(key, k)), 8 + k, o);
+}
+
+/* Photon i of pass `pass` (photons per pass `photons`): its first pair. */
+__kernel void photon(uint seed, uint pass, int photons, __global float* out) {
+  int i = get_global_id(0);
+  Sampler s = photon_sampler(seed, pass, photons, i);
+  vstore2(sample_2d(&s), i, out);
 }
 
 /* A plausible wrong sampler for two streams: one index shuffle for both (that of seed_a), only the
@@ -621,3 +629,25 @@ TEST(KernelSampler, IndependentSamplerItemsAreUncorrelated) {
 }
 
 }  // namespace
+
+TEST(KernelSampler, PhotonSequencesDoNotRepeatAfter2To32Photons) {
+  // 2^18 photons per pass: pass 16384 starts at photon number 2^32, which a 32-bit index would
+  // have wrapped to pass 0's numbers. It is the start of a stream of its own instead.
+  const int photons = 1 << 18, n = 4096;
+  TestKernel kernel(kSamplerSource, "sampler_test.cl", "photon");
+  auto first_pairs = [&](unsigned pass) {
+    kernel.scalar(0, 7u);
+    kernel.scalar(1, pass);
+    kernel.scalar(2, photons);
+    kernel.output(3, 2 * n);
+    kernel.run(n);
+    return kernel.read(3);
+  };
+  const std::vector<float> pass0 = first_pairs(0), pass16384 = first_pairs(16384),
+                           pass1 = first_pairs(1);
+  int same_wrap = 0, same_next = 0;
+  for (int i = 0; i < 2 * n; ++i)
+    same_wrap += pass0[i] == pass16384[i], same_next += pass0[i] == pass1[i];
+  EXPECT_LT(same_wrap, 10) << "pass 16384 repeats pass 0";
+  EXPECT_LT(same_next, 10);
+}
