@@ -73,9 +73,10 @@ inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* 
 #endif
 }
 
-/* One camera path; adds its estimate to rows. */
-inline void trace_camera_path(const SceneView* s, const FilmView* f, float3 org, float3 dir, Sampler* sampler,
-                              float* rows) {
+/* One camera path; adds its estimate to rows. Returns what the path still carried (relative to
+ * its start) if the depth guard cut it, else 0. */
+inline float trace_camera_path(const SceneView* s, const FilmView* f, float3 org, float3 dir, Sampler* sampler,
+                               float* rows) {
   PathWeight p;
   pw_init(&p, f);
   const float start = pw_magnitude(&p, f);
@@ -84,7 +85,7 @@ inline void trace_camera_path(const SceneView* s, const FilmView* f, float3 org,
   float3 prev_x = org; /* the previous vertex itself (org is offset off its surface) */
   for (int depth = 0; depth < KASHA_MAX_PATH_DEPTH; ++depth) {
     HitPoint h;
-    if (!intersect_scene(s, org, dir, &h)) return;
+    if (!intersect_scene(s, org, dir, &h)) return 0.0f;
     float3 wo = -dir, ns = h.ns, x = h.x;
 
     if (h.emitter >= 0 && h.front) {
@@ -96,7 +97,7 @@ inline void trace_camera_path(const SceneView* s, const FilmView* f, float3 org,
     Surface surf;
     load_surface(s, h.material, &surf);
     float3 probs = branch_probabilities(&p, f, &surf);
-    if (probs.x + probs.y + probs.z <= 0.0f) return;
+    if (probs.x + probs.y + probs.z <= 0.0f) return 0.0f;
     sampler_at(sampler, 1 + depth * PAIRS_PER_VERTEX);
     float2 u_choice = sample_2d(sampler), u_light = sample_2d(sampler), u_dir = sample_2d(sampler);
     if (s->light_count > 0 && (surface_has_lambert(&surf) || (surf.g > 0.0f && !surf.mirror)))
@@ -114,7 +115,7 @@ inline void trace_camera_path(const SceneView* s, const FilmView* f, float3 org,
         float pdf;
         float3 wi = sample_lobe(surf.m, s->lobes, mirror, u_dir.x, u_dir.y, sample_2d(sampler).x, &pdf);
         float ci = dot(wi, ns), co = dot(wo, ns);
-        if (ci <= 0.0f) return;
+        if (ci <= 0.0f) return 0.0f;
         dir = wi;
         specular = false;
         prev_pdf = probs.x * pdf;
@@ -134,29 +135,32 @@ inline void trace_camera_path(const SceneView* s, const FilmView* f, float3 org,
 #endif
     }
     float keep = roulette(depth, KASHA_CAMERA_ROULETTE_FROM, pw_magnitude(&p, f) / start, u_choice.y);
-    if (keep == 0.0f) return;
+    if (keep == 0.0f) return 0.0f;
     if (keep != 1.0f) pw_scatter_diagonal(&p, 0, keep);
     prev_x = x;
     org = x + ns * s->ray_eps;
   }
+  return pw_magnitude(&p, f) / start;
 }
 
 __kernel void render_backward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
                               __global float* film,    /* pixels × KASHA_FILM_ROWS, sums over the pass */
                               __global int* rejected,  /* per pixel: samples that were not finite */
+                              __global float* cut,     /* per pixel: weight the depth guard cut */
                               int spp, uint seed, uint pass) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
   int pixel = get_global_id(0);
   if (pixel >= camera.width * camera.height) return;
   int bad = 0;
+  float guard = 0.0f;
   Sampler sampler = sampler_start(seed, (uint)pixel, 0, pass, (uint)pixel);
   for (int k = 0; k < spp; ++k) {
     sampler_next_sample(&sampler, pass * (uint)spp + (uint)k);
     float rows[KASHA_FILM_ROWS];
     film_rows_clear(rows);
-    trace_camera_path(&s, &f, camera_position(&camera), camera_sample(&camera, pixel, sample_2d(&sampler)),
-                      &sampler, rows);
+    guard += trace_camera_path(&s, &f, camera_position(&camera), camera_sample(&camera, pixel, sample_2d(&sampler)),
+                               &sampler, rows);
     bool finite = true;
     for (int r = 0; r < KASHA_FILM_ROWS; ++r) finite = finite && isfinite(rows[r]);
     if (finite)
@@ -165,4 +169,5 @@ __kernel void render_backward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
       ++bad;
   }
   rejected[pixel] = bad;
+  cut[pixel] = guard;
 }

@@ -210,3 +210,28 @@ TEST(Cli, EveryPhysicalIntegratorRefusesASceneWithoutLight) {
                 .exit_code,
             0);
 }
+
+TEST(Cli, RenderWarnsWhenTheDepthGuardCutsPaths) {
+  // A furnace that keeps 99.99 % of its light: paths outlive the 1000-vertex guard, which biases
+  // the image; backward and forward say how much weight the guard cut.
+  std::string scene = test::write_file("stiff.json", R"({"kasha_scene": 1,
+    "camera": {"position": [0, 0, 0], "look_at": [1, 0, 0], "fov_deg": 60, "width": 4, "height": 4},
+    "materials": {"white": {"passive": {"reflectance": 0.9999}}},
+    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white",
+                "inward": true, "emission": "E"}]})");
+  std::string out = (test::scratch_dir() / "stiff.exr").string();
+  for (const char* options :
+       {"--integrator backward --spp 2", "--integrator forward --photons 500"}) {
+    auto r = run_kasha("render " + shell_quoted(scene) + " " + options + " --passes 1 -o " +
+                       shell_quoted(out));
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("kasha: warning: paths reaching the 1000-vertex depth guard were cut"),
+              std::string::npos)
+        << options << "\n"
+        << r.err;
+  }
+  auto plain =
+      run_kasha("render " + shell_quoted(test::source_path("scenes/furnace_fluorescent.json")) +
+                " --integrator backward --spp 2 --passes 1 -o " + shell_quoted(out));
+  EXPECT_EQ(plain.err.find("depth guard"), std::string::npos) << plain.err;
+}

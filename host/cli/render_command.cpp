@@ -11,6 +11,7 @@
 #include "image/exr_io.h"
 #include "image/png_preview.h"
 #include "render/render_job.h"
+#include "shared_types.h"
 #include "study/furnace.h"
 
 namespace kasha {
@@ -62,6 +63,14 @@ int run_render(const RenderArgs& a) {
       shares += (shares.empty() ? "" : ", ") + name.substr(6, name.size() - 10) + " " +
                 std::to_string(static_cast<int>(std::lround(100 * value / total))) + " %";
   if (!shares.empty()) std::fprintf(stderr, "%s time: %s\n", a.integrator.c_str(), shares.c_str());
+  if (film.tally(kDepthGuardOf) > 0 &&
+      film.tally(kDepthGuardCut) > 1e-4 * film.tally(kDepthGuardOf))
+    std::fprintf(
+        stderr,
+        "kasha: warning: paths reaching the %d-vertex depth guard were cut still carrying %.3g "
+        "of the weight they started with; the image lacks what they would have added (too "
+        "dark: the scene keeps nearly all its light)\n",
+        KASHA_MAX_PATH_DEPTH, film.tally(kDepthGuardCut) / film.tally(kDepthGuardOf));
   if (film.tally("rejected samples") > 0)
     std::fprintf(stderr, "kasha: warning: %.0f samples were not finite and were left out\n",
                  film.tally("rejected samples"));

@@ -18,6 +18,11 @@ struct GatherPass {
   std::vector<int> found;
 };
 
+// Tallies of what the path-depth guard (KASHA_MAX_PATH_DEPTH) cut: the weight or power it cut,
+// and of how much; `render` warns when their ratio exceeds 1e-4 (the image is biased low).
+constexpr const char* kDepthGuardCut = "depth guard: cut";
+constexpr const char* kDepthGuardOf = "depth guard: of";
+
 struct PassResult {
   int pass = 0;
   long long samples = 0;     // samples per pixel that `sums` adds up

@@ -14,11 +14,12 @@ class BackwardIntegrator : public KernelIntegrator {
         spp_(s.settings.spp),
         seed_(s.settings.seed),
         kernel_(program_, "render_backward"),
-        rejected_(cl_.context(), CL_MEM_WRITE_ONLY, film_.pixels() * sizeof(cl_int)) {}
+        rejected_(cl_.context(), CL_MEM_WRITE_ONLY, film_.pixels() * sizeof(cl_int)),
+        cut_(cl_.context(), CL_MEM_WRITE_ONLY, film_.pixels() * sizeof(cl_float)) {}
 
   PassResult render_pass(int pass) override {
     film_.clear_pixel_sums();
-    launch(kernel_, film_.pixels(), film_.pixel_sums(), rejected_, spp_, seed_,
+    launch(kernel_, film_.pixels(), film_.pixel_sums(), rejected_, cut_, spp_, seed_,
            static_cast<cl_uint>(pass));
     PassResult r{pass, spp_, film_.read_pixel_sums(), {}, {}};
     std::vector<cl_int> rejected(film_.pixels());
@@ -27,6 +28,12 @@ class BackwardIntegrator : public KernelIntegrator {
     double bad = 0;
     for (cl_int n : rejected) bad += n;
     r.tallies["rejected samples"] = bad;
+    std::vector<cl_float> cut(film_.pixels());
+    cl_.queue().enqueueReadBuffer(cut_, CL_TRUE, 0, cut.size() * sizeof(cl_float), cut.data());
+    double weight = 0;
+    for (cl_float w : cut) weight += w;
+    r.tallies[kDepthGuardCut] = weight;  // path weight, relative to a path's start
+    r.tallies[kDepthGuardOf] = static_cast<double>(camera_paths_per_pass());
     return r;
   }
 
@@ -43,7 +50,7 @@ class BackwardIntegrator : public KernelIntegrator {
   int spp_;
   unsigned seed_;
   cl::Kernel kernel_;
-  cl::Buffer rejected_;
+  cl::Buffer rejected_, cut_;
 };
 
 KASHA_REGISTER_INTEGRATOR(

@@ -64,7 +64,9 @@ class ForwardIntegrator : public KernelIntegrator {
                  {"power emitted (W)", power[0]},
                  {"power absorbed (W)", power[1]},
                  {"power escaped (W)", power[2]},
-                 {"power in flight (W)", power[3]}};
+                 {"power in flight (W)", power[3]},
+                 {kDepthGuardCut, power[3]},  // photons the depth guard cut, still carrying power
+                 {kDepthGuardOf, power[0]}};
     return r;
   }
 
