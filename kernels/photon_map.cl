@@ -14,16 +14,23 @@
 #define CAMERA_MAX_DEPTH 64 /* gloss bounces before a visible point */
 
 __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, int photons_per_item, __global float* store,
-                               __global int* stored, int capacity, uint seed, uint pass) {
+                               __global int* stored, int capacity,
+                               __global float* cut, /* per item: power the depth guard cut, per photon's start */
+                               uint seed, uint pass) {
   KASHA_SCENE_VIEW(s);
   int item = get_global_id(0);
   int first = item * photons_per_item, last = min(first + photons_per_item, photons);
+  float guard = 0.0f;
   for (int index = first; index < last; ++index) {
     Sampler sampler = photon_sampler(seed, pass, photons, index);
     LightOrigin o;
     Photon p = emit_photon(&s, (float)photons, &sampler, &o);
     p.position += o.normal * ray_eps;
-    for (int depth = 0; depth < KASHA_MAX_PATH_DEPTH; ++depth) {
+    for (int depth = 0;; ++depth) {
+      if (depth == KASHA_MAX_PATH_DEPTH) {
+        guard += photon_total(&p) / p.start;
+        break;
+      }
       HitPoint h;
       if (!intersect_scene(&s, p.position, p.direction, &h)) break;
       float3 ns = h.ns, x = h.x;
@@ -41,6 +48,7 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
       if (scatter_photon(&p, &surf, &s, x, ns, &sampler, depth) == BRANCH_ABSORBED) break;
     }
   }
+  if (first < photons) cut[item] = guard;
 }
 
 __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float* visible_points,

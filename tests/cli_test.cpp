@@ -213,7 +213,7 @@ TEST(Cli, EveryPhysicalIntegratorRefusesASceneWithoutLight) {
 
 TEST(Cli, RenderWarnsWhenTheDepthGuardCutsPaths) {
   // A furnace that keeps 99.99 % of its light: paths outlive the 1000-vertex guard, which biases
-  // the image; backward and forward say how much weight the guard cut.
+  // the image; each integrator says how much weight the guard cut.
   std::string scene = test::write_file("stiff.json", R"({"kasha_scene": 1,
     "camera": {"position": [0, 0, 0], "look_at": [1, 0, 0], "fov_deg": 60, "width": 4, "height": 4},
     "materials": {"white": {"passive": {"reflectance": 0.9999}}},

@@ -44,6 +44,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
     photon_kernel_ = cl::Kernel(program_, "trace_photon_map");
     camera_kernel_ = cl::Kernel(program_, "camera_pass");
     counter_ = cl::Buffer(cl_.context(), CL_MEM_READ_WRITE, sizeof(cl_int));
+    cut_ = cl::Buffer(cl_.context(), CL_MEM_WRITE_ONLY, photon_items() * sizeof(cl_float));
     vps_ = cl::Buffer(cl_.context(), CL_MEM_READ_WRITE, vp_bytes());
     // Room for a few stored photons each; a pass that needs more is traced again with more room.
     capacity_ = static_cast<size_t>(photons_) * 4;
@@ -69,6 +70,12 @@ class PhotonMapIntegrator : public KernelIntegrator {
     std::vector<float> photons = trace_photons(pass);
     r.tallies["time: photon tracing (s)"] = since(t1);
     r.tallies["photons stored"] = static_cast<double>(photons.size() / photon_floats_);
+    std::vector<cl_float> cut(photon_items());
+    cl_.queue().enqueueReadBuffer(cut_, CL_TRUE, 0, cut.size() * sizeof(cl_float), cut.data());
+    double guard = 0;
+    for (cl_float c : cut) guard += c;
+    r.tallies[kDepthGuardCut] = guard;  // power cut, per photon's start
+    r.tallies[kDepthGuardOf] = static_cast<double>(photons_);
 
     auto t2 = Clock::now();
     PhotonKdTree tree(photons.data(), photons.size() / photon_floats_, photon_floats_);
@@ -115,12 +122,14 @@ class PhotonMapIntegrator : public KernelIntegrator {
   size_t vp_bytes() const { return film_.pixels() * vp_floats_ * sizeof(float); }
 
   // The pass's stored photons, read back (photon_floats_ each).
+  size_t photon_items() const { return (photons_ + kPhotonsPerItem - 1) / kPhotonsPerItem; }
+
   std::vector<float> trace_photons(int pass) {
-    const size_t items = (photons_ + kPhotonsPerItem - 1) / kPhotonsPerItem;
+    const size_t items = photon_items();
     for (;;) {
       cl_.queue().enqueueFillBuffer(counter_, cl_int(0), 0, sizeof(cl_int));
       launch(photon_kernel_, items, static_cast<cl_int>(photons_), kPhotonsPerItem, store_,
-             counter_, static_cast<cl_int>(capacity_), seed_, static_cast<cl_uint>(pass));
+             counter_, static_cast<cl_int>(capacity_), cut_, seed_, static_cast<cl_uint>(pass));
       cl_int stored = 0;
       cl_.queue().enqueueReadBuffer(counter_, CL_TRUE, 0, sizeof(cl_int), &stored);
       if (stored >= 0 && static_cast<size_t>(stored) <= capacity_) {
@@ -149,7 +158,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
   double footprint_;  // pixel width on the image plane at unit distance
   size_t capacity_;
   cl::Kernel photon_kernel_, camera_kernel_;
-  cl::Buffer store_, counter_, vps_;
+  cl::Buffer store_, counter_, vps_, cut_;
   std::unique_ptr<EmbreeScene> embree_;  // probes the gather discs' coverage
 };
 
