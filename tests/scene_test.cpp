@@ -177,6 +177,15 @@ TEST(Scene, BadScenesGiveOneClearLine) {
           R"({"type": "sphere", "center": [0,0,0], "radius": 1, "material": "grey", "emission": {"nm": [500, 400], "value": [1, 1]}})"),
       "scene.json: /shapes/0/emission: at 400 nm: wavelengths must increase");
   check(scene_with(""), "the scene has no shapes");
+  // Beyond float range after a transform (Embree used to abort on these).
+  check(
+      scene_with(
+          R"({"type": "sphere", "center": [0,0,0], "radius": 1, "material": "grey", "transform": {"scale": 1e40}})"),
+      "scene.json: /shapes/0: a vertex at (");
+  check(
+      scene_with(
+          R"({"type": "quad", "corner": [1e19,0,0], "u": [1,0,0], "v": [0,1,0], "material": "grey"})"),
+      "is not finite or beyond ±1e18");
   check(R"({"kasha_scene": 1, "camera": {"position": [0,0,0], "look_at": [0,0,0]}, )" +
             std::string(kMaterials) + R"(, "shapes": [])",
         "scene.json: malformed JSON: parse error at line 1, column");

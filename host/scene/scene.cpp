@@ -1,6 +1,8 @@
 #include "scene/scene.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 
@@ -10,6 +12,9 @@
 #include "spectrum/spectrum_parser.h"
 
 namespace kasha {
+
+// The largest coordinate a vertex may have (after transforms): its square stays far inside float.
+constexpr double kMaxCoordinate = 1e18;
 
 // Only materials that some shape uses count: a declared but unused fluorescent or glossy material
 // must not switch on kernels and buffers the scene does not need.
@@ -165,6 +170,16 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
     if (material < 0) shape.at("material").fail("no material named \"" + material_name + "\"");
     material_used[material] = true;
     std::vector<Triangle> tris = shape_triangles(shape, type);
+    // Vertices must be finite and well inside float range after transforms: squared distances of
+    // them must not overflow, and Embree asserts on non-finite bounds.
+    for (const Triangle& t : tris)
+      for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 3; ++c)
+          if (!(std::abs(t[k][c]) <= kMaxCoordinate)) {
+            char v[128];
+            std::snprintf(v, sizeof v, "(%g, %g, %g)", t[k][0], t[k][1], t[k][2]);
+            shape.fail(std::string("a vertex at ") + v + " is not finite or beyond ±1e18");
+          }
 
     int emitter = -1;
     auto emission = shape.find("emission");
