@@ -134,9 +134,11 @@ inline float trace_camera_path(const SceneView* s, const FilmView* f, float3 org
       pw_scatter_fluorescent(&p, f, surf.ehat, surf.a, 1.0f / probs.z);
 #endif
     }
-    float keep = roulette(depth, KASHA_CAMERA_ROULETTE_FROM, pw_magnitude(&p, f) / start, u_choice.y);
-    if (keep == 0.0f) return 0.0f;
-    if (keep != 1.0f) pw_scatter_diagonal(&p, 0, keep);
+    if (depth >= KASHA_CAMERA_ROULETTE_FROM) {
+      float keep = roulette(pw_magnitude(&p, f) / start, u_choice.y);
+      if (keep == 0.0f) return 0.0f;
+      if (keep != 1.0f) pw_scatter_diagonal(&p, 0, keep);
+    }
     prev_x = x;
     org = x + ns * s->ray_eps;
   }

@@ -17,14 +17,20 @@ typedef struct {
   int emitter;
 } LightPoint;
 
-inline LightPoint sample_light(const __global KTriangle* tris, const __global int* light_tri,
-                               const __global float* light_cdf, int light_count, float u0, float u1, float u2) {
+/* The emitting triangle whose CDF step holds u (the first with light_cdf > u). */
+inline int choose_light(const __global float* light_cdf, int light_count, float u) {
   int lo = 0, hi = light_count - 1;
   while (lo < hi) {
     int mid = (lo + hi) / 2;
-    if (light_cdf[mid] > u0) hi = mid;
+    if (light_cdf[mid] > u) hi = mid;
     else lo = mid + 1;
   }
+  return lo;
+}
+
+inline LightPoint sample_light(const __global KTriangle* tris, const __global int* light_tri,
+                               const __global float* light_cdf, int light_count, float u0, float u1, float u2) {
+  int lo = choose_light(light_cdf, light_count, u0);
   const __global KTriangle* t = &tris[light_tri[lo]];
   float3 v0 = load_float3(t->v0), e1 = load_float3(t->v1) - v0, e2 = load_float3(t->v2) - v0;
   float2 b = sample_triangle(u1, u2);
@@ -79,12 +85,7 @@ inline float3 sample_spherical_triangle(float3 p, float3 v0, float3 v1, float3 v
  * [0, 1) that picked it, goes on with u.y to pick the point: the 2-D sample stays stratified over
  * all the emitting triangles together (a quad lamp's two triangles included). */
 inline LightPoint sample_light_from(const SceneView* s, float3 x, float2 u, float* pdf) {
-  int lo = 0, hi = s->light_count - 1;
-  while (lo < hi) {
-    int mid = (lo + hi) / 2;
-    if (s->light_cdf[mid] > u.x) hi = mid;
-    else lo = mid + 1;
-  }
+  int lo = choose_light(s->light_cdf, s->light_count, u.x);
   float below = lo > 0 ? s->light_cdf[lo - 1] : 0.0f, width = s->light_cdf[lo] - below;
   u.x = width > 0.0f ? clamp((u.x - below) / width, 0.0f, 0.99999994f) : 0.5f;
   const __global KTriangle* t = &s->tris[s->light_tri[lo]];

@@ -114,10 +114,12 @@ inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, f
 #endif
   }
   p->position = x + ns * ray_eps;
-  float keep = roulette(depth, KASHA_PHOTON_ROULETTE_FROM, photon_total(p) / p->start, u_choice.y);
-  if (keep == 0.0f) return BRANCH_ABSORBED;
-  if (keep != 1.0f)
-    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= keep;
+  if (depth >= KASHA_PHOTON_ROULETTE_FROM) {
+    float keep = roulette(photon_total(p) / p->start, u_choice.y);
+    if (keep == 0.0f) return BRANCH_ABSORBED;
+    if (keep != 1.0f)
+      for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= keep;
+  }
   return branch;
 }
 

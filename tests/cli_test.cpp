@@ -2,7 +2,9 @@
 // good input writes whole files; Ctrl-C writes the image so far.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -213,22 +215,32 @@ TEST(Cli, EveryPhysicalIntegratorRefusesASceneWithoutLight) {
 
 TEST(Cli, RenderWarnsWhenTheDepthGuardCutsPaths) {
   // A furnace that keeps 99.99 % of its light: paths outlive the 1000-vertex guard, which biases
-  // the image; each integrator says how much weight the guard cut.
+  // the image, and each integrator says how much weight the guard cut. Roulette keeps a path's
+  // expected weight, so after the guard's 1000 scatterings it is ρ^1000 = 0.9048 of the start:
+  // each path carries about 0 or 1, so the share has a binomial error over the paths traced.
   std::string scene = test::write_file("stiff.json", R"({"kasha_scene": 1,
     "camera": {"position": [0, 0, 0], "look_at": [1, 0, 0], "fov_deg": 60, "width": 4, "height": 4},
     "materials": {"white": {"passive": {"reflectance": 0.9999}}},
     "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "white",
                 "inward": true, "emission": "E"}]})");
   std::string out = (test::scratch_dir() / "stiff.exr").string();
-  for (const char* options :
-       {"--integrator backward --spp 2", "--integrator forward --photons 500"}) {
+  const double expected = std::pow(0.9999, 1000);
+  const std::pair<const char*, double> runs[] = {{"--integrator backward --spp 64", 16 * 64},
+                                                 {"--integrator forward --photons 1000", 1000},
+                                                 {"--integrator photon --photons 200", 200}};
+  for (const auto& [options, paths] : runs) {
     auto r = run_kasha("render " + shell_quoted(scene) + " " + options + " --passes 1 -o " +
                        shell_quoted(out));
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.err.find("kasha: warning: paths reaching the 1000-vertex depth guard were cut"),
-              std::string::npos)
-        << options << "\n"
-        << r.err;
+    const std::string lead =
+        "kasha: warning: paths reaching the 1000-vertex depth guard were cut "
+        "still carrying ";
+    const size_t at = r.err.find(lead);
+    ASSERT_NE(at, std::string::npos) << options << "\n" << r.err;
+    const double share = std::atof(r.err.c_str() + at + lead.size());
+    const double sigma = std::sqrt(expected * (1 - expected) / paths);
+    std::printf("  %s: cut share %.4f, expected %.4f ± %.4f\n", options, share, expected, sigma);
+    EXPECT_NEAR(share, expected, 4 * sigma + 0.005) << options;
   }
   auto plain =
       run_kasha("render " + shell_quoted(test::source_path("scenes/furnace_fluorescent.json")) +

@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "color/cie_observer.h"
+#include "colorimetry/radiance_factor.h"
+#include "colorimetry/sample_colorimetry.h"
 #include "opencl/upload.h"
 
 namespace kasha {
@@ -16,21 +18,13 @@ static int append(std::vector<float>& out, const std::vector<double>& values) {
   return offset;
 }
 
-// The colour of a material's Lambert parts under equal-energy light, fluorescence included:
-// per nm, r_i = ρ_i + ê_i Σ_j a_j; normalized so a perfect white has Y = 1.
+// The colour of a material's Lambert parts under equal-energy light, fluorescence included
+// (what colorimetry computes with a flat lamp), normalized so a perfect white has Y = 1.
 static void albedo_xyz(const Material& m, const WavelengthGrid& grid, const BinnedObserver& obs,
                        float out[3]) {
-  double yield = 0;
-  for (double a : m.a) yield += a;
-  std::vector<double> r(grid.bins, 0.0);
-  for (int i = 0; i < grid.bins; ++i) {
-    if (!m.rho.empty()) r[i] += m.rho[i];
-    if (!m.e_hat.empty()) r[i] += m.e_hat[i] * yield;
-  }
-  double white = 0;
-  for (int i = 0; i < grid.bins; ++i) white += obs.y[i];
-  auto xyz = obs.xyz(r, 1.0);
-  for (int k = 0; k < 3; ++k) out[k] = white > 0 ? static_cast<float>(xyz[k] / white) : 0.0f;
+  const std::vector<double> flat(grid.bins, 1.0);
+  Vec3d xyz = relative_xyz(obs, leaving_radiance(m, flat), flat, grid.bin_nm, "albedo");
+  for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(xyz[k] / 100);
 }
 
 std::vector<float> gloss_lobe_table(const GlossDesc& gloss) {

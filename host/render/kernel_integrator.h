@@ -3,6 +3,7 @@
 // launches that set the scene's and the film's parameters (KASHA_SCENE_PARAMS,
 // KASHA_FILM_PARAMS) before the kernel's own arguments.
 #include <string>
+#include <vector>
 
 #include "render/integrator_registry.h"
 
@@ -19,6 +20,17 @@ class KernelIntegrator : public Integrator {
     cl_uint a = static_cast<cl_uint>(film_.bind(kernel, scene_.bind(kernel, 0)));
     (kernel.setArg(a++, args), ...);
     cl_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(items));
+  }
+
+  // The sum of the first `count` values of type T in a device buffer (per-pixel or per-item
+  // counters a kernel wrote).
+  template <typename T>
+  double read_sum(const cl::Buffer& buffer, size_t count) {
+    std::vector<T> values(count);
+    cl_.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, count * sizeof(T), values.data());
+    double sum = 0;
+    for (T v : values) sum += v;
+    return sum;
   }
 
   ClContext& cl_;

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <map>
 
-#include "geometry/embree_scene.h"
+#include "study/primary_rays.h"
 
 namespace kasha {
 
@@ -13,21 +13,11 @@ std::vector<ShapeRegion> shape_regions(const Scene& scene, const Camera& camera,
   for (size_t s = 0; s < scene.shapes.size(); ++s)
     for (int t = 0; t < scene.shapes[s].triangle_count; ++t)
       shape_of[scene.shapes[s].first_triangle + t] = static_cast<int>(s);
-  EmbreeScene embree(scene.triangles);
-  const KCamera k = camera.to_kernel();
+  const PrimaryRays rays(scene, camera);
   // The shape seen through image point (px, py) in pixels from the top-left corner; -1 for none.
-  // In float, as the kernels' camera.
   auto seen = [&](double px, double py) {
-    const float sx = static_cast<float>(2 * px / camera.width - 1),
-                sy = static_cast<float>(1 - 2 * py / camera.height);
-    KRay r{};
-    for (int c = 0; c < 3; ++c) {
-      r.org[c] = k.position[c];
-      r.dir[c] = k.forward[c] + sx * k.right[c] + sy * k.up[c];
-    }
-    r.tmax = INFINITY;
-    KHit h = embree.intersect(r);
-    return h.prim < 0 ? -1 : shape_of[h.prim];
+    const int t = rays.triangle(px, py);
+    return t < 0 ? -1 : shape_of[t];
   };
   std::map<int, ShapeRegion> regions;
   for (int y = 0; y < camera.height; ++y)

@@ -22,17 +22,8 @@ class BackwardIntegrator : public KernelIntegrator {
     launch(kernel_, film_.pixels(), film_.pixel_sums(), rejected_, cut_, spp_, seed_,
            static_cast<cl_uint>(pass));
     PassResult r{pass, spp_, film_.read_pixel_sums(), {}, {}};
-    std::vector<cl_int> rejected(film_.pixels());
-    cl_.queue().enqueueReadBuffer(rejected_, CL_TRUE, 0, rejected.size() * sizeof(cl_int),
-                                  rejected.data());
-    double bad = 0;
-    for (cl_int n : rejected) bad += n;
-    r.tallies["rejected samples"] = bad;
-    std::vector<cl_float> cut(film_.pixels());
-    cl_.queue().enqueueReadBuffer(cut_, CL_TRUE, 0, cut.size() * sizeof(cl_float), cut.data());
-    double weight = 0;
-    for (cl_float w : cut) weight += w;
-    r.tallies[kDepthGuardCut] = weight;  // path weight, relative to a path's start
+    r.tallies["rejected samples"] = read_sum<cl_int>(rejected_, film_.pixels());
+    r.tallies[kDepthGuardCut] = read_sum<cl_float>(cut_, film_.pixels());  // relative to a start
     r.tallies[kDepthGuardOf] = static_cast<double>(camera_paths_per_pass());
     return r;
   }

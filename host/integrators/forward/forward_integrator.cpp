@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "render/kernel_integrator.h"
+#include "spectral_product.h"
 
 namespace kasha {
 
@@ -27,12 +28,9 @@ class ForwardIntegrator : public KernelIntegrator {
     const std::vector<float>& cmf = film_.cmf();
     const int n = s.scene.grid.bins;
     for (size_t e = 0; e * n < le.size(); ++e)
-      for (int r = 0; r < film_.rows(); ++r) {
-        double v = 0;
-        for (int i = 0; i < n; ++i)
-          v += (film_.spectral() ? (r == i) : cmf[r * n + i]) * le[e * n + i];
-        brightest = std::max(brightest, v);
-      }
+      for (int r = 0; r < film_.rows(); ++r)
+        brightest = std::max(
+            brightest, film_row(cmf.data(), film_.spectral(), n, r, nullptr, &le[e * n], nullptr));
     film_scale_ = static_cast<float>(std::ldexp(1.0, 32) / std::max(brightest, 1e-30));
     fixed_ = cl::Buffer(cl_.context(), CL_MEM_READ_WRITE, cells() * sizeof(cl_long));
     stats_ = cl::Buffer(cl_.context(), CL_MEM_WRITE_ONLY, items_ * 4 * sizeof(float));

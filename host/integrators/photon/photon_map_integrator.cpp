@@ -70,11 +70,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
     std::vector<float> photons = trace_photons(pass);
     r.tallies["time: photon tracing (s)"] = since(t1);
     r.tallies["photons stored"] = static_cast<double>(photons.size() / photon_floats_);
-    std::vector<cl_float> cut(photon_items());
-    cl_.queue().enqueueReadBuffer(cut_, CL_TRUE, 0, cut.size() * sizeof(cl_float), cut.data());
-    double guard = 0;
-    for (cl_float c : cut) guard += c;
-    r.tallies[kDepthGuardCut] = guard;  // power cut, per photon's start
+    r.tallies[kDepthGuardCut] = read_sum<cl_float>(cut_, photon_items());  // per photon's start
     r.tallies[kDepthGuardOf] = static_cast<double>(photons_);
 
     auto t2 = Clock::now();
