@@ -10,6 +10,7 @@
 #include "gloss_lobe.h"
 #include "hit_point.h"
 #include "lights.h"
+#include "branch_choice.h"
 #include "path_weight.h"
 #include "roulette.h"
 #include "sampler.h"
@@ -21,21 +22,6 @@
  * and point), the direction, and (the lobe's azimuth, —) drawn only for a lobe; pair 0 is the
  * pixel position. */
 #define PAIRS_PER_VERTEX 4
-
-/* Branch probabilities at a vertex, P_g, P_p, P_f, in proportion to the energy each brings to
- * the film under equal-energy light; they sum to 1 (absorption is left to Russian roulette). */
-inline float3 branch_probabilities(const PathWeight* p, const FilmView* f, const Surface* surf) {
-  float w0 = pw_energy(p, f, 0);
-  if (!(w0 > 0.0f)) return (float3)(0.0f);
-  float wg = surf->g * w0;
-  float wp = surf->passive ? pw_energy(p, f, surf->rho) : 0.0f;
-  float wf = 0.0f;
-#if KASHA_FLUORESCENCE
-  if (surf->fluorescent) wf = pw_energy(p, f, surf->ehat) * surf->a_sum;
-#endif
-  float total = wg + wp + wf;
-  return total > 0.0f ? (float3)(wg, wp, wf) / total : (float3)(0.0f);
-}
 
 /* Next-event estimation at x (shading normal ns on the viewer's side, wo towards the viewer). */
 inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* f, const Surface* surf, float3 x,

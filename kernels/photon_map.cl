@@ -4,6 +4,7 @@
  * gloss bounces to the first vertex with a Lambert part, where it stores a visible point with the
  * compact factor K (vertex_factor.h); emission seen along the way goes straight to the pixel. */
 #include "camera.h"
+#include "branch_choice.h"
 #include "film_view.h"
 #include "hit_point.h"
 #include "photon_layout.h"
@@ -67,8 +68,8 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
   Sampler sampler = sampler_start(seed ^ 0x5bd1e995u, (uint)pixel, pass, pass, (uint)pixel);
   float3 org = camera_position(&camera);
   float3 dir = camera_sample(&camera, pixel, sample_2d(&sampler));
-  float w[KASHA_BINS];
-  for (int i = 0; i < KASHA_BINS; ++i) w[i] = 1.0f;
+  PathWeight p; /* diagonal mode only: the path goes through gloss bounces alone */
+  pw_init(&p, &f);
   float travelled = 0.0f;
 
   for (int depth = 0; depth < CAMERA_MAX_DEPTH; ++depth) {
@@ -76,18 +77,13 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
     if (!intersect_scene(&s, org, dir, &h)) break;
     travelled += h.t;
     float3 wo = -dir, ns = h.ns, x = h.x;
-    if (h.emitter >= 0 && h.front) film_rows(&f, w, emitter_spectrum(&s, h.emitter), 0, 1.0f, rows);
+    if (h.emitter >= 0 && h.front) pw_add(&p, &f, emitter_spectrum(&s, h.emitter), 0, 1.0f, rows);
     Surface surf;
     load_surface(&s, h.material, &surf);
     /* Gloss or the Lambert parts, by their energies under equal-energy light (as backward). */
-    float w0 = spectrum_dot(KASHA_BINS, w, importance, 0);
-    float wl = spectrum_dot(KASHA_BINS, w, importance, surf.rho);
-#if KASHA_FLUORESCENCE
-    wl += spectrum_dot(KASHA_BINS, w, importance, surf.ehat) * surf.a_sum;
-#endif
-    bool lambert = surface_has_lambert(&surf) && wl > 0.0f;
-    float wg = surf.g * w0;
-    float p_gloss = lambert ? wg / (wg + wl) : (surf.g > 0.0f ? 1.0f : 0.0f);
+    float3 probs = branch_probabilities(&p, &f, &surf);
+    float p_gloss = probs.x;
+    bool lambert = probs.y + probs.z > 0.0f;
     sampler_at(&sampler, 1 + 2 * depth); /* per vertex: (choice, lobe azimuth), direction */
     float2 u_choice = sample_2d(&sampler), u_dir = sample_2d(&sampler);
     if (lambert && u_choice.x >= p_gloss) {
@@ -98,9 +94,9 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
       vp[KASHA_VP_DISTANCE] = travelled;
       VertexFactorLayout layout = {KASHA_BINS, KASHA_FILM_ROWS, KASHA_SPECTRAL_FILM, KASHA_FLUORESCENCE, cmf};
 #if KASHA_FLUORESCENCE
-      vf_build(layout, vp, w, surf.rho, surf.ehat, surf.a, KASHA_INV_PI / (1.0f - p_gloss));
+      vf_build(layout, vp, p.w, surf.rho, surf.ehat, surf.a, KASHA_INV_PI / (1.0f - p_gloss));
 #else
-      vf_build(layout, vp, w, surf.rho, 0, 0, KASHA_INV_PI / (1.0f - p_gloss));
+      vf_build(layout, vp, p.w, surf.rho, 0, 0, KASHA_INV_PI / (1.0f - p_gloss));
 #endif
       break;
     }
@@ -117,7 +113,7 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
       weight *= 2.0f * ci / (ci + co);
       dir = wi;
     }
-    for (int i = 0; i < KASHA_BINS; ++i) w[i] *= weight;
+    pw_scatter_diagonal(&p, 0, weight);
     org = x + ns * ray_eps;
   }
   film_add(direct, pixel, rows);
