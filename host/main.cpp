@@ -29,6 +29,11 @@ static void add_integrator_options(CLI::App* app, IntegratorSettings& s) {
       ->check(CLI::PositiveNumber);
   app->add_flag("--edge-correction", s.edge_correction,
                 "photon mapping: divide each gather by the covered fraction of its disc");
+  app->add_option("--memory", s.memory,
+                  "photon mapping: memory for the photon store, bytes with an optional unit "
+                  "(512MiB, 2GB); default: a quarter of the device's memory (an eighth on a CPU)")
+      ->transform(CLI::AsSizeValue(false))
+      ->check(CLI::Range(1ULL, 1ULL << 50));
   app->add_option("--view", s.view, "debug view: emission, normals or albedo")
       ->check(CLI::IsMember({"emission", "normals", "albedo"}));
 }
@@ -62,6 +67,11 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   add_integrator_options(render, r.settings);
   render->add_option("--seed", r.settings.seed, "random seed");
+  render
+      ->add_option("--max-depth", r.settings.max_depth,
+                   "safety limit on path length in vertices (default 262144, far beyond what "
+                   "Russian roulette reaches); what it cuts is reported")
+      ->check(CLI::Range(1, 1 << 30));
   render
       ->add_option("--sampler", r.settings.sampler,
                    "sobol (default: Owen-scrambled Sobol points) or independent (PCG streams)")

@@ -4,7 +4,8 @@
  * the branch that could have hit it), then one branch — gloss, passive, fluorescent — chosen in
  * proportion to the energy it would bring to the film under equal-energy light, and Russian
  * roulette after the first bounces (roulette.h). Sample values come from sampler.h.
- * One work item renders one pixel's samples of a pass, so the film needs no atomics. */
+ * One work item renders one pixel's samples of a launch, so the film needs no atomics; a pass is
+ * split into launches of pixel ranges and sample ranges (backward_integrator.cpp). */
 #include "camera.h"
 #include "film_view.h"
 #include "gloss_lobe.h"
@@ -25,17 +26,17 @@
 
 /* Next-event estimation at x (shading normal ns on the viewer's side, wo towards the viewer). */
 inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* f, const Surface* surf, float3 x,
-                       float3 ns, float3 wo, float3 probs, float2 u_light, float* rows) {
+                       float3 ns, float eps, float3 wo, float3 probs, float2 u_light, float* rows) {
   float pdf_light;
   LightPoint lp = sample_light_from(s, x, u_light, &pdf_light);
   if (!(pdf_light > 0.0f)) return;
   float3 to = lp.position - x;
   float dist = length(to);
-  if (!(dist > 2.0f * s->ray_eps)) return;
+  if (!(dist > eps + lp.eps)) return;
   float3 wi = to / dist;
   float cos_x = dot(ns, wi), cos_l = -dot(lp.normal, wi);
   if (cos_x <= 0.0f || cos_l <= 0.0f) return;
-  if (segment_occluded(s, x, ns, wi, dist)) return;
+  if (segment_occluded(s, x, ns, eps, wi, dist, lp.eps)) return;
   const __global float* le = emitter_spectrum(s, lp.emitter);
   float lambert_pdf = cosine_hemisphere_pdf(cos_x);
   float base = cos_x / pdf_light;
@@ -87,7 +88,7 @@ inline float trace_camera_path(const SceneView* s, const FilmView* f, float3 org
     sampler_at(sampler, 1 + depth * PAIRS_PER_VERTEX);
     float2 u_choice = sample_2d(sampler), u_light = sample_2d(sampler), u_dir = sample_2d(sampler);
     if (s->light_count > 0 && (surface_has_lambert(&surf) || (surf.g > 0.0f && !surf.mirror)))
-      next_event(&p, s, f, &surf, x, ns, wo, probs, u_light, rows);
+      next_event(&p, s, f, &surf, x, ns, h.eps, wo, probs, u_light, rows);
 
     float choice = u_choice.x;
     if (choice < probs.x) {
@@ -126,7 +127,7 @@ inline float trace_camera_path(const SceneView* s, const FilmView* f, float3 org
       if (keep != 1.0f) pw_scatter_diagonal(&p, 0, keep);
     }
     prev_x = x;
-    org = x + ns * s->ray_eps;
+    org = x + ns * h.eps;
   }
   return pw_magnitude(&p, f) / start;
 }
@@ -135,7 +136,8 @@ __kernel void render_backward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
                               __global float* film,    /* pixels × KASHA_FILM_ROWS, sums over the pass */
                               __global int* rejected,  /* per pixel: samples that were not finite */
                               __global float* cut,     /* per pixel: weight the depth guard cut */
-                              int spp, uint seed, uint pass) {
+                              int spp, int k_first, int k_last, /* this launch: samples [k_first, k_last) */
+                              uint seed, uint pass) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
   int pixel = get_global_id(0);
@@ -143,7 +145,7 @@ __kernel void render_backward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
   int bad = 0;
   float guard = 0.0f;
   Sampler sampler = sampler_start(seed, (uint)pixel, 0, pass, (uint)pixel);
-  for (int k = 0; k < spp; ++k) {
+  for (int k = k_first; k < k_last; ++k) {
     sampler_next_sample(&sampler, pass * (uint)spp + (uint)k);
     float rows[KASHA_FILM_ROWS];
     film_rows_clear(rows);
@@ -156,6 +158,6 @@ __kernel void render_backward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
     else
       ++bad;
   }
-  rejected[pixel] = bad;
-  cut[pixel] = guard;
+  rejected[pixel] += bad;
+  cut[pixel] += guard;
 }

@@ -18,7 +18,7 @@ typedef struct {
 
 /* Whether x (normal ns on the lit side) sees the camera: its pixel, and the factor cos·importance
  * that turns radiance leaving x (per nm, before that factor) into the pixel's average. */
-inline bool camera_connection(const SceneView* s, float3 x, float3 ns, int* pixel, float* k) {
+inline bool camera_connection(const SceneView* s, float3 x, float3 ns, float eps, int* pixel, float* k) {
   float importance;
   *pixel = camera_pixel(&s->camera, x, &importance);
   if (*pixel < 0) return false;
@@ -27,7 +27,7 @@ inline bool camera_connection(const SceneView* s, float3 x, float3 ns, int* pixe
   float3 dir = to_camera / dist;
   float cos_x = dot(ns, dir);
   if (cos_x <= 0.0f) return false;
-  if (bvh_occluded(s->nodes, s->tris, x + ns * s->ray_eps, dir, 0.0f, dist - s->ray_eps)) return false;
+  if (dist - eps <= 0.0f || bvh_occluded(s->nodes, s->tris, x + ns * eps, dir, 0.0f, dist - eps)) return false;
   *k = cos_x * importance;
   return true;
 }
@@ -58,12 +58,12 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
     /* The light point seen directly: Le cos / (p_area · photons). */
     int pixel;
     float k;
-    if (camera_connection(&s, p.position, o.normal, &pixel, &k)) {
+    if (camera_connection(&s, p.position, o.normal, o.eps, &pixel, &k)) {
       film_rows_clear(rows);
       film_rows(&f, 0, emitter_spectrum(&s, o.emitter), 0, k / (o.area_pdf * (float)photons), rows);
       splat_rows(&target, pixel, rows);
     }
-    p.position += o.normal * ray_eps;
+    p.position += o.normal * o.eps;
 
     bool alive = true;
     for (int depth = 0; depth < max_depth && alive; ++depth) {
@@ -81,7 +81,7 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
 #else
       bool glossy = false;
 #endif
-      if ((surface_has_lambert(&surf) || glossy) && camera_connection(&s, x, ns, &pixel, &k)) {
+      if ((surface_has_lambert(&surf) || glossy) && camera_connection(&s, x, ns, h.eps, &pixel, &k)) {
         /* Radiance per nm leaving x per unit flux: (ρ_i Φ_i + ê_i (a·Φ)) / (π Δλ). */
         film_rows_clear(rows);
         float lambert = k * KASHA_INV_PI / bin_nm;
@@ -102,7 +102,7 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
       /* "Absorbed": the power a hit takes away, absorption and roulette (negative when roulette
        * scales a survivor up), so emitted = absorbed + escaped + in flight exactly. */
       float before = photon_total(&p);
-      if (scatter_photon(&p, &surf, &s, x, ns, &sampler, depth) == BRANCH_ABSORBED) {
+      if (scatter_photon(&p, &surf, &s, x, ns, h.eps, &sampler, depth) == BRANCH_ABSORBED) {
         absorbed += before;
         alive = false;
       } else {

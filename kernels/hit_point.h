@@ -12,21 +12,37 @@ typedef struct {
   float3 ns;     /* the normal on the side the ray arrived from */
   bool front;    /* the ray arrived on the front side */
   float t;       /* distance along the (unit) direction */
+  float eps;     /* how far off the surface new rays start: x's own rounding bound (surface_offset) */
   int material;
   int emitter;   /* -1: the triangle does not emit */
   int tri;       /* the triangle, in leaf order */
 } HitPoint;
+
+/* γ(n) = n·u / (1 − n·u), u = 2^-24: the relative bound on n float roundings (pbrt-v4). */
+#define KASHA_GAMMA(n) ((n) * 5.9604645e-8f / (1.0f - (n) * 5.9604645e-8f))
+
+/* How far along the normal n a point b0·v0 + b1·v1 + b2·v2 of a triangle must be moved so that
+ * rays leaving it miss the triangle: the interpolation's rounding bound γ(7)·Σ|b_k v_k| projected
+ * on n (pbrt-v4's offset), plus the intersection test's own rounding, which grows with the
+ * triangle's edges; doubled for margin. It depends on where the scene sits only as float
+ * resolution does. */
+inline float surface_offset(float3 v0, float3 v1, float3 v2, float b0, float b1, float b2, float3 n) {
+  float3 err = fabs(b0 * v0) + fabs(b1 * v1) + fabs(b2 * v2);
+  return 2.0f * KASHA_GAMMA(7) * (dot(fabs(n), err) + length(v1 - v0) + length(v2 - v0));
+}
 
 inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint* h) {
   float t, u, v;
   int hit = bvh_closest(s->nodes, s->tris, org, dir, 0.0f, INFINITY, &t, &u, &v);
   if (hit < 0) return false;
   const __global KTriangle* tri = &s->tris[hit];
-  float3 v0 = load_float3(tri->v0);
-  h->n = normalize(cross(load_float3(tri->v1) - v0, load_float3(tri->v2) - v0));
+  float3 v0 = load_float3(tri->v0), v1 = load_float3(tri->v1), v2 = load_float3(tri->v2);
+  h->n = normalize(cross(v1 - v0, v2 - v0));
   h->front = dot(h->n, dir) < 0.0f;
   h->ns = h->front ? h->n : -h->n;
-  h->x = org + t * dir;
+  /* From the barycentrics, so its error depends on the triangle, not on the ray's length. */
+  h->x = (1.0f - u - v) * v0 + u * v1 + v * v2;
+  h->eps = surface_offset(v0, v1, v2, 1.0f - u - v, u, v, h->n);
   h->t = t;
   h->material = tri->material;
   h->emitter = tri->emitter;
@@ -34,10 +50,11 @@ inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint
   return true;
 }
 
-/* Whether anything blocks the segment from x (offset off its surface along ns) to dist along wi,
- * short of the far end's own offset. */
-inline bool segment_occluded(const SceneView* s, float3 x, float3 ns, float3 wi, float dist) {
-  return bvh_occluded(s->nodes, s->tris, x + ns * s->ray_eps, wi, 0.0f, dist - 2.0f * s->ray_eps);
+/* Whether anything blocks the segment from x (offset eps off its surface along ns) to dist along
+ * wi, short of the far end's own offset far_eps and of the rounding of dist itself. */
+inline bool segment_occluded(const SceneView* s, float3 x, float3 ns, float eps, float3 wi, float dist, float far_eps) {
+  float reach = dist - eps - far_eps - KASHA_GAMMA(8) * dist;
+  return reach > 0.0f && bvh_occluded(s->nodes, s->tris, x + ns * eps, wi, 0.0f, reach);
 }
 
 #endif

@@ -8,6 +8,7 @@
 #define KASHA_LIGHTS_H
 
 #include "bvh_traversal.h"
+#include "hit_point.h"
 #include "sampling.h"
 #include "scene_view.h"
 
@@ -15,6 +16,7 @@ typedef struct {
   float3 position;
   float3 normal; /* front side */
   int emitter;
+  float eps; /* the point's rounding bound along the normal (hit_point.h's surface_offset) */
 } LightPoint;
 
 /* The emitting triangle whose CDF step holds u (the first with light_cdf > u). */
@@ -38,6 +40,7 @@ inline LightPoint sample_light(const __global KTriangle* tris, const __global in
   p.position = v0 + b.x * e1 + b.y * e2;
   p.normal = normalize(cross(e1, e2));
   p.emitter = t->emitter;
+  p.eps = surface_offset(v0, v0 + e1, v0 + e2, 1.0f - b.x - b.y, b.x, b.y, p.normal);
   return p;
 }
 
@@ -103,10 +106,14 @@ inline LightPoint sample_light_from(const SceneView* s, float3 x, float2 u, floa
     float along = dot(p.normal, w);
     float dist = along != 0.0f ? dot(p.normal, v0 - x) / along : 0.0f;
     p.position = x + dist * w;
+    /* Found along a ray from x: its rounding grows with x and the distance too. */
+    p.eps = surface_offset(v0, v1, v2, 1.0f, 1.0f, 1.0f, p.normal) +
+            KASHA_GAMMA(16) * (dot(fabs(p.normal), fabs(x)) + dist);
     if (dist > 0.0f && isfinite(dist)) *pdf = area_pdf * area / omega;
   } else {
     float2 b = sample_triangle(u.x, u.y);
     p.position = v0 + b.x * (v1 - v0) + b.y * (v2 - v0);
+    p.eps = surface_offset(v0, v1, v2, 1.0f - b.x - b.y, b.x, b.y, p.normal);
     float3 to = p.position - x;
     float d2 = dot(to, to), cos_l = -dot(p.normal, to) / sqrt(d2);
     if (cos_l > 0.0f) *pdf = area_pdf * d2 / cos_l;

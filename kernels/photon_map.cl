@@ -1,4 +1,5 @@
 /* Bidirectional photon mapping (DESIGN §2.3), the two device passes; the gather runs on the host.
+ * Camera paths through gloss bounces end by Russian roulette (roulette.h), as backward's.
  * Photon pass: photons as in forward transport, stored at every hit with a Lambert part (before
  * they scatter); gloss bounces are followed, not stored. Camera pass: one path per pixel through
  * gloss bounces to the first vertex with a Lambert part, where it stores a visible point with the
@@ -12,21 +13,29 @@
 #include "scene_view.h"
 #include "vertex_factor.h"
 
-#define CAMERA_MAX_DEPTH 64 /* gloss bounces before a visible point */
+#include "roulette.h"
 
-__kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, int photons_per_item, __global float* store,
-                               __global int* stored, int capacity,
+/* Photons [first_photon, first_photon + count) of the pass's `photons`, `photons_per_item` per work
+ * item, stored from slot *stored on; a store past `capacity` is counted but not written, so the
+ * host sees the overflow and traces the launch again into an emptier store. A photon that alone
+ * stores more than the store holds is traced again in segments: `skip` of its stores are passed
+ * over (launches of one photon only). */
+__kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, int first_photon, int count,
+                               int photons_per_item, int skip, __global float* store, __global int* stored,
+                               int capacity,
                                __global float* cut, /* per item: power the depth guard cut, per photon's start */
                                uint seed, uint pass) {
   KASHA_SCENE_VIEW(s);
   int item = get_global_id(0);
-  int first = item * photons_per_item, last = min(first + photons_per_item, photons);
+  int first = first_photon + item * photons_per_item;
+  int last = min(first + photons_per_item, first_photon + count);
   float guard = 0.0f;
   for (int index = first; index < last; ++index) {
     Sampler sampler = photon_sampler(seed, pass, photons, index);
     LightOrigin o;
     Photon p = emit_photon(&s, (float)photons, &sampler, &o);
-    p.position += o.normal * ray_eps;
+    p.position += o.normal * o.eps;
+    int skip_left = skip;
     for (int depth = 0;; ++depth) {
       if (depth == KASHA_MAX_PATH_DEPTH) {
         guard += photon_total(&p) / p.start;
@@ -38,22 +47,27 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
       Surface surf;
       load_surface(&s, h.material, &surf);
       if (surface_has_lambert(&surf)) {
-        int slot = atomic_inc(stored);
-        if (slot < capacity) {
-          __global float* rec = store + (long)slot * KASHA_PHOTON_FLOATS(KASHA_BINS);
-          rec[0] = x.x, rec[1] = x.y, rec[2] = x.z;
-          rec[3] = ns.x, rec[4] = ns.y, rec[5] = ns.z;
-          for (int i = 0; i < KASHA_BINS; ++i) rec[KASHA_PHOTON_POWER + i] = p.power[i];
+        if (skip_left > 0) {
+          --skip_left;
+        } else {
+          int slot = atomic_inc(stored);
+          if (slot < capacity) {
+            __global float* rec = store + (long)slot * KASHA_PHOTON_FLOATS(KASHA_BINS);
+            rec[0] = x.x, rec[1] = x.y, rec[2] = x.z;
+            rec[3] = ns.x, rec[4] = ns.y, rec[5] = ns.z;
+            for (int i = 0; i < KASHA_BINS; ++i) rec[KASHA_PHOTON_POWER + i] = p.power[i];
+          }
         }
       }
-      if (scatter_photon(&p, &surf, &s, x, ns, &sampler, depth) == BRANCH_ABSORBED) break;
+      if (scatter_photon(&p, &surf, &s, x, ns, h.eps, &sampler, depth) == BRANCH_ABSORBED) break;
     }
   }
-  if (first < photons) cut[item] = guard;
+  if (first < last) cut[item] = guard;
 }
 
 __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float* visible_points,
                           __global float* direct, /* pixels × KASHA_FILM_ROWS: emission seen directly */
+                          __global float* cut,    /* per pixel: weight the depth guard cut */
                           uint seed, uint pass) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
@@ -70,9 +84,15 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
   float3 dir = camera_sample(&camera, pixel, sample_2d(&sampler));
   PathWeight p; /* diagonal mode only: the path goes through gloss bounces alone */
   pw_init(&p, &f);
+  const float start = pw_magnitude(&p, &f);
   float travelled = 0.0f;
+  cut[pixel] = 0.0f;
 
-  for (int depth = 0; depth < CAMERA_MAX_DEPTH; ++depth) {
+  for (int depth = 0;; ++depth) {
+    if (depth == KASHA_MAX_PATH_DEPTH) {
+      cut[pixel] = pw_magnitude(&p, &f) / start;
+      break;
+    }
     HitPoint h;
     if (!intersect_scene(&s, org, dir, &h)) break;
     travelled += h.t;
@@ -84,8 +104,8 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
     float3 probs = branch_probabilities(&p, &f, &surf);
     float p_gloss = probs.x;
     bool lambert = probs.y + probs.z > 0.0f;
-    sampler_at(&sampler, 1 + 2 * depth); /* per vertex: (choice, lobe azimuth), direction */
-    float2 u_choice = sample_2d(&sampler), u_dir = sample_2d(&sampler);
+    sampler_at(&sampler, 1 + 3 * depth); /* per vertex: (choice, lobe azimuth), direction, roulette */
+    float2 u_choice = sample_2d(&sampler), u_dir = sample_2d(&sampler), u_roulette = sample_2d(&sampler);
     if (lambert && u_choice.x >= p_gloss) {
       /* The visible point, K over 1 − P_gloss. */
       vp[0] = x.x, vp[1] = x.y, vp[2] = x.z;
@@ -114,7 +134,12 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
       dir = wi;
     }
     pw_scatter_diagonal(&p, 0, weight);
-    org = x + ns * ray_eps;
+    if (depth >= KASHA_CAMERA_ROULETTE_FROM) {
+      float keep = roulette(pw_magnitude(&p, &f) / start, u_roulette.x);
+      if (keep == 0.0f) break;
+      if (keep != 1.0f) pw_scatter_diagonal(&p, 0, keep);
+    }
+    org = x + ns * h.eps;
   }
   film_add(direct, pixel, rows);
 }

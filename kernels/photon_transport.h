@@ -35,6 +35,7 @@ typedef struct {
   float3 normal;
   int emitter;
   float area_pdf;
+  float eps; /* how far off the light the photon starts (LightPoint::eps) */
 } LightOrigin;
 
 /* A photon leaving a light: a triangle chosen by power, a uniform point, a cosine-weighted
@@ -51,6 +52,7 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
   origin->normal = lp.normal;
   origin->emitter = lp.emitter;
   origin->area_pdf = s->emitter_area_pdf[lp.emitter];
+  origin->eps = lp.eps;
   float scale = s->bin_nm * KASHA_PI / (origin->area_pdf * photons);
   const __global float* le = emitter_spectrum(s, lp.emitter);
   for (int i = 0; i < KASHA_BINS; ++i) p.power[i] = le[i] * scale;
@@ -64,16 +66,16 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
 #define PHOTON_PAIRS_AT_LIGHT 3
 #define PHOTON_PAIRS_PER_HIT 3
 
-/* Scatters the photon at its depth-th hit x (ns: the normal on the side it arrived from).
+/* Scatters the photon at its depth-th hit x (ns: the normal on the side it arrived from, eps: the
+ * hit's offset, HitPoint::eps).
  * Chooses gloss, passive or fluorescent re-emission with probability P_k / ΣP, P_g = g ΣΦ,
  * P_p = Σ ρ_i Φ_i, P_f = Σ a_i Φ_i; the new spectrum (g Φ, ρ∘Φ or ê (a·Φ)) is divided by that
  * probability, so the photon's power becomes ΣP; then Russian roulette (roulette.h) against the
  * power it left its light with. Returns the branch. */
-inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, float3 x, float3 ns, Sampler* sampler,
-                          int depth) {
+inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, float3 x, float3 ns, float eps,
+                          Sampler* sampler, int depth) {
   sampler_at(sampler, PHOTON_PAIRS_AT_LIGHT + depth * PHOTON_PAIRS_PER_HIT);
   float2 u_choice = sample_2d(sampler), u_dir = sample_2d(sampler);
-  const float ray_eps = scene->ray_eps;
   float total = photon_total(p);
   float pg = s->g * total, pp = 0.0f, pf = 0.0f;
   if (s->passive) pp = spectrum_dot(KASHA_BINS, p->power, s->rho, 0);
@@ -113,7 +115,7 @@ inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, f
     branch = BRANCH_FLUORESCENT;
 #endif
   }
-  p->position = x + ns * ray_eps;
+  p->position = x + ns * eps;
   if (depth >= KASHA_PHOTON_ROULETTE_FROM) {
     float keep = roulette(photon_total(p) / p->start, u_choice.y);
     if (keep == 0.0f) return BRANCH_ABSORBED;

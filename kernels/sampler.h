@@ -83,6 +83,7 @@ typedef struct {
   uint pair;  /* the next dimension pair */
 #else
   Rng rng;
+  uint seed, item; /* a pixel's samples reseed from (seed, sample, item): launches may split them */
 #endif
 } Sampler;
 
@@ -96,6 +97,8 @@ inline Sampler sampler_start(uint seed, uint stream, uint index, uint pass, uint
   s.pair = 0;
 #else
   s.rng = rng_seed(seed, pass, item);
+  s.seed = seed;
+  s.item = item;
 #endif
   return s;
 }
@@ -109,11 +112,13 @@ inline Sampler photon_sampler(uint seed, uint pass, int photons, int index) {
 }
 
 /* Moves to sample `index` of the stream, from its first dimension pair (the independent sampler
- * just goes on drawing). */
+ * takes a stream of its own for it, so a pass split over launches draws the same numbers). */
 inline void sampler_next_sample(Sampler* s, uint index) {
 #if KASHA_SOBOL
   s->index = index;
   s->pair = 0;
+#else
+  s->rng = rng_seed(s->seed ^ 0x68e31da4u, index, s->item);
 #endif
 }
 

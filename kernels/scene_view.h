@@ -19,19 +19,17 @@ typedef struct {
   const __global float* light_cdf;
   int light_count;
   float bin_nm;
-  float ray_eps; /* offset of secondary ray origins */
 } SceneView;
 
 #define KASHA_SCENE_PARAMS                                                                                    \
   KCamera camera, __global const KBvhNode *nodes, __global const KTriangle *tris,                             \
       __global const KMaterial *materials, __global const float *spectra, __global const float *lobes,        \
       __global const float *emitter_radiance, __global const float *emitter_area_pdf,                         \
-      __global const int *light_tri, __global const float *light_cdf, int light_count, float bin_nm,          \
-      float ray_eps
+      __global const int *light_tri, __global const float *light_cdf, int light_count, float bin_nm
 
 #define KASHA_SCENE_VIEW(name)                                                                                 \
   SceneView name = {camera,          nodes,     tris,      materials,   spectra, lobes, emitter_radiance,       \
-                    emitter_area_pdf, light_tri, light_cdf, light_count, bin_nm,  ray_eps}
+                    emitter_area_pdf, light_tri, light_cdf, light_count, bin_nm}
 
 /* An emitter's spectral radiance, N values. */
 inline const __global float* emitter_spectrum(const SceneView* s, int emitter) {

@@ -29,8 +29,12 @@ typedef float kasha_real;
 #define KASHA_MIN_SPHERICAL_SOLID_ANGLE 1e-2f
 #define KASHA_MAX_SPHERICAL_SOLID_ANGLE 6.22f
 
-/* A guard on path length in every kernel: Russian roulette ends paths long before. */
-#define KASHA_MAX_PATH_DEPTH 1000
+/* A guard on path length in every kernel, far beyond what Russian roulette reaches (a path of a
+ * scene keeping 99.99 % of its light passes it with probability e^-26); what it cuts is counted
+ * and reported. Kernels are built with the render's --max-depth in its place. */
+#ifndef KASHA_MAX_PATH_DEPTH
+#define KASHA_MAX_PATH_DEPTH (1 << 18)
+#endif
 
 /* One node of the flattened binary BVH, in depth-first order. Interior: count == 0, the left child
  * is the next node and `offset` is the right child. Leaf: triangles [offset, offset + count). */

@@ -224,9 +224,8 @@ TEST(KernelLightSampler, PointsFollowTheClaimedDensity) {
   kernel.input(9, light_cdf);
   kernel.scalar(10, lights_n);
   kernel.scalar(11, 1.0f);   // bin_nm
-  kernel.scalar(12, 1e-4f);  // ray_eps
-  kernel.input(13, std::vector<float>{float(x.x()), float(x.y()), float(x.z())});
-  const std::vector<float> out = kernel.sample(14, uniforms(3 * kSamples, 11), 15, 10, kSamples);
+  kernel.input(12, std::vector<float>{float(x.x()), float(x.y()), float(x.z())});
+  const std::vector<float> out = kernel.sample(13, uniforms(3 * kSamples, 11), 14, 10, kSamples);
 
   // Per light: the selection probability from the CDF the device has, the solid angle, the
   // branch, the cells' shares of its points. The claimed density integrated over a cell: a

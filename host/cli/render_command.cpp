@@ -1,5 +1,6 @@
 #include "cli/render_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -63,14 +64,17 @@ int run_render(const RenderArgs& a) {
       shares += (shares.empty() ? "" : ", ") + name.substr(6, name.size() - 10) + " " +
                 std::to_string(static_cast<int>(std::lround(100 * value / total))) + " %";
   if (!shares.empty()) std::fprintf(stderr, "%s time: %s\n", a.integrator.c_str(), shares.c_str());
-  if (film.tally(kDepthGuardOf) > 0 &&
-      film.tally(kDepthGuardCut) > 1e-4 * film.tally(kDepthGuardOf))
+  double cut_share = 0;
+  for (auto [cut, of] : {std::pair{kDepthGuardCut, kDepthGuardOf},
+                         std::pair{kCameraDepthGuardCut, kCameraDepthGuardOf}})
+    if (film.tally(of) > 0) cut_share = std::max(cut_share, film.tally(cut) / film.tally(of));
+  if (cut_share > 1e-4)
     std::fprintf(
         stderr,
         "kasha: warning: paths reaching the %d-vertex depth guard were cut still carrying %.3g "
         "of the weight they started with; the image lacks what they would have added (too "
         "dark: the scene keeps nearly all its light)\n",
-        KASHA_MAX_PATH_DEPTH, film.tally(kDepthGuardCut) / film.tally(kDepthGuardOf));
+        a.settings.max_depth, cut_share);
   if (film.tally("rejected samples") > 0)
     std::fprintf(stderr, "kasha: warning: %.0f samples were not finite and were left out\n",
                  film.tally("rejected samples"));

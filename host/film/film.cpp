@@ -1,5 +1,6 @@
 #include "film/film.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace kasha {
@@ -10,15 +11,23 @@ Film::Film(int width, int height, const WavelengthGrid& grid, bool spectral)
       grid_(grid),
       spectral_(spectral),
       observer_(grid),
-      sum_(pixels() * rows(), 0.0) {}
+      sum_(pixels() * rows(), 0.0),
+      pixel_samples_(pixels(), 0) {}
 
 void Film::accumulate(const PassResult& pass) {
   if (!pass.sums.empty()) {
     if (pass.sums.size() != sum_.size()) throw std::logic_error("film pass has the wrong size");
     for (size_t i = 0; i < sum_.size(); ++i) sum_[i] += pass.sums[i];
   }
-  samples_ += pass.samples;
+  if (pass.pixel_samples.empty()) {
+    for (long long& n : pixel_samples_) n += pass.samples;
+  } else {
+    if (pass.pixel_samples.size() != pixels()) throw std::logic_error("film pass has the wrong size");
+    for (size_t p = 0; p < pixels(); ++p) pixel_samples_[p] += pass.pixel_samples[p];
+  }
+  samples_ = pixel_samples_.empty() ? 0 : *std::min_element(pixel_samples_.begin(), pixel_samples_.end());
   ++passes_;
+  work_ += pass.fraction;
   for (const auto& [name, value] : pass.tallies) tallies_[name] += value;
   if (pass.gather) {
     if (!sppm_) sppm_.emplace(pixels(), rows());
@@ -41,11 +50,11 @@ Image Film::image() const {
   img.height = height_;
   img.grid = grid_;
   img.xyz.assign(3 * pixels(), 0.0f);
-  const double inv = samples_ > 0 ? 1.0 / samples_ : 0.0;
   const int R = rows();
   if (spectral_) img.spectral.assign(pixels() * grid_.bins, 0.0f);
   std::vector<double> value(R);
   for (size_t p = 0; p < pixels(); ++p) {
+    const double inv = pixel_samples_[p] > 0 ? 1.0 / pixel_samples_[p] : 0.0;
     for (int r = 0; r < R; ++r) {
       value[r] = sum_[p * R + r] * inv;
       if (sppm_) value[r] += sppm_->radiance(p, r, grid_.bin_nm);

@@ -28,7 +28,9 @@ class Film {
   size_t pixels() const { return static_cast<size_t>(width_) * height_; }
 
   void accumulate(const PassResult& pass);
+  // The fewest samples any pixel has (pixels differ when a pass was cut short).
   long long samples_per_pixel() const { return samples_; }
+  double work_passes() const { return work_; }  // passes, counting a cut-short one by its fraction
   int passes() const { return passes_; }
   // Sums of every pass's counters, by name (PassResult::tallies).
   const std::map<std::string, double>& tallies() const { return tallies_; }
@@ -44,7 +46,9 @@ class Film {
   bool spectral_;
   BinnedObserver observer_;
   std::vector<double> sum_;
+  std::vector<long long> pixel_samples_;
   long long samples_ = 0;
+  double work_ = 0;
   int passes_ = 0;
   std::map<std::string, double> tallies_;
   std::optional<SppmStatistics> sppm_;

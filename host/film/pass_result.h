@@ -22,11 +22,18 @@ struct GatherPass {
 // and of how much; `render` warns when their ratio exceeds 1e-4 (the image is biased low).
 constexpr const char* kDepthGuardCut = "depth guard: cut";
 constexpr const char* kDepthGuardOf = "depth guard: of";
+// The same for photon mapping's camera paths, apart from its photons'.
+constexpr const char* kCameraDepthGuardCut = "depth guard: camera paths cut";
+constexpr const char* kCameraDepthGuardOf = "depth guard: camera paths of";
 
 struct PassResult {
   int pass = 0;
   long long samples = 0;     // samples per pixel that `sums` adds up
+  // When a pass was cut short (deadline, Ctrl-C) after some pixels' samples: each pixel's own
+  // count, which `samples` then is the least of; empty when every pixel has `samples`.
+  std::vector<long long> pixel_samples;
   std::vector<double> sums;  // pixels × film rows
+  double fraction = 1;       // of the pass's work done: < 1 when it was cut short
   std::optional<GatherPass> gather;
   // Counters that add over passes: "rejected samples", power and time figures, by name.
   std::map<std::string, double> tallies;

@@ -49,6 +49,7 @@ std::vector<DeviceInfo> list_devices() {
                   : (t & CL_DEVICE_TYPE_CPU) ? "CPU"
                                              : "accelerator";
       info.global_mem_bytes = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+      info.max_alloc_bytes = d.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
       info.compute_units = d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
       info.device = d;
       out.push_back(info);

@@ -96,11 +96,8 @@ KernelSceneData::KernelSceneData(const Scene& scene)
   for (size_t e = 0; e < scene.emitters.size(); ++e)
     for (double v : scene.emitters[e].per_bin) radiance_sum[e] += v * scene.grid.bin_nm;
   std::vector<double> power;
-  float extent = 0;
   for (size_t i = 0; i < bvh.triangles.size(); ++i) {
     const KTriangle& t = bvh.triangles[i];
-    for (const float* v : {t.v0, t.v1, t.v2})
-      for (int c = 0; c < 3; ++c) extent = std::max(extent, std::abs(v[c]));
     if (t.emitter < 0) continue;
     Eigen::Vector3d a(t.v0[0], t.v0[1], t.v0[2]), b(t.v1[0], t.v1[1], t.v1[2]),
         c(t.v2[0], t.v2[1], t.v2[2]);
@@ -115,8 +112,6 @@ KernelSceneData::KernelSceneData(const Scene& scene)
   if (!light_cdf.empty()) light_cdf.back() = 1.0f;
   for (double r : radiance_sum)
     emitter_area_pdf.push_back(total_power > 0 ? static_cast<float>(M_PI * r / total_power) : 0.0f);
-  // Float rounding of hit points grows with the coordinates' magnitude.
-  ray_eps = 2e-5f * std::max(extent, 1e-30f);
 }
 
 size_t KernelSceneData::bytes() const {
@@ -151,7 +146,6 @@ int DeviceScene::bind(cl::Kernel& k, int a) const {
   k.setArg(a++, light_cdf);
   k.setArg(a++, static_cast<int>(data_.light_tri.size()));
   k.setArg(a++, data_.bin_nm);
-  k.setArg(a++, data_.ray_eps);
   return a;
 }
 

@@ -26,7 +26,6 @@ struct KernelSceneData {
   std::vector<float> light_cdf;
   std::vector<float> emitter_area_pdf;
   double total_power = 0;  // W: Σ over emitting triangles of area·pi·Σ Le Δλ
-  float ray_eps = 0;       // offset of secondary ray origins, from the scene's extent
 
   explicit KernelSceneData(const Scene& scene);
   size_t bytes() const;

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "film/pass_result.h"
+#include "render/pass_control.h"
 
 namespace kasha {
 
@@ -14,11 +15,16 @@ class Integrator {
   virtual ~Integrator() = default;
   const std::string& name() const { return name_; }
   // Computes pass number `pass` (0, 1, ...) with fresh random numbers; accumulates nothing itself.
+  // Under a control (set_control) the pass may end early with what it has done (its fraction).
   virtual PassResult render_pass(int pass) = 0;
+  void set_control(const PassControl& control) { control_ = control; }
   virtual long long camera_paths_per_pass() const = 0;
   virtual long long photons_per_pass() const = 0;
   // The device buffers it allocated beyond the scene's and the film's tables: bytes by purpose.
   virtual std::map<std::string, size_t> device_buffers() const { return {}; }
+
+ protected:
+  PassControl control_;  // no deadline by default: passes run whole unless Ctrl-C
 
  private:
   friend class IntegratorRegistry;

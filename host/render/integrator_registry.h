@@ -28,9 +28,10 @@ struct IntegratorSettings {
   std::string view = "emission";  // --view: the debug view
   unsigned seed = 1;              // --seed (every integrator)
   std::string sampler = "sobol";  // --sampler (every integrator): sobol or independent
+  int max_depth = KASHA_MAX_PATH_DEPTH;  // --max-depth (every integrator): the path-length guard
+  unsigned long long memory = 0;  // --memory: photon mapping's store budget, bytes (0: automatic)
   // Test hooks, not on the command line.
   bool full_matrix = false;              // backward: carry the full rows × N path matrix
-  int max_depth = KASHA_MAX_PATH_DEPTH;  // forward: cut photon paths after this many bounces
   int photons_per_item = 64;             // forward: photons per work item
 };
 

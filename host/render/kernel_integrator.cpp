@@ -11,6 +11,7 @@ KernelIntegrator::KernelIntegrator(const IntegratorSetup& s, const std::string& 
   if (s.settings.sampler != "sobol" && s.settings.sampler != "independent")
     throw Error("--sampler " + s.settings.sampler + ": unknown sampler (sobol, independent)");
   defines["KASHA_SOBOL"] = s.settings.sampler == "sobol" ? "1" : "0";
+  defines["KASHA_MAX_PATH_DEPTH"] = std::to_string(s.settings.max_depth);
   for (const auto& [name, value] : extra) defines[name] = value;
   program_ = build_program(cl_, assemble_kernel_source(file), defines, file);
 }

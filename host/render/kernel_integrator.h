@@ -17,9 +17,18 @@ class KernelIntegrator : public Integrator {
   // Sets the scene's and the film's parameters, then `args` in order; enqueues `items` work items.
   template <typename... Args>
   void launch(cl::Kernel& kernel, size_t items, const Args&... args) {
+    launch_range(kernel, 0, items, args...);
+  }
+
+  // The same for work items [first, first + count) (get_global_id counts from `first`), and waits
+  // for them: passes are split into such launches of bounded work (render/launch_pacer.h).
+  template <typename... Args>
+  void launch_range(cl::Kernel& kernel, size_t first, size_t count, const Args&... args) {
     cl_uint a = static_cast<cl_uint>(film_.bind(kernel, scene_.bind(kernel, 0)));
     (kernel.setArg(a++, args), ...);
-    cl_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(items));
+    cl_.queue().enqueueNDRangeKernel(kernel, first > 0 ? cl::NDRange(first) : cl::NullRange,
+                                     cl::NDRange(count));
+    cl_.queue().finish();
   }
 
   // The sum of the first `count` values of type T in a device buffer (per-pixel or per-item

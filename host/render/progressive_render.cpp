@@ -1,7 +1,9 @@
 #include "render/progressive_render.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <string>
 
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -15,10 +17,40 @@ RenderSummary render_progressive(Integrator& integrator, Film& film, const Rende
   using clock = std::chrono::steady_clock;
   RenderSummary summary;
   double shown_at = -1.0;
+  auto show = [&](double seconds, double pass_fraction, bool last) {
+    if (!options.show_progress || (!last && seconds - shown_at < 0.25)) return;
+    shown_at = seconds;
+    const double passes = summary.passes + pass_fraction;
+    double left = 0;
+    if (options.stop.passes > 0 && passes > 0)
+      left = seconds / passes * (options.stop.passes - passes);
+    if (options.stop.seconds > 0) left = std::max(0.0, options.stop.seconds - seconds);
+    std::string pass = std::to_string(summary.passes + (last ? 0 : 1));
+    if (options.stop.passes > 0) pass += "/" + std::to_string(options.stop.passes);
+    if (!last && pass_fraction > 0)
+      pass += " (" + std::to_string(static_cast<int>(100 * pass_fraction)) + " %)";
+    std::fprintf(stderr, "\r%s: pass %s, %.1f s elapsed, ~%.1f s left   ",
+                 integrator.name().c_str(), pass.c_str(), seconds, left);
+    if (last) std::fprintf(stderr, "\n");
+  };
   for (int pass = 0;; ++pass) {
-    // Only rendering counts towards the time: evaluating the error for the log does not.
+    // Only rendering counts towards the time: evaluating the error for the log does not. The
+    // deadline reaches into the pass: its launches stop there (render/pass_control.h).
     const auto pass_start = clock::now();
-    film.accumulate(integrator.render_pass(pass));
+    PassControl control;
+    if (options.stop.seconds > 0)
+      control.deadline = pass_start + std::chrono::duration_cast<clock::duration>(
+                                          std::chrono::duration<double>(
+                                              options.stop.seconds - summary.seconds));
+    const double before = summary.seconds;
+    control.progress = [&](double fraction) {
+      show(before + std::chrono::duration<double>(clock::now() - pass_start).count(), fraction,
+           false);
+    };
+    integrator.set_control(control);
+    PassResult result = integrator.render_pass(pass);
+    const bool cut_short = result.fraction < 1;
+    film.accumulate(result);
     summary.passes = pass + 1;
     summary.seconds += std::chrono::duration<double>(clock::now() - pass_start).count();
 
@@ -27,8 +59,8 @@ RenderSummary render_progressive(Integrator& integrator, Film& film, const Rende
       row.integrator = integrator.name();
       row.pass = summary.passes;
       row.seconds = summary.seconds;
-      row.camera_paths = integrator.camera_paths_per_pass() * summary.passes;
-      row.photons = integrator.photons_per_pass() * summary.passes;
+      row.camera_paths = static_cast<long long>(integrator.camera_paths_per_pass() * film.work_passes());
+      row.photons = static_cast<long long>(integrator.photons_per_pass() * film.work_passes());
       if (options.reference) {
         ImageError e = image_error(film.image(), *options.reference);
         row.has_error = true;
@@ -38,22 +70,9 @@ RenderSummary render_progressive(Integrator& integrator, Film& film, const Rende
       summary.log.push_back(row);
     }
 
-    bool done = (options.stop.passes > 0 && summary.passes >= options.stop.passes) ||
+    bool done = cut_short || (options.stop.passes > 0 && summary.passes >= options.stop.passes) ||
                 (options.stop.seconds > 0 && summary.seconds >= options.stop.seconds);
-    // A progress line at most four times a second, and always at the end.
-    bool last = done || interrupt_requested();
-    if (options.show_progress && (last || summary.seconds - shown_at >= 0.25)) {
-      shown_at = summary.seconds;
-      double per_pass = summary.seconds / summary.passes, left = 0;
-      if (options.stop.passes > 0) left = per_pass * (options.stop.passes - summary.passes);
-      if (options.stop.seconds > 0) left = std::max(0.0, options.stop.seconds - summary.seconds);
-      std::fprintf(
-          stderr, "\r%s: pass %d%s, %.1f s elapsed, ~%.1f s left   ", integrator.name().c_str(),
-          summary.passes,
-          options.stop.passes > 0 ? ("/" + std::to_string(options.stop.passes)).c_str() : "",
-          summary.seconds, left);
-      if (last) std::fprintf(stderr, "\n");
-    }
+    show(summary.seconds, 0, done || interrupt_requested());
     if (interrupt_requested()) {
       summary.interrupted = true;
       if (options.show_progress)

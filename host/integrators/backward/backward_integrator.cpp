@@ -1,7 +1,11 @@
 // `--integrator backward`: the OpenCL camera path tracer of kernels/backward.cl (DESIGN §2.2).
 // A pass is `spp` paths per pixel; the kernel's work items own their pixels and add to the film's
-// per-pixel sums.
+// per-pixel sums, over launches of bounded work.
+#include <algorithm>
+#include <chrono>
+
 #include "render/kernel_integrator.h"
+#include "render/launch_pacer.h"
 
 namespace kasha {
 
@@ -19,12 +23,40 @@ class BackwardIntegrator : public KernelIntegrator {
 
   PassResult render_pass(int pass) override {
     film_.clear_pixel_sums();
-    launch(kernel_, film_.pixels(), film_.pixel_sums(), rejected_, cut_, spp_, seed_,
-           static_cast<cl_uint>(pass));
-    PassResult r{pass, spp_, film_.read_pixel_sums(), {}, {}};
+    cl_.queue().enqueueFillBuffer(rejected_, cl_int(0), 0, film_.pixels() * sizeof(cl_int));
+    cl_.queue().enqueueFillBuffer(cut_, cl_float(0), 0, film_.pixels() * sizeof(cl_float));
+    // Launches of bounded work: whole sample slices over every pixel while one fits the pacer's
+    // size, else one sample over a range of pixels; the pass stops between launches on the
+    // deadline or Ctrl-C, so only the last slice's pixels can differ by a sample.
+    const size_t pixels = film_.pixels();
+    const double total = static_cast<double>(pixels) * spp_;
+    double work = 0;
+    int k = 0;          // the next sample slice starts here
+    size_t first = 0;   // and, within a one-sample slice, at this pixel
+    while (k < spp_) {
+      if (work > 0 && control_.stop_now()) break;
+      size_t units = pacer_.next(static_cast<size_t>(total - work));
+      int samples = 1;
+      size_t count = std::min(units, pixels - first);
+      if (first == 0 && units >= pixels)
+        samples = static_cast<int>(std::min<size_t>(units / pixels, spp_ - k));
+      auto t0 = std::chrono::steady_clock::now();
+      launch_range(kernel_, first, count, film_.pixel_sums(), rejected_, cut_, spp_, k, k + samples,
+                   seed_, static_cast<cl_uint>(pass));
+      pacer_.record(count * samples, seconds_since(t0));
+      work += static_cast<double>(count) * samples;
+      first += count;
+      if (first == pixels) first = 0, k += samples;
+      control_.report(work / total);
+    }
+    PassResult r{pass, k, {}, film_.read_pixel_sums(), work / total, {}, {}};
+    if (k < spp_) {
+      r.pixel_samples.assign(pixels, k);
+      for (size_t p = 0; p < first; ++p) ++r.pixel_samples[p];
+    }
     r.tallies["rejected samples"] = read_sum<cl_int>(rejected_, film_.pixels());
     r.tallies[kDepthGuardCut] = read_sum<cl_float>(cut_, film_.pixels());  // relative to a start
-    r.tallies[kDepthGuardOf] = static_cast<double>(camera_paths_per_pass());
+    r.tallies[kDepthGuardOf] = work;
     return r;
   }
 
@@ -40,6 +72,7 @@ class BackwardIntegrator : public KernelIntegrator {
  private:
   int spp_;
   unsigned seed_;
+  LaunchPacer pacer_;  // in pixel samples
   cl::Kernel kernel_;
   cl::Buffer rejected_, cut_;
 };

@@ -2,10 +2,12 @@
 // `photons` photons carrying the lights' total power; their splats, added in 64-bit fixed point
 // (exact, so independent of the order work items run in), are one estimate of the image.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "core/error.h"
 #include "render/kernel_integrator.h"
+#include "render/launch_pacer.h"
 #include "spectral_product.h"
 
 namespace kasha {
@@ -40,8 +42,23 @@ class ForwardIntegrator : public KernelIntegrator {
   PassResult render_pass(int pass) override {
     cl_.queue().enqueueFillBuffer(fixed_, cl_long(0), 0, cells() * sizeof(cl_long));
     cl_.queue().enqueueFillBuffer(overflow_, cl_int(0), 0, sizeof(cl_int));
-    launch(kernel_, items_, static_cast<cl_int>(photons_), photons_per_item_, max_depth_, fixed_,
-           film_scale_, stats_, overflow_, seed_, static_cast<cl_uint>(pass));
+    cl_.queue().enqueueFillBuffer(stats_, cl_float(0), 0, items_ * 4 * sizeof(float));
+    // Launches of bounded work; a pass cut short (deadline, Ctrl-C) is the estimate of the photons
+    // it traced, scaled up to the pass's photons (each carries 1/photons of the power).
+    size_t done = 0;
+    while (done < items_) {
+      if (done > 0 && control_.stop_now()) break;
+      size_t n = pacer_.next(items_ - done);
+      auto t0 = std::chrono::steady_clock::now();
+      launch_range(kernel_, done, n, static_cast<cl_int>(photons_), photons_per_item_, max_depth_,
+                   fixed_, film_scale_, stats_, overflow_, seed_, static_cast<cl_uint>(pass));
+      pacer_.record(n, seconds_since(t0));
+      done += n;
+      control_.report(static_cast<double>(done) / items_);
+    }
+    const double traced = std::min<double>(static_cast<double>(done) * photons_per_item_,
+                                           static_cast<double>(photons_));
+    const double scale_up = photons_ / traced;
 
     std::vector<cl_long> fixed(cells());
     std::vector<float> stats(items_ * 4);
@@ -52,12 +69,13 @@ class ForwardIntegrator : public KernelIntegrator {
     PassResult r;
     r.pass = pass;
     r.samples = 1;  // the pass's splats are one estimate of every pixel
+    r.fraction = traced / photons_;
     r.sums.resize(fixed.size());
     for (size_t i = 0; i < fixed.size(); ++i)
-      r.sums[i] = fixed[i] / static_cast<double>(film_scale_);
+      r.sums[i] = fixed[i] / static_cast<double>(film_scale_) * scale_up;
     double power[4] = {0, 0, 0, 0};
     for (size_t i = 0; i < items_; ++i)
-      for (int k = 0; k < 4; ++k) power[k] += stats[4 * i + k];
+      for (int k = 0; k < 4; ++k) power[k] += stats[4 * i + k] * scale_up;
     r.tallies = {{"rejected samples", overflow},
                  {"power emitted (W)", power[0]},
                  {"power absorbed (W)", power[1]},
@@ -83,6 +101,7 @@ class ForwardIntegrator : public KernelIntegrator {
   int max_depth_, photons_per_item_;
   size_t items_;
   float film_scale_;
+  LaunchPacer pacer_{0.2, 16};  // in work items
   cl::Kernel kernel_;
   cl::Buffer fixed_, stats_, overflow_;
 };
