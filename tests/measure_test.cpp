@@ -222,7 +222,7 @@ TEST(Measure, BadInputsGiveOneLineAndNoMaterial) {
       "the etalon reading is zero in the band at excitation 400 nm");
   check("--sample " + d + "/s.csv --etalon " + d + "/e.csv --etalon-reflectance " + d +
             "/negative.csv",
-        "negative.csv: at 500 nm: negative value -0.1");
+        "negative.csv: line 3: at 500 nm: negative value -0.1");
   check(
       "--sample " + d + "/text.csv --etalon " + d + "/e.csv --etalon-reflectance " + d + "/rho.csv",
       "text.csv: line 3, column 3: not a number: \"oops\"");

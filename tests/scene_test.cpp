@@ -6,6 +6,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "render_support.h"
 #include "test_support.h"
 
 using namespace kasha;
@@ -200,4 +201,204 @@ TEST(Scene, BadScenesGiveOneClearLine) {
               load_scene("/nonexistent/scene.json");
             }).find("/nonexistent/scene.json: cannot open file"),
             std::string::npos);
+}
+
+namespace {
+
+// One line naming `expected` (a file with its line or JSON path, and the value).
+void expect_load_error(const std::string& text, const std::string& expected) {
+  std::string msg = error_of([&] { load(text); });
+  EXPECT_NE(msg.find(expected), std::string::npos) << msg;
+  EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+}
+
+std::string obj_shape(const std::string& name, const std::string& text,
+                      const std::string& extra = "") {
+  std::string obj = test::write_file(name, text);
+  return R"({"type": "obj", "file": ")" + obj + R"(", "material": "grey")" + extra + "}";
+}
+
+const char* kSphere = R"({"type": "sphere", "center": [0,0,0], "radius": 1, "material": "grey"})";
+
+}  // namespace
+
+TEST(Scene, EmissionBeyondFloatRangeNamesItsPathAndValue) {
+  const std::string lit =
+      R"({"type": "sphere", "center": [0,0,0], "radius": 1, "material": "grey", "emission": )";
+  expect_load_error(
+      scene_with(std::string(kSphere) + ", " + kSphere + ", " + lit +
+                 R"({"gaussian_nm": 500, "fwhm_nm": 20, "scale": 1e40}})"),
+      "scene.json: /shapes/2/emission/scale: a spectrum value of 1e+40 is beyond 1e30");
+  expect_load_error(scene_with(lit + "2e30}"),
+                    "scene.json: /shapes/0/emission: a spectrum value of 2e+30 is beyond 1e30");
+  std::string csv = test::write_file("lamp.csv", "400,1\n500,1e35\n600,1\n");
+  expect_load_error(scene_with(lit + R"({"csv": ")" + csv + R"("}})"),
+                    "lamp.csv: line 2: at 500 nm: a spectrum value of 1e+35 is beyond 1e30");
+  // Beyond double range the JSON parser refuses the number itself (it has no path yet).
+  expect_load_error(scene_with(lit + R"({"nm": [400, 500], "value": [1, 1e400]}})"),
+                    "scene.json: malformed JSON: number overflow parsing '1e400'");
+  // A material's spectra are spectra too.
+  expect_load_error(
+      R"({"kasha_scene": 1, )" + std::string(kCamera) +
+          R"(, "materials": {"grey": {"passive": {"reflectance": 1e31}}}, "shapes": [)" + kSphere +
+          "]}",
+      "scene.json: /materials/grey/passive/reflectance: a spectrum value of 1e+31");
+}
+
+TEST(Scene, EmitterRadianceAndPowerOnTheGridStayInFloatRange) {
+  // A line puts its whole integral into one bin: 1e30 over a 0.1 nm bin is 1e31 per nm.
+  expect_load_error(
+      scene_with(
+          R"({"type": "quad", "corner": [0,0,0], "u": [1,0,0], "v": [0,1,0], "material": "grey",
+              "emission": {"line_nm": 500.05, "scale": 1e30}})",
+          R"("wavelengths": {"bin_nm": 0.1}, )"),
+      "scene.json: /shapes/0/emission: the radiance of 1e+31 in the bin 500–500.1 nm is beyond "
+      "1e30");
+  // π·area·∫L = π·1e4 m²·(1e30·400 nm) = 1.26e37 W.
+  const std::string wide_lamp =
+      R"({"type": "quad", "corner": [0,0,0], "u": [100,0,0], "v": [0,100,0], "material": "grey",
+          "emission": 1e30})";
+  expect_load_error(
+      scene_with(std::string(kSphere) + ", " + wide_lamp),
+      "scene.json: /shapes/1/emission: the emitted power of 1.25664e+37 (π·area·∫L) is "
+      "beyond 1e35");
+  // The same radiance from 1 cm² is 1.26e29 W: fine, and the light CDF uses the same power.
+  Scene small = load(scene_with(
+      R"({"type": "quad", "corner": [0,0,0], "u": [0.01,0,0], "v": [0,0.01,0], "material": "grey",
+          "emission": 1e30})"));
+  double power = 0;
+  for (const KTriangle& t : small.triangles)
+    power += emitted_power(t, small.emitters[0].integrated_radiance(small.grid.bin_nm));
+  EXPECT_NEAR(power / (M_PI * 1e-4 * 4e32), 1.0, 1e-6);
+  // A lamp of 1e-32 m² would need a light-sampling density of 1e32 per m² in float.
+  expect_load_error(
+      scene_with(std::string(kSphere) + ", " +
+                 R"({"type": "quad", "corner": [0,0,0], "u": [1e-16,0,0], "v": [0,1e-16,0],
+                     "material": "grey", "emission": 1})"),
+      "scene.json: /shapes/1/emission: the emitting area is too small: light sampling's density "
+      "per unit area of 1e+32 is beyond 1e30");
+}
+
+TEST(Scene, ObjVerticesAndFacesAreCheckedByLine) {
+  const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+  // tinyobjloader would read these as 0 or (1, 0, 0) without a word.
+  expect_load_error(scene_with(obj_shape("nan.obj", "v 0 0 0\nv 1 0 0\nv nan 0 0\nf 1 2 3\n")),
+                    "nan.obj: line 3: vertex coordinate \"nan\" is not a finite number");
+  expect_load_error(scene_with(obj_shape("inf.obj", "# a mesh\r\nv 0 0 0\r\nv 0 -inf 0\r\n")),
+                    "inf.obj: line 3: vertex coordinate \"-inf\" is not a finite number");
+  expect_load_error(scene_with(obj_shape("short.obj", "v 0 0 0\nv 1\nv 0 1 0\nf 1 2 3\n")),
+                    "short.obj: line 2: a vertex needs x, y and z, found 1 number");
+  expect_load_error(scene_with(obj_shape("hex.obj", "v 0 0 0\nv 0x10 0 0\n")),
+                    "hex.obj: line 2: vertex coordinate \"0x10\" is not a finite number");
+  // Finite in double but beyond float range, or beyond ±1e18.
+  expect_load_error(scene_with(obj_shape("far.obj", tri + "v 0 1e19 0\nf 1 2 4\n")),
+                    "far.obj: line 4: a vertex at (0, 1e+19, 0) is beyond ±1e18");
+  expect_load_error(scene_with(obj_shape("huge.obj", "v 1e39 0 0\n")),
+                    "huge.obj: line 1: a vertex at (1e+39, 0, 0) is beyond ±1e18");
+  // Faces name vertices defined above them (negative ones count back from the last).
+  expect_load_error(scene_with(obj_shape("face.obj", tri + "f 1 2 4\n")),
+                    "face.obj: line 4: face vertex \"4\" names no vertex (3 defined above it)");
+  expect_load_error(scene_with(obj_shape("penta.obj", tri + "f 1 2 3 9 10\n")),
+                    "penta.obj: line 4: face vertex \"9\" names no vertex (3 defined above it)");
+  expect_load_error(scene_with(obj_shape("back.obj", tri + "f -4 -2 -1\n")),
+                    "back.obj: line 4: face vertex \"-4\" names no vertex");
+  expect_load_error(scene_with(obj_shape("zero.obj", tri + "f 0 1 2\n")),
+                    "zero.obj: line 4: face vertex \"0\" names no vertex");
+  expect_load_error(scene_with(obj_shape("later.obj", "v 0 0 0\nf 1 2 3\nv 1 0 0\nv 0 1 0\n")),
+                    "later.obj: line 2: face vertex \"2\" names no vertex (1 defined above it)");
+  // What is valid still loads: relative indices, normals, texture coordinates, w, comments.
+  Scene s = load(scene_with(obj_shape(
+      "good.obj", "# ok\nv 0 0 0 1\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nvt 0 0\nf -3/1/1 -2/1/1 -1//1\n")));
+  ASSERT_EQ(s.triangles.size(), 1u);
+  EXPECT_FLOAT_EQ(s.triangles[0].v1[0], 1.0f);
+}
+
+TEST(Scene, ZeroAreaAndDuplicateTrianglesAreHarmless) {
+  // An emitting mesh facing the camera (+z) inside a box: two good triangles, one with a repeated
+  // vertex, one that is a point, two collinear ones, and a good one twice over.
+  const std::string mesh =
+      "v -1 -1 1\nv 1 -1 1\nv 1 1 1\nv -1 1 1\nv 0 0 1\nv 2 2 1\n"
+      "f 1 2 3\nf 1 3 4\nf 1 3 3\nf 5 5 5\nf 1 5 3\nf 1 2 3\nf 5 3 6\n";
+  const std::string camera_and_materials =
+      std::string(R"({"kasha_scene": 1, "camera": {"position": [0, 0, 4], "look_at": [0, 0, 0],
+        "width": 8, "height": 8}, )") +
+      kMaterials + R"(, "shapes": [)";
+  const std::string enclosure =
+      R"(, {"type": "box", "min": [-6,-6,-6], "max": [6,6,6], "material": "grey", "inward": true}]})";
+  std::string scene = test::write_file(
+      "degenerate.json",
+      camera_and_materials + obj_shape("degenerate.obj", mesh, R"(, "emission": 1)") + enclosure);
+  Scene s = load_scene(scene);
+  const double radiance = s.emitters[0].integrated_radiance(s.grid.bin_nm);
+  for (int zero : {2, 3, 4, 6}) EXPECT_EQ(emitted_power(s.triangles[zero], radiance), 0.0) << zero;
+  EXPECT_DOUBLE_EQ(emitted_power(s.triangles[5], radiance),
+                   emitted_power(s.triangles[0], radiance));
+  EXPECT_GT(emitted_power(s.triangles[0], radiance), 0.0);
+  for (const char* integrator : {"backward", "forward", "photon"}) {
+    test::RenderSettings settings;
+    settings.integrator = integrator;
+    settings.passes = 1;
+    settings.spectral = false;
+    settings.integrator_settings.spp = 4;
+    settings.integrator_settings.photons = 4096;
+    test::RenderResult r = test::render_scene(scene, settings);
+    double sum = 0;
+    for (float x : r.image.xyz) {
+      ASSERT_TRUE(std::isfinite(x)) << integrator;
+      sum += x;
+    }
+    EXPECT_GT(sum, 0) << integrator;
+  }
+  // An emitter whose every triangle has zero area has no power: the physical integrators refuse
+  // the scene as before.
+  std::string dark = test::write_file(
+      "flat.json", camera_and_materials +
+                       obj_shape("flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\nf 1 1 1\n",
+                                 R"(, "emission": 1)") +
+                       enclosure);
+  EXPECT_EQ(load_scene(dark).emitters.size(), 1u);
+  test::RenderSettings backward;
+  backward.passes = 1;
+  EXPECT_NE(error_of([&] { test::render_scene(dark, backward); }).find("no emitter has power"),
+            std::string::npos);
+}
+
+TEST(Scene, TransformsAndTheCameraStayInsideTheCoordinateRange) {
+  const std::string quad =
+      R"({"type": "quad", "corner": [0,0,0], "u": [1,0,0], "v": [0,1,0], "material": "grey", )";
+  expect_load_error(
+      scene_with(quad + R"("transform": {"scale": [1, 1e30, 1]}})"),
+      "scene.json: /shapes/0: a vertex at (1, 1e+30, 0) is not finite or beyond ±1e18");
+  expect_load_error(
+      scene_with(quad + R"("transform": {"translate": [0, 0, 2e18]}})"),
+      "scene.json: /shapes/0: a vertex at (0, 0, 2e+18) is not finite or beyond ±1e18");
+  expect_load_error(
+      scene_with(quad +
+                 R"("transform": {"matrix": [1e300,0,0,0, 0,1e300,0,0, 0,0,1e300,0, 0,0,0,1]}})"),
+      "scene.json: /shapes/0: a vertex at (1e+300, 0, 0)");
+  expect_load_error(
+      scene_with(obj_shape("unit.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+                           R"(, "transform": {"scale": 1e40})")),
+      "scene.json: /shapes/0: a vertex at (1e+40, 0, 0) is not finite or beyond ±1e18");
+  auto with_camera = [](const std::string& camera) {
+    return R"({"kasha_scene": 1, "camera": )" + camera + ", " + kMaterials + R"(, "shapes": [)" +
+           kSphere + "]}";
+  };
+  expect_load_error(with_camera(R"({"position": [2e18, 0, -5], "look_at": [0, 0, 0]})"),
+                    "scene.json: /camera/position: a coordinate of 2e+18 is beyond ±1e18");
+  expect_load_error(with_camera(R"({"position": [0, 0, -5], "look_at": [0, -1e30, 0]})"),
+                    "scene.json: /camera/look_at: a coordinate of -1e+30 is beyond ±1e18");
+  expect_load_error(
+      with_camera(R"({"position": [0, 0, -5], "look_at": [0, 0, 0], "up": [0, 1e19, 0]})"),
+      "scene.json: /camera/up: a coordinate of 1e+19 is beyond ±1e18");
+  expect_load_error(
+      with_camera(R"({"position": [0, 0, -5], "look_at": [0, 0, 0], "up": [0, 0, 0]})"),
+      "scene.json: /camera: \"up\" is zero");
+  expect_load_error(
+      with_camera(R"({"position": [0, 0, -5], "look_at": [0, 0, 0], "fov_deg": 1e40})"),
+      "scene.json: /camera/fov_deg: value 1e+40 is outside");
+  // A short but valid "up" is a direction, not parallel to the view.
+  Scene s =
+      load(with_camera(R"({"position": [0, 0, -5], "look_at": [0, 0, 0], "up": [0, 1e-12, 0]})"));
+  EXPECT_GT(s.camera.to_kernel().up[1], 0);
 }

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
 
 #include "color/cie_observer.h"
 #include "color/color_space.h"
@@ -167,7 +168,50 @@ TEST(Spectrum, BadSpectraGiveOneClearLine) {
   std::string text = test::write_file("text.csv", "nm,v\n400,1\n500,abc\n");
   check(R"({"csv": ")" + text + R"("})", "text.csv: line 3, column 2: not a number: \"abc\"");
   std::string unsorted = test::write_file("unsorted.csv", "500,1\n400,1\n");
-  check(R"({"csv": ")" + unsorted + R"("})", "unsorted.csv: at 400 nm: wavelengths must increase");
+  check(R"({"csv": ")" + unsorted + R"("})",
+        "unsorted.csv: line 2: at 400 nm: wavelengths must increase");
+}
+
+TEST(Spectrum, ValuesBeyondFloatRangeNameTheirPlaceAndValue) {
+  // Float kernels carry spectra: any value above 1e30, raw or scaled, is refused where it is.
+  auto check = [](const std::string& json, const std::string& expected) {
+    std::string msg = error_of([&] { parse(json); });
+    EXPECT_NE(msg.find(expected), std::string::npos) << json << " -> " << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  };
+  check("1e40", "test.json: /: a spectrum value of 1e+40 is beyond 1e30");
+  check(R"({"nm": [400, 500], "value": [1, 2e31]})",
+        "test.json: /: at 500 nm: a spectrum value of 2e+31 is beyond 1e30");
+  check(R"({"nm": [400, 500], "value": [1, 1e20], "scale": 1e20})",
+        "test.json: /scale: a spectrum value of 1e+40 is beyond 1e30");
+  check(R"({"nm": [400, 500], "value": [1, 1e30], "scale": 1e300})",
+        "test.json: /scale: a spectrum value of inf is beyond 1e30");
+  check(R"({"gaussian_nm": 450, "fwhm_nm": 20, "scale": 1e40})",
+        "test.json: /scale: a spectrum value of 1e+40 is beyond 1e30");
+  check(R"({"line_nm": 405, "scale": 3e30})",
+        "test.json: /scale: a spectrum value of 3e+30 is beyond 1e30");
+  // A 6500 K blackbody peaks at 4.75e4 per nm (Wien, Planck): scaled by 1e27 it passes the limit.
+  const double planck_peak = parse(R"({"blackbody_K": 6500})")->peak();
+  EXPECT_NEAR(planck_peak, 4.7522e4, 1.0);
+  std::ostringstream scaled;
+  scaled << "test.json: /scale: a spectrum value of " << planck_peak * 1e27 << " is beyond 1e30";
+  check(R"({"blackbody_K": 6500, "scale": 1e27})", scaled.str());
+  // CSV cells name the file and line.
+  std::string big = test::write_file("big.csv", "# nm, value\n400,1\n500,1e300\n");
+  check(R"({"csv": ")" + big + R"("})",
+        "big.csv: line 3: at 500 nm: a spectrum value of 1e+300 is beyond 1e30");
+  check(R"({"csv": ")" + big + R"(", "scale": 0})",
+        "big.csv: line 3: at 500 nm: a spectrum value of 1e+300");
+  std::string huge = test::write_file("huge.csv", "400,1\n500,1e400\n");
+  check(R"({"csv": ")" + huge + R"("})", "huge.csv: line 2, column 2: value is not finite");
+  // Wavelengths are finite and positive.
+  check(R"({"nm": [0, 500], "value": [1, 1]})",
+        "test.json: /: at 0 nm: wavelength must be positive");
+  std::string zero = test::write_file("zero.csv", "-5,1\n500,1\n");
+  check(R"({"csv": ")" + zero + R"("})", "zero.csv: line 1: at -5 nm: wavelength must be positive");
+  // The limit itself is a value.
+  EXPECT_DOUBLE_EQ(parse("1e30")->peak(), 1e30);
+  EXPECT_DOUBLE_EQ(parse(R"({"gaussian_nm": 450, "fwhm_nm": 20, "scale": 1e30})")->peak(), 1e30);
 }
 
 TEST(WavelengthGrid, AutomaticRangeAddsUvOnlyWhenUvExcites) {

@@ -32,6 +32,12 @@ JsonNode JsonNode::load_file(const std::filesystem::path& file) {
     size_t at = what.find("parse error");
     throw Error(file.string() +
                 ": malformed JSON: " + (at == std::string::npos ? what : what.substr(at)));
+  } catch (const nlohmann::json::out_of_range& e) {
+    // A number beyond double range ("1e400"): nlohmann names the number but not its place.
+    std::string what = e.what();
+    size_t at = what.find("] ");
+    throw Error(file.string() +
+                ": malformed JSON: " + (at == std::string::npos ? what : what.substr(at + 2)));
   }
   auto root = std::make_shared<const nlohmann::json>(std::move(document));
   std::filesystem::path base = file.parent_path();

@@ -92,16 +92,14 @@ KernelSceneData::KernelSceneData(const Scene& scene)
   for (const Emitter& e : scene.emitters) append(emitter_radiance, e.per_bin);
 
   // Lights, in leaf order so kernels index the triangles they traverse.
-  std::vector<double> radiance_sum(scene.emitters.size(), 0.0);
-  for (size_t e = 0; e < scene.emitters.size(); ++e)
-    for (double v : scene.emitters[e].per_bin) radiance_sum[e] += v * scene.grid.bin_nm;
+  std::vector<double> radiance_sum;
+  for (const Emitter& e : scene.emitters)
+    radiance_sum.push_back(e.integrated_radiance(scene.grid.bin_nm));
   std::vector<double> power;
   for (size_t i = 0; i < bvh.triangles.size(); ++i) {
     const KTriangle& t = bvh.triangles[i];
     if (t.emitter < 0) continue;
-    Eigen::Vector3d a(t.v0[0], t.v0[1], t.v0[2]), b(t.v1[0], t.v1[1], t.v1[2]),
-        c(t.v2[0], t.v2[1], t.v2[2]);
-    double p = 0.5 * (b - a).cross(c - a).norm() * M_PI * radiance_sum[t.emitter];
+    double p = emitted_power(t, radiance_sum[t.emitter]);
     if (!(p > 0)) continue;
     light_tri.push_back(static_cast<int>(i));
     power.push_back(p);

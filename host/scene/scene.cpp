@@ -5,16 +5,15 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <sstream>
 
 #include "core/error.h"
+#include "scene/limits.h"
 #include "scene/shape_mesh.h"
 #include "scene/transform.h"
 #include "spectrum/spectrum_parser.h"
 
 namespace kasha {
-
-// The largest coordinate a vertex may have (after transforms): its square stays far inside float.
-constexpr double kMaxCoordinate = 1e18;
 
 // Only materials that some shape uses count: a declared but unused fluorescent or glossy material
 // must not switch on kernels and buffers the scene does not need.
@@ -34,6 +33,56 @@ int Scene::material_index(const std::string& name) const {
   for (size_t i = 0; i < material_descs.size(); ++i)
     if (material_descs[i].name == name) return static_cast<int>(i);
   return -1;
+}
+
+double Emitter::integrated_radiance(double bin_nm) const {
+  double sum = 0.0;
+  for (double v : per_bin) sum += v * bin_nm;
+  return sum;
+}
+
+double emitted_power(const KTriangle& t, double radiance) {
+  Eigen::Vector3d a(t.v0[0], t.v0[1], t.v0[2]), b(t.v1[0], t.v1[1], t.v1[2]),
+      c(t.v2[0], t.v2[1], t.v2[2]);
+  return 0.5 * (b - a).cross(c - a).norm() * M_PI * radiance;
+}
+
+// What the kernels derive from the emitters must fit in float: each binned radiance, each
+// emitter's power, and light sampling's density per unit area, π·∫L over the total power (at most
+// 1/area for an emitter with power; one of none is never sampled or hit).
+static void check_emitters(const Scene& scene) {
+  double total_power = 0.0;
+  std::vector<double> radiance, power;
+  for (const Emitter& e : scene.emitters) {
+    for (int i = 0; i < scene.grid.bins; ++i)
+      if (!(e.per_bin[i] <= kMaxSpectrumValue)) {
+        std::ostringstream msg;
+        msg << e.where << ": the radiance of " << e.per_bin[i] << " in the bin " << scene.grid.lo(i)
+            << "–" << scene.grid.hi(i) << " nm is beyond 1e30";
+        throw Error(msg.str());
+      }
+    radiance.push_back(e.integrated_radiance(scene.grid.bin_nm));
+    double p = 0.0;
+    for (int k = 0; k < e.triangle_count; ++k)
+      p += emitted_power(scene.triangles[e.first_triangle + k], radiance.back());
+    if (!(p <= kMaxEmitterPower)) {
+      std::ostringstream msg;
+      msg << e.where << ": the emitted power of " << p << " (π·area·∫L) is beyond 1e35";
+      throw Error(msg.str());
+    }
+    power.push_back(p);
+    total_power += p;
+  }
+  for (size_t i = 0; i < scene.emitters.size(); ++i) {
+    if (!(power[i] > 0)) continue;
+    double density = M_PI * radiance[i] / total_power;
+    if (!(density <= kMaxAreaDensity)) {
+      std::ostringstream msg;
+      msg << scene.emitters[i].where << ": the emitting area is too small: light sampling's "
+          << "density per unit area of " << density << " is beyond 1e30";
+      throw Error(msg.str());
+    }
+  }
 }
 
 static Eigen::Vector3d vec(const JsonNode& n) {
@@ -240,6 +289,7 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
   for (const MaterialDesc& d : scene.material_descs)
     scene.materials.push_back(discretize_material(d, scene.grid));
   for (Emitter& e : scene.emitters) e.per_bin = scene.grid.resample(*e.radiance);
+  check_emitters(scene);
   return scene;
 }
 

@@ -17,7 +17,14 @@ struct Emitter {
   SpectrumPtr radiance;                        // Lambertian spectral radiance, front side only
   std::vector<double> per_bin;                 // on the scene grid
   int first_triangle = 0, triangle_count = 0;  // in scene (primitive) order
+
+  // Σ_i L_i·Δλ: the radiance integrated over the grid (W·m⁻²·sr⁻¹).
+  double integrated_radiance(double bin_nm) const;
 };
+
+// π·A·∫L: the power a Lambertian emitter of integrated radiance `radiance` sends from the front of
+// `t` (its float vertices, as the kernels see them). The light CDF and the load check share it.
+double emitted_power(const KTriangle& t, double radiance);
 
 struct ShapeInfo {
   std::string type;  // obj, quad, box, sphere

@@ -2,9 +2,16 @@
 
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
 
 #include "core/error.h"
+#include "scene/limits.h"
 
 namespace kasha {
 
@@ -50,7 +57,88 @@ std::vector<Triangle> sphere_triangles(const Eigen::Vector3d& center, double rad
   return out;
 }
 
+namespace {
+
+// The words of an OBJ line after its keyword, split at spaces and tabs as tinyobjloader does.
+std::vector<std::string> obj_words(const std::string& line, size_t from) {
+  std::vector<std::string> out;
+  while (from < line.size()) {
+    size_t start = line.find_first_not_of(" \t", from);
+    if (start == std::string::npos) break;
+    size_t end = std::min(line.find_first_of(" \t", start), line.size());
+    out.push_back(line.substr(start, end - start));
+    from = end;
+  }
+  return out;
+}
+
+// A whole word of decimal notation: tinyobjloader reads nothing else ("nan", "inf", hex) and
+// silently stores 0 instead.
+bool obj_coordinate(const std::string& word, double& out) {
+  if (word.empty() || word.find_first_not_of("0123456789+-.eE") != std::string::npos) return false;
+  char* end = nullptr;
+  out = std::strtod(word.c_str(), &end);
+  return end == word.c_str() + word.size();
+}
+
+// tinyobjloader gives no line numbers, stores 0 for an unreadable or missing coordinate without a
+// word, and reads past its vertex array for a polygon with an index out of range. So the `v` and
+// `f` lines are checked first, each error naming its line; the geometry still comes from it.
+void check_obj_lines(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return;  // tinyobjloader says it cannot open it
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  long vertices = 0;
+  int line_no = 0;
+  for (size_t pos = 0; pos < text.size();) {
+    // A line ends at "\n", "\r\n" or "\r", as tinyobjloader splits them.
+    size_t end = std::min(text.find_first_of("\r\n", pos), text.size());
+    const std::string line = text.substr(pos, end - pos);
+    pos = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
+    ++line_no;
+    size_t k = line.find_first_not_of(" \t");
+    if (k == std::string::npos || k + 1 >= line.size() ||
+        (line[k + 1] != ' ' && line[k + 1] != '\t'))
+      continue;
+    const std::string at = path + ": line " + std::to_string(line_no) + ": ";
+    const std::vector<std::string> words = obj_words(line, k + 2);
+    if (line[k] == 'v') {
+      if (words.size() < 3)
+        throw Error(at + "a vertex needs x, y and z, found " + std::to_string(words.size()) +
+                    " number" + (words.size() == 1 ? "" : "s"));
+      double p[3];
+      for (int c = 0; c < 3; ++c)
+        if (!obj_coordinate(words[c], p[c]) || !std::isfinite(p[c]))
+          throw Error(at + "vertex coordinate \"" + words[c] + "\" is not a finite number");
+      for (int c = 0; c < 3; ++c)
+        if (!(std::abs(p[c]) <= kMaxCoordinate)) {
+          char v[128];
+          std::snprintf(v, sizeof v, "(%g, %g, %g)", p[0], p[1], p[2]);
+          throw Error(at + "a vertex at " + v + " is beyond ±1e18");
+        }
+      ++vertices;
+    } else if (line[k] == 'f') {
+      for (const std::string& word : words) {
+        // The vertex number leads each of i, i/j, i/j/k and i//k; negative ones count back.
+        const std::string number = word.substr(0, word.find('/'));
+        char* rest = nullptr;
+        errno = 0;
+        long i = std::strtol(number.c_str(), &rest, 10);
+        if (number.empty() || *rest != '\0' || errno != 0 || i == 0 || i > vertices ||
+            -i > vertices)
+          throw Error(at + "face vertex \"" + word + "\" names no vertex (" +
+                      std::to_string(vertices) + " defined above it)");
+      }
+    }
+  }
+}
+
+}  // namespace
+
 std::vector<Triangle> obj_triangles(const std::string& path) {
+  check_obj_lines(path);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;

@@ -40,6 +40,10 @@ double PiecewiseLinearSpectrum::raw_value(double x) const {
   return value_[k - 1] + t * (value_[k] - value_[k - 1]);
 }
 
+double PiecewiseLinearSpectrum::raw_peak() const {
+  return *std::max_element(value_.begin(), value_.end());
+}
+
 double PiecewiseLinearSpectrum::raw_integral(double a, double b) const {
   a = std::max(a, nm_.front());
   b = std::min(b, nm_.back());
@@ -92,6 +96,10 @@ double BlackbodySpectrum::raw_value(double nm) const {
   double x = kPlanck * kLightSpeed / (l * kBoltzmann * kelvin_);
   // Per metre of wavelength, then per nanometre.
   return 2.0 * kPlanck * kLightSpeed * kLightSpeed / std::pow(l, 5) / std::expm1(x) * 1e-9;
+}
+
+double BlackbodySpectrum::raw_peak() const {
+  return raw_value(2.897771955e6 / kelvin_);  // Wien's displacement law
 }
 
 SpectralSupport BlackbodySpectrum::support() const {

@@ -22,12 +22,15 @@ class Spectrum {
   virtual SpectralSupport support() const = 0;
   // The value at one wavelength, including the scale; a line has none (throws kasha::Error).
   double value(double nm) const { return scale_ * raw_value(nm); }
+  // The largest value, including the scale (a line's is its integral): what range checks bound.
+  double peak() const { return scale_ * raw_peak(); }
   void set_scale(double scale) { scale_ *= scale; }
   double scale() const { return scale_; }
 
  protected:
   virtual double raw_integral(double a_nm, double b_nm) const = 0;
   virtual double raw_value(double nm) const = 0;
+  virtual double raw_peak() const = 0;
 
  private:
   double scale_ = 1.0;
@@ -43,6 +46,7 @@ class ConstantSpectrum : public Spectrum {
  protected:
   double raw_integral(double a, double b) const override { return value_ * (b - a); }
   double raw_value(double) const override { return value_; }
+  double raw_peak() const override { return value_; }
 
  private:
   double value_;
@@ -58,6 +62,7 @@ class PiecewiseLinearSpectrum : public Spectrum {
  protected:
   double raw_integral(double a, double b) const override;
   double raw_value(double nm) const override;
+  double raw_peak() const override;
 
  private:
   std::vector<double> nm_, value_;
@@ -72,6 +77,7 @@ class GaussianSpectrum : public Spectrum {
  protected:
   double raw_integral(double a, double b) const override;
   double raw_value(double nm) const override;
+  double raw_peak() const override { return 1.0; }
 
  private:
   double center_, sigma_;
@@ -86,6 +92,7 @@ class BlackbodySpectrum : public Spectrum {
  protected:
   double raw_integral(double a, double b) const override;
   double raw_value(double nm) const override;
+  double raw_peak() const override;
 
  private:
   double kelvin_;
@@ -103,6 +110,7 @@ class LineSpectrum : public Spectrum {
     return (nm_ >= a && nm_ < b) ? 1.0 : 0.0;
   }
   double raw_value(double nm) const override;
+  double raw_peak() const override { return 1.0; }
 
  private:
   double nm_;

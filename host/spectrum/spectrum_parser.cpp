@@ -10,15 +10,23 @@
 
 namespace kasha {
 
+std::string spectrum_value_beyond(double value) {
+  std::ostringstream msg;
+  msg << "a spectrum value of " << value << " is beyond 1e30";
+  return msg.str();
+}
+
 SpectrumPtr make_tabulated_spectrum(const std::vector<double>& nm, const std::vector<double>& value,
-                                    const std::string& where) {
+                                    const std::string& where, const std::vector<int>& lines) {
   if (nm.size() != value.size())
     throw Error(where + ": " + std::to_string(nm.size()) + " wavelengths but " +
                 std::to_string(value.size()) + " values");
   if (nm.size() < 2) throw Error(where + ": a tabulated spectrum needs at least two samples");
   for (size_t i = 0; i < nm.size(); ++i) {
     std::ostringstream at;
-    at << where << ": at " << nm[i] << " nm: ";
+    at << where << ": ";
+    if (i < lines.size()) at << "line " << lines[i] << ": ";
+    at << "at " << nm[i] << " nm: ";
     if (!std::isfinite(nm[i]) || !std::isfinite(value[i]))
       throw Error(at.str() + "value is not finite");
     if (nm[i] <= 0) throw Error(at.str() + "wavelength must be positive");
@@ -27,6 +35,7 @@ SpectrumPtr make_tabulated_spectrum(const std::vector<double>& nm, const std::ve
       v << value[i];
       throw Error(at.str() + "negative value " + v.str());
     }
+    if (value[i] > kMaxSpectrumValue) throw Error(at.str() + spectrum_value_beyond(value[i]));
     if (i > 0 && nm[i] <= nm[i - 1]) throw Error(at.str() + "wavelengths must increase");
   }
   return std::make_shared<PiecewiseLinearSpectrum>(nm, value);
@@ -51,25 +60,29 @@ SpectrumPtr read_spectrum_csv(const std::string& path, const std::string& column
       throw Error(path + ": x units are " + units->second + ", not NANOMETERS");
   }
   std::vector<double> nm, value;
+  std::vector<int> lines;
   for (size_t r = 0; r < table.rows.size(); ++r) {
     if (table.rows[r].size() <= col)
       throw Error(path + ": line " + std::to_string(table.row_lines[r]) + ": missing column " +
                   std::to_string(col + 1));
     nm.push_back(table.rows[r][0]);
     value.push_back(table.rows[r][col]);
+    lines.push_back(table.row_lines[r]);
   }
   // JASCO instruments export from the long wavelength down.
   if (table.jasco && nm.size() > 1 && nm.front() > nm.back()) {
     std::reverse(nm.begin(), nm.end());
     std::reverse(value.begin(), value.end());
+    std::reverse(lines.begin(), lines.end());
   }
-  return make_tabulated_spectrum(nm, value, path);
+  return make_tabulated_spectrum(nm, value, path, lines);
 }
 
 SpectrumPtr parse_spectrum(const JsonNode& node) {
   if (node.is_number()) {
     double v = node.number();
     if (v < 0) node.fail("negative spectrum value");
+    if (v > kMaxSpectrumValue) node.fail(spectrum_value_beyond(v));
     return std::make_shared<ConstantSpectrum>(v);
   }
   if (node.is_string()) {
@@ -103,11 +116,15 @@ SpectrumPtr parse_spectrum(const JsonNode& node) {
         "expected one of \"csv\", \"nm\"/\"value\", \"blackbody_K\", \"gaussian_nm\"/\"fwhm_nm\", "
         "\"line_nm\"");
   }
-  if (auto scale = node.find("scale")) {
+  auto scale = node.find("scale");
+  if (scale) {
     double k = scale->number();
     if (k < 0) scale->fail("scale must not be negative");
     s->set_scale(k);
   }
+  // A scale can carry any form past the limit (a blackbody's peak only gets there scaled).
+  if (!(s->peak() <= kMaxSpectrumValue))
+    (scale ? *scale : node).fail(spectrum_value_beyond(s->peak()));
   node.finish();
   return s;
 }
