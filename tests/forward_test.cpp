@@ -76,9 +76,9 @@ std::string box_scene(const std::string& file, const std::string& material,
                               shapes + "]}");
 }
 
-// Excited from 240 to 370 nm, emitting around 500 nm (an optical brightener's shape).
+// Excited from 240 to 370 nm (less towards 370 nm), emitting around 500 nm (an optical brightener).
 const char* kBrightener = R"({"passive": {"reflectance": 0.3},
-    "fluorescence": {"excitation": {"nm": [240, 370, 380], "value": [0.6, 0.6, 0]},
+    "fluorescence": {"excitation": {"nm": [240, 370, 380], "value": [0.6, 0.4, 0]},
                      "emission": {"gaussian_nm": 500, "fwhm_nm": 60}}})";
 // The fluorescent furnace's material (scenes/furnace_fluorescent.json).
 const char* kBrightened = R"({"passive": {"reflectance": {"nm": [380, 480, 560, 780],
