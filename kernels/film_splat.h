@@ -1,6 +1,7 @@
 /* Splatting to the film from many work items at once, without float atomics: each film value is
- * a 64-bit fixed-point integer (value × scale) added with atom_add, which is exact and so
- * independent of the order work items run in and of the work-group size. */
+ * a 128-bit unsigned fixed-point integer (value · 2^shift) held as two 64-bit words (lo, hi) and
+ * added with atom_add and an explicit carry. Integer sums are exact, so the film does not depend
+ * on the order work items run in nor on the work-group size. */
 #ifndef KASHA_FILM_SPLAT_H
 #define KASHA_FILM_SPLAT_H
 
@@ -28,14 +29,22 @@ inline int camera_pixel(const KCamera* c, float3 x, float* importance) {
   return min((int)py, c->height - 1) * c->width + min((int)px, c->width - 1);
 }
 
-/* Adds value × scale, rounded, to a fixed-point film cell; counts values that would overflow. */
-inline void splat_fixed(__global long* cell, float value, float scale, int* overflow) {
-  float v = value * scale;
-  if (!(fabs(v) < 4.0e18f)) {
-    *overflow += 1;
+/* Adds value · 2^shift, rounded to an integer, to the 128-bit cell (cell[0] = lo, cell[1] = hi);
+ * negative, non-finite or too large values (≥ 2^127 units, the headroom the host's shift leaves
+ * for the cell's sum) are counted as rejected instead. */
+inline void splat_fixed(__global ulong* cell, float value, int shift, int* rejected) {
+  float f = rint(ldexp(value, shift));
+  if (!(f >= 0.0f && f < 0x1p127f)) {
+    *rejected += 1;
     return;
   }
-  atom_add(cell, (long)rint(v));
+  /* Exact in float: f < 2^127 is an integer of 24 significant bits, so f·2^-64 and its floor are
+   * exact and hi·2^64 is f itself or a multiple of f's ulp; lo = f − hi·2^64 < 2^64 is then a
+   * multiple of that ulp with fewer than 24 significant bits: the subtraction is exact. */
+  float hi_f = floor(f * 0x1p-64f);
+  ulong hi = (ulong)hi_f, lo = (ulong)(f - hi_f * 0x1p64f);
+  if (lo != 0 && atom_add(cell, lo) + lo < lo) hi += 1; /* the low word wrapped: carry */
+  if (hi != 0) atom_add(cell + 1, hi);
 }
 
 #endif

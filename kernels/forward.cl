@@ -11,8 +11,8 @@
 #include "scene_view.h"
 
 typedef struct {
-  __global long* film;
-  float film_scale;
+  __global ulong* film; /* 2 words (lo, hi) per pixel and row, film_splat.h */
+  int film_shift;       /* a splat of value v adds v · 2^film_shift units */
   int overflow;
 } SplatTarget;
 
@@ -33,13 +33,13 @@ inline bool camera_connection(const SceneView* s, float3 x, float3 ns, float eps
 }
 
 inline void splat_rows(SplatTarget* t, int pixel, const float* rows) {
-  __global long* cell = t->film + (long)pixel * KASHA_FILM_ROWS;
+  __global ulong* cell = t->film + 2 * (long)pixel * KASHA_FILM_ROWS;
   for (int r = 0; r < KASHA_FILM_ROWS; ++r)
-    if (rows[r] != 0.0f) splat_fixed(cell + r, rows[r], t->film_scale, &t->overflow);
+    if (rows[r] != 0.0f) splat_fixed(cell + 2 * r, rows[r], t->film_shift, &t->overflow);
 }
 
 __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, int photons_per_item,
-                            int max_depth, __global long* film, float film_scale,
+                            int max_depth, __global ulong* film, int film_shift,
                             __global float* stats, /* per item: emitted, absorbed, escaped, in flight (W) */
                             __global int* overflow, uint seed, uint pass) {
   KASHA_SCENE_VIEW(s);
@@ -47,7 +47,7 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
   int item = get_global_id(0);
   int first = item * photons_per_item, last = min(first + photons_per_item, photons);
   if (first >= last) return;
-  SplatTarget target = {film, film_scale, 0};
+  SplatTarget target = {film, film_shift, 0};
   float emitted = 0.0f, absorbed = 0.0f, escaped = 0.0f, in_flight = 0.0f;
   float rows[KASHA_FILM_ROWS];
   for (int index = first; index < last; ++index) {

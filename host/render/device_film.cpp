@@ -1,8 +1,10 @@
 #include "render/device_film.h"
 
+
 #include <algorithm>
 
 #include "color/cie_observer.h"
+#include "opencl/device_buffer.h"
 #include "opencl/upload.h"
 
 namespace kasha {
@@ -34,7 +36,7 @@ int DeviceFilm::bind(cl::Kernel& k, int a) const {
 
 cl::Buffer& DeviceFilm::pixel_sums() {
   if (!sums_())
-    sums_ = cl::Buffer(cl_.context(), CL_MEM_READ_WRITE, pixels_ * rows_ * sizeof(float));
+    sums_ = device_buffer(cl_, pixels_ * rows_ * sizeof(float), "the film's per-pixel sums");
   return sums_;
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 
+#include "opencl/device_buffer.h"
 #include "render/kernel_integrator.h"
 #include "render/launch_pacer.h"
 
@@ -18,8 +19,8 @@ class BackwardIntegrator : public KernelIntegrator {
         spp_(s.settings.spp),
         seed_(s.settings.seed),
         kernel_(program_, "render_backward"),
-        rejected_(cl_.context(), CL_MEM_WRITE_ONLY, film_.pixels() * sizeof(cl_int)),
-        cut_(cl_.context(), CL_MEM_WRITE_ONLY, film_.pixels() * sizeof(cl_float)) {}
+        rejected_(device_buffer(cl_, film_.pixels() * sizeof(cl_int), "backward: rejected counts")),
+        cut_(device_buffer(cl_, film_.pixels() * sizeof(cl_float), "backward: depth-guard tallies")) {}
 
   PassResult render_pass(int pass) override {
     film_.clear_pixel_sums();

@@ -1,14 +1,16 @@
 // `--integrator forward`: light tracing of kernels/forward.cl (DESIGN §2.1). A pass traces
-// `photons` photons carrying the lights' total power; their splats, added in 64-bit fixed point
-// (exact, so independent of the order work items run in), are one estimate of the image.
+// `photons` photons carrying the lights' total power; their splats, added in 128-bit fixed point
+// (integrators/forward/fixed_point_film.h: exact, so independent of the order work items run in),
+// are one estimate of the image.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "core/error.h"
+#include "integrators/forward/fixed_point_film.h"
+#include "opencl/device_buffer.h"
 #include "render/kernel_integrator.h"
 #include "render/launch_pacer.h"
-#include "spectral_product.h"
 
 namespace kasha {
 
@@ -23,24 +25,15 @@ class ForwardIntegrator : public KernelIntegrator {
         items_((photons_ + photons_per_item_ - 1) / photons_per_item_) {
     if (photons_ > (1LL << 31) - 1) throw Error("--photons: at most 2^31 - 1 photons per pass");
     kernel_ = cl::Kernel(program_, "trace_forward");
-    // Fixed point: the brightest emitter's film value maps to 2^32, leaving 2^31 of headroom per
-    // pixel and pass and a resolution of 2^-32 of it.
-    double brightest = 0;
-    const std::vector<float>& le = scene_.data().emitter_radiance;
-    const std::vector<float>& cmf = film_.cmf();
-    const int n = s.scene.grid.bins;
-    for (size_t e = 0; e * n < le.size(); ++e)
-      for (int r = 0; r < film_.rows(); ++r)
-        brightest = std::max(
-            brightest, film_row(cmf.data(), film_.spectral(), n, r, nullptr, &le[e * n], nullptr));
-    film_scale_ = static_cast<float>(std::ldexp(1.0, 32) / std::max(brightest, 1e-30));
-    fixed_ = cl::Buffer(cl_.context(), CL_MEM_READ_WRITE, cells() * sizeof(cl_long));
-    stats_ = cl::Buffer(cl_.context(), CL_MEM_WRITE_ONLY, items_ * 4 * sizeof(float));
-    overflow_ = cl::Buffer(cl_.context(), CL_MEM_READ_WRITE, sizeof(cl_int));
+    film_shift_ = fixed_point_shift(scene_.data(), film_.cmf(), film_.spectral());
+    fixed_ = device_buffer(cl_, cells() * 2 * sizeof(cl_ulong), "forward: the fixed-point film");
+    stats_ = device_buffer(cl_, items_ * 4 * sizeof(float),
+                           "forward: the power ledger of --photons " + std::to_string(photons_));
+    overflow_ = device_buffer(cl_, sizeof(cl_int), "forward: the rejected-sample counter");
   }
 
   PassResult render_pass(int pass) override {
-    cl_.queue().enqueueFillBuffer(fixed_, cl_long(0), 0, cells() * sizeof(cl_long));
+    cl_.queue().enqueueFillBuffer(fixed_, cl_ulong(0), 0, cells() * 2 * sizeof(cl_ulong));
     cl_.queue().enqueueFillBuffer(overflow_, cl_int(0), 0, sizeof(cl_int));
     cl_.queue().enqueueFillBuffer(stats_, cl_float(0), 0, items_ * 4 * sizeof(float));
     // Launches of bounded work; a pass cut short (deadline, Ctrl-C) is the estimate of the photons
@@ -51,7 +44,8 @@ class ForwardIntegrator : public KernelIntegrator {
       size_t n = pacer_.next(items_ - done);
       auto t0 = std::chrono::steady_clock::now();
       launch_range(kernel_, done, n, static_cast<cl_int>(photons_), photons_per_item_, max_depth_,
-                   fixed_, film_scale_, stats_, overflow_, seed_, static_cast<cl_uint>(pass));
+                   fixed_, static_cast<cl_int>(film_shift_), stats_, overflow_, seed_,
+                   static_cast<cl_uint>(pass));
       pacer_.record(n, seconds_since(t0));
       done += n;
       control_.report(static_cast<double>(done) / items_);
@@ -60,19 +54,20 @@ class ForwardIntegrator : public KernelIntegrator {
                                            static_cast<double>(photons_));
     const double scale_up = photons_ / traced;
 
-    std::vector<cl_long> fixed(cells());
+    std::vector<cl_ulong> fixed(2 * cells());  // lo, hi per cell
     std::vector<float> stats(items_ * 4);
     cl_int overflow = 0;
-    cl_.queue().enqueueReadBuffer(fixed_, CL_TRUE, 0, fixed.size() * sizeof(cl_long), fixed.data());
+    cl_.queue().enqueueReadBuffer(fixed_, CL_TRUE, 0, fixed.size() * sizeof(cl_ulong),
+                                  fixed.data());
     cl_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, stats.size() * sizeof(float), stats.data());
     cl_.queue().enqueueReadBuffer(overflow_, CL_TRUE, 0, sizeof(cl_int), &overflow);
     PassResult r;
     r.pass = pass;
     r.samples = 1;  // the pass's splats are one estimate of every pixel
     r.fraction = traced / photons_;
-    r.sums.resize(fixed.size());
-    for (size_t i = 0; i < fixed.size(); ++i)
-      r.sums[i] = fixed[i] / static_cast<double>(film_scale_) * scale_up;
+    r.sums.resize(cells());
+    for (size_t i = 0; i < cells(); ++i)
+      r.sums[i] = fixed_point_value(fixed[2 * i], fixed[2 * i + 1], film_shift_) * scale_up;
     double power[4] = {0, 0, 0, 0};
     for (size_t i = 0; i < items_; ++i)
       for (int k = 0; k < 4; ++k) power[k] += stats[4 * i + k] * scale_up;
@@ -89,7 +84,7 @@ class ForwardIntegrator : public KernelIntegrator {
   long long camera_paths_per_pass() const override { return 0; }
   long long photons_per_pass() const override { return photons_; }
   std::map<std::string, size_t> device_buffers() const override {
-    return {{"fixed-point film", cells() * sizeof(cl_long)},
+    return {{"fixed-point film", cells() * 2 * sizeof(cl_ulong)},
             {"power ledger", items_ * 4 * sizeof(float)}};
   }
 
@@ -100,7 +95,7 @@ class ForwardIntegrator : public KernelIntegrator {
   unsigned seed_;
   int max_depth_, photons_per_item_;
   size_t items_;
-  float film_scale_;
+  int film_shift_;  // a film value v is v·2^film_shift_ fixed-point units
   LaunchPacer pacer_{0.2, 16};  // in work items
   cl::Kernel kernel_;
   cl::Buffer fixed_, stats_, overflow_;
