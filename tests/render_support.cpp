@@ -19,6 +19,7 @@ RenderResult render_scene(const std::string& path, const RenderSettings& s) {
   if (s.camera) r.scene.camera = *s.camera;
   DeviceScene ds(cl, r.scene);
   RenderJob job(cl, r.scene, ds, s.integrator, s.integrator_settings, s.spectral);
+  job.integrator().set_control(s.control);
   for (int p = 0; p < s.passes; ++p) {
     job.pass(p);
     if (s.after_pass) s.after_pass(p + 1, job.film().image());
@@ -28,6 +29,8 @@ RenderResult render_scene(const std::string& path, const RenderSettings& s) {
   r.tallies = job.film().tallies();
   r.rejected = static_cast<long long>(job.film().tally("rejected samples"));
   r.device_buffers = job.integrator().device_buffers();
+  r.work_passes = job.film().work_passes();
+  r.passes = job.film().passes();
   return r;
 }
 

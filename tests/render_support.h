@@ -21,6 +21,8 @@ struct RenderResult {
   long long rejected = 0;
   std::map<std::string, double> tallies;         // the film's counters (PassResult::tallies)
   std::map<std::string, size_t> device_buffers;  // the integrator's
+  double work_passes = 0;  // passes, a cut-short one counted by its fraction
+  int passes = 0;
 };
 
 struct RenderSettings {
@@ -34,6 +36,7 @@ struct RenderSettings {
   std::function<bool(int, const Image&)> until;
   std::optional<Camera> camera;     // replaces the scene's camera
   std::optional<GridRequest> grid;  // replaces the scene's wavelength grid
+  PassControl control;              // bounds every pass (deadline, progress)
 };
 
 RenderResult render_scene(const std::string& path, const RenderSettings& settings);
