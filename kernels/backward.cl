@@ -137,10 +137,12 @@ __kernel void render_backward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
                               __global int* rejected,  /* per pixel: samples that were not finite */
                               __global float* cut,     /* per pixel: weight the depth guard cut */
                               int spp, int k_first, int k_last, /* this launch: samples [k_first, k_last) */
-                              uint seed, uint pass) {
+                              uint seed, uint pass,
+                  int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
   int pixel = get_global_id(0);
+  if (pixel >= item_end) return;
   if (pixel >= camera.width * camera.height) return;
   int bad = 0;
   float guard = 0.0f;

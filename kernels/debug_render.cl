@@ -22,10 +22,12 @@ inline void add_rgb_as_xyz(float* rows, float3 rgb) {
 
 __kernel void render_debug(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
                            __global float* film, /* pixels × KASHA_FILM_ROWS, sums over the pass */
-                           int view, int spp, uint seed, uint pass) {
+                           int view, int spp, uint seed, uint pass,
+                  int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
   int pixel = get_global_id(0);
+  if (pixel >= item_end) return;
   if (pixel >= camera.width * camera.height) return;
   Sampler sampler = sampler_start(seed, (uint)pixel, 0, pass, (uint)pixel);
   float rows[KASHA_FILM_ROWS];

@@ -41,10 +41,12 @@ inline void splat_rows(SplatTarget* t, int pixel, const float* rows) {
 __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, int photons_per_item,
                             int max_depth, __global ulong* film, int film_shift,
                             __global float* stats, /* per item: emitted, absorbed, escaped, in flight (W) */
-                            __global int* overflow, uint seed, uint pass) {
+                            __global int* overflow, uint seed, uint pass,
+                  int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
   int item = get_global_id(0);
+  if (item >= item_end) return;
   int first = item * photons_per_item, last = min(first + photons_per_item, photons);
   if (first >= last) return;
   SplatTarget target = {film, film_shift, 0};

@@ -24,9 +24,11 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
                                int photons_per_item, int skip, __global float* store, __global int* stored,
                                int capacity,
                                __global float* cut, /* per item: power the depth guard cut, per photon's start */
-                               uint seed, uint pass) {
+                               uint seed, uint pass,
+                  int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
   int item = get_global_id(0);
+  if (item >= item_end) return;
   int first = first_photon + item * photons_per_item;
   int last = min(first + photons_per_item, first_photon + count);
   float guard = 0.0f;
@@ -68,10 +70,12 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
 __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float* visible_points,
                           __global float* direct, /* pixels × KASHA_FILM_ROWS: emission seen directly */
                           __global float* cut,    /* per pixel: weight the depth guard cut */
-                          uint seed, uint pass) {
+                          uint seed, uint pass,
+                  int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
   int pixel = get_global_id(0);
+  if (pixel >= item_end) return;
   if (pixel >= camera.width * camera.height) return;
   const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
   __global float* vp = visible_points + (long)pixel * vp_floats;

@@ -1,5 +1,7 @@
 #include "render/kernel_integrator.h"
 
+#include <algorithm>
+
 #include "core/error.h"
 
 namespace kasha {
@@ -14,6 +16,11 @@ KernelIntegrator::KernelIntegrator(const IntegratorSetup& s, const std::string& 
   defines["KASHA_MAX_PATH_DEPTH"] = std::to_string(s.settings.max_depth);
   for (const auto& [name, value] : extra) defines[name] = value;
   program_ = build_program(cl_, assemble_kernel_source(file), defines, file);
+}
+
+size_t KernelIntegrator::work_group_size(cl::Kernel& kernel) {
+  size_t most = kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(cl_.device());
+  return std::max<size_t>(1, std::min<size_t>(64, most));
 }
 
 }  // namespace kasha

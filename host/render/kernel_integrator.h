@@ -21,15 +21,24 @@ class KernelIntegrator : public Integrator {
   }
 
   // The same for work items [first, first + count) (get_global_id counts from `first`), and waits
-  // for them: passes are split into such launches of bounded work (render/launch_pacer.h).
+  // for them: passes are split into such launches of bounded work (render/launch_pacer.h). The
+  // range is rounded up to whole work-groups of a fixed size, and the kernel's last argument
+  // (`item_end`) tells the extra items to return: PoCL compiles a work-group function per local
+  // size, so launches of varying sizes must not each choose their own.
   template <typename... Args>
   void launch_range(cl::Kernel& kernel, size_t first, size_t count, const Args&... args) {
     cl_uint a = static_cast<cl_uint>(film_.bind(kernel, scene_.bind(kernel, 0)));
     (kernel.setArg(a++, args), ...);
+    kernel.setArg(a, static_cast<cl_int>(first + count));
+    const size_t local = work_group_size(kernel);
     cl_.queue().enqueueNDRangeKernel(kernel, first > 0 ? cl::NDRange(first) : cl::NullRange,
-                                     cl::NDRange(count));
+                                     cl::NDRange((count + local - 1) / local * local),
+                                     cl::NDRange(local));
     cl_.queue().finish();
   }
+
+  // 64 work items a group, or what the device allows for this kernel.
+  size_t work_group_size(cl::Kernel& kernel);
 
   // The sum of the first `count` values of type T in a device buffer (per-pixel or per-item
   // counters a kernel wrote).

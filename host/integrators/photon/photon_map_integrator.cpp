@@ -274,7 +274,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
   mutable bool warned_small_ = false;
   size_t capacity_;    // photon records the store holds
   size_t batches_ = 0;
-  LaunchPacer pacer_{0.2, 4096};  // in photons
+  LaunchPacer pacer_{0.2, 256};  // in photons: the first launch is small, as paths may be long
   std::vector<float> vps_host_, photons_host_;
   cl::Kernel photon_kernel_, camera_kernel_;
   cl::Buffer store_, counter_, vps_, cut_, camera_cut_;
