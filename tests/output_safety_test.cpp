@@ -5,14 +5,15 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <sstream>
 
 #include "core/atomic_file.h"
 #include "core/output_set.h"
-#include "simulated_instrument.h"
 #include "test_support.h"
 
 using namespace kasha;
@@ -134,19 +135,19 @@ TEST(OutputSafety, EveryBadOutputIsOneLineAndChangesNothing) {
       {"--png is a FIFO", r + "-o $D/o.exr --png $D/fifo", "--png $D/fifo: is a FIFO"},
       {"-o is a directory", r + "-o $D/sub", "-o $D/sub: is a directory"},
       {"measure --plots is a file", m + "-o $D/m.json --plots $D/s.csv",
-       "--plots $D/s.csv: is a file, not a folder"},
+       "--plots $D/s.csv: is a file, not a directory"},
       {"converge -o is a file", "converge $D/scene.json --time 1 -o $D/s.csv",
-       "-o $D/s.csv: is a file, not a folder"},
+       "-o $D/s.csv: is a file, not a directory"},
       // Places that cannot take the file, found before any work.
       {"-o under /proc", r + "-o /proc/kasha.exr", "-o /proc/kasha.exr: /proc is in /proc or /sys"},
       {"--log under /sys", r + "-o $D/o.exr --log /sys/kasha.csv",
        "--log /sys/kasha.csv: /sys is in /proc or /sys"},
       {"-o in a missing folder", r + "-o $D/missing/o.exr",
-       "-o $D/missing/o.exr: folder $D/missing does not exist"},
+       "-o $D/missing/o.exr: directory $D/missing does not exist"},
       {"reference -o in a missing folder", "reference $D/scene.json --time 1 -o $D/missing/r.exr",
-       "-o $D/missing/r.exr: folder $D/missing does not exist"},
+       "-o $D/missing/r.exr: directory $D/missing does not exist"},
       {"converge -o below a file", "converge $D/scene.json --time 1 -o $D/s.csv/sub",
-       "-o $D/s.csv/sub: $D/s.csv is not a folder"},
+       "-o $D/s.csv/sub: $D/s.csv is not a directory"},
       // A failed converge leaves no folder (it is made as a temporary, renamed when complete).
       {"converge fails after its checks",
        "converge $D/scene.json --time 1 --integrators sideways -o $D/study",
@@ -154,7 +155,7 @@ TEST(OutputSafety, EveryBadOutputIsOneLineAndChangesNothing) {
   };
   if (geteuid() != 0)  // root writes in any folder whatever its mode bits
     cases.push_back({"-o in a read-only folder", r + "-o $D/ro/o.exr",
-                     "-o $D/ro/o.exr: cannot write in folder $D/ro: Permission denied"});
+                     "-o $D/ro/o.exr: cannot write in directory $D/ro: Permission denied"});
 
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
@@ -263,4 +264,61 @@ TEST(OutputSafety, AWriteThatFailsAtTheFlushIsReported) {
   out << "rows";
   EXPECT_EQ(
       test::error_of([&] { check_flushed(out, "log.csv"); }).rfind("log.csv: write failed", 0), 0u);
+}
+
+namespace {
+
+// An excitation–emission matrix in the CSV layout of DESIGN §5, reading(λo, λi).
+void write_eem(const fs::path& file, const std::vector<double>& ex,
+               const std::function<double(double, double)>& reading) {
+  std::ofstream out(file);
+  out << "em\\ex";
+  for (double li : ex) out << "," << li;
+  out << "\n";
+  for (double lo = 300; lo <= 700; lo += 5) {
+    out << lo;
+    for (double li : ex) out << "," << reading(lo, li);
+    out << "\n";
+  }
+}
+
+}  // namespace
+
+// measure reads back what it writes with render's loader: a degenerate measurement is one line
+// naming its input, and no material file appears.
+TEST(OutputSafety, MeasureWritesNoMaterialRenderWouldRefuse) {
+  const fs::path d = test::scratch_dir() / "case";
+  fs::create_directories(d);
+  std::vector<double> ex;
+  for (double l = 300; l <= 600; l += 10) ex.push_back(l);
+  auto band = [](double lo, double li) { return std::exp(-0.5 * (lo - li) * (lo - li) / 16); };
+  write_eem(d / "e.csv", ex, band);
+  write_eem(d / "s.csv", ex, [&](double lo, double li) { return 0.7 * band(lo, li); });
+  write_eem(d / "zero.csv", ex, [](double, double) { return 0.0; });
+  write_eem(d / "negative.csv", ex,
+            [&](double lo, double li) { return -0.7 * band(lo, li) - 0.01; });
+  write_eem(d / "one_s.csv", {400}, [&](double lo, double li) { return 0.7 * band(lo, li); });
+  write_eem(d / "one_e.csv", {400}, band);
+  std::ofstream(d / "rho.csv") << "nm,rho\n250,0.97\n850,0.98\n";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--sample $D/zero.csv --etalon $D/e.csv",
+       "--sample $D/zero.csv: the measured material is not usable: "},
+      {"--sample $D/negative.csv --etalon $D/e.csv",
+       "--sample $D/negative.csv: the measured material is not usable: "},
+      {"--sample $D/one_s.csv --etalon $D/one_e.csv",
+       "--sample $D/one_s.csv: the measured material is not usable: "},
+      {"--sample $D/s.csv --etalon $D/e.csv --band-nm 1e300", "$D/s.csv: "},
+  };
+  const auto before = snapshot(d);
+  for (const auto& [args, message] : cases) {
+    SCOPED_TRACE(args);
+    test::CommandResult r =
+        test::run_kasha("measure --etalon-reflectance " + (d / "rho.csv").string() + " " +
+                        expand(args, d.string()) + " -o " + (d / "m.json").string());
+    const std::string expected = "kasha: error: " + expand(message, d.string());
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_EQ(r.err.rfind(expected, 0), 0u) << "expected: " << expected << "\n" << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    expect_same(before, snapshot(d), args);
+  }
 }

@@ -62,15 +62,16 @@ std::string folder_of(const std::string& path) {
 // with a probe file, since permission bits say nothing of read-only mounts, quotas or root.
 void check_folder(const std::string& dir, const std::string& where) {
   struct stat st;
-  if (::stat(dir.c_str(), &st) != 0) throw Error(where + ": folder " + dir + " does not exist");
-  if (!S_ISDIR(st.st_mode)) throw Error(where + ": " + dir + " is not a folder");
+  if (::stat(dir.c_str(), &st) != 0) throw Error(where + ": directory " + dir + " does not exist");
+  if (!S_ISDIR(st.st_mode)) throw Error(where + ": " + dir + " is not a directory");
   struct statfs fsinfo;
   if (::statfs(dir.c_str(), &fsinfo) == 0 && (static_cast<long>(fsinfo.f_type) == kProcMagic ||
                                               static_cast<long>(fsinfo.f_type) == kSysfsMagic))
     throw Error(where + ": " + dir + " is in /proc or /sys, where no file can be written");
   std::string probe = (fs::path(dir) / ".kasha-probe-XXXXXX").string();
   int fd = ::mkstemp(probe.data());
-  if (fd < 0) throw Error(where + ": cannot write in folder " + dir + ": " + std::strerror(errno));
+  if (fd < 0)
+    throw Error(where + ": cannot write in directory " + dir + ": " + std::strerror(errno));
   ::close(fd);
   ::unlink(probe.c_str());
 }
@@ -146,8 +147,9 @@ void OutputSet::file(const std::string& option, const std::string& path) {
   if (::lstat(path.c_str(), &st) == 0) {
     if (S_ISLNK(st.st_mode)) {
       std::error_code ec;
+      // Renaming over a link replaces the link: refused rather than guessing what was meant.
       throw Error(o.where() + ": is a symbolic link (to " + fs::read_symlink(path, ec).string() +
-                  "), which kasha would replace rather than write through: give the file itself");
+                  "), not a regular file");
     }
     if (!S_ISREG(st.st_mode)) throw Error(o.where() + ": is " + kind_of(st.st_mode));
   }
@@ -165,11 +167,11 @@ void OutputSet::directory(const std::string& option, const std::string& path) {
   struct stat st;
   if (::stat(path.c_str(), &st) == 0) {
     if (!S_ISDIR(st.st_mode))
-      throw Error(o.where() + ": is " + kind_of(st.st_mode) + ", not a folder");
+      throw Error(o.where() + ": is " + kind_of(st.st_mode) + ", not a directory");
     check_folder(path, o.where());
     o.existed = true;
   } else if (::lstat(path.c_str(), &st) == 0) {
-    throw Error(o.where() + ": is a symbolic link to a missing folder");
+    throw Error(o.where() + ": is a symbolic link to a missing directory");
   } else {
     check_folder(folder_of(without_trailing_slash(path)), o.where());
   }
@@ -190,18 +192,19 @@ void OutputSet::write(const std::string& path,
                       const std::function<void(const std::string&)>& writer) {
   Output& o = impl_->find(path);
   std::string tmp = temporary_beside(path, impl_->serial++);
-  // Messages name the output as the user gave it, not its temporary.
-  auto reworded = [&](const std::string& message) {
-    std::string text = replace_all(message, tmp, path);
-    return text.rfind(path + ":", 0) == 0 ? o.option + " " + text : o.where() + ": " + text;
-  };
+  // Messages name the output as the user gave it, not its temporary, and start with the option;
+  // a kasha::Error that names something else (an input) keeps its own WHERE.
   try {
     writer(tmp);
+  } catch (const Error& e) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    std::string text = replace_all(e.what(), tmp, path);
+    throw Error(text.rfind(path + ":", 0) == 0 ? o.option + " " + text : text);
   } catch (const std::exception& e) {
     std::error_code ec;
     fs::remove(tmp, ec);
-    throw Error(reworded(
-        dynamic_cast<const Error*>(&e) ? e.what() : std::string("cannot write: ") + e.what()));
+    throw Error(o.where() + ": cannot write: " + replace_all(e.what(), tmp, path));
   }
   o.temporary = tmp;
 }
