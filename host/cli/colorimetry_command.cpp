@@ -8,6 +8,7 @@
 #include "colorimetry/colorimetry_report.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/output_set.h"
 #include "core/python_script.h"
 #include "spectrum/spectrum_argument.h"
 
@@ -15,31 +16,15 @@ namespace kasha {
 
 namespace fs = std::filesystem;
 
-// An output must go to an existing directory and may replace neither an input nor something that
-// is not a regular file.
-static void check_output(const std::string& path, const std::string& option,
-                         const std::string& input) {
-  if (path.empty()) return;
-  fs::path p(path), dir = p.parent_path();
-  if (!dir.empty() && !fs::is_directory(dir))
-    throw Error(option + " " + path + ": directory " + dir.string() + " does not exist");
-  if (!fs::exists(p)) return;
-  if (!fs::is_regular_file(p)) throw Error(option + " " + path + ": not a regular file");
-  std::error_code ec;
-  if (fs::equivalent(p, input, ec))
-    throw Error(option + " " + path + ": would overwrite the input");
-}
-
 // The figure is drawn from the JSON result in a scratch directory, then renamed into place.
-static void write_plot(const std::string& path, const nlohmann::json& result) {
+static void write_plot(const std::string& path, const std::string& who,
+                       const nlohmann::json& result) {
   fs::path scratch = fs::temp_directory_path() / ("kasha-colorimetry-" + std::to_string(getpid()));
   fs::create_directories(scratch);
   try {
     write_text_atomically((scratch / "result.json").string(), result.dump());
-    write_atomically(path, [&](const std::string& tmp) {
-      run_embedded_python("plot_colorimetry.py", scratch.string(),
-                          {(scratch / "result.json").string(), tmp}, "--plot " + path);
-    });
+    run_embedded_python("plot_colorimetry.py", scratch.string(),
+                        {(scratch / "result.json").string(), path}, who);
   } catch (...) {
     std::error_code ec;
     fs::remove_all(scratch, ec);
@@ -49,11 +34,14 @@ static void write_plot(const std::string& path, const nlohmann::json& result) {
 }
 
 int run_colorimetry(const ColorimetryArgs& a) {
-  for (const auto& [path, option] : {std::pair{a.json, "--json"},
-                                     {a.csv, "--csv"},
-                                     {a.plot, "--plot"},
-                                     {a.write_as_is, "--write-as-is"}})
-    check_output(path, option, a.material);
+  OutputSet outputs;
+  outputs.input(a.material, "the material file");
+  for (const std::string& text : a.illuminants) outputs.input(text, "the --illuminant file");
+  outputs.input(a.as_is, "the --as-is file");
+  outputs.file("--json", a.json);
+  outputs.file("--csv", a.csv);
+  outputs.file("--plot", a.plot);
+  outputs.file("--write-as-is", a.write_as_is);
   if (!a.write_as_is.empty() && a.as_is.empty())
     throw Error("--write-as-is: give the lamp the \"as is\" material is taken under (--as-is)");
 
@@ -70,13 +58,22 @@ int run_colorimetry(const ColorimetryArgs& a) {
     request.as_is_lamp = {a.as_is, parse_spectrum_argument(a.as_is, "--as-is"),
                           "--as-is " + a.as_is};
 
+  outputs.inputs_read("a file the spectra or the material read");
   Colorimetry c = evaluate_colorimetry(request);
   nlohmann::json result = colorimetry_json(c, a.material);
-  // The figure first: it is the step most likely to fail, and nothing is written before it.
-  if (!a.plot.empty()) write_plot(a.plot, result);
-  if (!a.json.empty()) write_text_atomically(a.json, result.dump(1) + "\n");
-  if (!a.csv.empty()) write_text_atomically(a.csv, colorimetry_csv(c));
-  if (!a.write_as_is.empty()) write_as_is_material(a.write_as_is, *c.as_is, a.material);
+  if (!a.plot.empty())
+    outputs.write(a.plot,
+                  [&](const std::string& tmp) { write_plot(tmp, "--plot " + a.plot, result); });
+  if (!a.json.empty())
+    outputs.write(
+        a.json, [&](const std::string& tmp) { write_text_atomically(tmp, result.dump(1) + "\n"); });
+  if (!a.csv.empty())
+    outputs.write(a.csv,
+                  [&](const std::string& tmp) { write_text_atomically(tmp, colorimetry_csv(c)); });
+  if (!a.write_as_is.empty())
+    outputs.write(a.write_as_is,
+                  [&](const std::string& tmp) { write_as_is_material(tmp, *c.as_is, a.material); });
+  outputs.commit();
   std::fputs(colorimetry_table(c, a.material).c_str(), stdout);
   return 0;
 }

@@ -4,6 +4,8 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/output_set.h"
+#include "material/material.h"
 #include "measure/bispectral.h"
 #include "measure/fluorimeter.h"
 #include "measure/gloss_fit.h"
@@ -13,10 +15,30 @@
 
 namespace kasha {
 
+// What measure writes must be a material render takes: read back with the loader it uses, so a
+// degenerate measurement fails here naming its input, not later in a scene.
+static void check_material_loads(const std::string& file, const std::string& name,
+                                 const std::string& source) {
+  try {
+    MaterialDesc desc = load_material_file(file, name);
+    discretize_material(desc, WavelengthGrid{});
+  } catch (const std::exception& e) {
+    throw Error(source + ": the measured material is not usable: " + e.what());
+  }
+}
+
 int run_measure(const MeasureArgs& a) {
   std::filesystem::path out(a.output);
-  if (!out.parent_path().empty() && !std::filesystem::is_directory(out.parent_path()))
-    throw Error("-o " + a.output + ": directory " + out.parent_path().string() + " does not exist");
+  OutputSet outputs;
+  for (const auto& [path, option] : {std::pair{a.sample, "--sample"},
+                                     {a.etalon, "--etalon"},
+                                     {a.etalon_reflectance, "--etalon-reflectance"},
+                                     {a.sensitivity, "--sensitivity"},
+                                     {a.gloss, "--gloss"},
+                                     {a.bispectral, "--bispectral"}})
+    outputs.input(path, std::string("the ") + option + " file");
+  outputs.file("-o", a.output);
+  outputs.directory("--plots", a.plots);
   MeasuredMaterial m;
   if (!a.bispectral.empty()) {
     if (!a.sample.empty() || !a.etalon.empty() || !a.etalon_reflectance.empty() ||
@@ -43,8 +65,14 @@ int run_measure(const MeasureArgs& a) {
   check_energy(m, a.clip);
 
   std::string name = a.name.empty() ? out.stem().string() : a.name;
-  write_material_file(a.output, name, m);
-  if (!a.plots.empty()) write_measurement_plots(a.plots, m);
+  const std::string source =
+      !a.bispectral.empty() ? "--bispectral " + a.bispectral : "--sample " + a.sample;
+  outputs.write(a.output, [&](const std::string& tmp) {
+    write_material_file(tmp, name, m);
+    check_material_loads(tmp, name, source);
+  });
+  if (!a.plots.empty()) write_measurement_plots(outputs.staging(a.plots), m, "--plots " + a.plots);
+  outputs.commit();
 
   std::printf(
       "wrote %s (%s): band ±%.3g nm%s, rank-1 residual %.4f (%.4f where there is signal), max "

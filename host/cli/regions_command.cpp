@@ -7,6 +7,7 @@
 #include "colorimetry/cie_lab.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/output_set.h"
 #include "image/exr_io.h"
 #include "study/image_regions.h"
 
@@ -26,7 +27,13 @@ static Vec3d scaled(const Vec3d& v, double k) {
 }
 
 int run_regions(const RegionsArgs& a) {
+  OutputSet outputs;
+  outputs.input(a.scene, "the scene file");
+  outputs.input(a.image, "the image");
+  outputs.input(a.white, "the --white image");
+  outputs.file("--json", a.json);
   Scene scene = load_scene(a.scene);
+  outputs.inputs_read("the scene's material or data file");
   Image image = read_image_of(scene, a.image);
   std::optional<Image> white;
   if (!a.white.empty()) white = read_image_of(scene, a.white);
@@ -68,14 +75,17 @@ int run_regions(const RegionsArgs& a) {
                 xyz.standard_error[0], xyz.mean[1], xyz.standard_error[1], xyz.mean[2],
                 xyz.standard_error[2], lab.c_str());
   }
-  if (!a.json.empty())
-    write_text_atomically(a.json, nlohmann::json{{"scene", a.scene},
-                                                 {"image", a.image},
-                                                 {"white", a.white},
-                                                 {"margin_px", a.margin_px},
-                                                 {"regions", regions}}
-                                          .dump(1) +
-                                      "\n");
+  if (!a.json.empty()) {
+    const std::string text = nlohmann::json{{"scene", a.scene},
+                                            {"image", a.image},
+                                            {"white", a.white},
+                                            {"margin_px", a.margin_px},
+                                            {"regions", regions}}
+                                 .dump(1) +
+                             "\n";
+    outputs.write(a.json, [&](const std::string& tmp) { write_text_atomically(tmp, text); });
+    outputs.commit();
+  }
   return 0;
 }
 

@@ -3,38 +3,36 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "core/output_set.h"
 #include "film/film.h"
 #include "image/exr_io.h"
 #include "image/png_preview.h"
 #include "render/render_job.h"
 #include "shared_types.h"
+#include "study/convergence_log.h"
 #include "study/furnace.h"
 
 namespace kasha {
 
-static void check_writable(const std::string& path, const std::string& option) {
-  if (path.empty()) return;
-  std::filesystem::path dir = std::filesystem::path(path).parent_path();
-  if (!dir.empty() && !std::filesystem::is_directory(dir))
-    throw Error(option + " " + path + ": directory " + dir.string() + " does not exist");
-}
-
 int run_render(const RenderArgs& a) {
   install_interrupt_handler();  // from the start, so an early Ctrl-C still gets one pass written
-  check_writable(a.output, "-o");
-  check_writable(a.png, "--png");
-  check_writable(a.log, "--log");
   if (a.passes <= 0 && a.seconds <= 0) throw Error("render: give --time SECONDS or --passes N");
   IntegratorRegistry::check_options(a.integrator, a.integrator_options_given);
+  OutputSet outputs;
+  outputs.input(a.scene, "the scene file");
+  if (a.reference != "furnace") outputs.input(a.reference, "the --reference image");
+  outputs.file("-o", a.output);
+  outputs.file("--png", a.png);
+  outputs.file("--log", a.log);
   Scene scene = load_scene(a.scene, std::nullopt, a.lamp);
+  outputs.inputs_read("the scene's material or data file");
   RenderOptions options;
   options.stop = {a.seconds, a.passes};
-  options.log_path = a.log;
+  options.keep_log = !a.log.empty();  // written below with the other outputs
   if (a.reference == "furnace") {
     Furnace f = analyze_furnace(scene);
     if (!f.qualifies)
@@ -49,8 +47,12 @@ int run_render(const RenderArgs& a) {
   RenderSummary summary = job.run(options);
   const Film& film = job.film();
   Image image = film.image();
-  write_exr(a.output, image);
-  if (!a.png.empty()) write_png_preview(a.png, image);
+  outputs.write(a.output, [&](const std::string& tmp) { write_exr(tmp, image); });
+  if (!a.png.empty())
+    outputs.write(a.png, [&](const std::string& tmp) { write_png_preview(tmp, image); });
+  if (!a.log.empty())
+    outputs.write(a.log, [&](const std::string& tmp) { write_convergence_log(tmp, summary.log); });
+  outputs.commit();
   std::fprintf(stderr, "wrote %s%s%s: %d passes, %lld samples per pixel, %.2f s on %s\n",
                a.output.c_str(), a.png.empty() ? "" : " and ", a.png.c_str(), summary.passes,
                film.samples_per_pixel(), summary.seconds, cl.info().name.c_str());

@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -34,10 +36,28 @@ void write_atomically(const std::string& path,
 
 void write_text_atomically(const std::string& path, const std::string& text) {
   write_atomically(path, [&](const std::string& tmp) {
-    std::ofstream out(tmp);
-    out << text;
-    if (!out) throw Error(path + ": write failed");
+    write_stream_file(tmp, path, [&](std::ostream& out) { out << text; });
   });
+}
+
+void check_flushed(std::ostream& out, const std::string& name) {
+  errno = 0;
+  if (out) out.flush();
+  if (!out)
+    throw Error(name + ": write failed" + (errno ? std::string(": ") + std::strerror(errno) : ""));
+}
+
+void write_stream_file(const std::string& file, const std::string& name,
+                       const std::function<void(std::ofstream&)>& fill) {
+  std::ofstream out(file, std::ios::binary);
+  if (!out) throw Error(name + ": cannot open for writing: " + std::strerror(errno));
+  fill(out);
+  check_flushed(out, name);
+  // close() writes what the flush left and closes the descriptor; either can fail (NFS, quota).
+  errno = 0;
+  out.close();
+  if (out.fail())
+    throw Error(name + ": write failed" + (errno ? std::string(": ") + std::strerror(errno) : ""));
 }
 
 }  // namespace kasha

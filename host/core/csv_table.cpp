@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_files.h"
 
 namespace kasha {
 
@@ -104,6 +105,7 @@ CsvTable parse_csv_table(const std::string& text, const std::string& source) {
 CsvTable read_csv_table(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw Error(path + ": cannot open file");
+  note_input_file(path);  // no output may replace it (core/output_set.h)
   std::stringstream text;
   text << in.rdbuf();
   return parse_csv_table(text.str(), path);

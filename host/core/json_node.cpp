@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_files.h"
 
 namespace kasha {
 
@@ -20,6 +21,7 @@ JsonNode::JsonNode(std::shared_ptr<const nlohmann::json> root, const nlohmann::j
 JsonNode JsonNode::load_file(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw Error(file.string() + ": cannot open file");
+  note_input_file(file.string());  // no output may replace it (core/output_set.h)
   std::stringstream text;
   text << in.rdbuf();
   nlohmann::json document;

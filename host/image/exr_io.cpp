@@ -5,11 +5,13 @@
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfStdIO.h>
 #include <ImfStringAttribute.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <map>
 
 #include "color/color_space.h"
@@ -55,9 +57,14 @@ void write_exr(const std::string& path, const Image& image,
         add(spectral_channel_name(image.grid.center(i)), image.spectral.data() + i,
             image.grid.bins);
     }
-    Imf::OutputFile file(tmp.c_str(), header);
-    file.setFrameBuffer(fb);
-    file.writePixels(image.height);
+    // Our own stream, so its flush and close are checked: OpenEXR writes the offset table in
+    // OutputFile's destructor and swallows errors there.
+    write_stream_file(tmp, path, [&](std::ofstream& out) {
+      Imf::StdOFStream stream(out, tmp.c_str());
+      Imf::OutputFile file(stream, header);
+      file.setFrameBuffer(fb);
+      file.writePixels(image.height);
+    });
   });
 }
 

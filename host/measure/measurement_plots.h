@@ -8,6 +8,9 @@
 
 namespace kasha {
 
-void write_measurement_plots(const std::string& dir, const MeasuredMaterial& m);
+// `who` names the folder in messages (the option and the folder given; `dir` may be a staging
+// folder that is renamed to it).
+void write_measurement_plots(const std::string& dir, const MeasuredMaterial& m,
+                             const std::string& who);
 
 }  // namespace kasha

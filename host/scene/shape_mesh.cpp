@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_files.h"
 #include "scene/limits.h"
 
 namespace kasha {
@@ -87,6 +88,7 @@ bool obj_coordinate(const std::string& word, double& out) {
 void check_obj_lines(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) return;  // tinyobjloader says it cannot open it
+  note_input_file(path);  // no output may replace it (core/output_set.h)
   std::stringstream buffer;
   buffer << in.rdbuf();
   const std::string text = buffer.str();

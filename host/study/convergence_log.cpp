@@ -14,18 +14,18 @@ namespace kasha {
 
 void write_convergence_log(const std::string& path, const std::vector<LogRow>& rows) {
   write_atomically(path, [&](const std::string& tmp) {
-    std::ofstream out(tmp);
-    out << "integrator,pass,seconds,camera_paths,photons,rmse,relmse\n" << std::setprecision(9);
-    for (const LogRow& r : rows) {
-      out << r.integrator << "," << r.pass << "," << r.seconds << "," << r.camera_paths << ","
-          << r.photons << ",";
-      if (r.has_error)
-        out << r.rmse << "," << r.relmse;
-      else
-        out << ",";
-      out << "\n";
-    }
-    if (!out) throw Error(path + ": write failed");
+    write_stream_file(tmp, path, [&](std::ostream& out) {
+      out << "integrator,pass,seconds,camera_paths,photons,rmse,relmse\n" << std::setprecision(9);
+      for (const LogRow& r : rows) {
+        out << r.integrator << "," << r.pass << "," << r.seconds << "," << r.camera_paths << ","
+            << r.photons << ",";
+        if (r.has_error)
+          out << r.rmse << "," << r.relmse;
+        else
+          out << ",";
+        out << "\n";
+      }
+    });
   });
 }
 

@@ -87,16 +87,16 @@ Image study_reference(const std::string& scene_path, const Scene& scene, const S
   }
   ReferenceInfo info;
   Image ref = render_reference(*cl, scene, wanted, 0x7e1f, info, o.show_progress);
-  std::error_code ec;
-  fs::path target = cached;
+  std::string where = cached.string();
   try {
-    write_reference(target.string(), ref, info);
+    write_reference(cached.string(), ref, info);
   } catch (const Error&) {
-    target = fs::path(o.out_dir) / "reference.exr";  // the scene's folder is read-only
-    write_reference(target.string(), ref, info);
+    // The scene's folder is read-only. out_dir may be a staging folder renamed later: the
+    // description names the file by its place in the output.
+    write_reference((fs::path(o.out_dir) / "reference.exr").string(), ref, info);
+    where = "reference.exr in the output folder";
   }
-  description =
-      target.string() + " (" + info.integrator + ", " + std::to_string(info.seconds) + " s)";
+  description = where + " (" + info.integrator + ", " + std::to_string(info.seconds) + " s)";
   return ref;
 }
 
@@ -108,45 +108,50 @@ void write_summary(const std::string& dir, const std::string& scene_path, const 
     s << std::setprecision(precision) << v;
     return s.str();
   };
-  write_atomically((fs::path(dir) / "summary.csv").string(), [&](const std::string& tmp) {
-    std::ofstream out(tmp);
-    out << "integrator,runs,seconds,final_rmse,final_rmse_sd,final_relmse,final_relmse_sd,slope_"
-           "rmse,slope_rmse_sd,"
-           "slope_relmse,slope_relmse_sd,target_rmse,time_to_target,reached_target,camera_paths_"
-           "per_s,photons_per_s,"
-           "startup_s\n";
-    for (const IntegratorSummary& s : r.summaries)
-      out << s.integrator << "," << s.runs << "," << o.seconds << "," << num(s.final_rmse, 6) << ","
-          << num(s.final_rmse_sd, 6) << "," << num(s.final_relmse, 6) << ","
-          << num(s.final_relmse_sd, 6) << "," << num(s.slope_rmse) << "," << num(s.slope_rmse_sd)
-          << "," << num(s.slope_relmse) << "," << num(s.slope_relmse_sd) << "," << num(r.target, 6)
-          << "," << (s.time_to_target >= 0 ? num(s.time_to_target) : "") << "," << s.reached_target
-          << "," << num(s.camera_paths_per_second) << "," << num(s.photons_per_second) << ","
-          << num(s.startup) << "\n";
+  const std::string csv = (fs::path(dir) / "summary.csv").string();
+  write_atomically(csv, [&](const std::string& tmp) {
+    write_stream_file(tmp, csv, [&](std::ostream& out) {
+      out << "integrator,runs,seconds,final_rmse,final_rmse_sd,final_relmse,final_relmse_sd,slope_"
+             "rmse,slope_rmse_sd,"
+             "slope_relmse,slope_relmse_sd,target_rmse,time_to_target,reached_target,camera_paths_"
+             "per_s,photons_per_s,"
+             "startup_s\n";
+      for (const IntegratorSummary& s : r.summaries)
+        out << s.integrator << "," << s.runs << "," << o.seconds << "," << num(s.final_rmse, 6)
+            << "," << num(s.final_rmse_sd, 6) << "," << num(s.final_relmse, 6) << ","
+            << num(s.final_relmse_sd, 6) << "," << num(s.slope_rmse) << "," << num(s.slope_rmse_sd)
+            << "," << num(s.slope_relmse) << "," << num(s.slope_relmse_sd) << ","
+            << num(r.target, 6) << "," << (s.time_to_target >= 0 ? num(s.time_to_target) : "")
+            << "," << s.reached_target << "," << num(s.camera_paths_per_second) << ","
+            << num(s.photons_per_second) << "," << num(s.startup) << "\n";
+    });
   });
-  write_atomically((fs::path(dir) / "summary.md").string(), [&](const std::string& tmp) {
-    std::ofstream out(tmp);
-    out << "Scene `" << scene_path << "`, " << o.seconds << " s per integrator, " << o.repeats
-        << " run(s) each (mean ± sd), reference: " << r.reference_description << ".\n\n";
-    out << "| integrator | final RMSE | final relMSE | RMSE slope | relMSE slope | time to RMSE "
-        << num(r.target)
-        << " (s) | camera paths/s | photons/s |\n|---|---|---|---|---|---|---|---|\n";
-    auto pm = [&](double m, double sd, int p) {
-      return num(m, p) + (o.repeats > 1 ? " ± " + num(sd, 2) : "");
-    };
-    for (const IntegratorSummary& s : r.summaries)
-      out << "| " << s.integrator << " | " << pm(s.final_rmse, s.final_rmse_sd, 4) << " | "
-          << pm(s.final_relmse, s.final_relmse_sd, 4) << " | "
-          << pm(s.slope_rmse, s.slope_rmse_sd, 3) << " | "
-          << pm(s.slope_relmse, s.slope_relmse_sd, 3) << " | "
-          << (s.time_to_target >= 0 ? num(s.time_to_target, 3) : "not reached") << " | "
-          << num(s.camera_paths_per_second, 3) << " | " << num(s.photons_per_second, 3) << " |\n";
-    out << "\nSlopes are least-squares fits of log error over log seconds after the first "
-        << kSlopeFitFrom * 100
-        << " % of the budget, with the first pass's one-time start-up (kernel "
-           "compilation at first launch) taken off the times; theory: −1/2 (RMSE) and −1 (relMSE) "
-           "for unbiased "
-           "estimators, −1/3 and −2/3 for progressive photon mapping.\n";
+  const std::string md = (fs::path(dir) / "summary.md").string();
+  write_atomically(md, [&](const std::string& tmp) {
+    write_stream_file(tmp, md, [&](std::ostream& out) {
+      out << "Scene `" << scene_path << "`, " << o.seconds << " s per integrator, " << o.repeats
+          << " run(s) each (mean ± sd), reference: " << r.reference_description << ".\n\n";
+      out << "| integrator | final RMSE | final relMSE | RMSE slope | relMSE slope | time to RMSE "
+          << num(r.target)
+          << " (s) | camera paths/s | photons/s |\n|---|---|---|---|---|---|---|---|\n";
+      auto pm = [&](double m, double sd, int p) {
+        return num(m, p) + (o.repeats > 1 ? " ± " + num(sd, 2) : "");
+      };
+      for (const IntegratorSummary& s : r.summaries)
+        out << "| " << s.integrator << " | " << pm(s.final_rmse, s.final_rmse_sd, 4) << " | "
+            << pm(s.final_relmse, s.final_relmse_sd, 4) << " | "
+            << pm(s.slope_rmse, s.slope_rmse_sd, 3) << " | "
+            << pm(s.slope_relmse, s.slope_relmse_sd, 3) << " | "
+            << (s.time_to_target >= 0 ? num(s.time_to_target, 3) : "not reached") << " | "
+            << num(s.camera_paths_per_second, 3) << " | " << num(s.photons_per_second, 3) << " |\n";
+      out << "\nSlopes are least-squares fits of log error over log seconds after the first "
+          << kSlopeFitFrom * 100
+          << " % of the budget, with the first pass's one-time start-up (kernel "
+             "compilation at first launch) taken off the times; theory: −1/2 (RMSE) and −1 "
+             "(relMSE) "
+             "for unbiased "
+             "estimators, −1/3 and −2/3 for progressive photon mapping.\n";
+    });
   });
 }
 
