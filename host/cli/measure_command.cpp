@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/printable.h"
 #include "measure/bispectral.h"
 #include "measure/fluorimeter.h"
 #include "measure/gloss_fit.h"
@@ -38,11 +39,13 @@ int run_measure(const MeasureArgs& a) {
     if (g.gloss.reflectance > 0)
       m.gloss = g.gloss;
     else
-      m.notes.push_back("no gloss above the diffuse floor in " + a.gloss);
+      m.notes.push_back("no gloss above the diffuse floor in " + printable(a.gloss));
   }
   check_energy(m, a.clip);
 
+  // The name goes into JSON, which needs UTF-8 (an explicit --name is checked on the command line).
   std::string name = a.name.empty() ? out.stem().string() : a.name;
+  if (!valid_utf8(name)) name = printable(name);
   write_material_file(a.output, name, m);
   if (!a.plots.empty()) write_measurement_plots(a.plots, m);
 

@@ -6,6 +6,7 @@
 
 #include "core/embedded_file.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 
 namespace kasha {
 
@@ -66,6 +67,9 @@ cl::Program build_program(ClContext& cl, const std::string& source, const Kernel
   } catch (const cl::Error& e) {
     status = e.err();
   }
+  // A signal also reaches the compiler's processes (a terminal or `timeout` signals the whole
+  // group), failing the build: that is the interrupt, not a kernel error with its build log.
+  if (status != CL_SUCCESS && interrupt_requested()) throw Interrupted();
   if (status != CL_SUCCESS) {
     std::string log;
     try {
