@@ -9,13 +9,14 @@ namespace kasha {
 
 namespace {
 std::atomic<int> g_requests{0};
+std::atomic<int> g_message_fd{STDERR_FILENO};
 
 // write(2) and _exit are async-signal-safe; stdio is not. `after_progress`: a progress line
 // (ended by \r, not \n) may be on the terminal, so the message starts a line of its own.
 void exit_interrupted(bool after_progress) {
   static const char line[] = "\nkasha: interrupted\n";
   const char* from = after_progress ? line : line + 1;
-  ssize_t ignored = write(STDERR_FILENO, from, sizeof line - 1 - (from - line));
+  ssize_t ignored = write(g_message_fd, from, sizeof line - 1 - (from - line));
   (void)ignored;
   _exit(kInterruptExitCode);
 }
@@ -47,6 +48,10 @@ void install_exit_on_interrupt() {
 void install_interrupt_handler() {
   g_requests = 0;
   install(on_signal_flag);
+}
+
+void set_interrupt_message_fd(int fd) {
+  g_message_fd = fd;
 }
 
 bool interrupt_requested() {

@@ -14,6 +14,9 @@ void install_exit_on_interrupt();
 // For the commands that poll interrupt_requested().
 void install_interrupt_handler();
 bool interrupt_requested();
+// Where the handler writes `kasha: interrupted` (default 2): the original stderr while fd 2 is
+// held elsewhere (a kernel build's compiler output).
+void set_interrupt_message_fd(int fd);
 
 // Thrown where an interrupt made an operation fail (a kernel build whose compiler was signalled):
 // the command line reports the interrupt, not the failure.
