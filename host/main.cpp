@@ -107,9 +107,17 @@ int main(int argc, char** argv) {
   render->add_option("--reference", r.reference,
                      "reference EXR for the convergence log's error columns");
   render->add_option("--log", r.log, "convergence log CSV, a row after every pass");
+  // Usage errors found after the parse, still reported as usage errors (exit 2).
   render->callback([&] {
     if (r.seconds <= 0 && r.passes <= 0)
       throw CLI::ValidationError("render", "give --time SECONDS or --passes N");
+    for (const std::string& option : IntegratorRegistry::options())
+      if (render->count(option) > 0) r.integrator_options_given.push_back(option);
+    try {
+      IntegratorRegistry::check_options(r.integrator, r.integrator_options_given);
+    } catch (const Error& e) {
+      throw CLI::ValidationError(e.what());  // already `--OPTION: what`
+    }
   });
 
   MeasureArgs m;
@@ -269,11 +277,7 @@ int main(int argc, char** argv) {
   try {
     if (app.got_subcommand("devices")) return run_devices();
     if (app.got_subcommand("info")) return run_info(info_scene, info_spectral, info_lamp);
-    if (app.got_subcommand("render")) {
-      for (const std::string& option : IntegratorRegistry::options())
-        if (render->count(option) > 0) r.integrator_options_given.push_back(option);
-      return run_render(r);
-    }
+    if (app.got_subcommand("render")) return run_render(r);
     if (app.got_subcommand("measure")) return run_measure(m);
     if (app.got_subcommand("colorimetry")) return run_colorimetry(col);
     if (app.got_subcommand("regions")) return run_regions(reg);

@@ -80,6 +80,8 @@ TEST(CliErrors, EveryBadCommandLineIsOneLineWithExitCode2AndNoOutput) {
       {render + "--sampler sobl --passes 1", 2,
        "--sampler: \"sobl\" is not one of sobol, independent (did you mean sobol?)"},
       {"render {scene} -o {out}/a.exr", 2, "render: give --time SECONDS or --passes N"},
+      {render + "--integrator backward --photons 5 --passes 1", 2,
+       "--photons: the backward integrator does not take this option (it takes --spp)"},
       // finite numbers (--time nan used to hang)
       {render + "--time nan", 2, "--time: nan is not a finite number"},
       {render + "--time inf", 2, "--time: inf is not a finite number"},
