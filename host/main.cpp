@@ -150,8 +150,8 @@ int main(int argc, char** argv) {
       ->check(utf8_text());
   measure->add_flag("--clip", m.clip, "clip an energy gain instead of failing, and record it");
   measure->callback([&] {
-    if (m.bispectral.empty() && (m.sample.empty() || m.etalon.empty() ||
-                                 m.etalon_reflectance.empty()))
+    if (m.bispectral.empty() &&
+        (m.sample.empty() || m.etalon.empty() || m.etalon_reflectance.empty()))
       throw CLI::ValidationError(
           "measure", "give --sample, --etalon and --etalon-reflectance (or --bispectral)");
   });
@@ -218,14 +218,15 @@ int main(int argc, char** argv) {
   converge->add_option("scene", converge_scene, "scene JSON file")->required();
   converge
       ->add_option("--integrators", integrators, "comma-separated (default: every physical one)")
-      ->check(list_of(IntegratorRegistry::names(true)));
+      ->check(list_of(IntegratorRegistry::names(true), "integrator"));
   converge->add_option("--time", study.seconds, "rendering seconds per integrator and run")
       ->required()
       ->check(positive_number(kMaxSeconds));
   converge->add_option("--reference", study.reference,
                        "reference EXR or `furnace` (default: cached next to the scene)");
-  converge->add_option("--reference-time", study.reference_seconds,
-                       "seconds for a new cached reference (default 4 × time × integrators)")
+  converge
+      ->add_option("--reference-time", study.reference_seconds,
+                   "seconds for a new cached reference (default 4 × time × integrators)")
       ->check(positive_number(kMaxSeconds));
   converge
       ->add_option("--repeats", study.repeats, "runs per integrator, seeds 1..K, for error bars")

@@ -117,7 +117,7 @@ TEST(CliErrors, EveryBadCommandLineIsOneLineWithExitCode2AndNoOutput) {
       {converge + "--reference-time -5", 2, "--reference-time: -5 is not positive"},
       {converge + "--target -1", 2, "--target: -1 is not positive"},
       {converge + "--integrators photon,photon", 2, "--integrators: \"photon\" is given twice"},
-      {converge + "--integrators photon,bogus", 2, "--integrators: unknown \"bogus\""},
+      {converge + "--integrators photon,bogus", 2, "--integrators: unknown integrator \"bogus\""},
       {converge + "--integrators photon,", 2, "--integrators: give a comma-separated list"},
       {converge + "--repeats 0", 2, "--repeats: 0 is not in"},
       {"converge {scene} -o {out}/c --time nan", 2, "--time: nan is not a finite number"},
@@ -171,11 +171,11 @@ TEST(CliErrors, CtrlCDuringAColdKernelBuildExits130WithOneLine) {
   for (const char* signal : {"INT", "TERM"}) {
     fs::remove_all(cache);
     fs::create_directories(cache);
-    test::CommandResult r = run_with_signal(
-        "POCL_CACHE_DIR=" + quoted(cache.string()),
-        "render " + quoted(test::source_path("scenes/cornell_box.json")) +
-            " --time 60 --photons 4096 -o " + quoted(out),
-        signal, 0.3);
+    test::CommandResult r =
+        run_with_signal("POCL_CACHE_DIR=" + quoted(cache.string()),
+                        "render " + quoted(test::source_path("scenes/cornell_box.json")) +
+                            " --time 60 --photons 4096 -o " + quoted(out),
+                        signal, 0.3);
     SCOPED_TRACE(signal);
     EXPECT_EQ(r.exit_code, 130) << r.err;
     EXPECT_EQ(r.err.find("kasha: error"), std::string::npos) << r.err;
@@ -192,8 +192,9 @@ TEST(CliErrors, CtrlCDuringAColdKernelBuildExits130WithOneLine) {
 TEST(CliErrors, SigtermDuringARenderWritesTheImageAndExits130) {
   const std::string out = (test::scratch_dir() / "term.exr").string();
   test::CommandResult r =
-      run_with_signal("", "render " + quoted(test::source_path("scenes/torus.json")) +
-                              " --time 120 --photons 4096 -o " + quoted(out),
+      run_with_signal("",
+                      "render " + quoted(test::source_path("scenes/torus.json")) +
+                          " --time 120 --photons 4096 -o " + quoted(out),
                       "TERM", 3);
   EXPECT_EQ(r.exit_code, 130) << r.err;
   EXPECT_NE(r.err.find("interrupted: writing the image after"), std::string::npos) << r.err;

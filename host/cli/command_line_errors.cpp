@@ -123,8 +123,7 @@ std::string value_kind(const CLI::Option* opt) {
 std::string unexpected_argument(const CLI::App& app, const std::string& arg) {
   const std::string where = command_name(app);
   if (arg.size() > 1 && arg[0] == '-')
-    return printable(arg) + ": unknown option of " + where +
-           suggestion(arg, option_names(app));
+    return printable(arg) + ": unknown option of " + where + suggestion(arg, option_names(app));
   return printable(arg) + ": unexpected argument to " + where;
 }
 
@@ -271,9 +270,9 @@ CLI::Validator one_of(const std::vector<std::string>& names) {
       "one of " + join(names), "ONE_OF");
 }
 
-CLI::Validator list_of(const std::vector<std::string>& names) {
+CLI::Validator list_of(const std::vector<std::string>& names, const std::string& what) {
   return CLI::Validator(
-      [names](std::string& text) {
+      [names, what](std::string& text) {
         std::stringstream list(text);
         std::set<std::string> seen;
         std::string name;
@@ -281,7 +280,8 @@ CLI::Validator list_of(const std::vector<std::string>& names) {
         while (std::getline(list, name, ',')) {
           any = true;
           if (std::find(names.begin(), names.end(), name) == names.end())
-            return "unknown " + in_quotes(name) + " (" + join(names) + ")" + suggestion(name, names);
+            return "unknown " + what + " " + in_quotes(name) + " (" + join(names) + ")" +
+                   suggestion(name, names);
           if (!seen.insert(name).second) return in_quotes(name) + " is given twice";
         }
         if (!any || text.back() == ',') return "give a comma-separated list of " + join(names);
