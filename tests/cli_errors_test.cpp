@@ -200,3 +200,16 @@ TEST(CliErrors, SigtermDuringARenderWritesTheImageAndExits130) {
   EXPECT_NE(r.err.find("interrupted: writing the image after"), std::string::npos) << r.err;
   EXPECT_EQ(read_exr(out).width, 192);
 }
+
+TEST(CliErrors, FileNamesThatAreNotUtf8AreEscapedInJson) {
+  // JSON needs UTF-8: such a name used to fail inside nlohmann (type_error.316).
+  const std::string material = test::write_file(
+      "m\xff.json", R"({"kasha_material": 1, "name": "w", "passive": {"reflectance": 0.5}})");
+  const std::string json = (test::scratch_dir() / "c.json").string();
+  test::CommandResult r =
+      test::run_kasha("colorimetry " + quoted(material) + " --json " + quoted(json));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(json);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(text.find("m\\\\xFF.json"), std::string::npos) << text;
+}
