@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "cli/colorimetry_command.h"
+#include "cli/command_line_errors.h"
 #include "cli/compare_command.h"
 #include "cli/converge_command.h"
 #include "cli/delta_e_command.h"
@@ -12,35 +13,55 @@
 #include "cli/regions_command.h"
 #include "cli/render_command.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "opencl/device.h"
 
 using namespace kasha;
+using namespace kasha::cli;
+
+// Seconds beyond this would overflow the steady clock's deadline (nanoseconds in 64 bits).
+constexpr double kMaxSeconds = 1e9;
+constexpr long long kMaxInt = 2147483647;
 
 // The options of IntegratorSettings, each read by the integrators that list it in the registry.
 static void add_integrator_options(CLI::App* app, IntegratorSettings& s) {
   app->add_option("--spp", s.spp, "camera samples per pixel per pass")
-      ->check(CLI::Range(1, 1 << 20));
-  app->add_option("--photons", s.photons, "photons per pass")
-      ->check(CLI::Range(1LL, (1LL << 31) - 1));
+      ->check(integer_within(1, 1 << 20));
+  app->add_option("--photons", s.photons, "photons per pass")->check(integer_within(1, kMaxInt));
   app->add_option("--alpha", s.alpha, "photon mapping: radius reduction α (default 2/3)")
-      ->check(CLI::Range(0.01, 0.99));
+      ->check(number_within(0.01, 0.99));
   app->add_option("--radius", s.radius,
                   "photon mapping: initial gather radius (default: from the pixel footprint)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   app->add_flag("--edge-correction", s.edge_correction,
                 "photon mapping: divide each gather by the covered fraction of its disc");
   app->add_option("--memory", s.memory,
                   "photon mapping: memory for the photon store, bytes with an optional unit "
                   "(512MiB, 2GB); default: a quarter of the device's memory (an eighth on a CPU)")
-      ->transform(CLI::AsSizeValue(false))
-      ->check(CLI::Range(1ULL, 1ULL << 50));
+      ->transform(byte_size())
+      ->check(integer_within(1, 1LL << 50));
   app->add_option("--view", s.view, "debug view: emission, normals or albedo")
-      ->check(CLI::IsMember({"emission", "normals", "albedo"}));
+      ->check(one_of({"emission", "normals", "albedo"}));
+}
+
+static int report_interrupt() {
+  std::fprintf(stderr, "kasha: interrupted\n");
+  return kInterruptExitCode;
+}
+
+// Input and run errors: exit 1. A failure after a signal (a device call or a compiler cut short)
+// is the interrupt's doing: that is what is reported.
+static int report_error(const std::string& message) {
+  if (interrupt_requested()) return report_interrupt();
+  std::fprintf(stderr, "kasha: error: %s\n", one_line(message).c_str());
+  return 1;
 }
 
 int main(int argc, char** argv) {
+  install_exit_on_interrupt();  // render, converge and reference take over with their own
   CLI::App app{"kasha: a spectral renderer for fluorescent materials"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", "kasha " KASHA_VERSION);
 
   app.add_subcommand("devices", "list OpenCL platforms and devices");
 
@@ -60,55 +81,80 @@ int main(int argc, char** argv) {
   for (const IntegratorInfo& info : IntegratorRegistry::all())
     integrator_help += "\n  " + info.name + ": " + info.description;
   render->add_option("--integrator", r.integrator, integrator_help)
-      ->check(CLI::IsMember(IntegratorRegistry::names(false)));
+      ->check(one_of(IntegratorRegistry::names(false)));
+  // Both may be given: the render stops at whichever comes first.
   render->add_option("--time", r.seconds, "stop after this many seconds")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number(kMaxSeconds));
   render->add_option("--passes", r.passes, "stop after this many passes")
-      ->check(CLI::PositiveNumber);
+      ->check(integer_within(1, kMaxInt));
   add_integrator_options(render, r.settings);
-  render->add_option("--seed", r.settings.seed, "random seed");
+  render->add_option("--seed", r.settings.seed, "random seed")
+      ->check(integer_within(0, 4294967295LL));
   render
       ->add_option("--max-depth", r.settings.max_depth,
                    "safety limit on path length in vertices (default 262144, far beyond what "
                    "Russian roulette reaches); what it cuts is reported")
-      ->check(CLI::Range(1, 1 << 30));
+      ->check(integer_within(1, 1 << 30));
   render
       ->add_option("--sampler", r.settings.sampler,
                    "sobol (default: Owen-scrambled Sobol points) or independent (PCG streams)")
-      ->check(CLI::IsMember({"sobol", "independent"}));
+      ->check(one_of({"sobol", "independent"}));
   render->add_option("--device", r.device, "OpenCL device index (see `kasha devices`)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(integer_within(0, kMaxInt));
   render->add_option("--lamp", r.lamp, "switch on this one of the scene's \"lamps\"");
   render->add_option("--png", r.png, "also write a tone-mapped sRGB PNG preview");
   render->add_flag("--spectral", r.spectral, "add one channel per wavelength bin to the EXR");
   render->add_option("--reference", r.reference,
                      "reference EXR for the convergence log's error columns");
   render->add_option("--log", r.log, "convergence log CSV, a row after every pass");
+  // Usage errors found after the parse, still reported as usage errors (exit 2).
+  render->callback([&] {
+    if (r.seconds <= 0 && r.passes <= 0)
+      throw CLI::ValidationError("render", "give --time SECONDS or --passes N");
+    for (const std::string& option : IntegratorRegistry::options())
+      if (render->count(option) > 0) r.integrator_options_given.push_back(option);
+    try {
+      IntegratorRegistry::check_options(r.integrator, r.integrator_options_given);
+    } catch (const Error& e) {
+      throw CLI::ValidationError(e.what());  // already `--OPTION: what`
+    }
+  });
 
   MeasureArgs m;
   CLI::App* measure =
       app.add_subcommand("measure", "turn fluorimeter or bispectral data into a material file");
-  measure->add_option("--sample", m.sample,
-                      "sample excitation–emission matrix (CSV or JASCO export)");
-  measure->add_option("--etalon", m.etalon,
-                      "etalon (white diffuse reference) excitation–emission matrix");
-  measure->add_option("--etalon-reflectance", m.etalon_reflectance,
-                      "the etalon's reflectance spectrum (CSV)");
-  measure->add_option("--sensitivity", m.sensitivity,
-                      "detector relative spectral sensitivity C(λ) (CSV)");
+  CLI::Option* sample = measure->add_option(
+      "--sample", m.sample, "sample excitation–emission matrix (CSV or JASCO export)");
+  CLI::Option* etalon = measure->add_option(
+      "--etalon", m.etalon, "etalon (white diffuse reference) excitation–emission matrix");
+  CLI::Option* etalon_reflectance = measure->add_option(
+      "--etalon-reflectance", m.etalon_reflectance, "the etalon's reflectance spectrum (CSV)");
+  CLI::Option* sensitivity = measure->add_option(
+      "--sensitivity", m.sensitivity, "detector relative spectral sensitivity C(λ) (CSV)");
   measure->add_option("--gloss", m.gloss, "goniometer CSV: theta_in_deg, theta_out_deg, brdf");
   measure
       ->add_option("--band-nm", m.band_nm,
                    "half-width of the near-diagonal band (default: from the etalon)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number(1000));
   measure->add_option("--cone-deg", m.cone_deg, "gloss cone around the mirror direction")
-      ->check(CLI::Range(0.1, 90.0));
-  measure->add_option("--bispectral", m.bispectral,
-                      "a measured bispectral (Donaldson) matrix instead");
+      ->check(number_within(0.1, 90.0));
+  measure
+      ->add_option("--bispectral", m.bispectral, "a measured bispectral (Donaldson) matrix instead")
+      ->excludes(sample)
+      ->excludes(etalon)
+      ->excludes(etalon_reflectance)
+      ->excludes(sensitivity);
   measure->add_option("-o,--output", m.output, "material JSON to write")->required();
   measure->add_option("--plots", m.plots, "write the method's figures (PNG) into this directory");
-  measure->add_option("--name", m.name, "material name (default: the output file's stem)");
+  measure->add_option("--name", m.name, "material name (default: the output file's stem)")
+      ->check(utf8_text());
   measure->add_flag("--clip", m.clip, "clip an energy gain instead of failing, and record it");
+  measure->callback([&] {
+    if (m.bispectral.empty() &&
+        (m.sample.empty() || m.etalon.empty() || m.etalon_reflectance.empty()))
+      throw CLI::ValidationError(
+          "measure", "give --sample, --etalon and --etalon-reflectance (or --bispectral)");
+  });
 
   ColorimetryArgs col;
   CLI::App* colorimetry = app.add_subcommand(
@@ -120,9 +166,9 @@ int main(int argc, char** argv) {
       "a spectrum: built-in name (D65, A, F11, …), CSV file or JSON value; repeat for a table "
       "(default D65)");
   colorimetry->add_option("--observer", col.observer, "CIE 1931 2° or CIE 1964 10° (default 2)")
-      ->check(CLI::IsMember({2, 10}));
+      ->check(one_of({"2", "10"}));
   colorimetry->add_option("--bin-nm", col.bin_nm, "wavelength bin width (default 10)")
-      ->check(CLI::Range(0.1, 100.0));
+      ->check(number_within(0.1, 100.0));
   colorimetry->add_option("--as-is", col.as_is,
                           "compare with the material taken \"as is\": its radiance factor under "
                           "this lamp as a plain reflectance (ΔE2000 per illuminant)");
@@ -147,7 +193,7 @@ int main(int argc, char** argv) {
       ->add_option("--scale", preview_scale,
                    "multiply XYZ by this (Y = 1 is white) instead of exposing by the log-average "
                    "luminance")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
 
   RegionsArgs reg;
   CLI::App* regions = app.add_subcommand(
@@ -159,7 +205,7 @@ int main(int argc, char** argv) {
       ->add_option("--margin", reg.margin_px,
                    "pixels count when the shape is also seen this many pixels around their centre "
                    "(default 1)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(number_within(0, 1 << 20));
   regions->add_option("--white", reg.white,
                       "white-reference EXR (the samples replaced by a perfect white): adds XYZ "
                       "relative to it (Y = 100) and CIELAB");
@@ -170,25 +216,33 @@ int main(int argc, char** argv) {
   CLI::App* converge =
       app.add_subcommand("converge", "error against run time for several integrators");
   converge->add_option("scene", converge_scene, "scene JSON file")->required();
-  converge->add_option("--integrators", integrators,
-                       "comma-separated (default: every physical one)");
+  converge
+      ->add_option("--integrators", integrators, "comma-separated (default: every physical one)")
+      ->check(list_of(IntegratorRegistry::names(true), "integrator"));
   converge->add_option("--time", study.seconds, "rendering seconds per integrator and run")
-      ->required();
+      ->required()
+      ->check(positive_number(kMaxSeconds));
   converge->add_option("--reference", study.reference,
                        "reference EXR or `furnace` (default: cached next to the scene)");
-  converge->add_option("--reference-time", study.reference_seconds,
-                       "seconds for a new cached reference (default 4 × time × integrators)");
-  converge->add_option("--repeats", study.repeats,
-                       "runs per integrator, seeds 1..K, for error bars");
-  converge->add_option("--target", study.target,
-                       "RMSE whose time to reach is reported (default: the worst final)");
+  converge
+      ->add_option("--reference-time", study.reference_seconds,
+                   "seconds for a new cached reference (default 4 × time × integrators)")
+      ->check(positive_number(kMaxSeconds));
+  converge
+      ->add_option("--repeats", study.repeats, "runs per integrator, seeds 1..K, for error bars")
+      ->check(integer_within(1, 1000));
+  converge
+      ->add_option("--target", study.target,
+                   "RMSE whose time to reach is reported (default: the worst final)")
+      ->check(positive_number());
   converge->add_option("--spp", study.settings.spp, "camera samples per pixel per pass")
-      ->check(CLI::Range(1, 1 << 20));
+      ->check(integer_within(1, 1 << 20));
   converge->add_option("--photons", study.settings.photons, "photons per pass")
-      ->check(CLI::Range(1LL, (1LL << 31) - 1));
-  converge->add_option("--device", study.device, "OpenCL device index");
+      ->check(integer_within(1, kMaxInt));
+  converge->add_option("--device", study.device, "OpenCL device index")
+      ->check(integer_within(0, kMaxInt));
   converge->add_option("--sampler", study.settings.sampler, "sobol (default) or independent")
-      ->check(CLI::IsMember({"sobol", "independent"}));
+      ->check(one_of({"sobol", "independent"}));
   converge->add_option("-o,--output", study.out_dir, "directory for logs, plot, images and summary")
       ->required();
 
@@ -208,24 +262,23 @@ int main(int argc, char** argv) {
   reference->add_option("scene", reference_scene, "scene JSON file")->required();
   reference->add_option("--time", reference_seconds, "rendering seconds")
       ->required()
-      ->check(CLI::PositiveNumber);
-  reference->add_option("--seed", reference_seed, "random seed");
-  reference->add_option("--device", reference_device, "OpenCL device index");
+      ->check(positive_number(kMaxSeconds));
+  reference->add_option("--seed", reference_seed, "random seed")
+      ->check(integer_within(0, 4294967295LL));
+  reference->add_option("--device", reference_device, "OpenCL device index")
+      ->check(integer_within(0, kMaxInt));
   reference->add_option("-o,--output", reference_out, "reference EXR")->required();
 
+  require_numbers(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return exit_for_parse_error(app, e);
   }
   try {
     if (app.got_subcommand("devices")) return run_devices();
     if (app.got_subcommand("info")) return run_info(info_scene, info_spectral, info_lamp);
-    if (app.got_subcommand("render")) {
-      for (const std::string& option : IntegratorRegistry::options())
-        if (render->count(option) > 0) r.integrator_options_given.push_back(option);
-      return run_render(r);
-    }
+    if (app.got_subcommand("render")) return run_render(r);
     if (app.got_subcommand("measure")) return run_measure(m);
     if (app.got_subcommand("colorimetry")) return run_colorimetry(col);
     if (app.got_subcommand("regions")) return run_regions(reg);
@@ -237,15 +290,14 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("reference"))
       return run_reference(reference_scene, reference_seconds, reference_seed, reference_device,
                            reference_out);
+  } catch (const Interrupted&) {
+    return report_interrupt();
   } catch (const Error& e) {
-    std::fprintf(stderr, "kasha: error: %s\n", e.what());
-    return 1;
+    return report_error(e.what());
   } catch (const cl::Error& e) {
-    std::fprintf(stderr, "kasha: error: OpenCL: %s\n", cl_error_text(e).c_str());
-    return 1;
+    return report_error("OpenCL: " + cl_error_text(e));
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "kasha: error: %s\n", e.what());
-    return 1;
+    return report_error(e.what());
   }
   return 0;
 }

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/output_set.h"
+#include "core/printable.h"
 #include "material/material.h"
 #include "measure/bispectral.h"
 #include "measure/fluorimeter.h"
@@ -60,11 +61,13 @@ int run_measure(const MeasureArgs& a) {
     if (g.gloss.reflectance > 0)
       m.gloss = g.gloss;
     else
-      m.notes.push_back("no gloss above the diffuse floor in " + a.gloss);
+      m.notes.push_back("no gloss above the diffuse floor in " + printable(a.gloss));
   }
   check_energy(m, a.clip);
 
+  // The name goes into JSON, which needs UTF-8 (an explicit --name is checked on the command line).
   std::string name = a.name.empty() ? out.stem().string() : a.name;
+  if (!valid_utf8(name)) name = printable(name);
   const std::string source =
       !a.bispectral.empty() ? "--bispectral " + a.bispectral : "--sample " + a.sample;
   outputs.write(a.output, [&](const std::string& tmp) {

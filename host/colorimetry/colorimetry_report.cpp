@@ -5,9 +5,16 @@
 #include <iomanip>
 #include <sstream>
 
+#include "core/printable.h"
+
 namespace kasha {
 
 namespace {
+
+// File names and command-line labels as JSON strings: JSON needs UTF-8, so other bytes are escaped.
+std::string json_text(const std::string& s) {
+  return valid_utf8(s) ? s : printable(s);
+}
 
 int observer_deg(Observer o) {
   return o == Observer::cie1964_10deg ? 10 : 2;
@@ -21,7 +28,7 @@ nlohmann::json per_bin(const WavelengthGrid& grid, const std::vector<double>& va
 
 nlohmann::json illuminant_json(const Colorimetry& c, const IlluminantColorimetry& r) {
   nlohmann::json j;
-  j["illuminant"] = r.illuminant;
+  j["illuminant"] = json_text(r.illuminant);
   j["white_XYZ"] = r.white;
   j["XYZ"] = r.xyz;
   j["Lab"] = r.lab;
@@ -59,7 +66,7 @@ nlohmann::json colorimetry_json(const Colorimetry& c, const std::string& materia
   nlohmann::json j;
   j["kasha_colorimetry"] = 1;
   j["material"] = c.material.name;
-  j["material_file"] = material_file;
+  j["material_file"] = json_text(material_file);
   j["observer"] = observer_name(c.observer);
   j["observer_deg"] = observer_deg(c.observer);
   j["geometry"] =
@@ -69,7 +76,7 @@ nlohmann::json colorimetry_json(const Colorimetry& c, const std::string& materia
                       {"bin_nm", c.grid.bin_nm},
                       {"bins", c.grid.bins}};
   if (c.as_is)
-    j["as_is_material"] = {{"lamp", c.as_is->lamp},
+    j["as_is_material"] = {{"lamp", json_text(c.as_is->lamp)},
                            {"clipped_nm", c.as_is->clipped_nm},
                            {"unlit_nm", c.as_is->unlit_nm},
                            {"reflectance", per_bin(c.grid, c.as_is->reflectance)}};

@@ -9,16 +9,49 @@ namespace kasha {
 
 namespace {
 std::atomic<int> g_requests{0};
+std::atomic<int> g_message_fd{STDERR_FILENO};
+
+// write(2) and _exit are async-signal-safe; stdio is not. `after_progress`: a progress line
+// (ended by \r, not \n) may be on the terminal, so the message starts a line of its own.
+void exit_interrupted(bool after_progress) {
+  static const char line[] = "\nkasha: interrupted\n";
+  const char* from = after_progress ? line : line + 1;
+  ssize_t ignored = write(g_message_fd, from, sizeof line - 1 - (from - line));
+  (void)ignored;
+  _exit(kInterruptExitCode);
+}
+
+extern "C" void on_signal_exit(int) {
+  exit_interrupted(false);
+}
+
 // Counts rather than resetting to the default action: one Ctrl-C can arrive twice (a shell or
 // `timeout` signals both the process and its group), and that must not kill the writer.
-extern "C" void on_sigint(int) {
-  if (++g_requests >= 3) _exit(130);
+extern "C" void on_signal_flag(int) {
+  if (++g_requests >= 3) exit_interrupted(true);
+}
+
+void install(void (*handler)(int)) {
+  struct sigaction action = {};
+  action.sa_handler = handler;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = SA_RESTART;  // blocking reads and writes carry on; the flag is polled
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
 }
 }  // namespace
 
+void install_exit_on_interrupt() {
+  install(on_signal_exit);
+}
+
 void install_interrupt_handler() {
   g_requests = 0;
-  std::signal(SIGINT, on_sigint);
+  install(on_signal_flag);
+}
+
+void set_interrupt_message_fd(int fd) {
+  g_message_fd = fd;
 }
 
 bool interrupt_requested() {

@@ -1,9 +1,28 @@
 #pragma once
-// Ctrl-C during a render only raises a flag, so the render loop can finish the pass in flight and
-// write the image so far; a third Ctrl-C ends the process at once.
+// SIGINT (Ctrl-C) and SIGTERM. At first a signal ends the process at once with one line and exit
+// code 130 (nothing is written yet). A command that can stop early (render, converge, reference)
+// installs the deferred handler: a signal then only raises a flag, so the render loop can finish
+// the pass in flight and write the image so far; a third signal ends the process at once.
+#include <exception>
+
 namespace kasha {
 
+constexpr int kInterruptExitCode = 130;
+
+// At the start of main: a signal prints `kasha: interrupted` and exits 130.
+void install_exit_on_interrupt();
+// For the commands that poll interrupt_requested().
 void install_interrupt_handler();
 bool interrupt_requested();
+// Where the handler writes `kasha: interrupted` (default 2): the original stderr while fd 2 is
+// held elsewhere (a kernel build's compiler output).
+void set_interrupt_message_fd(int fd);
+
+// Thrown where an interrupt made an operation fail (a kernel build whose compiler was signalled):
+// the command line reports the interrupt, not the failure.
+class Interrupted : public std::exception {
+ public:
+  const char* what() const noexcept override { return "interrupted"; }
+};
 
 }  // namespace kasha

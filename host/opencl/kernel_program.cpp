@@ -1,11 +1,15 @@
 #include "opencl/kernel_program.h"
 
+#include <unistd.h>
+
+#include <cstdio>
 #include <regex>
 #include <set>
 #include <sstream>
 
 #include "core/embedded_file.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 
 namespace kasha {
 
@@ -49,6 +53,48 @@ std::string assemble_kernel_source(const std::string& main_file) {
   return assemble_kernel_source_text(embedded_kernel(main_file), main_file);
 }
 
+namespace {
+// The compiler inside PoCL prints straight to stderr ("1 error generated." when a signal cuts it
+// short). A build holds fd 2 in a temporary file and passes it on unless it was interrupted, so
+// an interrupt stays one line.
+class HeldStderr {
+ public:
+  HeldStderr() {
+    std::fflush(stderr);
+    file_ = std::tmpfile();
+    saved_ = file_ ? dup(STDERR_FILENO) : -1;
+    if (saved_ < 0 || dup2(fileno(file_), STDERR_FILENO) < 0)
+      release(false);  // not held: the build prints as before
+    else
+      set_interrupt_message_fd(saved_);
+  }
+  ~HeldStderr() { release(!interrupt_requested()); }
+  HeldStderr(const HeldStderr&) = delete;
+  HeldStderr& operator=(const HeldStderr&) = delete;
+
+ private:
+  void release(bool pass_on) {
+    if (saved_ >= 0) {
+      std::fflush(stderr);
+      dup2(saved_, STDERR_FILENO);
+      set_interrupt_message_fd(STDERR_FILENO);
+      close(saved_);
+      saved_ = -1;
+      if (pass_on) {
+        std::rewind(file_);
+        char buf[4096];
+        for (size_t n; (n = std::fread(buf, 1, sizeof buf, file_)) > 0;)
+          std::fwrite(buf, 1, n, stderr);
+      }
+    }
+    if (file_) std::fclose(file_);
+    file_ = nullptr;
+  }
+  FILE* file_ = nullptr;
+  int saved_ = -1;
+};
+}  // namespace
+
 cl::Program build_program(ClContext& cl, const std::string& source, const KernelDefines& defines,
                           const std::string& what) {
   std::string options = build_options(defines);
@@ -56,16 +102,23 @@ cl::Program build_program(ClContext& cl, const std::string& source, const Kernel
   try {
     program = cl::Program(cl.context(), source);
   } catch (const cl::Error& e) {
+    if (interrupt_requested()) throw Interrupted();
     throw Error("OpenCL: cannot create program " + what + ": " + cl_error_text(e));
   }
   cl_int status = CL_SUCCESS;
-  try {
-    status = program.build({cl.device()}, options.c_str());
-  } catch (const cl::BuildError& e) {
-    status = e.err();
-  } catch (const cl::Error& e) {
-    status = e.err();
+  {
+    HeldStderr held;
+    try {
+      status = program.build({cl.device()}, options.c_str());
+    } catch (const cl::BuildError& e) {
+      status = e.err();
+    } catch (const cl::Error& e) {
+      status = e.err();
+    }
   }
+  // A signal also reaches the compiler's processes (a terminal or `timeout` signals the whole
+  // group), failing the build: that is the interrupt, not a kernel error with its build log.
+  if (status != CL_SUCCESS && interrupt_requested()) throw Interrupted();
   if (status != CL_SUCCESS) {
     std::string log;
     try {

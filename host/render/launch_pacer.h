@@ -2,8 +2,6 @@
 // Sizes kernel launches so that each takes about `target` seconds: the first launch of a kind is
 // small, later ones follow the measured time per work item and grow at most fourfold, so a pass
 // of any length checks its deadline and Ctrl-C a few times a second (render/pass_control.h).
-// Sizes are powers of two: PoCL compiles a kernel anew for every work-group size it picks (a
-// divisor of the launch size), so timing-driven sizes would compile dozens of variants per pass.
 #include <algorithm>
 #include <chrono>
 #include <cstddef>
@@ -16,14 +14,7 @@ class LaunchPacer {
       : target_(target_seconds), next_(first) {}
 
   // How many work items the next launch should run, of `remaining`.
-  size_t next(size_t remaining) const { return launch_size(std::min(remaining, next_)); }
-
-  // The largest power of two ≤ n (at least 1): a remainder is run as a few such launches.
-  static size_t launch_size(size_t n) {
-    size_t p = 1;
-    while (p <= n / 2) p *= 2;
-    return p;
-  }
+  size_t next(size_t remaining) const { return std::max<size_t>(1, std::min(remaining, next_)); }
 
   // A launch of `items` took `seconds`.
   void record(size_t items, double seconds) {

@@ -38,12 +38,9 @@ class BackwardIntegrator : public KernelIntegrator {
       if (work > 0 && control_.stop_now()) break;
       size_t units = pacer_.next(static_cast<size_t>(total - work));
       int samples = 1;
-      // A one-sample range is a power of two of pixels (LaunchPacer); whole slices are the image.
-      size_t count = LaunchPacer::launch_size(std::min(units, pixels - first));
-      if (first == 0 && units >= pixels) {
-        count = pixels;
+      size_t count = std::min(units, pixels - first);
+      if (first == 0 && units >= pixels)
         samples = static_cast<int>(std::min<size_t>(units / pixels, spp_ - k));
-      }
       auto t0 = std::chrono::steady_clock::now();
       launch_range(kernel_, first, count, film_.pixel_sums(), rejected_, cut_, spp_, k, k + samples,
                    seed_, static_cast<cl_uint>(pass));

@@ -171,7 +171,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
         gather_store();
         continue;
       }
-      n = LaunchPacer::launch_size(std::min(n, fit));
+      n = std::max<size_t>(1, std::min(n, fit));
       auto t = Clock::now();
       cl_int after = launch_photons(pass, done, n, 0, stored);
       trace_s += since(t);

@@ -1,0 +1,215 @@
+// The command line's error path: every bad command line is one line `kasha: error: WHERE: …` with
+// exit code 2 and writes nothing; input and run errors exit 1; SIGINT and SIGTERM exit 130, at any
+// moment (kernel compilation included), with the image so far when there is one.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "image/exr_io.h"
+#include "test_support.h"
+
+using namespace kasha;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string quoted(const std::string& s) {
+  return "'" + s + "'";
+}
+
+// Replaces each {name} in `text` by vars[name].
+std::string expand(std::string text, const std::vector<std::pair<std::string, std::string>>& vars) {
+  for (const auto& [name, value] : vars)
+    for (size_t at; (at = text.find("{" + name + "}")) != std::string::npos;)
+      text.replace(at, name.size() + 2, value);
+  return text;
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+bool empty_dir(const fs::path& dir) {
+  return fs::is_directory(dir) && fs::directory_iterator(dir) == fs::directory_iterator();
+}
+
+struct Case {
+  std::string args;   // {scene}: a good scene; {out}: the scratch folder that must stay empty
+  int exit_code;      // 2: usage, 1: input or run error
+  std::string where;  // expected after "kasha: error: " (a prefix of the rest of the line)
+};
+
+// Runs `args` with `signal` sent after `after_s` seconds (fractions allowed) through timeout(1),
+// which signals the process group too, as a terminal does for Ctrl-C.
+test::CommandResult run_with_signal(const std::string& env, const std::string& args,
+                                    const char* signal, double after_s) {
+  std::ostringstream prefix;
+  prefix << env << " timeout --preserve-status -s " << signal << " " << after_s;
+  return test::run_kasha_env(prefix.str(), args);
+}
+
+}  // namespace
+
+TEST(CliErrors, EveryBadCommandLineIsOneLineWithExitCode2AndNoOutput) {
+  const fs::path out = test::scratch_dir() / "out";
+  fs::create_directories(out);
+  const std::string scene = test::source_path("scenes/torus.json");
+  const std::string render = "render {scene} -o {out}/a.exr ";
+  const std::string converge = "converge {scene} -o {out}/c --time 1 ";
+  const std::string measure = "measure --bispectral {scene} -o {out}/m.json ";
+  const std::vector<Case> cases = {
+      // subcommands and options
+      {"", 2, "command line: give a subcommand: devices, info, render"},
+      {"rendr {scene}", 2, "rendr: unknown subcommand (did you mean render?)"},
+      {"--bogus", 2, "--bogus: unknown option of kasha"},
+      {"render {scene} --passes 1 --tim 5 -o {out}/a.exr", 2,
+       "--tim: unknown option of kasha render (did you mean --time?)"},
+      {"render {scene} --passes 1 -o {out}/a.exr extra.json", 2,
+       "extra.json: unexpected argument to kasha render"},
+      {"render {scene} --passes 1", 2, "--output: required (see kasha render --help)"},
+      {"render --passes 1 -o {out}/a.exr", 2, "scene: required"},
+      {render + "--time", 2, "--time: a value is required"},
+      {render + "--integrator bogus --passes 1", 2, "--integrator: \"bogus\" is not one of"},
+      {render + "--sampler sobl --passes 1", 2,
+       "--sampler: \"sobl\" is not one of sobol, independent (did you mean sobol?)"},
+      {"render {scene} -o {out}/a.exr", 2, "render: give --time SECONDS or --passes N"},
+      {render + "--integrator backward --photons 5 --passes 1", 2,
+       "--photons: the backward integrator does not take this option (it takes --spp)"},
+      // finite numbers (--time nan used to hang)
+      {render + "--time nan", 2, "--time: nan is not a finite number"},
+      {render + "--time inf", 2, "--time: inf is not a finite number"},
+      {render + "--time -inf", 2, "--time: -inf is not a finite number"},
+      {render + "--time -5", 2, "--time: -5 is not positive"},
+      {render + "--time 1e308", 2, "--time: 1e308 is more than 1e+09"},
+      {render + "--time abc", 2, "--time: \"abc\" is not a number"},
+      {render + "--passes 1 --radius nan", 2, "--radius: nan is not a finite number"},
+      {render + "--passes 1 --radius -1", 2, "--radius: -1 is not positive"},
+      {render + "--passes 1 --alpha nan", 2, "--alpha: nan is not a finite number"},
+      {render + "--passes 1 --alpha 1", 2, "--alpha: 1 is not in [0.01, 0.99]"},
+      // integers
+      {render + "--passes 1.5", 2, "--passes: \"1.5\" is not an integer"},
+      {render + "--passes 0", 2, "--passes: 0 is not in [1, 2147483647]"},
+      {render + "--passes 1 --photons -1", 2, "--photons: -1 is not in [1, 2147483647]"},
+      {render + "--passes 1 --photons 2147483648", 2, "--photons: 2147483648 is not in"},
+      {render + "--passes 1 --photons 1e6", 2, "--photons: \"1e6\" is not an integer"},
+      {render + "--passes 1 --spp 0", 2, "--spp: 0 is not in [1, 1048576]"},
+      {render + "--passes 1 --seed -1", 2, "--seed: -1 is not in [0, 4294967295]"},
+      {render + "--passes 1 --device -1", 2, "--device: -1 is not in"},
+      {render + "--passes 1 --memory 0", 2, "--memory: 0 is not in"},
+      {render + "--passes 1 --max-depth 0", 2, "--max-depth: 0 is not in"},
+      // measure
+      {measure + "--band-nm nan", 2, "--band-nm: nan is not a finite number"},
+      {measure + "--band-nm 1e300", 2, "--band-nm: 1e300 is more than 1000"},
+      {measure + "--cone-deg nan", 2, "--cone-deg: nan is not a finite number"},
+      {measure + "--name '\xff'", 2, "--name: \"\\xFF\" is not valid UTF-8"},
+      {"measure -o {out}/m.json --sample {scene} --bispectral {scene}", 2,
+       "--sample: cannot be given with --bispectral"},
+      {"measure -o {out}/m.json --etalon {scene}", 2, "measure: give --sample, --etalon and"},
+      // converge
+      {converge + "--spp 0", 2, "--spp: 0 is not in"},
+      {converge + "--reference-time -5", 2, "--reference-time: -5 is not positive"},
+      {converge + "--target -1", 2, "--target: -1 is not positive"},
+      {converge + "--integrators photon,photon", 2, "--integrators: \"photon\" is given twice"},
+      {converge + "--integrators photon,bogus", 2, "--integrators: unknown integrator \"bogus\""},
+      {converge + "--integrators photon,", 2, "--integrators: give a comma-separated list"},
+      {converge + "--repeats 0", 2, "--repeats: 0 is not in"},
+      {"converge {scene} -o {out}/c --time nan", 2, "--time: nan is not a finite number"},
+      {"converge {scene} -o {out}/c", 2, "--time: required"},
+      // the other subcommands
+      {"reference {scene} -o {out}/r.exr --time nan", 2, "--time: nan is not a finite number"},
+      {"colorimetry {scene} --observer 5", 2, "--observer: \"5\" is not one of 2, 10"},
+      {"colorimetry {scene} --bin-nm nan", 2, "--bin-nm: nan is not a finite number"},
+      {"preview {scene} -o {out}/p.png --scale nan", 2, "--scale: nan is not a finite number"},
+      {"regions {scene} {scene} --margin nan", 2, "--margin: nan is not a finite number"},
+      {"info {scene} --spectral=abc", 2, "--spectral: \"abc\" is not true or false"},
+      // input errors: exit 1, bytes from the command line escaped
+      {"render /nonexistent.json --passes 1 -o {out}/a.exr", 1, "/nonexistent.json: "},
+      {"render '/nonexistent\xff\x1b.json' --passes 1 -o {out}/a.exr", 1,
+       "/nonexistent\\xFF\\x1B.json: "},
+  };
+  for (const Case& c : cases) {
+    const std::string args = expand(c.args, {{"scene", quoted(scene)}, {"out", out.string()}});
+    test::CommandResult r = test::run_kasha(args);
+    SCOPED_TRACE("kasha " + args);
+    EXPECT_EQ(r.exit_code, c.exit_code) << r.err;
+    const std::vector<std::string> err = lines(r.err);
+    ASSERT_EQ(err.size(), 1u) << r.err;
+    EXPECT_EQ(err[0].rfind("kasha: error: " + c.where, 0), 0u) << err[0];
+    EXPECT_TRUE(empty_dir(out)) << "something was written";
+    fs::remove_all(out);
+    fs::create_directories(out);
+  }
+}
+
+TEST(CliErrors, HelpAndVersionPrintNormallyWithExitCode0) {
+  for (const char* args : {"--help", "render --help", "converge --help", "--version"}) {
+    test::CommandResult r = test::run_kasha(args);
+    EXPECT_EQ(r.exit_code, 0) << args << ": " << r.err;
+    EXPECT_FALSE(r.out.empty()) << args;
+    EXPECT_EQ(r.err.find("error"), std::string::npos) << args << ": " << r.err;
+  }
+  test::CommandResult help = test::run_kasha("render --help");
+  // Bounds read as numbers a reader writes, not DBL_MAX's 309 digits.
+  EXPECT_NE(help.out.find("--time FLOAT:in (0, 1e+09]"), std::string::npos) << help.out;
+  EXPECT_EQ(help.out.find("179769313486231570"), std::string::npos) << help.out;
+}
+
+TEST(CliErrors, CtrlCDuringAColdKernelBuildExits130WithOneLine) {
+  // A fresh kernel cache: the first build takes seconds, and a signal 0.3 s in most likely
+  // arrives during it (or else during the first pass: then the image so far is written). Either
+  // way: exit 130, no error line and no build log.
+  const fs::path cache = test::scratch_dir() / "cold-cache";
+  fs::create_directories(cache);
+  const std::string out = (test::scratch_dir() / "cold.exr").string();
+  for (const char* signal : {"INT", "TERM"}) {
+    fs::remove_all(cache);
+    fs::create_directories(cache);
+    test::CommandResult r =
+        run_with_signal("POCL_CACHE_DIR=" + quoted(cache.string()),
+                        "render " + quoted(test::source_path("scenes/cornell_box.json")) +
+                            " --time 60 --photons 4096 -o " + quoted(out),
+                        signal, 0.3);
+    SCOPED_TRACE(signal);
+    EXPECT_EQ(r.exit_code, 130) << r.err;
+    EXPECT_EQ(r.err.find("kasha: error"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find("build log"), std::string::npos) << r.err;
+    if (fs::exists(out)) {
+      EXPECT_NE(r.err.find("interrupted: writing the image after"), std::string::npos) << r.err;
+      fs::remove(out);
+    } else {
+      EXPECT_EQ(r.err, "kasha: interrupted\n");
+    }
+  }
+}
+
+TEST(CliErrors, SigtermDuringARenderWritesTheImageAndExits130) {
+  const std::string out = (test::scratch_dir() / "term.exr").string();
+  test::CommandResult r =
+      run_with_signal("",
+                      "render " + quoted(test::source_path("scenes/torus.json")) +
+                          " --time 120 --photons 4096 -o " + quoted(out),
+                      "TERM", 3);
+  EXPECT_EQ(r.exit_code, 130) << r.err;
+  EXPECT_NE(r.err.find("interrupted: writing the image after"), std::string::npos) << r.err;
+  EXPECT_EQ(read_exr(out).width, 192);
+}
+
+TEST(CliErrors, FileNamesThatAreNotUtf8AreEscapedInJson) {
+  // JSON needs UTF-8: such a name used to fail inside nlohmann (type_error.316).
+  const std::string material = test::write_file(
+      "m\xff.json", R"({"kasha_material": 1, "name": "w", "passive": {"reflectance": 0.5}})");
+  const std::string json = (test::scratch_dir() / "c.json").string();
+  test::CommandResult r =
+      test::run_kasha("colorimetry " + quoted(material) + " --json " + quoted(json));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(json);
+  const std::string text((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(text.find("m\\\\xFF.json"), std::string::npos) << text;
+}
