@@ -5,9 +5,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/warning.h"
 #include "scene/limits.h"
 #include "scene/shape_mesh.h"
 #include "scene/transform.h"
@@ -93,6 +95,29 @@ static Eigen::Vector3d vec(const JsonNode& n) {
 static std::filesystem::path relative_to(const JsonNode& node, const std::string& file) {
   std::filesystem::path p(file);
   return p.is_relative() ? node.base_dir() / p : p;
+}
+
+// Leaves out triangles with the same vertices in the same winding (as the kernels see them, in
+// float) as one met before: a coincident twin doubles an emitter's power for light sampling
+// while a ray sees one of the two, and rays leaving one copy hit the other. A twin of opposite
+// winding stays: it is how a two-sided lamp is made.
+static void drop_duplicate_triangles(std::vector<Triangle>& tris,
+                                     std::set<std::array<float, 9>>& seen, const JsonNode& shape) {
+  size_t kept = 0;
+  for (const Triangle& t : tris) {
+    std::array<std::array<float, 3>, 3> v;
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) v[k][c] = static_cast<float>(t[k][c]);
+    const int first = static_cast<int>(std::min_element(v.begin(), v.end()) - v.begin());
+    std::array<float, 9> key;
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) key[3 * k + c] = v[(first + k) % 3][c];
+    if (seen.insert(key).second) tris[kept++] = t;
+  }
+  if (kept < tris.size())
+    warn(shape.file() + ": " + shape.path() + ": " + std::to_string(tris.size() - kept) +
+         " duplicate triangles (the same vertices as earlier ones) left out");
+  tris.resize(kept);
 }
 
 static GridRequest parse_grid_request(const JsonNode& node) {
@@ -209,6 +234,7 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
   }
 
   JsonNode shapes = root.at("shapes");
+  std::set<std::array<float, 9>> seen_triangles;
   std::vector<bool> material_used(scene.material_descs.size(), false);
   for (size_t s = 0; s < shapes.size(); ++s) {
     JsonNode shape = shapes[s];
@@ -229,6 +255,7 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
             std::snprintf(v, sizeof v, "(%g, %g, %g)", t[k][0], t[k][1], t[k][2]);
             shape.fail(std::string("a vertex at ") + v + " is not finite or beyond ±1e18");
           }
+    drop_duplicate_triangles(tris, seen_triangles, shape);
 
     int emitter = -1;
     auto emission = shape.find("emission");

@@ -61,8 +61,11 @@ class PhotonMapIntegrator : public KernelIntegrator {
     const size_t record = photon_floats_ * sizeof(float);
     const size_t budget = s.settings.memory > 0 ? static_cast<size_t>(s.settings.memory)
                                                 : default_memory_budget(cl_.info());
-    capacity_ = std::min<size_t>({static_cast<size_t>(photons_) * 4 + 1024, budget / record,
-                                  (1u << 31) - 1});
+    // At least 2^18 records, so a pass of few photons with long paths fills the store in
+    // launches of many photons rather than one photon at a time.
+    capacity_ = std::min<size_t>(
+        {std::max<size_t>(static_cast<size_t>(photons_) * 4 + 1024, 1u << 18), budget / record,
+         (1u << 31) - 1});
     if (capacity_ < 1)
       throw Error("--memory: " + std::to_string(budget) + " bytes hold no photon record (" +
                   std::to_string(record) + " bytes each)");
