@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/printable.h"
 
 namespace kasha {
 
@@ -30,6 +31,7 @@ void check_energy(MeasuredMaterial& m, bool clip) {
     if (total <= 1.0 + 1e-9) continue;
     if (!clip) {
       std::ostringstream msg;
+      if (!m.source.empty()) msg << printable(m.source) << ": ";
       msg << "energy gain at " << l << " nm: gloss " << g << " + passive " << rho
           << " + excitation " << a << " = " << total << " > 1 (use --clip to clip it)";
       throw Error(msg.str());
