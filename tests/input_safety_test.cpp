@@ -26,7 +26,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string quoted(const std::string& s) {
+std::string shell_quoted(const std::string& s) {
   return "'" + s + "'";
 }
 
@@ -97,7 +97,7 @@ std::string write(const std::string& path, const std::string& text) {
 }
 
 std::string render(const std::string& scene) {
-  return "render " + quoted(scene) + " --passes 1 -o OUT";
+  return "render " + shell_quoted(scene) + " --passes 1 -o OUT";
 }
 
 std::string measure(const std::string& options) {
@@ -348,3 +348,16 @@ INSTANTIATE_TEST_SUITE_P(EveryClass, InputSafety, ::testing::ValuesIn(cases()),
                          [](const auto& info) { return std::string(info.param.name); });
 
 }  // namespace
+
+// The other side of measure's checks: a sample that reflects and does not fluoresce (nothing off
+// the band) gives a passive material that a scene loads, not an all-zero emission it refuses.
+TEST(InputSafetyMeasure, ASampleWithoutFluorescenceGivesALoadableMaterial) {
+  const std::string d = test::scratch_dir().string();
+  write(d + "/diag.csv", eem_csv(range_nm(400, 500, 10), range_nm(400, 500, 5),
+                                 [](double o, double i) { return o == i ? 0.5 : 0.0; }));
+  auto r = test::run_kasha("measure --bispectral " + d + "/diag.csv -o " + d + "/m.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string scene = write(d + "/s.json", scene_json(R"({"file": "m.json"})"));
+  r = test::run_kasha("info " + shell_quoted(scene));
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}

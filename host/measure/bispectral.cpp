@@ -71,6 +71,7 @@ MeasuredMaterial material_from_bispectral(const ExcitationEmissionMatrix& D, dou
     m.passive.nm.push_back(D.ex_nm[i]);
     m.passive.value.push_back(rho);
   }
+  drop_zero_fluorescence(m);
   return m;
 }
 

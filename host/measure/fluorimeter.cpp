@@ -205,6 +205,7 @@ MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in) {
     if (!has_band[i])
       m.notes.push_back("no passive reflectance or excitation at " + nm_text(S.ex_nm[i]) +
                         ": outside the emission range");
+  drop_zero_fluorescence(m);
   return m;
 }
 

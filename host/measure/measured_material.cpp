@@ -17,6 +17,18 @@ double interpolate(const Tabulated& t, double nm) {
   return t.value[k - 1] + u * (t.value[k] - t.value[k - 1]);
 }
 
+void drop_zero_fluorescence(MeasuredMaterial& m) {
+  auto zero = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return x == 0; });
+  };
+  if (m.excitation.nm.empty() || !(zero(m.excitation.value) || zero(m.emission.value))) return;
+  m.excitation = {};
+  m.emission = {};
+  m.notes.push_back(
+      "no fluorescence: the readings off the band fit to zero, so the material is "
+      "passive only");
+}
+
 void check_energy(MeasuredMaterial& m, bool clip) {
   const double g = m.gloss ? m.gloss->reflectance : 0.0;
   m.max_energy = 0;

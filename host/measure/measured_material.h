@@ -42,6 +42,10 @@ struct MeasuredMaterial {
 // wavelength recorded.
 void check_energy(MeasuredMaterial& m, bool clip);
 
+// A sample without fluorescence (nothing off the band, so the fit is zero) has no emission shape
+// to normalize: its fluorescence part is dropped, with a note, and the material is passive only.
+void drop_zero_fluorescence(MeasuredMaterial& m);
+
 // Linear interpolation in a tabulated function, zero outside.
 double interpolate(const Tabulated& t, double nm);
 
