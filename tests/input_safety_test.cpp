@@ -162,6 +162,15 @@ const std::vector<Case>& cases() {
          return render(write(d + "/s.json", scene_json(R"({"file": "paper.json"})")));
        },
        {"paper.json: is a directory, not a file"}},
+      {"CsvOverTheSizeLimit",
+       [](const std::string& d) {
+         // Sparse: the size is what is checked, before anything is read.
+         write(d + "/big.csv", "nm,value\n");
+         fs::resize_file(d + "/big.csv", (std::uintmax_t(64) << 20) + 1);
+         return render(write(d + "/s.json", scene_json(R"({"passive": {"reflectance":
+             {"csv": "big.csv"}}})")));
+       },
+       {"big.csv: the file is 67108865 bytes, over the 64 MiB"}},
       {"MeasureSampleIsDevZero",
        [](const std::string& d) {
          std::string good = instrument_files(d);
@@ -330,6 +339,7 @@ TEST_P(InputSafety, OneLineNamingTheFileAndNothingWritten) {
   const std::set<std::string> before = files_in(dir);
   // A guard against a hang (a FIFO read without end): Ctrl-C after 60 s gives 130, not 1.
   const test::CommandResult r = test::run_kasha_env("", args, 60);
+  RecordProperty("message", r.err);  // the line, in --gtest_output=xml, for review
   EXPECT_EQ(r.exit_code, 1) << args << "\n" << r.err;
   EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
   EXPECT_EQ(r.err.rfind("kasha: error: ", 0), 0u) << r.err;
