@@ -172,7 +172,7 @@ TEST(Scene, BadScenesGiveOneClearLine) {
           R"({"type": "sphere", "center": [0,0,0], "radius": 1, "material": "grey", "radius2": 1})"),
       "/shapes/0/radius2: unknown key");
   check(scene_with(R"({"type": "obj", "file": "missing.obj", "material": "grey"})"),
-        "missing.obj: cannot read OBJ mesh");
+        "missing.obj: cannot open file");
   check(
       scene_with(
           R"({"type": "sphere", "center": [0,0,0], "radius": 1, "material": "grey", "emission": {"nm": [500, 400], "value": [1, 1]}})"),

@@ -54,6 +54,8 @@ int run_measure(const MeasureArgs& a) {
     FluorimeterInput in{
         read_eem(a.sample), read_eem(a.etalon), read_spectrum_csv(a.etalon_reflectance),
         a.sensitivity.empty() ? nullptr : read_spectrum_csv(a.sensitivity), a.band_nm};
+    in.etalon_reflectance_source = a.etalon_reflectance;
+    in.sensitivity_source = a.sensitivity;
     m = material_from_fluorimeter(in);
   }
   if (!a.gloss.empty()) {

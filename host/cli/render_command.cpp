@@ -15,6 +15,7 @@
 #include "shared_types.h"
 #include "study/convergence_log.h"
 #include "study/furnace.h"
+#include "study/image_error.h"
 
 namespace kasha {
 
@@ -40,6 +41,7 @@ int run_render(const RenderArgs& a) {
     options.reference = furnace_image(scene, f.radiance, a.spectral);
   } else if (!a.reference.empty()) {
     options.reference = read_exr(a.reference);
+    check_reference_size(*options.reference, scene.camera.width, scene.camera.height);
   }
   ClContext cl(a.device);
   DeviceScene device_scene(cl, scene);

@@ -2,11 +2,11 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <sstream>
 
 #include "core/error.h"
-#include "core/input_files.h"
+#include "core/input_file.h"
+#include "core/printable.h"
 
 namespace kasha {
 
@@ -90,10 +90,10 @@ CsvTable parse_csv_table(const std::string& text, const std::string& source) {
     std::vector<double> row(cells.size());
     for (size_t c = 0; c < cells.size(); ++c) {
       if (!parse_number(cells[c], row[c]))
-        throw Error(source + ": line " + std::to_string(line_no) + ", column " +
-                    std::to_string(c + 1) + ": not a number: \"" + cells[c] + "\"");
+        throw Error(printable(source) + ": line " + std::to_string(line_no) + ", column " +
+                    std::to_string(c + 1) + ": not a number: \"" + printable(cells[c]) + "\"");
       if (!std::isfinite(row[c]))
-        throw Error(source + ": line " + std::to_string(line_no) + ", column " +
+        throw Error(printable(source) + ": line " + std::to_string(line_no) + ", column " +
                     std::to_string(c + 1) + ": value is not finite");
     }
     table.rows.push_back(std::move(row));
@@ -103,12 +103,19 @@ CsvTable parse_csv_table(const std::string& text, const std::string& source) {
 }
 
 CsvTable read_csv_table(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open file");
-  note_input_file(path);  // no output may replace it (core/output_set.h)
-  std::stringstream text;
-  text << in.rdbuf();
-  return parse_csv_table(text.str(), path);
+  return parse_csv_table(read_input_file(path, kMaxTextInputBytes), path);
+}
+
+void check_jasco_nanometers(const CsvTable& table) {
+  if (!table.jasco) return;
+  // A JASCO export names its x axis; kasha's tables are all in nm (a Raman or IR export in 1/CM
+  // would otherwise be read as wavelengths).
+  auto units = table.fields.find("XUNITS");
+  if (units == table.fields.end())
+    throw Error(printable(table.source) + ": JASCO export without XUNITS (expected NANOMETERS)");
+  if (units->second != "NANOMETERS")
+    throw Error(printable(table.source) + ": x units are " + printable(units->second) +
+                ", not NANOMETERS");
 }
 
 }  // namespace kasha

@@ -20,6 +20,10 @@ struct CsvTable {
 // Parses `text` (named `source` in messages). A header is a first row whose first cell is not a
 // number; every later cell must be a finite number.
 CsvTable parse_csv_table(const std::string& text, const std::string& source);
+// Reads `path` through read_input_file (regular files, at most kMaxTextInputBytes).
 CsvTable read_csv_table(const std::string& path);
+// A JASCO export's x axis must be in NANOMETERS (every route that reads wavelengths checks it);
+// other tables pass.
+void check_jasco_nanometers(const CsvTable& table);
 
 }  // namespace kasha

@@ -1,11 +1,11 @@
 #include "core/json_node.h"
 
 #include <cmath>
-#include <fstream>
 #include <sstream>
 
 #include "core/error.h"
-#include "core/input_files.h"
+#include "core/input_file.h"
+#include "core/printable.h"
 
 namespace kasha {
 
@@ -18,28 +18,99 @@ JsonNode::JsonNode(std::shared_ptr<const nlohmann::json> root, const nlohmann::j
       path_(std::move(path)),
       read_keys_(std::make_shared<std::set<std::string>>()) {}
 
+// JSON Pointer escaping (RFC 6901) keeps paths unambiguous for keys holding '/' or '~'.
+static std::string escape_pointer(const std::string& key) {
+  std::string out;
+  for (char c : key) {
+    if (c == '~')
+      out += "~0";
+    else if (c == '/')
+      out += "~1";
+    else
+      out += c;
+  }
+  return out;
+}
+
+namespace {
+
+// Follows the parser through the document so that a key repeated in one object is refused with
+// its JSON path: nlohmann keeps the last one silently, and a scene would then not say what it
+// means.
+class DuplicateKeyCheck {
+ public:
+  explicit DuplicateKeyCheck(const std::string& file) : file_(file) {}
+
+  bool operator()(int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using E = nlohmann::json::parse_event_t;
+    switch (event) {
+      case E::object_start:
+      case E::array_start:
+        element();
+        frames_.push_back({event == E::object_start, {}, {}, -1});
+        break;
+      case E::key: {
+        Frame& f = frames_.back();
+        f.key = parsed.get<std::string>();
+        if (!f.keys.insert(f.key).second)
+          throw Error(printable(file_) + ": " + printable(pointer()) + ": duplicate key \"" +
+                      printable(f.key) + "\" (a key may appear once in an object)");
+        break;
+      }
+      case E::value:
+        element();
+        break;
+      case E::object_end:
+      case E::array_end:
+        frames_.pop_back();
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool object;
+    std::set<std::string> keys;
+    std::string key;  // the key being read, in an object
+    long index;       // the element being read, in an array
+  };
+  // A value starts: in an array, that is its next element.
+  void element() {
+    if (!frames_.empty() && !frames_.back().object) ++frames_.back().index;
+  }
+  std::string pointer() const {
+    std::string out;
+    for (const Frame& f : frames_)
+      out += "/" + (f.object ? escape_pointer(f.key) : std::to_string(f.index));
+    return out;
+  }
+
+  std::string file_;
+  std::vector<Frame> frames_;
+};
+
+}  // namespace
+
 JsonNode JsonNode::load_file(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error(file.string() + ": cannot open file");
-  note_input_file(file.string());  // no output may replace it (core/output_set.h)
-  std::stringstream text;
-  text << in.rdbuf();
+  const std::string text = read_input_file(file.string(), kMaxTextInputBytes);
   nlohmann::json document;
   try {
-    document = nlohmann::json::parse(text.str());
+    document = nlohmann::json::parse(text, DuplicateKeyCheck(file.string()));
   } catch (const nlohmann::json::parse_error& e) {
     // nlohmann's message reads "[json.exception.parse_error.101] parse error at line L, column C:
-    // ..."
+    // ..."; its "last read" part may hold input bytes, hence printable().
     std::string what = e.what();
     size_t at = what.find("parse error");
-    throw Error(file.string() +
-                ": malformed JSON: " + (at == std::string::npos ? what : what.substr(at)));
-  } catch (const nlohmann::json::out_of_range& e) {
-    // A number beyond double range ("1e400"): nlohmann names the number but not its place.
+    throw Error(printable(file.string()) +
+                ": malformed JSON: " + printable(at == std::string::npos ? what : what.substr(at)));
+  } catch (const nlohmann::json::exception& e) {
+    // A number beyond double range ("1e400") is an out_of_range error: nlohmann names the number
+    // but not its place. Its "[json.exception...]" prefix is cut.
     std::string what = e.what();
     size_t at = what.find("] ");
-    throw Error(file.string() +
-                ": malformed JSON: " + (at == std::string::npos ? what : what.substr(at + 2)));
+    throw Error(printable(file.string()) + ": malformed JSON: " +
+                printable(at == std::string::npos ? what : what.substr(at + 2)));
   }
   auto root = std::make_shared<const nlohmann::json>(std::move(document));
   std::filesystem::path base = file.parent_path();
@@ -52,8 +123,9 @@ JsonNode JsonNode::from_json(nlohmann::json document, const std::string& file) {
   return JsonNode(root, root.get(), file, base.empty() ? "." : base, "");
 }
 
+// The whole line is escaped: keys and string values from the document reach `why` and the path.
 void JsonNode::fail(const std::string& why) const {
-  throw Error(file_ + ": " + path() + ": " + why);
+  throw Error(printable(file_ + ": " + path() + ": " + why));
 }
 
 std::string JsonNode::type_name() const {
@@ -80,20 +152,6 @@ void JsonNode::expect_object() const {
 bool JsonNode::has(const std::string& key) const {
   expect_object();
   return json_->contains(key);
-}
-
-// JSON Pointer escaping (RFC 6901) keeps paths unambiguous for keys holding '/' or '~'.
-static std::string escape_pointer(const std::string& key) {
-  std::string out;
-  for (char c : key) {
-    if (c == '~')
-      out += "~0";
-    else if (c == '/')
-      out += "~1";
-    else
-      out += c;
-  }
-  return out;
 }
 
 std::optional<JsonNode> JsonNode::find(const std::string& key) const {
@@ -182,7 +240,8 @@ void JsonNode::finish() const {
   expect_object();
   for (auto it = json_->begin(); it != json_->end(); ++it)
     if (!read_keys_->count(it.key()))
-      throw Error(file_ + ": " + path_ + "/" + escape_pointer(it.key()) + ": unknown key");
+      throw Error(
+          printable(file_ + ": " + path_ + "/" + escape_pointer(it.key()) + ": unknown key"));
 }
 
 }  // namespace kasha

@@ -13,6 +13,7 @@ struct Image {
   std::vector<float> xyz;       // 3 per pixel, row 0 at the top
   std::vector<float> spectral;  // grid.bins per pixel, or empty
   WavelengthGrid grid;          // meaningful when spectral is not empty
+  std::string source;           // the file it was read from, for messages; empty when rendered
 
   size_t pixels() const { return static_cast<size_t>(width) * height; }
   bool has_spectral() const { return !spectral.empty(); }

@@ -9,14 +9,18 @@
 #include <ImfStringAttribute.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 
 #include "color/color_space.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/input_file.h"
+#include "core/printable.h"
 
 namespace kasha {
 
@@ -69,6 +73,7 @@ void write_exr(const std::string& path, const Image& image,
 }
 
 std::map<std::string, std::string> read_exr_attributes(const std::string& path) {
+  check_input_file(path, kMaxBinaryInputBytes);
   try {
     Imf::InputFile file(path.c_str());
     std::map<std::string, std::string> out;
@@ -77,17 +82,47 @@ std::map<std::string, std::string> read_exr_attributes(const std::string& path) 
         out[it.name()] = s->value();
     return out;
   } catch (const std::exception& e) {
-    throw Error(path + ": cannot read EXR: " + e.what());
+    throw Error(printable(path) + ": cannot read EXR: " + printable(e.what()));
   }
 }
 
+namespace {
+
+// The wavelength a spectral channel's name gives ("S0.555,000000nm" -> 555), or throws naming
+// the channel (escaped: the name is bytes from the file).
+double channel_wavelength(const std::string& path, const std::string& name) {
+  std::string value = name.substr(3, name.size() - 5);
+  std::replace(value.begin(), value.end(), ',', '.');
+  char* end = nullptr;
+  const double nm = value.empty() || std::isspace(static_cast<unsigned char>(value[0]))
+                        ? 0
+                        : std::strtod(value.c_str(), &end);
+  if (end != value.c_str() + value.size() || !std::isfinite(nm) || !(nm > 0))
+    throw Error(printable(path) + ": channel \"" + printable(name) +
+                "\": not a spectral channel name (S0.<wavelength>nm with a positive wavelength)");
+  return nm;
+}
+
+// The largest reference kasha reads: far beyond any film it renders, small enough that the
+// buffers fit in memory (the file size does not bound them: EXR compresses).
+constexpr double kMaxExrFloats = 1073741824.0;  // 2^30 floats, 4 GiB
+
+}  // namespace
+
 Image read_exr(const std::string& path) {
+  check_input_file(path, kMaxBinaryInputBytes);
   try {
     Imf::InputFile file(path.c_str());
     const Imath::Box2i dw = file.header().dataWindow();
     Image img;
-    img.width = dw.max.x - dw.min.x + 1;
-    img.height = dw.max.y - dw.min.y + 1;
+    img.source = path;
+    // In 64 bits: a data window from a damaged header can span more than an int.
+    const long long w = 1LL + dw.max.x - dw.min.x, h = 1LL + dw.max.y - dw.min.y;
+    if (w <= 0 || h <= 0 || w > (1 << 20) || h > (1 << 20))
+      throw Error(printable(path) + ": the data window is " + std::to_string(w) + "x" +
+                  std::to_string(h) + " pixels");
+    img.width = static_cast<int>(w);
+    img.height = static_cast<int>(h);
     const size_t n = img.pixels();
     const Imf::ChannelList& channels = file.header().channels();
 
@@ -95,17 +130,22 @@ Image read_exr(const std::string& path) {
     for (auto it = channels.begin(); it != channels.end(); ++it) {
       std::string name = it.name();
       if (name.rfind("S0.", 0) == 0 && name.size() > 5 && name.substr(name.size() - 2) == "nm") {
-        std::string value = name.substr(3, name.size() - 5);
-        std::replace(value.begin(), value.end(), ',', '.');
-        bins[std::stod(value)] = name;
+        const double nm = channel_wavelength(path, name);
+        if (!bins.emplace(nm, name).second)
+          throw Error(printable(path) + ": channels \"" + printable(bins[nm]) + "\" and \"" +
+                      printable(name) + "\" hold the same wavelength");
       }
     }
+    if (double(img.width) * img.height * (3 + bins.size()) > kMaxExrFloats)
+      throw Error(printable(path) + ": the image is " + std::to_string(img.width) + "x" +
+                  std::to_string(img.height) + " with " + std::to_string(3 + bins.size()) +
+                  " channels, beyond what kasha reads as a reference");
     bool has_xyz = channels.findChannel("XYZ.X") && channels.findChannel("XYZ.Y") &&
                    channels.findChannel("XYZ.Z");
     bool has_rgb =
         channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
     if (!has_xyz && !has_rgb)
-      throw Error(path + ": EXR has neither an XYZ layer nor R, G, B channels");
+      throw Error(printable(path) + ": EXR has neither an XYZ layer nor R, G, B channels");
 
     std::vector<float> three(3 * n, 0.0f);
     Imf::FrameBuffer fb;
@@ -120,6 +160,11 @@ Image read_exr(const std::string& path) {
     if (!bins.empty()) {
       std::vector<double> wl;
       for (const auto& [nm, name] : bins) wl.push_back(nm);
+      // The grid is min + bin width: only evenly spaced channels describe one.
+      for (size_t k = 2; k < wl.size(); ++k)
+        if (std::abs((wl[k] - wl[k - 1]) - (wl[1] - wl[0])) > 1e-3 * (wl[1] - wl[0]))
+          throw Error(printable(path) + ": spectral channels are not evenly spaced (" +
+                      printable(bins[wl[k - 1]]) + ", " + printable(bins[wl[k]]) + ")");
       img.grid.bins = static_cast<int>(wl.size());
       img.grid.bin_nm = wl.size() > 1 ? (wl.back() - wl.front()) / (wl.size() - 1) : 10.0;
       img.grid.min_nm = wl.front() - 0.5 * img.grid.bin_nm;
@@ -149,7 +194,7 @@ Image read_exr(const std::string& path) {
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {
-    throw Error(path + ": cannot read EXR: " + e.what());
+    throw Error(printable(path) + ": cannot read EXR: " + printable(e.what()));
   }
 }
 

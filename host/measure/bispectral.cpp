@@ -1,9 +1,11 @@
 #include "measure/bispectral.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/printable.h"
 #include "measure/fluorimeter.h"
 #include "measure/rank1_fit.h"
 
@@ -11,6 +13,7 @@ namespace kasha {
 
 MeasuredMaterial material_from_bispectral(const ExcitationEmissionMatrix& D, double band_nm) {
   MeasuredMaterial m;
+  m.source = D.source;
   m.method = "bispectral";
   m.ex_nm = D.ex_nm;
   m.em_nm = D.em_nm;
@@ -23,6 +26,7 @@ MeasuredMaterial material_from_bispectral(const ExcitationEmissionMatrix& D, dou
   const double step = n_o > 1 ? (D.em_nm.back() - D.em_nm.front()) / (n_o - 1) : 1.0;
   m.band_nm = band_nm > 0 ? band_nm : step;
   m.band_estimated = band_nm <= 0;
+  check_band(D, m.band_nm, m.band_estimated ? D.source : "");
   std::vector<Eigen::Index> diagonal(n_i, -1);
   m.known = Eigen::MatrixXd::Ones(n_o, n_i);
   for (Eigen::Index i = 0; i < n_i; ++i)
@@ -31,12 +35,17 @@ MeasuredMaterial material_from_bispectral(const ExcitationEmissionMatrix& D, dou
       if (d < 1e-6) diagonal[i] = o;
       if (d <= m.band_nm + 1e-6) m.known(o, i) = 0;
     }
-  bool any = false;
-  for (Eigen::Index d : diagonal) any = any || d >= 0;
-  if (!any)
+  const auto on_diagonal =
+      std::count_if(diagonal.begin(), diagonal.end(), [](Eigen::Index d) { return d >= 0; });
+  if (on_diagonal == 0)
     throw Error(
-        D.source +
+        printable(D.source) +
         ": missing band: no excitation wavelength equals an emission wavelength (no diagonal)");
+  // The passive reflectance is tabulated on the diagonal and needs two samples.
+  if (on_diagonal < 2)
+    throw Error(printable(D.source) +
+                ": only one excitation wavelength equals an emission wavelength; the passive "
+                "reflectance needs two");
 
   Rank1Fit fit = fit_rank1_nonnegative(m.fluorescence, m.known);
   m.fit = fit.e * fit.a.transpose();
@@ -62,6 +71,7 @@ MeasuredMaterial material_from_bispectral(const ExcitationEmissionMatrix& D, dou
     m.passive.nm.push_back(D.ex_nm[i]);
     m.passive.value.push_back(rho);
   }
+  drop_zero_fluorescence(m);
   return m;
 }
 

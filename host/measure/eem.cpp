@@ -5,6 +5,7 @@
 
 #include "core/csv_table.h"
 #include "core/error.h"
+#include "core/printable.h"
 
 namespace kasha {
 
@@ -22,13 +23,16 @@ static void check_increasing(const std::vector<double>& nm, const std::string& w
                              const std::string& path) {
   for (size_t i = 0; i < nm.size(); ++i) {
     if (!(nm[i] > 0))
-      throw Error(path + ": " + what + " wavelength " + std::to_string(nm[i]) + " is not positive");
-    if (i > 0 && nm[i] <= nm[i - 1]) throw Error(path + ": " + what + " wavelengths must increase");
+      throw Error(printable(path) + ": " + what + " wavelength " + std::to_string(nm[i]) +
+                  " is not positive");
+    if (i > 0 && nm[i] <= nm[i - 1])
+      throw Error(printable(path) + ": " + what + " wavelengths must increase");
   }
 }
 
 ExcitationEmissionMatrix read_eem(const std::string& path) {
   CsvTable t = read_csv_table(path);
+  check_jasco_nanometers(t);
   ExcitationEmissionMatrix m;
   m.source = path;
   size_t first_row = 0;
@@ -38,8 +42,8 @@ ExcitationEmissionMatrix read_eem(const std::string& path) {
       char* end = nullptr;
       double v = std::strtod(t.header[c].c_str(), &end);
       if (t.header[c].empty() || *end != '\0' || !std::isfinite(v))
-        throw Error(path + ": header row, column " + std::to_string(c + 1) +
-                    ": excitation wavelength \"" + t.header[c] + "\" is not a number");
+        throw Error(printable(path) + ": header row, column " + std::to_string(c + 1) +
+                    ": excitation wavelength \"" + printable(t.header[c]) + "\" is not a number");
       m.ex_nm.push_back(v);
     }
   } else if (!t.rows.empty()) {
@@ -67,6 +71,19 @@ ExcitationEmissionMatrix read_eem(const std::string& path) {
   }
   check_increasing(m.ex_nm, "excitation", path);
   check_increasing(m.em_nm, "emission", path);
+  // A material's spectra are tabulated on these wavelengths and need two samples each; and a
+  // matrix with nothing above zero is no measurement (a material from it would be refused).
+  if (m.ex_nm.size() < 2)
+    throw Error(printable(path) +
+                ": only one excitation wavelength (column); a matrix needs two "
+                "or more");
+  if (m.em_nm.size() < 2)
+    throw Error(printable(path) +
+                ": only one emission wavelength (row); a matrix needs two or "
+                "more");
+  if (!(m.value.maxCoeff() > 0))
+    throw Error(printable(path) + ": no reading is above zero (all " +
+                (m.value.minCoeff() == 0 ? "zero" : "zero or negative") + "): not a measurement");
   return m;
 }
 

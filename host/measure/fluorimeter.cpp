@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/printable.h"
 #include "measure/rank1_fit.h"
 
 namespace kasha {
@@ -17,13 +18,30 @@ std::string nm_text(double nm) {
   return o.str();
 }
 
-double positive_value(const Spectrum& s, double nm, const std::string& what) {
+double positive_value(const Spectrum& s, double nm, const std::string& source,
+                      const std::string& what) {
   double v = s.value(nm);
-  if (!(v > 0)) throw Error(what + " is " + (v == 0 ? "zero" : "negative") + " at " + nm_text(nm));
+  if (!(v > 0))
+    throw Error(printable(source) + ": " + what + " is " + (v == 0 ? "zero" : "negative") + " at " +
+                nm_text(nm) + (v == 0 ? " (a table is zero outside its wavelengths)" : ""));
   return v;
 }
 
 }  // namespace
+
+void check_band(const ExcitationEmissionMatrix& m, double band_nm,
+                const std::string& estimated_from) {
+  // A band as wide as the emission range leaves no reading outside it: the fit would see nothing
+  // and the material's fluorescence would be all zero.
+  const double span = m.em_nm.back() - m.em_nm.front();
+  if (!(band_nm > 0 && band_nm < span)) {
+    std::ostringstream msg;
+    msg << (estimated_from.empty() ? "--band-nm " : printable(estimated_from) + ": band ±")
+        << band_nm << " nm: the band must be narrower than the emission range of "
+        << printable(m.source) << " (" << m.em_nm.front() << " to " << m.em_nm.back() << " nm)";
+    throw Error(msg.str());
+  }
+}
 
 std::vector<double> trapezoid_weights(const std::vector<double>& nm) {
   std::vector<double> w(nm.size(), 0.0);
@@ -77,6 +95,7 @@ MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in) {
     throw Error(msg.str());
   }
   MeasuredMaterial m;
+  m.source = S.source;
   m.method = "fluorimeter";
   m.ex_nm = S.ex_nm;
   m.em_nm = S.em_nm;
@@ -85,6 +104,7 @@ MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in) {
   m.band_estimated = in.band_nm <= 0;
   m.band_nm = m.band_estimated ? band_from_etalon(E) : in.band_nm;
   const double eps = m.band_nm;
+  check_band(S, eps, m.band_estimated ? E.source : "");
   const std::vector<double> w = trapezoid_weights(S.em_nm);
 
   // Masks: the band around the diagonal and the grating's second order near λo = 2λi.
@@ -110,23 +130,29 @@ MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in) {
       }
     bool inside = li >= S.em_nm.front() && li <= S.em_nm.back();
     if (inside && !has_band[i])
-      throw Error("empty band: no emission sample lies within ±" + std::to_string(eps) +
-                  " nm of the excitation at " + nm_text(li) +
+      throw Error(printable(S.source) + ": empty band: no emission sample lies within ±" +
+                  std::to_string(eps) + " nm of the excitation at " + nm_text(li) +
                   " (--band-nm is narrower than the emission grid's step)");
     if (!has_band[i]) continue;
     if (!(rbar_e[i] > 0))
-      throw Error(E.source + ": the etalon reading is zero in the band at excitation " +
+      throw Error(printable(E.source) + ": the etalon reading is zero in the band at excitation " +
                   nm_text(li));
-    double rho_e = in.etalon_reflectance->value(li);
-    if (rho_e < 0) throw Error("etalon reflectance is negative at " + nm_text(li));
-    if (!(rho_e > 0)) throw Error("etalon reflectance is zero at " + nm_text(li));
-    f_e[i] = rho_e / M_PI;
-    if (in.sensitivity) c_i[i] = positive_value(*in.sensitivity, li, "detector sensitivity");
+    f_e[i] = positive_value(*in.etalon_reflectance, li, in.etalon_reflectance_source,
+                            "etalon reflectance") /
+             M_PI;
+    if (in.sensitivity)
+      c_i[i] = positive_value(*in.sensitivity, li, in.sensitivity_source, "detector sensitivity");
   }
+  if (std::count(has_band.begin(), has_band.end(), true) < 2)
+    throw Error(printable(S.source) +
+                ": fewer than two excitation wavelengths lie inside the emission range (" +
+                nm_text(S.em_nm.front()) + " to " + nm_text(S.em_nm.back()) +
+                "); the material's spectra need two");
   std::vector<double> c_o(n_o, 1.0);
   if (in.sensitivity)
     for (Eigen::Index o = 0; o < n_o; ++o)
-      c_o[o] = positive_value(*in.sensitivity, S.em_nm[o], "detector sensitivity");
+      c_o[o] = positive_value(*in.sensitivity, S.em_nm[o], in.sensitivity_source,
+                              "detector sensitivity");
 
   // Corrected eq. 8 on every entry; only the known ones enter the fit. Columns without a band
   // (excitation outside the emission range) have no R̄_e to scale by and stay out.
@@ -140,7 +166,8 @@ MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in) {
       m.fluorescence(o, i) = f_e[i] * S.value(o, i) / rbar_e[i] * c_i[i] / c_o[o];
   }
   bool any_known = m.known.sum() > 0;
-  if (!any_known) throw Error(S.source + ": no off-band entries left to fit the fluorescence to");
+  if (!any_known)
+    throw Error(printable(S.source) + ": no off-band entries left to fit the fluorescence to");
   Rank1Fit fit = fit_rank1_nonnegative(m.fluorescence, m.known);
   m.fit = fit.e * fit.a.transpose();
   m.rank1_residual = fit.relative_residual;
@@ -178,6 +205,7 @@ MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in) {
     if (!has_band[i])
       m.notes.push_back("no passive reflectance or excitation at " + nm_text(S.ex_nm[i]) +
                         ": outside the emission range");
+  drop_zero_fluorescence(m);
   return m;
 }
 

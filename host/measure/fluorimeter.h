@@ -15,6 +15,9 @@ struct FluorimeterInput {
   SpectrumPtr etalon_reflectance;  // ρ_e
   SpectrumPtr sensitivity;         // C(λ), or null when the instrument already corrects for it
   double band_nm = 0;              // ε; <= 0: found from the etalon's diagonal peak
+  // The files the two spectra come from, for messages.
+  std::string etalon_reflectance_source = "--etalon-reflectance",
+              sensitivity_source = "--sensitivity";
 };
 
 MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in);
@@ -22,6 +25,12 @@ MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in);
 // The band half-width the etalon's diagonal peak shows: where it falls below 2 % of its top,
 // over the excitation wavelengths inside the emission range, plus one emission sample of margin.
 double band_from_etalon(const ExcitationEmissionMatrix& etalon);
+
+// Refuses a band half-width that is not positive and narrower than the emission range (no reading
+// would lie outside it). `estimated_from`: the etalon when the band was estimated, else empty and
+// the message names --band-nm.
+void check_band(const ExcitationEmissionMatrix& m, double band_nm,
+                const std::string& estimated_from);
 
 // Quadrature weights of a sampled function over its wavelengths (trapezoid rule).
 std::vector<double> trapezoid_weights(const std::vector<double>& nm);

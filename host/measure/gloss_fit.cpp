@@ -6,12 +6,18 @@
 
 #include "core/csv_table.h"
 #include "core/error.h"
+#include "core/printable.h"
 
 namespace kasha {
 
 GlossFit fit_gloss(const std::string& path, double cone_deg) {
   CsvTable t = read_csv_table(path);
-  if (t.rows.empty()) throw Error(path + ": no goniometer rows");
+  // Spectra Manager exports spectra over wavelength or wavenumber, never angles.
+  if (t.jasco)
+    throw Error(printable(path) +
+                ": a JASCO spectrum export is not a gloss table (columns "
+                "theta_in_deg, theta_out_deg, brdf)");
+  if (t.rows.empty()) throw Error(printable(path) + ": no goniometer rows");
   // theta_in -> (theta_out, brdf) samples.
   std::map<double, std::vector<std::pair<double, double>>> by_incidence;
   for (size_t r = 0; r < t.rows.size(); ++r) {

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/printable.h"
 
 namespace kasha {
 
@@ -14,6 +15,18 @@ double interpolate(const Tabulated& t, double nm) {
   if (k >= t.nm.size()) return t.value.back();
   double u = (nm - t.nm[k - 1]) / (t.nm[k] - t.nm[k - 1]);
   return t.value[k - 1] + u * (t.value[k] - t.value[k - 1]);
+}
+
+void drop_zero_fluorescence(MeasuredMaterial& m) {
+  auto zero = [](const std::vector<double>& v) {
+    return std::all_of(v.begin(), v.end(), [](double x) { return x == 0; });
+  };
+  if (m.excitation.nm.empty() || !(zero(m.excitation.value) || zero(m.emission.value))) return;
+  m.excitation = {};
+  m.emission = {};
+  m.notes.push_back(
+      "no fluorescence: the readings off the band fit to zero, so the material is "
+      "passive only");
 }
 
 void check_energy(MeasuredMaterial& m, bool clip) {
@@ -30,6 +43,7 @@ void check_energy(MeasuredMaterial& m, bool clip) {
     if (total <= 1.0 + 1e-9) continue;
     if (!clip) {
       std::ostringstream msg;
+      if (!m.source.empty()) msg << printable(m.source) << ": ";
       msg << "energy gain at " << l << " nm: gloss " << g << " + passive " << rho
           << " + excitation " << a << " = " << total << " > 1 (use --clip to clip it)";
       throw Error(msg.str());

@@ -21,6 +21,7 @@ struct MeasuredMaterial {
   std::optional<GlossDesc> gloss;
 
   // Diagnostics.
+  std::string source;  // the measurement file the material comes from, for messages
   std::string method;  // "fluorimeter" or "bispectral"
   double band_nm = 0;  // half-width of the near-diagonal band
   bool band_estimated = false;
@@ -37,8 +38,13 @@ struct MeasuredMaterial {
 };
 
 // g + ρ + a over the excitation wavelengths; without `clip` an energy gain throws kasha::Error
-// naming the wavelength, with it ρ (then a) is reduced to fit and the wavelength recorded.
+// naming the source file and the wavelength, with it ρ (then a) is reduced to fit and the
+// wavelength recorded.
 void check_energy(MeasuredMaterial& m, bool clip);
+
+// A sample without fluorescence (nothing off the band, so the fit is zero) has no emission shape
+// to normalize: its fluorescence part is dropped, with a note, and the material is passive only.
+void drop_zero_fluorescence(MeasuredMaterial& m);
 
 // Linear interpolation in a tabulated function, zero outside.
 double interpolate(const Tabulated& t, double nm);

@@ -7,11 +7,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 
 #include "core/error.h"
-#include "core/input_files.h"
+#include "core/input_file.h"
 #include "scene/limits.h"
 
 namespace kasha {
@@ -85,13 +83,8 @@ bool obj_coordinate(const std::string& word, double& out) {
 // tinyobjloader gives no line numbers, stores 0 for an unreadable or missing coordinate without a
 // word, and reads past its vertex array for a polygon with an index out of range. So the `v` and
 // `f` lines are checked first, each error naming its line; the geometry still comes from it.
-void check_obj_lines(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return;  // tinyobjloader says it cannot open it
-  note_input_file(path);  // no output may replace it (core/output_set.h)
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  const std::string text = buffer.str();
+// Indices are read as 64-bit numbers, so one beyond 32 bits is out of range, not wrapped.
+void check_obj_lines(const std::string& path, const std::string& text) {
   long vertices = 0;
   int line_no = 0;
   for (size_t pos = 0; pos < text.size();) {
@@ -140,13 +133,16 @@ void check_obj_lines(const std::string& path) {
 }  // namespace
 
 std::vector<Triangle> obj_triangles(const std::string& path) {
-  check_obj_lines(path);
+  // Read once through the checked route (regular file, size limit); tinyobjloader then parses the
+  // same text and opens nothing itself (no .mtl either: kasha takes materials from the scene).
+  const std::string text = read_input_file(path, kMaxBinaryInputBytes);
+  check_obj_lines(path, text);
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;
   config.vertex_color = false;
   config.mtl_search_path = "";
   tinyobj::ObjReader reader;
-  if (!reader.ParseFromFile(path, config)) {
+  if (!reader.ParseFromString(text, "", config)) {
     std::string why = reader.Error();
     while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
     for (char& ch : why)

@@ -6,6 +6,7 @@
 
 #include "core/csv_table.h"
 #include "core/error.h"
+#include "core/printable.h"
 #include "spectrum/builtin_spectra.h"
 
 namespace kasha {
@@ -43,21 +44,19 @@ SpectrumPtr make_tabulated_spectrum(const std::vector<double>& nm, const std::ve
 
 SpectrumPtr read_spectrum_csv(const std::string& path, const std::string& column) {
   CsvTable table = read_csv_table(path);
-  if (table.rows.empty()) throw Error(path + ": no data rows");
+  check_jasco_nanometers(table);
+  if (table.rows.empty()) throw Error(printable(path) + ": no data rows");
   size_t col = 1;
   if (!column.empty()) {
     col = 0;
     for (size_t c = 1; c < table.header.size(); ++c)
       if (table.header[c] == column) col = c;
-    if (col == 0) throw Error(path + ": no column named \"" + column + "\" in the header");
+    if (col == 0)
+      throw Error(printable(path) + ": no column named \"" + printable(column) +
+                  "\" in the header");
   } else if (table.rows[0].size() != 2) {
     throw Error(path + ": expected two columns (nm, value), found " +
                 std::to_string(table.rows[0].size()) + "; choose one with \"column\"");
-  }
-  if (table.jasco) {
-    auto units = table.fields.find("XUNITS");
-    if (units != table.fields.end() && units->second != "NANOMETERS")
-      throw Error(path + ": x units are " + units->second + ", not NANOMETERS");
   }
   std::vector<double> nm, value;
   std::vector<int> lines;
@@ -98,6 +97,8 @@ SpectrumPtr parse_spectrum(const JsonNode& node) {
   std::string where = node.file() + ": " + node.path();
   if (auto csv = node.find("csv")) {
     std::filesystem::path file = std::filesystem::path(csv->string());
+    // An empty name would resolve to the scene's own folder.
+    if (file.empty()) csv->fail("empty file name");
     if (file.is_relative()) file = node.base_dir() / file;
     std::string column;
     if (auto c = node.find("column")) column = c->string();

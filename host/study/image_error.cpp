@@ -3,15 +3,21 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/printable.h"
 
 namespace kasha {
 
+void check_reference_size(const Image& reference, int width, int height) {
+  if (reference.width != width || reference.height != height)
+    throw Error((reference.source.empty() ? "" : printable(reference.source) + ": ") +
+                "the reference is " + std::to_string(reference.width) + "x" +
+                std::to_string(reference.height) + " but the image is " + std::to_string(width) +
+                "x" + std::to_string(height));
+}
+
 ImageError image_error(const Image& image, const Image& reference,
                        const std::vector<bool>& leave_out) {
-  if (image.width != reference.width || image.height != reference.height)
-    throw Error("reference is " + std::to_string(reference.width) + "x" +
-                std::to_string(reference.height) + " but the image is " +
-                std::to_string(image.width) + "x" + std::to_string(image.height));
+  check_reference_size(reference, image.width, image.height);
   double se = 0, rel = 0;
   size_t n = 0;
   for (size_t i = 0; i < image.xyz.size(); ++i) {

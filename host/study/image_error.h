@@ -11,8 +11,12 @@ struct ImageError {
   double rmse = 0, relmse = 0;
 };
 
-// Throws kasha::Error when the sizes differ. With `leave_out` (a flag per pixel), those pixels
-// are not counted.
+// Throws kasha::Error naming the reference's file when its size is not width x height, so a
+// command can refuse it before rendering.
+void check_reference_size(const Image& reference, int width, int height);
+
+// Throws kasha::Error (as check_reference_size) when the sizes differ. With `leave_out` (a flag per
+// pixel), those pixels are not counted.
 ImageError image_error(const Image& image, const Image& reference,
                        const std::vector<bool>& leave_out = {});
 
