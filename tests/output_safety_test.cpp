@@ -150,8 +150,8 @@ TEST(OutputSafety, EveryBadOutputIsOneLineAndChangesNothing) {
        "-o $D/s.csv/sub: $D/s.csv is not a directory"},
       // A failed converge leaves no folder (it is made as a temporary, renamed when complete).
       {"converge fails after its checks",
-       "converge $D/scene.json --time 1 --integrators sideways -o $D/study",
-       "--integrators: unknown integrator"},
+       "converge $D/scene.json --time 1 --reference $D/ref.exr -o $D/study",
+       "$D/ref.exr: "},
   };
   if (geteuid() != 0)  // root writes in any folder whatever its mode bits
     cases.push_back({"-o in a read-only folder", r + "-o $D/ro/o.exr",
@@ -301,13 +301,12 @@ TEST(OutputSafety, MeasureWritesNoMaterialRenderWouldRefuse) {
   write_eem(d / "one_e.csv", {400}, band);
   std::ofstream(d / "rho.csv") << "nm,rho\n250,0.97\n850,0.98\n";
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"--sample $D/zero.csv --etalon $D/e.csv",
-       "--sample $D/zero.csv: the measured material is not usable: "},
-      {"--sample $D/negative.csv --etalon $D/e.csv",
-       "--sample $D/negative.csv: the measured material is not usable: "},
+      // Refused where the input is read (its own checks), before any material is made.
+      {"--sample $D/zero.csv --etalon $D/e.csv", "$D/zero.csv: no reading is above zero"},
+      {"--sample $D/negative.csv --etalon $D/e.csv", "$D/negative.csv: no reading is above zero"},
       {"--sample $D/one_s.csv --etalon $D/one_e.csv",
-       "--sample $D/one_s.csv: the measured material is not usable: "},
-      {"--sample $D/s.csv --etalon $D/e.csv --band-nm 1e300", "$D/s.csv: "},
+       "$D/one_s.csv: only one excitation wavelength"},
+      {"--sample $D/s.csv --etalon $D/e.csv --band-nm 500", "--band-nm 500 nm: the band must be"},
   };
   const auto before = snapshot(d);
   for (const auto& [args, message] : cases) {

@@ -330,9 +330,9 @@ TEST(Scene, ZeroAreaAndDuplicateTrianglesAreHarmless) {
       camera_and_materials + obj_shape("degenerate.obj", mesh, R"(, "emission": 1)") + enclosure);
   Scene s = load_scene(scene);
   const double radiance = s.emitters[0].integrated_radiance(s.grid.bin_nm);
-  for (int zero : {2, 3, 4, 6}) EXPECT_EQ(emitted_power(s.triangles[zero], radiance), 0.0) << zero;
-  EXPECT_DOUBLE_EQ(emitted_power(s.triangles[5], radiance),
-                   emitted_power(s.triangles[0], radiance));
+  // The good triangle's twin is left out at load (a coincident twin would double its power).
+  ASSERT_EQ(s.shapes[0].triangle_count, 6);
+  for (int zero : {2, 3, 4, 5}) EXPECT_EQ(emitted_power(s.triangles[zero], radiance), 0.0) << zero;
   EXPECT_GT(emitted_power(s.triangles[0], radiance), 0.0);
   for (const char* integrator : {"backward", "forward", "photon"}) {
     test::RenderSettings settings;

@@ -9,6 +9,7 @@
 #include <cstdlib>
 
 #include "core/error.h"
+#include "core/printable.h"
 #include "core/input_file.h"
 #include "scene/limits.h"
 
@@ -106,7 +107,7 @@ void check_obj_lines(const std::string& path, const std::string& text) {
       double p[3];
       for (int c = 0; c < 3; ++c)
         if (!obj_coordinate(words[c], p[c]) || !std::isfinite(p[c]))
-          throw Error(at + "vertex coordinate \"" + words[c] + "\" is not a finite number");
+          throw Error(at + "vertex coordinate \"" + printable(words[c]) + "\" is not a finite number");
       for (int c = 0; c < 3; ++c)
         if (!(std::abs(p[c]) <= kMaxCoordinate)) {
           char v[128];
@@ -123,7 +124,7 @@ void check_obj_lines(const std::string& path, const std::string& text) {
         long i = std::strtol(number.c_str(), &rest, 10);
         if (number.empty() || *rest != '\0' || errno != 0 || i == 0 || i > vertices ||
             -i > vertices)
-          throw Error(at + "face vertex \"" + word + "\" names no vertex (" +
+          throw Error(at + "face vertex \"" + printable(word) + "\" names no vertex (" +
                       std::to_string(vertices) + " defined above it)");
       }
     }
@@ -147,7 +148,7 @@ std::vector<Triangle> obj_triangles(const std::string& path) {
     while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
     for (char& ch : why)
       if (ch == '\n') ch = ' ';
-    throw Error(path + ": cannot read OBJ mesh: " + (why.empty() ? "unknown error" : why));
+    throw Error(printable(path) + ": cannot read OBJ mesh: " + (why.empty() ? "unknown error" : printable(why)));
   }
   const auto& v = reader.GetAttrib().vertices;
   std::vector<Triangle> out;
