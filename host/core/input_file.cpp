@@ -20,15 +20,6 @@ std::string size_text(std::uint64_t bytes) {
                                            : std::to_string(bytes >> 20) + " MiB";
 }
 
-std::string kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISFIFO(mode)) return "a FIFO (pipe)";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "not a regular file";
-}
-
 // An open descriptor that closes itself.
 struct Fd {
   int fd = -1;
@@ -47,12 +38,12 @@ std::uint64_t open_checked(const std::string& path, std::uint64_t max_bytes, Fd&
     // A directory opens on Linux, but say what it is either way.
     struct stat st {};
     if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
-      throw Error(where + "is " + kind_of(st.st_mode) + ", not a file");
+      throw Error(where + "is " + file_kind(st.st_mode) + ", not a file");
     throw Error(where + "cannot open file: " + std::strerror(errno));
   }
   struct stat st {};
   if (::fstat(file.fd, &st) != 0) throw Error(where + "cannot open file: " + std::strerror(errno));
-  if (!S_ISREG(st.st_mode)) throw Error(where + "is " + kind_of(st.st_mode) + ", not a file");
+  if (!S_ISREG(st.st_mode)) throw Error(where + "is " + file_kind(st.st_mode) + ", not a file");
   const auto size = static_cast<std::uint64_t>(st.st_size);
   note_input_file(path);  // no output may replace it (core/output_set.h)
   if (size > max_bytes)
@@ -62,6 +53,16 @@ std::uint64_t open_checked(const std::string& path, std::uint64_t max_bytes, Fd&
 }
 
 }  // namespace
+
+std::string file_kind(mode_t mode) {
+  if (S_ISREG(mode)) return "a file";
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO (pipe)";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "not a regular file";
+}
 
 std::string read_input_file(const std::string& path, std::uint64_t max_bytes) {
   Fd file;

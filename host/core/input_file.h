@@ -2,6 +2,8 @@
 // The one way kasha opens an input file: regular files only (a directory, FIFO or device where a
 // file is expected is refused up front, not read as empty or without end), within a size limit,
 // every message naming the file.
+#include <sys/stat.h>
+
 #include <cstdint>
 #include <string>
 
@@ -19,5 +21,8 @@ std::string read_input_file(const std::string& path, std::uint64_t max_bytes);
 
 // The same checks for a library that opens the file by name itself (OpenEXR).
 void check_input_file(const std::string& path, std::uint64_t max_bytes);
+
+// What a file of this mode is, for messages: "a directory", "a FIFO (pipe)", ...
+std::string file_kind(mode_t mode);
 
 }  // namespace kasha

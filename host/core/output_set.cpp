@@ -9,6 +9,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/input_files.h"
 
 namespace kasha {
@@ -41,16 +42,6 @@ bool same_file(const std::string& a, const std::string& b) {
   fs::path ca = fs::weakly_canonical(fs::absolute(a), ea);
   fs::path cb = fs::weakly_canonical(fs::absolute(b), eb);
   return !ea && !eb && ca == cb;
-}
-
-std::string kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISSOCK(mode)) return "a socket";
-  if (S_ISREG(mode)) return "a file";
-  return "not a regular file";
 }
 
 std::string folder_of(const std::string& path) {
@@ -151,7 +142,7 @@ void OutputSet::file(const std::string& option, const std::string& path) {
       throw Error(o.where() + ": is a symbolic link (to " + fs::read_symlink(path, ec).string() +
                   "), not a regular file");
     }
-    if (!S_ISREG(st.st_mode)) throw Error(o.where() + ": is " + kind_of(st.st_mode));
+    if (!S_ISREG(st.st_mode)) throw Error(o.where() + ": is " + file_kind(st.st_mode));
   }
   check_folder(folder_of(path), o.where());
   impl_->outputs.push_back(o);
@@ -167,7 +158,7 @@ void OutputSet::directory(const std::string& option, const std::string& path) {
   struct stat st;
   if (::stat(path.c_str(), &st) == 0) {
     if (!S_ISDIR(st.st_mode))
-      throw Error(o.where() + ": is " + kind_of(st.st_mode) + ", not a directory");
+      throw Error(o.where() + ": is " + file_kind(st.st_mode) + ", not a directory");
     check_folder(path, o.where());
     o.existed = true;
   } else if (::lstat(path.c_str(), &st) == 0) {
@@ -234,7 +225,7 @@ void OutputSet::commit() {
       struct stat st;
       if (::lstat(target.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
         throw Error(o.where() + ": " + target + " is " +
-                    (S_ISLNK(st.st_mode) ? std::string("a symbolic link") : kind_of(st.st_mode)) +
+                    (S_ISLNK(st.st_mode) ? std::string("a symbolic link") : file_kind(st.st_mode)) +
                     ", which kasha does not replace");
       for (const Input& in : impl_->inputs)
         if (same_file(target, in.path))
