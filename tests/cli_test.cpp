@@ -215,9 +215,9 @@ TEST(Cli, EveryPhysicalIntegratorRefusesASceneWithoutLight) {
 
 TEST(Cli, RenderWarnsWhenTheDepthGuardCutsPaths) {
   // A furnace that keeps 99.99 % of its light: paths outlive a guard of --max-depth 1000, which
-  // biases the image, and each integrator says how much weight the guard cut. Roulette keeps a path's
-  // expected weight, so after the guard's 1000 scatterings it is ρ^1000 = 0.9048 of the start:
-  // each path carries about 0 or 1, so the share has a binomial error over the paths traced.
+  // biases the image, and each integrator says how much weight the guard cut. Roulette keeps a
+  // path's expected weight, so after the guard's 1000 scatterings it is ρ^1000 = 0.9048 of the
+  // start: each path carries about 0 or 1, so the share has a binomial error over the paths traced.
   std::string scene = test::write_file("stiff.json", R"({"kasha_scene": 1,
     "camera": {"position": [0, 0, 0], "look_at": [1, 0, 0], "fov_deg": 60, "width": 4, "height": 4},
     "materials": {"white": {"passive": {"reflectance": 0.9999}}},

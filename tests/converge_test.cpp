@@ -108,5 +108,6 @@ TEST(Converge, BadArgumentsGiveOneLine) {
   check(furnace + " --time 1 --reference /nonexistent/ref.exr -o " + out,
         "--reference /nonexistent/ref.exr: no such file");
   std::string file = write_file("a_file", "x");
-  check(furnace + " --time 1 --reference furnace -o " + file + "/sub", file + " is not a directory");
+  check(furnace + " --time 1 --reference furnace -o " + file + "/sub",
+        file + " is not a directory");
 }

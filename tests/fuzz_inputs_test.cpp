@@ -50,10 +50,11 @@ void write_text(const fs::path& p, const std::string& text) {
 // Values a mutated number becomes: beyond float and double, non-finite spellings, signs, zero,
 // huge integers and exponents at the edges of what the loaders accept.
 const std::vector<std::string> kNumbers = {
-    "0",     "-0",     "-1",    "1e400",  "-1e400", "1e38",        "3.5e38", "1e-45", "1e30",
-    "1e31",  "1e18",   "1e19",  "nan",    "inf",    "-inf",        "NaN",    "1e-300",
-    "2147483647",      "4294967297",      "-2147483649",           "1e9",    "0.999999999",
-    "1.0000001",       "00012", "1.",     ".5",     "0x10",        "1e",     "--1",    "1e+308"};
+    "0",          "-0",          "-1",   "1e400",       "-1e400",    "1e38",
+    "3.5e38",     "1e-45",       "1e30", "1e31",        "1e18",      "1e19",
+    "nan",        "inf",         "-inf", "NaN",         "1e-300",    "2147483647",
+    "4294967297", "-2147483649", "1e9",  "0.999999999", "1.0000001", "00012",
+    "1.",         ".5",          "0x10", "1e",          "--1",       "1e+308"};
 
 // One text mutation: a number replaced, a span deleted or duplicated, a byte flipped or an odd
 // token inserted, or the text cut short.
@@ -96,9 +97,16 @@ std::string mutate(std::string text, std::mt19937& rng) {
       return text;
     }
     case 4: {  // an odd token
-      static const std::vector<std::string> tokens = {
-          "{", "}", "[", "]", ",", ":", "\"\"", "null", "true", "\"x\": 1,", "\x1b[31m", "\r",
-          "\n", std::string("\0", 1), "\xff", "#", "v 1", "f 1 2 99999999999", "-1", "1e400"};
+      static const std::vector<std::string> tokens = {"{",        "}",
+                                                      "[",        "]",
+                                                      ",",        ":",
+                                                      "\"\"",     "null",
+                                                      "true",     "\"x\": 1,",
+                                                      "\x1b[31m", "\r",
+                                                      "\n",       std::string("\0", 1),
+                                                      "\xff",     "#",
+                                                      "v 1",      "f 1 2 99999999999",
+                                                      "-1",       "1e400"};
       return text.insert(pick(text.size() + 1), tokens[pick(tokens.size())]);
     }
     default:  // cut short
@@ -184,7 +192,8 @@ TEST(Fuzz, MutatedInputsLoadOrGiveOneLineAndRenderFinite) {
       ++loaded;
       // Every fourth scene that loads on the seed's grid (so kernels are shared) is rendered.
       if (c % 4 != 0 || scene.grid.bins != reference.grid.bins ||
-          scene.grid.min_nm != reference.grid.min_nm || scene.camera.width * scene.camera.height > 64)
+          scene.grid.min_nm != reference.grid.min_nm ||
+          scene.camera.width * scene.camera.height > 64)
         continue;
       IntegratorSettings settings;
       settings.spp = 1;
@@ -196,7 +205,8 @@ TEST(Fuzz, MutatedInputsLoadOrGiveOneLineAndRenderFinite) {
         RenderJob job(cl, scene, device_scene, integrator, settings, false);
         job.pass(0);
         Image image = job.film().image();
-        for (float v : image.xyz) ASSERT_TRUE(std::isfinite(v)) << integrator << " wrote a non-finite pixel";
+        for (float v : image.xyz)
+          ASSERT_TRUE(std::isfinite(v)) << integrator << " wrote a non-finite pixel";
         ++rendered;
       } catch (const Error& e) {
         EXPECT_TRUE(one_line(e.what())) << e.what();  // e.g. no emitter with power left
@@ -257,8 +267,9 @@ TEST(Fuzz, TheBinaryExitsZeroOrOneWithAtMostOneErrorLine) {
   for (int c = 0; c < cases; ++c) {
     const std::string path = write_case(seeds, c % 5, rng);
     CommandResult r = run_kasha("info '" + path + "'");
-    EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1) << "case " << c << ": exit " << r.exit_code
-                                                       << "\n" << r.err;
+    EXPECT_TRUE(r.exit_code == 0 || r.exit_code == 1)
+        << "case " << c << ": exit " << r.exit_code << "\n"
+        << r.err;
     if (r.exit_code != 0) {
       EXPECT_EQ(r.err.rfind("kasha: error: ", 0), 0u) << r.err;
       EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;

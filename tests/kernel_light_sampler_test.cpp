@@ -223,7 +223,7 @@ TEST(KernelLightSampler, PointsFollowTheClaimedDensity) {
   kernel.input(8, light_tri);
   kernel.input(9, light_cdf);
   kernel.scalar(10, lights_n);
-  kernel.scalar(11, 1.0f);   // bin_nm
+  kernel.scalar(11, 1.0f);  // bin_nm
   kernel.input(12, std::vector<float>{float(x.x()), float(x.y()), float(x.z())});
   const std::vector<float> out = kernel.sample(13, uniforms(3 * kSamples, 11), 14, 10, kSamples);
 

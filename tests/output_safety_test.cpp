@@ -150,8 +150,7 @@ TEST(OutputSafety, EveryBadOutputIsOneLineAndChangesNothing) {
        "-o $D/s.csv/sub: $D/s.csv is not a directory"},
       // A failed converge leaves no folder (it is made as a temporary, renamed when complete).
       {"converge fails after its checks",
-       "converge $D/scene.json --time 1 --reference $D/ref.exr -o $D/study",
-       "$D/ref.exr: "},
+       "converge $D/scene.json --time 1 --reference $D/ref.exr -o $D/study", "$D/ref.exr: "},
   };
   if (geteuid() != 0)  // root writes in any folder whatever its mode bits
     cases.push_back({"-o in a read-only folder", r + "-o $D/ro/o.exr",

@@ -1,7 +1,7 @@
 // Input bytes in messages (core/printable.h): one printable line whatever the input holds.
-#include <gtest/gtest.h>
-
 #include "core/printable.h"
+
+#include <gtest/gtest.h>
 
 using namespace kasha;
 
@@ -12,9 +12,9 @@ TEST(Printable, EscapesControlBytesAndInvalidUtf8AndKeepsText) {
   EXPECT_EQ(printable(std::string("nul\0x", 5)), "nul\\x00x");
   EXPECT_EQ(printable("back\\slash"), "back\\\\slash");
   EXPECT_EQ(printable("\xff\xfe"), "\\xFF\\xFE");
-  EXPECT_EQ(printable("\xc0\xaf"), "\\xC0\\xAF");          // overlong '/'
+  EXPECT_EQ(printable("\xc0\xaf"), "\\xC0\\xAF");           // overlong '/'
   EXPECT_EQ(printable("\xed\xa0\x80"), "\\xED\\xA0\\x80");  // a surrogate
-  EXPECT_EQ(printable("\xe2\x82"), "\\xE2\\x82");          // cut short
+  EXPECT_EQ(printable("\xe2\x82"), "\\xE2\\x82");           // cut short
   EXPECT_EQ(printable("del\x7f"), "del\\x7F");
   EXPECT_TRUE(valid_utf8("λ°"));
   EXPECT_FALSE(valid_utf8("\xff"));

@@ -21,7 +21,7 @@ struct RenderResult {
   long long rejected = 0;
   std::map<std::string, double> tallies;         // the film's counters (PassResult::tallies)
   std::map<std::string, size_t> device_buffers;  // the integrator's
-  double work_passes = 0;  // passes, a cut-short one counted by its fraction
+  double work_passes = 0;                        // passes, a cut-short one counted by its fraction
   int passes = 0;
 };
 

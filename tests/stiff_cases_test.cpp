@@ -10,13 +10,12 @@
 // catalogue compiles few kernel variants.
 #include <gtest/gtest.h>
 
-#include <map>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <map>
 #include <sstream>
 
 #include "render/integrator_registry.h"

@@ -22,10 +22,12 @@ void Film::accumulate(const PassResult& pass) {
   if (pass.pixel_samples.empty()) {
     for (long long& n : pixel_samples_) n += pass.samples;
   } else {
-    if (pass.pixel_samples.size() != pixels()) throw std::logic_error("film pass has the wrong size");
+    if (pass.pixel_samples.size() != pixels())
+      throw std::logic_error("film pass has the wrong size");
     for (size_t p = 0; p < pixels(); ++p) pixel_samples_[p] += pass.pixel_samples[p];
   }
-  samples_ = pixel_samples_.empty() ? 0 : *std::min_element(pixel_samples_.begin(), pixel_samples_.end());
+  samples_ =
+      pixel_samples_.empty() ? 0 : *std::min_element(pixel_samples_.begin(), pixel_samples_.end());
   ++passes_;
   work_ += pass.fraction;
   for (const auto& [name, value] : pass.tallies) tallies_[name] += value;

@@ -28,7 +28,7 @@ constexpr const char* kCameraDepthGuardOf = "depth guard: camera paths of";
 
 struct PassResult {
   int pass = 0;
-  long long samples = 0;     // samples per pixel that `sums` adds up
+  long long samples = 0;  // samples per pixel that `sums` adds up
   // When a pass was cut short (deadline, Ctrl-C) after some pixels' samples: each pixel's own
   // count, which `samples` then is the least of; empty when every pixel has `samples`.
   std::vector<long long> pixel_samples;

@@ -21,8 +21,8 @@ cl::Buffer device_buffer(ClContext& cl, size_t bytes, const std::string& what, c
   try {
     return cl::Buffer(cl.context(), flags, std::max<size_t>(bytes, 1));
   } catch (const cl::Error& e) {
-    throw Error(what + ": the device could not allocate " + mib(static_cast<double>(bytes)) +
-                " (" + cl_error_text(e) + ")");
+    throw Error(what + ": the device could not allocate " + mib(static_cast<double>(bytes)) + " (" +
+                cl_error_text(e) + ")");
   }
 }
 

@@ -1,6 +1,5 @@
 #include "render/device_film.h"
 
-
 #include <algorithm>
 
 #include "color/cie_observer.h"

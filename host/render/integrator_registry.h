@@ -31,8 +31,8 @@ struct IntegratorSettings {
   int max_depth = KASHA_MAX_PATH_DEPTH;  // --max-depth (every integrator): the path-length guard
   unsigned long long memory = 0;  // --memory: photon mapping's store budget, bytes (0: automatic)
   // Test hooks, not on the command line.
-  bool full_matrix = false;              // backward: carry the full rows × N path matrix
-  int photons_per_item = 64;             // forward: photons per work item
+  bool full_matrix = false;   // backward: carry the full rows × N path matrix
+  int photons_per_item = 64;  // forward: photons per work item
 };
 
 // What an integrator is given: the device, the scene on it, the film's tables on it, the film it

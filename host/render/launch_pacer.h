@@ -21,7 +21,8 @@ class LaunchPacer {
     if (items == 0) return;
     const double per_item = seconds / static_cast<double>(items);
     const double fit = per_item > 0 ? target_ / per_item : 4.0 * static_cast<double>(items);
-    next_ = static_cast<size_t>(std::clamp(fit, 1.0, 4.0 * static_cast<double>(std::max(items, next_))));
+    next_ = static_cast<size_t>(
+        std::clamp(fit, 1.0, 4.0 * static_cast<double>(std::max(items, next_))));
   }
 
  private:

@@ -1,7 +1,8 @@
 #pragma once
 // What bounds the pass in flight: a deadline (from --time) and Ctrl-C, checked between kernel
 // launches so that a long pass ends early with the work done so far, and a progress report after
-// each launch. Integrators split their passes into launches of bounded work (render/launch_pacer.h).
+// each launch. Integrators split their passes into launches of bounded work
+// (render/launch_pacer.h).
 #include <chrono>
 #include <functional>
 #include <optional>
@@ -15,9 +16,7 @@ struct PassControl {
   std::optional<Clock::time_point> deadline;
   std::function<void(double fraction)> progress;  // of the pass done, after each launch
 
-  bool stop_now() const {
-    return interrupt_requested() || (deadline && Clock::now() >= *deadline);
-  }
+  bool stop_now() const { return interrupt_requested() || (deadline && Clock::now() >= *deadline); }
   void report(double fraction) const {
     if (progress) progress(fraction);
   }

@@ -39,9 +39,9 @@ RenderSummary render_progressive(Integrator& integrator, Film& film, const Rende
     const auto pass_start = clock::now();
     PassControl control;
     if (options.stop.seconds > 0)
-      control.deadline = pass_start + std::chrono::duration_cast<clock::duration>(
-                                          std::chrono::duration<double>(
-                                              options.stop.seconds - summary.seconds));
+      control.deadline =
+          pass_start + std::chrono::duration_cast<clock::duration>(
+                           std::chrono::duration<double>(options.stop.seconds - summary.seconds));
     const double before = summary.seconds;
     control.progress = [&](double fraction) {
       show(before + std::chrono::duration<double>(clock::now() - pass_start).count(), fraction,
@@ -59,7 +59,8 @@ RenderSummary render_progressive(Integrator& integrator, Film& film, const Rende
       row.integrator = integrator.name();
       row.pass = summary.passes;
       row.seconds = summary.seconds;
-      row.camera_paths = static_cast<long long>(integrator.camera_paths_per_pass() * film.work_passes());
+      row.camera_paths =
+          static_cast<long long>(integrator.camera_paths_per_pass() * film.work_passes());
       row.photons = static_cast<long long>(integrator.photons_per_pass() * film.work_passes());
       if (options.reference) {
         ImageError e = image_error(film.image(), *options.reference);

@@ -9,8 +9,8 @@
 #include <cstdlib>
 
 #include "core/error.h"
-#include "core/printable.h"
 #include "core/input_file.h"
+#include "core/printable.h"
 #include "scene/limits.h"
 
 namespace kasha {
@@ -107,7 +107,8 @@ void check_obj_lines(const std::string& path, const std::string& text) {
       double p[3];
       for (int c = 0; c < 3; ++c)
         if (!obj_coordinate(words[c], p[c]) || !std::isfinite(p[c]))
-          throw Error(at + "vertex coordinate \"" + printable(words[c]) + "\" is not a finite number");
+          throw Error(at + "vertex coordinate \"" + printable(words[c]) +
+                      "\" is not a finite number");
       for (int c = 0; c < 3; ++c)
         if (!(std::abs(p[c]) <= kMaxCoordinate)) {
           char v[128];
@@ -148,7 +149,8 @@ std::vector<Triangle> obj_triangles(const std::string& path) {
     while (!why.empty() && (why.back() == '\n' || why.back() == '\r')) why.pop_back();
     for (char& ch : why)
       if (ch == '\n') ch = ' ';
-    throw Error(printable(path) + ": cannot read OBJ mesh: " + (why.empty() ? "unknown error" : printable(why)));
+    throw Error(printable(path) +
+                ": cannot read OBJ mesh: " + (why.empty() ? "unknown error" : printable(why)));
   }
   const auto& v = reader.GetAttrib().vertices;
   std::vector<Triangle> out;

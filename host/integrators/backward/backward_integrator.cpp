@@ -20,7 +20,8 @@ class BackwardIntegrator : public KernelIntegrator {
         seed_(s.settings.seed),
         kernel_(program_, "render_backward"),
         rejected_(device_buffer(cl_, film_.pixels() * sizeof(cl_int), "backward: rejected counts")),
-        cut_(device_buffer(cl_, film_.pixels() * sizeof(cl_float), "backward: depth-guard tallies")) {}
+        cut_(device_buffer(cl_, film_.pixels() * sizeof(cl_float),
+                           "backward: depth-guard tallies")) {}
 
   PassResult render_pass(int pass) override {
     film_.clear_pixel_sums();
@@ -32,8 +33,8 @@ class BackwardIntegrator : public KernelIntegrator {
     const size_t pixels = film_.pixels();
     const double total = static_cast<double>(pixels) * spp_;
     double work = 0;
-    int k = 0;          // the next sample slice starts here
-    size_t first = 0;   // and, within a one-sample slice, at this pixel
+    int k = 0;         // the next sample slice starts here
+    size_t first = 0;  // and, within a one-sample slice, at this pixel
     while (k < spp_) {
       if (work > 0 && control_.stop_now()) break;
       size_t units = pacer_.next(static_cast<size_t>(total - work));

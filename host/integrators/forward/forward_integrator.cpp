@@ -95,7 +95,7 @@ class ForwardIntegrator : public KernelIntegrator {
   unsigned seed_;
   int max_depth_, photons_per_item_;
   size_t items_;
-  int film_shift_;  // a film value v is v·2^film_shift_ fixed-point units
+  int film_shift_;             // a film value v is v·2^film_shift_ fixed-point units
   LaunchPacer pacer_{0.2, 4};  // in work items: the first launch is small, as paths may be long
   cl::Kernel kernel_;
   cl::Buffer fixed_, stats_, overflow_;

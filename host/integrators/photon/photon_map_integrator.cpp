@@ -5,10 +5,10 @@
 // directly seen emission and, per pixel, the gather's radius, count and flux; the film turns
 // those into SPPM statistics (film/sppm_statistics.h). With edge correction (opt-in), each
 // pass's flux is divided by the fraction of its gather disc on accepted surface (disc_coverage.h).
-#include <chrono>
-#include <cmath>
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <memory>
 
 #include "core/error.h"
@@ -50,8 +50,9 @@ class PhotonMapIntegrator : public KernelIntegrator {
     photon_kernel_ = cl::Kernel(program_, "trace_photon_map");
     camera_kernel_ = cl::Kernel(program_, "camera_pass");
     counter_ = device_buffer(cl_, sizeof(cl_int), "photon: the store counter");
-    cut_ = device_buffer(cl_, photon_items() * sizeof(cl_float),
-                         "photon: the depth-guard tallies of --photons " + std::to_string(photons_));
+    cut_ =
+        device_buffer(cl_, photon_items() * sizeof(cl_float),
+                      "photon: the depth-guard tallies of --photons " + std::to_string(photons_));
     camera_cut_ = device_buffer(cl_, film_.pixels() * sizeof(cl_float),
                                 "photon: the camera pass's depth-guard tallies");
     vps_ = device_buffer(cl_, vp_bytes(), "photon: the visible points of the image");
@@ -63,14 +64,14 @@ class PhotonMapIntegrator : public KernelIntegrator {
                                                 : default_memory_budget(cl_.info());
     // At least 2^18 records, so a pass of few photons with long paths fills the store in
     // launches of many photons rather than one photon at a time.
-    capacity_ = std::min<size_t>(
-        {std::max<size_t>(static_cast<size_t>(photons_) * 4 + 1024, 1u << 18), budget / record,
-         (1u << 31) - 1});
+    capacity_ =
+        std::min<size_t>({std::max<size_t>(static_cast<size_t>(photons_) * 4 + 1024, 1u << 18),
+                          budget / record, (1u << 31) - 1});
     if (capacity_ < 1)
       throw Error("--memory: " + std::to_string(budget) + " bytes hold no photon record (" +
                   std::to_string(record) + " bytes each)");
-    store_ = device_buffer(cl_, capacity_ * record,
-                           "photon: the photon store (--memory, --photons)");
+    store_ =
+        device_buffer(cl_, capacity_ * record, "photon: the photon store (--memory, --photons)");
     const KCamera& c = scene_.data().camera;
     footprint_ =
         2.0 * std::sqrt(c.up[0] * c.up[0] + c.up[1] * c.up[1] + c.up[2] * c.up[2]) / c.height;
@@ -81,8 +82,8 @@ class PhotonMapIntegrator : public KernelIntegrator {
       for (const float* v : {t.v0, t.v1, t.v2}) box.extend(Eigen::Vector3d(v[0], v[1], v[2]));
     max_radius_ = box.diagonal().norm() / 50;
     if (radius_ > max_radius_)
-      warn("--radius " + std::to_string(radius_) + " is beyond 1/50 of the scene's diagonal; using " +
-           std::to_string(max_radius_));
+      warn("--radius " + std::to_string(radius_) +
+           " is beyond 1/50 of the scene's diagonal; using " + std::to_string(max_radius_));
     if (s.settings.edge_correction) embree_ = std::make_unique<EmbreeScene>(s.scene.triangles);
   }
 
@@ -225,8 +226,8 @@ class PhotonMapIntegrator : public KernelIntegrator {
 
   // A photon whose stores exceed the store, traced again once per store-full of them (its path
   // is the same each time: its random numbers come from its index). Returns its depth-guard cut.
-  double trace_long_photon(int pass, size_t index, GatherPass& g, double& gather_s,
-                           double& records, double& trace_s) {
+  double trace_long_photon(int pass, size_t index, GatherPass& g, double& gather_s, double& records,
+                           double& trace_s) {
     double cut = 0;
     for (size_t skip = 0;; skip += capacity_) {
       if (skip > (1u << 31) - 1) throw Error("photon: one photon stored more than 2^31 records");
@@ -255,10 +256,10 @@ class PhotonMapIntegrator : public KernelIntegrator {
         tree.gather(vps_host_.data(), vp_floats_, film_.pixels(), g.radius, layout_);
     if (embree_) {
       // A fresh rotation of the probe pattern each pass, so its stratification leaves no pattern.
-      float rotation = static_cast<float>(
-          2 * M_PI * std::fmod(0.6180339887 * (++batches_) + 1e-3 * seed_, 1.0));
-      std::vector<float> coverage = disc_coverage(*embree_, vps_host_.data(), vp_floats_,
-                                                  film_.pixels(), g.radius, rotation);
+      float rotation =
+          static_cast<float>(2 * M_PI * std::fmod(0.6180339887 * (++batches_) + 1e-3 * seed_, 1.0));
+      std::vector<float> coverage =
+          disc_coverage(*embree_, vps_host_.data(), vp_floats_, film_.pixels(), g.radius, rotation);
       for (size_t p = 0; p < film_.pixels(); ++p)
         for (int k = 0; k < film_.rows(); ++k) found.flux[p * film_.rows() + k] /= coverage[p];
     }
@@ -275,7 +276,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
   double footprint_;   // pixel width on the image plane at unit distance
   double max_radius_;  // no gather radius beyond this
   mutable bool warned_small_ = false;
-  size_t capacity_;    // photon records the store holds
+  size_t capacity_;  // photon records the store holds
   size_t batches_ = 0;
   LaunchPacer pacer_{0.2, 256};  // in photons: the first launch is small, as paths may be long
   std::vector<float> vps_host_, photons_host_;
