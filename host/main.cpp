@@ -25,7 +25,8 @@ constexpr long long kMaxInt = 2147483647;
 
 // The options of IntegratorSettings, each read by the integrators that list it in the registry.
 static void add_integrator_options(CLI::App* app, IntegratorSettings& s) {
-  app->add_option("--spp", s.spp, "camera samples per pixel per pass")
+  app->add_option("--spp", s.spp,
+                  "camera samples per pixel per pass (default 16; photon mapping 4)")
       ->check(integer_within(1, 1 << 20));
   app->add_option("--photons", s.photons, "photons per pass")->check(integer_within(1, kMaxInt));
   app->add_option("--alpha", s.alpha, "photon mapping: radius reduction α (default 2/3)")
@@ -33,8 +34,10 @@ static void add_integrator_options(CLI::App* app, IntegratorSettings& s) {
   app->add_option("--radius", s.radius,
                   "photon mapping: initial gather radius (default: from the pixel footprint)")
       ->check(positive_number());
-  app->add_flag("--edge-correction", s.edge_correction,
-                "photon mapping: divide each gather by the covered fraction of its disc");
+  app->add_option("--gather", s.gather,
+                  "photon mapping: gather on the device (a hashed grid) or on the host "
+                  "(nanoflann); default auto: the device")
+      ->check(one_of({"auto", "device", "host"}));
   app->add_option("--memory", s.memory,
                   "photon mapping: memory for the photon store, bytes with an optional unit "
                   "(512MiB, 2GB); default: a quarter of the device's memory (an eighth on a CPU)")

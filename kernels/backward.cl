@@ -11,6 +11,7 @@
 #include "gloss_lobe.h"
 #include "hit_point.h"
 #include "lights.h"
+#include "next_event.h"
 #include "branch_choice.h"
 #include "path_weight.h"
 #include "roulette.h"
@@ -23,42 +24,6 @@
  * and point), the direction, and (the lobe's azimuth, —) drawn only for a lobe; pair 0 is the
  * pixel position. */
 #define PAIRS_PER_VERTEX 4
-
-/* Next-event estimation at x (shading normal ns on the viewer's side, wo towards the viewer). */
-inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* f, const Surface* surf, float3 x,
-                       float3 ns, float eps, float3 wo, float3 probs, float2 u_light, float* rows) {
-  float pdf_light;
-  LightPoint lp = sample_light_from(s, x, u_light, &pdf_light);
-  if (!(pdf_light > 0.0f)) return;
-  float3 to = lp.position - x;
-  float dist = length(to);
-  if (!(dist > eps + lp.eps)) return;
-  float3 wi = to / dist;
-  float cos_x = dot(ns, wi), cos_l = -dot(lp.normal, wi);
-  if (cos_x <= 0.0f || cos_l <= 0.0f) return;
-  if (segment_occluded(s, x, ns, eps, wi, dist, lp.eps)) return;
-  const __global float* le = emitter_spectrum(s, lp.emitter);
-  float lambert_pdf = cosine_hemisphere_pdf(cos_x);
-  float base = cos_x / pdf_light;
-  if (surf->passive)
-    pw_add(p, f, surf->rho, le, base * KASHA_INV_PI * mis_weight(pdf_light, probs.y * lambert_pdf), rows);
-#if KASHA_FLUORESCENCE
-  if (surf->fluorescent) {
-    float absorbed = spectrum_dot(KASHA_BINS, 0, surf->a, le);
-    pw_add(p, f, surf->ehat, 0, absorbed * base * KASHA_INV_PI * mis_weight(pdf_light, probs.z * lambert_pdf),
-           rows);
-  }
-#endif
-#if KASHA_GLOSS
-  if (surf->g > 0.0f && !surf->mirror) {
-    float fg = lobe_brdf(surf->m, s->lobes, wo, wi, ns);
-    if (fg > 0.0f) {
-      float lobe = lobe_pdf(surf->m, s->lobes, dot(wi, reflect_dir(-wo, ns)));
-      pw_add(p, f, le, 0, surf->g * fg * base * mis_weight(pdf_light, probs.x * lobe), rows);
-    }
-  }
-#endif
-}
 
 /* One camera path; adds its estimate to rows. Returns what the path still carried (relative to
  * its start) if the depth guard cut it, else 0. */

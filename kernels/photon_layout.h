@@ -9,6 +9,10 @@
 #ifndef KASHA_PHOTON_LAYOUT_H
 #define KASHA_PHOTON_LAYOUT_H
 
+/* A gather counts photons only within this fraction of its radius of the visible point's tangent
+ * plane (the host's and the device's gathers alike). */
+#define KASHA_GATHER_SLAB 0.25f
+
 #define KASHA_PHOTON_FLOATS(N) (6 + (N))
 #define KASHA_PHOTON_POWER 6
 

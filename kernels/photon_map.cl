@@ -1,13 +1,17 @@
-/* Bidirectional photon mapping (DESIGN §2.3), the two device passes; the gather runs on the host.
- * Camera paths through gloss bounces end by Russian roulette (roulette.h), as backward's.
+/* Bidirectional photon mapping (DESIGN §2.3), the two tracing passes; the grid, the gather and the
+ * SPPM statistics are in photon_gather.cl, in the same program.
  * Photon pass: photons as in forward transport, stored at every hit with a Lambert part (before
- * they scatter); gloss bounces are followed, not stored. Camera pass: one path per pixel through
- * gloss bounces to the first vertex with a Lambert part, where it stores a visible point with the
- * compact factor K (vertex_factor.h); emission seen along the way goes straight to the pixel. */
+ * they scatter) after their first bounce — direct light at the visible points is next-event
+ * estimation's, so the photon map carries indirect light and caustics (as pbrt-v4's SPPM); gloss
+ * bounces are followed, not stored. Camera pass: paths through gloss bounces to the first vertex
+ * with a Lambert part, with backward's next-event estimation at each vertex (MIS only with the
+ * gloss lobe: no path continues from the Lambert part) and emission hit along the way; the first
+ * of a pixel's samples stores a visible point with the compact factor K (vertex_factor.h) there. */
 #include "camera.h"
 #include "branch_choice.h"
 #include "film_view.h"
 #include "hit_point.h"
+#include "next_event.h"
 #include "photon_layout.h"
 #include "photon_transport.h"
 #include "scene_view.h"
@@ -48,7 +52,7 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
       float3 ns = h.ns, x = h.x;
       Surface surf;
       load_surface(&s, h.material, &surf);
-      if (surface_has_lambert(&surf)) {
+      if (depth > 0 && surface_has_lambert(&surf)) {
         if (skip_left > 0) {
           --skip_left;
         } else {
@@ -67,11 +71,102 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
   if (first < last) cut[item] = guard;
 }
 
+/* Dimension pairs of a camera sample per path vertex, as backward's: (branch choice, roulette), the
+ * light, the direction, (the lobe's azimuth, —); pair 0 is the pixel position. */
+#define CAMERA_PAIRS_PER_VERTEX 4
+
+/* One camera path of pixel `pixel`; adds emission and next-event estimates to rows. With `vp`
+ * (a pixel's first sample) it stores the visible point where the path ends on a Lambert part.
+ * Returns what the path still carried (relative to its start) if the depth guard cut it. */
+inline float camera_path(const SceneView* s, const FilmView* f, int pixel, Sampler* sampler, __global float* vp,
+                         float* rows) {
+  float3 org = camera_position(&s->camera);
+  float3 dir = camera_sample(&s->camera, pixel, sample_2d(sampler));
+  PathWeight p; /* diagonal mode only: the path goes through gloss bounces alone */
+  pw_init(&p, f);
+  const float start = pw_magnitude(&p, f);
+  float travelled = 0.0f;
+  bool specular = true; /* the camera ray, or a mirror bounce: emission is not also sampled by NEE */
+  float prev_pdf = 0.0f;
+  float3 prev_x = org;
+  for (int depth = 0;; ++depth) {
+    if (depth == KASHA_MAX_PATH_DEPTH) return pw_magnitude(&p, f) / start;
+    HitPoint h;
+    if (!intersect_scene(s, org, dir, &h)) return 0.0f;
+    travelled += h.t;
+    float3 wo = -dir, ns = h.ns, x = h.x;
+    if (h.emitter >= 0 && h.front) {
+      float weight = 1.0f;
+      if (!specular) weight = mis_weight(prev_pdf, light_pdf_from(s, h.tri, prev_x, x, dot(h.n, wo)));
+      pw_add(&p, f, emitter_spectrum(s, h.emitter), 0, weight, rows);
+    }
+    Surface surf;
+    load_surface(s, h.material, &surf);
+    /* Gloss or the Lambert parts, by their energies under equal-energy light (as backward). */
+    float3 probs = branch_probabilities(&p, f, &surf);
+    float p_gloss = probs.x;
+    bool lambert = probs.y + probs.z > 0.0f;
+    sampler_at(sampler, 1 + CAMERA_PAIRS_PER_VERTEX * depth);
+    float2 u_choice = sample_2d(sampler), u_light = sample_2d(sampler), u_dir = sample_2d(sampler);
+    if (s->light_count > 0 && (lambert || (surf.g > 0.0f && !surf.mirror)))
+      next_event(&p, s, f, &surf, x, ns, h.eps, wo, (float3)(p_gloss, 0.0f, 0.0f), u_light, rows);
+    if (lambert && u_choice.x >= p_gloss) {
+      if (vp) {
+        /* The visible point, K over 1 − P_gloss. */
+        vp[0] = x.x, vp[1] = x.y, vp[2] = x.z;
+        vp[3] = ns.x, vp[4] = ns.y, vp[5] = ns.z;
+        vp[KASHA_VP_VALID] = 1.0f;
+        vp[KASHA_VP_DISTANCE] = travelled;
+        VertexFactorLayout layout = {KASHA_BINS, KASHA_FILM_ROWS, KASHA_SPECTRAL_FILM, KASHA_FLUORESCENCE, f->cmf};
+#if KASHA_FLUORESCENCE
+        vf_build(layout, vp, p.w, surf.rho, surf.ehat, surf.a, KASHA_INV_PI / (1.0f - p_gloss));
+#else
+        vf_build(layout, vp, p.w, surf.rho, 0, 0, KASHA_INV_PI / (1.0f - p_gloss));
+#endif
+      }
+      return 0.0f;
+    }
+    if (p_gloss <= 0.0f) return 0.0f;
+    float3 mirror = reflect_dir(dir, ns);
+    float weight = surf.g / p_gloss;
+    if (surf.mirror) {
+      dir = mirror;
+      specular = true;
+    } else {
+      float pdf;
+      float3 wi = sample_lobe(surf.m, s->lobes, mirror, u_dir.x, u_dir.y, sample_2d(sampler).x, &pdf);
+      float ci = dot(wi, ns), co = dot(wo, ns);
+      if (ci <= 0.0f) return 0.0f;
+      weight *= 2.0f * ci / (ci + co);
+      dir = wi;
+      specular = false;
+      prev_pdf = p_gloss * pdf;
+    }
+    pw_scatter_diagonal(&p, 0, weight);
+    if (depth >= KASHA_CAMERA_ROULETTE_FROM) {
+      float keep = roulette(pw_magnitude(&p, f) / start, u_choice.y);
+      if (keep == 0.0f) return 0.0f;
+      if (keep != 1.0f) pw_scatter_diagonal(&p, 0, keep);
+    }
+    prev_x = x;
+    org = x + ns * h.eps;
+  }
+}
+
+/* `spp` camera samples per pixel: their mean emission and next-event estimate goes to `direct`
+ * (summed over passes, compensated), the first one's Lambert vertex is the pixel's visible point
+ * for this pass. A pixel's first visible point sets its gather radius: `radius0` (> 0: --radius,
+ * kept at least 1/100 of the pixel's footprint) or one pixel's footprint there, within
+ * `max_radius`; pixels where --radius was raised are counted in *raised. */
 __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float* visible_points,
-                          __global float* direct, /* pixels × KASHA_FILM_ROWS: emission seen directly */
-                          __global float* cut,    /* per pixel: weight the depth guard cut */
+                          __global float* direct,       /* pixels × KASHA_FILM_ROWS: Σ over passes of the mean */
+                          __global float* direct_carry, /* the compensation of that sum (Kahan) */
+                          __global int* rejected,       /* per pixel: samples that were not finite, this pass */
+                          __global float* cut,          /* per pixel: weight the depth guard cut, this pass */
+                          __global float* radius,       /* per pixel: the SPPM radius, 0 before a visible point */
+                          float radius0, float footprint, float max_radius, __global int* raised, int spp,
                           uint seed, uint pass,
-                  int item_end /* launches are rounded up to whole work-groups */) {
+                          int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
   int pixel = get_global_id(0);
@@ -80,70 +175,46 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
   const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
   __global float* vp = visible_points + (long)pixel * vp_floats;
   vp[KASHA_VP_VALID] = 0.0f;
-  float rows[KASHA_FILM_ROWS];
-  film_rows_clear(rows);
-  /* The pixel's stream (one sample per pass); a seed apart from the photons'. */
-  Sampler sampler = sampler_start(seed ^ 0x5bd1e995u, (uint)pixel, pass, pass, (uint)pixel);
-  float3 org = camera_position(&camera);
-  float3 dir = camera_sample(&camera, pixel, sample_2d(&sampler));
-  PathWeight p; /* diagonal mode only: the path goes through gloss bounces alone */
-  pw_init(&p, &f);
-  const float start = pw_magnitude(&p, &f);
-  float travelled = 0.0f;
-  cut[pixel] = 0.0f;
-
-  for (int depth = 0;; ++depth) {
-    if (depth == KASHA_MAX_PATH_DEPTH) {
-      cut[pixel] = pw_magnitude(&p, &f) / start;
-      break;
+  float sum[KASHA_FILM_ROWS];
+  film_rows_clear(sum);
+  float guard = 0.0f;
+  int bad = 0;
+  /* The pixel's stream: a seed apart from the photons'. */
+  Sampler sampler = sampler_start(seed ^ 0x5bd1e995u, (uint)pixel, 0, pass, (uint)pixel);
+  for (int k = 0; k < spp; ++k) {
+    sampler_next_sample(&sampler, pass * (uint)spp + (uint)k);
+    float rows[KASHA_FILM_ROWS];
+    film_rows_clear(rows);
+    guard += camera_path(&s, &f, pixel, &sampler, k == 0 ? vp : 0, rows);
+    bool finite = true;
+    for (int r = 0; r < KASHA_FILM_ROWS; ++r) finite = finite && isfinite(rows[r]);
+    if (!finite) {
+      ++bad;
+      continue;
     }
-    HitPoint h;
-    if (!intersect_scene(&s, org, dir, &h)) break;
-    travelled += h.t;
-    float3 wo = -dir, ns = h.ns, x = h.x;
-    if (h.emitter >= 0 && h.front) pw_add(&p, &f, emitter_spectrum(&s, h.emitter), 0, 1.0f, rows);
-    Surface surf;
-    load_surface(&s, h.material, &surf);
-    /* Gloss or the Lambert parts, by their energies under equal-energy light (as backward). */
-    float3 probs = branch_probabilities(&p, &f, &surf);
-    float p_gloss = probs.x;
-    bool lambert = probs.y + probs.z > 0.0f;
-    sampler_at(&sampler, 1 + 3 * depth); /* per vertex: (choice, lobe azimuth), direction, roulette */
-    float2 u_choice = sample_2d(&sampler), u_dir = sample_2d(&sampler), u_roulette = sample_2d(&sampler);
-    if (lambert && u_choice.x >= p_gloss) {
-      /* The visible point, K over 1 − P_gloss. */
-      vp[0] = x.x, vp[1] = x.y, vp[2] = x.z;
-      vp[3] = ns.x, vp[4] = ns.y, vp[5] = ns.z;
-      vp[KASHA_VP_VALID] = 1.0f;
-      vp[KASHA_VP_DISTANCE] = travelled;
-      VertexFactorLayout layout = {KASHA_BINS, KASHA_FILM_ROWS, KASHA_SPECTRAL_FILM, KASHA_FLUORESCENCE, cmf};
-#if KASHA_FLUORESCENCE
-      vf_build(layout, vp, p.w, surf.rho, surf.ehat, surf.a, KASHA_INV_PI / (1.0f - p_gloss));
-#else
-      vf_build(layout, vp, p.w, surf.rho, 0, 0, KASHA_INV_PI / (1.0f - p_gloss));
-#endif
-      break;
-    }
-    if (p_gloss <= 0.0f) break;
-    float3 mirror = reflect_dir(dir, ns);
-    float weight = surf.g / p_gloss;
-    if (surf.mirror) {
-      dir = mirror;
-    } else {
-      float pdf;
-      float3 wi = sample_lobe(surf.m, lobes, mirror, u_dir.x, u_dir.y, u_choice.y, &pdf);
-      float ci = dot(wi, ns), co = dot(wo, ns);
-      if (ci <= 0.0f) break;
-      weight *= 2.0f * ci / (ci + co);
-      dir = wi;
-    }
-    pw_scatter_diagonal(&p, 0, weight);
-    if (depth >= KASHA_CAMERA_ROULETTE_FROM) {
-      float keep = roulette(pw_magnitude(&p, &f) / start, u_roulette.x);
-      if (keep == 0.0f) break;
-      if (keep != 1.0f) pw_scatter_diagonal(&p, 0, keep);
-    }
-    org = x + ns * h.eps;
+    for (int r = 0; r < KASHA_FILM_ROWS; ++r) sum[r] += rows[r];
   }
-  film_add(direct, pixel, rows);
+  __global float* acc = direct + (long)pixel * KASHA_FILM_ROWS;
+  __global float* carry = direct_carry + (long)pixel * KASHA_FILM_ROWS;
+  for (int r = 0; r < KASHA_FILM_ROWS; ++r) {
+    float y = sum[r] / (float)spp - carry[r], t = acc[r] + y;
+    carry[r] = (t - acc[r]) - y;
+    acc[r] = t;
+  }
+  rejected[pixel] = bad;
+  cut[pixel] = guard;
+  if (radius[pixel] == 0.0f && vp[KASHA_VP_VALID] != 0.0f) {
+    float own = footprint * vp[KASHA_VP_DISTANCE], r = own;
+    if (radius0 > 0.0f) {
+      r = radius0;
+      if (radius0 < own / 100.0f) {
+        r = own / 100.0f;
+        atomic_inc(raised);
+      }
+    }
+    r = min(r, max_radius);
+    radius[pixel] = r > 0.0f ? r : max_radius;
+  }
 }
+
+#include "photon_gather.cl"

@@ -97,9 +97,9 @@ TEST(Cli, BadInputsGiveOneLineAndNoOutput) {
                 shell_quoted(out)),
       "--alpha: the backward integrator does not take this option (it takes --spp)");
   expect_one_line_error(
-      run_kasha("render " + scene + " --integrator forward --edge-correction --passes 1 -o " +
+      run_kasha("render " + scene + " --integrator forward --gather host --passes 1 -o " +
                 shell_quoted(out)),
-      "--edge-correction: the forward integrator does not take this option");
+      "--gather: the forward integrator does not take this option");
   expect_one_line_error(
       run_kasha("render " + scene + " --integrator debug --passes 1 --view normals --spectral -o " +
                 shell_quoted(out)),

@@ -31,19 +31,12 @@ void Film::accumulate(const PassResult& pass) {
   ++passes_;
   work_ += pass.fraction;
   for (const auto& [name, value] : pass.tallies) tallies_[name] += value;
-  if (pass.gather) {
-    if (!sppm_) sppm_.emplace(pixels(), rows());
-    sppm_->update(*pass.gather);
-  }
+  if (pass.kept) kept_ = pass.kept;
 }
 
 double Film::tally(const std::string& name) const {
   auto it = tallies_.find(name);
   return it == tallies_.end() ? 0.0 : it->second;
-}
-
-std::vector<double> Film::photon_radius() const {
-  return sppm_ ? sppm_->radius() : std::vector<double>{};
 }
 
 Image Film::image() const {
@@ -55,11 +48,13 @@ Image Film::image() const {
   const int R = rows();
   if (spectral_) img.spectral.assign(pixels() * grid_.bins, 0.0f);
   std::vector<double> value(R);
+  const std::vector<float> kept = kept_ ? kept_() : std::vector<float>{};
+  if (kept_ && kept.size() != pixels() * R) throw std::logic_error("kept image has the wrong size");
   for (size_t p = 0; p < pixels(); ++p) {
     const double inv = pixel_samples_[p] > 0 ? 1.0 / pixel_samples_[p] : 0.0;
     for (int r = 0; r < R; ++r) {
       value[r] = sum_[p * R + r] * inv;
-      if (sppm_) value[r] += sppm_->radiance(p, r, grid_.bin_nm);
+      if (!kept.empty()) value[r] += kept[p * R + r];
     }
     if (spectral_) {
       for (int i = 0; i < R; ++i) img.spectral[p * R + i] = static_cast<float>(value[i]);

@@ -4,14 +4,12 @@
 // arrives as a PassResult and is accumulated the same way: sums add up, counters add up, and
 // photon mapping's gathers update the SPPM statistics that the image adds to the sums' mean.
 #include <map>
-#include <optional>
 #include <string>
 #include <vector>
 
 #include "color/cie_observer.h"
 #include "film/image.h"
 #include "film/pass_result.h"
-#include "film/sppm_statistics.h"
 #include "spectrum/wavelength_grid.h"
 
 namespace kasha {
@@ -35,8 +33,6 @@ class Film {
   // Sums of every pass's counters, by name (PassResult::tallies).
   const std::map<std::string, double>& tallies() const { return tallies_; }
   double tally(const std::string& name) const;
-  // Photon mapping's current gather radius per pixel; empty before its first pass.
-  std::vector<double> photon_radius() const;
 
   Image image() const;  // the current estimate
 
@@ -51,7 +47,7 @@ class Film {
   double work_ = 0;
   int passes_ = 0;
   std::map<std::string, double> tallies_;
-  std::optional<SppmStatistics> sppm_;
+  KeptImage kept_;
 };
 
 }  // namespace kasha

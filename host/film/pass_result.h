@@ -2,21 +2,17 @@
 // What one pass computes, kept apart from accumulating it into the film: sums that add up over
 // passes in a fixed order, so that passes computed elsewhere (other devices, other processes) give
 // the same image once accumulated.
+#include <functional>
 #include <map>
-#include <optional>
 #include <string>
 #include <vector>
 
 namespace kasha {
 
-// Photon mapping's gather in one pass, per pixel: the radius it gathered within, the photons found
-// and their flux Σ K·Φ (pixels × rows, per bin of power). The film turns these into SPPM
-// statistics.
-struct GatherPass {
-  double alpha = 2.0 / 3.0;  // SPPM's fraction of new photons kept
-  std::vector<double> radius, flux;
-  std::vector<int> found;
-};
+// An image an integrator keeps on the device (photon mapping's SPPM statistics), read when the
+// image is wanted rather than every pass: pixels × rows, radiance per nm. Valid while the
+// integrator that handed it out lives.
+using KeptImage = std::function<std::vector<float>()>;
 
 // Tallies of what the path-depth guard (KASHA_MAX_PATH_DEPTH) cut: the weight or power it cut,
 // and of how much; `render` warns when their ratio exceeds 1e-4 (the image is biased low).
@@ -34,7 +30,7 @@ struct PassResult {
   std::vector<long long> pixel_samples;
   std::vector<double> sums;  // pixels × film rows
   double fraction = 1;       // of the pass's work done: < 1 when it was cut short
-  std::optional<GatherPass> gather;
+  KeptImage kept;  // if set: the integrator's image so far, added to the sums' mean
   // Counters that add over passes: "rejected samples", power and time figures, by name.
   std::map<std::string, double> tallies;
 };

@@ -20,11 +20,12 @@ namespace kasha {
 
 // Every integrator's settings, filled by name; each integrator reads the ones it takes.
 struct IntegratorSettings {
-  int spp = 16;                   // --spp: camera paths per pixel per pass
+  int spp = 0;  // --spp: camera paths per pixel per pass (0: the integrator's default)
+  static constexpr int kDefaultSpp = 16;  // backward's and debug's
   long long photons = 1 << 18;    // --photons: photons per pass
   double alpha = 2.0 / 3.0;       // --alpha: SPPM radius reduction
   double radius = 0;              // --radius: initial gather radius (0: from the pixel footprint)
-  bool edge_correction = false;   // --edge-correction
+  std::string gather = "auto";    // --gather: where photon mapping gathers (device, host)
   std::string view = "emission";  // --view: the debug view
   unsigned seed = 1;              // --seed (every integrator)
   std::string sampler = "sobol";  // --sampler (every integrator): sobol or independent

@@ -2,6 +2,7 @@
 // The plumbing every OpenCL integrator shares: its program built for this scene and film, and
 // launches that set the scene's and the film's parameters (KASHA_SCENE_PARAMS,
 // KASHA_FILM_PARAMS) before the kernel's own arguments.
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,7 @@ class KernelIntegrator : public Integrator {
   // size, so launches of varying sizes must not each choose their own.
   template <typename... Args>
   void launch_range(cl::Kernel& kernel, size_t first, size_t count, const Args&... args) {
+    const auto start = std::chrono::steady_clock::now();
     cl_uint a = static_cast<cl_uint>(film_.bind(kernel, scene_.bind(kernel, 0)));
     (kernel.setArg(a++, args), ...);
     kernel.setArg(a, static_cast<cl_int>(first + count));
@@ -35,6 +37,7 @@ class KernelIntegrator : public Integrator {
                                      cl::NDRange((count + local - 1) / local * local),
                                      cl::NDRange(local));
     cl_.queue().finish();
+    device_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   }
 
   // 64 work items a group, or what the device allows for this kernel.
@@ -51,6 +54,8 @@ class KernelIntegrator : public Integrator {
     return sum;
   }
 
+  // Seconds spent in launches so far (enqueue to finish): the rest of a pass is the host's.
+  double device_seconds_ = 0;
   ClContext& cl_;
   DeviceScene& scene_;
   DeviceFilm& film_;

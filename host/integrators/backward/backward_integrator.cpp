@@ -16,7 +16,7 @@ class BackwardIntegrator : public KernelIntegrator {
       : KernelIntegrator(
             s, "backward.cl",
             s.settings.full_matrix ? KernelDefines{{"KASHA_FULL_MATRIX", "1"}} : KernelDefines{}),
-        spp_(s.settings.spp),
+        spp_(s.settings.spp > 0 ? s.settings.spp : IntegratorSettings::kDefaultSpp),
         seed_(s.settings.seed),
         kernel_(program_, "render_backward"),
         rejected_(device_buffer(cl_, film_.pixels() * sizeof(cl_int), "backward: rejected counts")),

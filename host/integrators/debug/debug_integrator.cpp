@@ -19,7 +19,7 @@ class DebugIntegrator : public KernelIntegrator {
   explicit DebugIntegrator(const IntegratorSetup& s)
       : KernelIntegrator(s, "debug_render.cl"),
         view_(debug_view(s.settings.view)),
-        spp_(s.settings.spp),
+        spp_(s.settings.spp > 0 ? s.settings.spp : IntegratorSettings::kDefaultSpp),
         seed_(s.settings.seed),
         kernel_(program_, "render_debug") {
     if (film_.spectral() && view_ != 0)

@@ -10,7 +10,7 @@
 namespace kasha {
 
 // Photons count only within this fraction of the radius of a visible point's tangent plane.
-constexpr float kGatherSlab = 0.25f;
+constexpr float kGatherSlab = KASHA_GATHER_SLAB;
 
 struct GatherResult {
   std::vector<double> flux;  // pixels × rows: Σ K·Φ over the photons found

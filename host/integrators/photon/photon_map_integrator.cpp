@@ -1,21 +1,20 @@
 // `--integrator photon` (the default): bidirectional photon mapping, progressive as stochastic
-// progressive photon mapping (Hachisuka & Jensen 2009). Each pass: a camera pass storing one
-// visible point per pixel (kernels/photon_map.cl), a photon pass storing photons at Lambert hits,
-// a kd-tree over them and a gather on the host (photon_gather.h). The pass's result is the
-// directly seen emission and, per pixel, the gather's radius, count and flux; the film turns
-// those into SPPM statistics (film/sppm_statistics.h). With edge correction (opt-in), each
-// pass's flux is divided by the fraction of its gather disc on accepted surface (disc_coverage.h).
+// progressive photon mapping (Hachisuka & Jensen 2009), the whole pass on the device
+// (kernels/photon_map.cl, photon_gather.cl). Each pass: a camera pass — `--spp` paths per pixel
+// with next-event estimation for direct light, the first storing the pixel's visible point — then
+// photons traced into a store in launches of bounded time; each time the store is full, and at
+// the end, a hashed grid is built over it by counting sort and every visible point gathers
+// through it; then the per-pixel SPPM statistics are updated. Only the image crosses to the host,
+// when it is wanted. `--gather host` gathers each store on the host instead (a nanoflann kd-tree
+// on the host's threads, photon_gather.h), the statistics staying on the device.
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <memory>
 
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/warning.h"
-#include "geometry/embree_scene.h"
-#include "integrators/photon/disc_coverage.h"
 #include "integrators/photon/photon_gather.h"
 #include "integrators/photon/photon_records.h"
 #include "opencl/device_buffer.h"
@@ -30,17 +29,32 @@ using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
+// Bytes a store record takes on the device beyond its floats: its cell and its sorted index.
+constexpr size_t kGridBytesPerRecord = 2 * sizeof(cl_int);
 }  // namespace
+
+// Where a pass's stores are gathered: `--gather device|host`; `auto` is the device on every
+// device type (measured on PoCL's CPU device too: README, "Photon mapping's pipeline").
+bool gather_on_host(const std::string& gather) {
+  if (gather == "host") return true;
+  if (gather == "device" || gather == "auto") return false;
+  throw Error("--gather " + gather + ": unknown (device, host or auto)");
+}
+
+// Camera samples per pixel per pass unless --spp says: direct light, lamps seen directly and
+// their edges converge with them while photon tracing dominates the pass (README).
+constexpr int kDefaultCameraSamples = 4;
 
 class PhotonMapIntegrator : public KernelIntegrator {
  public:
   explicit PhotonMapIntegrator(const IntegratorSetup& s)
       : KernelIntegrator(s, "photon_map.cl"),
-        accumulated_(s.film),
         photons_(s.settings.photons),
+        spp_(s.settings.spp > 0 ? s.settings.spp : kDefaultCameraSamples),
         alpha_(s.settings.alpha),
         radius_(s.settings.radius),
         seed_(s.settings.seed),
+        host_gather_(gather_on_host(s.settings.gather)),
         photon_floats_(KASHA_PHOTON_FLOATS(s.scene.grid.bins)),
         vp_floats_(KASHA_VP_FLOATS(s.scene.grid.bins, film_.rows(), s.scene.fluorescent())),
         layout_{s.scene.grid.bins, film_.rows(), film_.spectral(), s.scene.fluorescent(),
@@ -49,17 +63,37 @@ class PhotonMapIntegrator : public KernelIntegrator {
     if (!(alpha_ > 0 && alpha_ < 1)) throw Error("--alpha must lie in (0, 1)");
     photon_kernel_ = cl::Kernel(program_, "trace_photon_map");
     camera_kernel_ = cl::Kernel(program_, "camera_pass");
+    cell_size_kernel_ = cl::Kernel(program_, "grid_cell_size");
+    count_kernel_ = cl::Kernel(program_, "grid_count");
+    scan_kernel_ = cl::Kernel(program_, "grid_scan");
+    scatter_kernel_ = cl::Kernel(program_, "grid_scatter");
+    gather_kernel_ = cl::Kernel(program_, "gather_photons");
+    update_kernel_ = cl::Kernel(program_, "sppm_update");
+    image_kernel_ = cl::Kernel(program_, "sppm_image");
+    const size_t pixels = film_.pixels(), rows = film_.rows();
     counter_ = device_buffer(cl_, sizeof(cl_int), "photon: the store counter");
+    raised_ = zeroed(sizeof(cl_int), "photon: the count of raised radii");
     cut_ =
         device_buffer(cl_, photon_items() * sizeof(cl_float),
                       "photon: the depth-guard tallies of --photons " + std::to_string(photons_));
-    camera_cut_ = device_buffer(cl_, film_.pixels() * sizeof(cl_float),
+    camera_cut_ = device_buffer(cl_, pixels * sizeof(cl_float),
                                 "photon: the camera pass's depth-guard tallies");
+    rejected_ = device_buffer(cl_, pixels * sizeof(cl_int), "photon: the camera pass's rejections");
     vps_ = device_buffer(cl_, vp_bytes(), "photon: the visible points of the image");
+    // The per-pixel state of the render: direct light's sum (and its compensation), the SPPM
+    // radius, count and flux τ, and the pass's gather.
+    direct_ = zeroed(pixels * rows * sizeof(cl_float), "photon: the direct light's sums");
+    direct_carry_ = zeroed(pixels * rows * sizeof(cl_float), "photon: the direct light's sums");
+    radius_buf_ = zeroed(pixels * sizeof(cl_float), "photon: the SPPM radii");
+    count_ = zeroed(pixels * sizeof(cl_float), "photon: the SPPM counts");
+    tau_ = zeroed(pixels * rows * sizeof(cl_float), "photon: the SPPM flux");
+    pass_flux_ = zeroed(pixels * rows * sizeof(cl_float), "photon: the pass's gathered flux");
+    pass_found_ = zeroed(pixels * sizeof(cl_int), "photon: the pass's photon counts");
+    image_ = device_buffer(cl_, pixels * rows * sizeof(cl_float), "photon: the image");
     // The store holds about four photons per emitted one (what a pass of ordinary albedos stores)
     // within the memory budget; passes that store more are gathered in batches, so memory stays
     // the same however long photon paths get.
-    const size_t record = photon_floats_ * sizeof(float);
+    const size_t record = photon_floats_ * sizeof(float) + (host_gather_ ? 0 : kGridBytesPerRecord);
     const size_t budget = s.settings.memory > 0 ? static_cast<size_t>(s.settings.memory)
                                                 : default_memory_budget(cl_.info());
     // At least 2^18 records, so a pass of few photons with long paths fills the store in
@@ -70,8 +104,18 @@ class PhotonMapIntegrator : public KernelIntegrator {
     if (capacity_ < 1)
       throw Error("--memory: " + std::to_string(budget) + " bytes hold no photon record (" +
                   std::to_string(record) + " bytes each)");
-    store_ =
-        device_buffer(cl_, capacity_ * record, "photon: the photon store (--memory, --photons)");
+    store_ = device_buffer(cl_, capacity_ * photon_floats_ * sizeof(float),
+                           "photon: the photon store (--memory, --photons)");
+    if (!host_gather_) {
+      // About one cell per record: hash collisions stay rare without the table outgrowing them.
+      cells_ = 1024;
+      while (cells_ < capacity_ && cells_ < (1u << 22)) cells_ *= 2;
+      cell_ = device_buffer(cl_, 2 * sizeof(cl_float), "photon: the grid's cell size");
+      cell_count_ = device_buffer(cl_, cells_ * sizeof(cl_int), "photon: the grid's cells");
+      cell_end_ = device_buffer(cl_, cells_ * sizeof(cl_int), "photon: the grid's cells");
+      photon_cell_ = device_buffer(cl_, capacity_ * sizeof(cl_uint), "photon: the grid's photons");
+      sorted_ = device_buffer(cl_, capacity_ * sizeof(cl_int), "photon: the grid's photons");
+    }
     const KCamera& c = scene_.data().camera;
     footprint_ =
         2.0 * std::sqrt(c.up[0] * c.up[0] + c.up[1] * c.up[1] + c.up[2] * c.up[2]) / c.height;
@@ -84,83 +128,113 @@ class PhotonMapIntegrator : public KernelIntegrator {
     if (radius_ > max_radius_)
       warn("--radius " + std::to_string(radius_) +
            " is beyond 1/50 of the scene's diagonal; using " + std::to_string(max_radius_));
-    if (s.settings.edge_correction) embree_ = std::make_unique<EmbreeScene>(s.scene.triangles);
   }
 
   PassResult render_pass(int pass) override {
-    auto t0 = Clock::now();
-    film_.clear_pixel_sums();
-    launch(camera_kernel_, film_.pixels(), vps_, film_.pixel_sums(), camera_cut_, seed_,
-           static_cast<cl_uint>(pass));
-    vps_host_.resize(film_.pixels() * vp_floats_);
-    cl_.queue().enqueueReadBuffer(vps_, CL_TRUE, 0, vp_bytes(), vps_host_.data());
-    PassResult r{pass, 1, {}, film_.read_pixel_sums(), 1.0, GatherPass{}, {}};
-    r.tallies["time: camera pass (s)"] = since(t0);
-
-    GatherPass& g = *r.gather;
-    g.alpha = alpha_;
-    g.radius = initial_radii();
-    g.flux.assign(film_.pixels() * film_.rows(), 0.0);
-    g.found.assign(film_.pixels(), 0);
-    const double traced = trace_and_gather(pass, g, r.tallies);
+    const auto t0 = Clock::now();
+    const double device0 = device_seconds_;
+    const size_t pixels = film_.pixels();
+    launch(camera_kernel_, pixels, vps_, direct_, direct_carry_, rejected_, camera_cut_,
+           radius_buf_, static_cast<cl_float>(radius_), static_cast<cl_float>(footprint_),
+           static_cast<cl_float>(max_radius_), raised_, spp_, seed_, static_cast<cl_uint>(pass));
+    PassResult r{pass, spp_, {}, {}, 1.0, {}, {}};
+    r.tallies["time: camera pass (s)"] = device_seconds_ - device0;
+    warn_raised_radii();
+    if (host_gather_) {
+      read_floats(vps_, pixels * vp_floats_, vps_host_);
+      read_floats(radius_buf_, pixels, radius_host_);
+      host_flux_.assign(pixels * film_.rows(), 0.0);
+      host_found_.assign(pixels, 0);
+    } else {
+      launch_range(cell_size_kernel_, 0, work_group_size(cell_size_kernel_), vps_, radius_buf_,
+                   static_cast<cl_int>(pixels), cell_);
+    }
+    const double traced = trace_and_gather(pass, r.tallies);
+    if (host_gather_) {
+      std::vector<float> flux(host_flux_.begin(), host_flux_.end());
+      cl_.queue().enqueueWriteBuffer(pass_flux_, CL_TRUE, 0, flux.size() * sizeof(float),
+                                     flux.data());
+      cl_.queue().enqueueWriteBuffer(pass_found_, CL_TRUE, 0, pixels * sizeof(cl_int),
+                                     host_found_.data());
+    }
     // A pass cut short (deadline, Ctrl-C) estimates with the photons it traced: each carries
     // 1/photons of the lights' power, so their flux is scaled up to the pass's photons.
     r.fraction = traced / static_cast<double>(photons_);
-    for (double& v : g.flux) v /= r.fraction;
+    double t = device_seconds_;
+    launch(update_kernel_, pixels, radius_buf_, count_, tau_, pass_flux_, pass_found_,
+           static_cast<cl_float>(alpha_), static_cast<cl_float>(1.0 / r.fraction));
+    r.tallies["time: SPPM update (s)"] = device_seconds_ - t;
+    ++passes_;
+    r.kept = [this] { return read_image(); };
     r.tallies[kDepthGuardOf] = traced;
-    r.tallies[kCameraDepthGuardCut] = read_sum<cl_float>(camera_cut_, film_.pixels());
-    r.tallies[kCameraDepthGuardOf] = static_cast<double>(film_.pixels());
+    r.tallies[kCameraDepthGuardCut] = read_sum<cl_float>(camera_cut_, pixels);
+    r.tallies[kCameraDepthGuardOf] = static_cast<double>(pixels) * spp_;
+    r.tallies["rejected samples"] = read_sum<cl_int>(rejected_, pixels);
+    // What the device did not do: everything else in the pass, the host's share.
+    r.tallies["time: host (s)"] = since(t0) - (device_seconds_ - device0);
     return r;
   }
 
   long long camera_paths_per_pass() const override {
-    return static_cast<long long>(film_.pixels());
+    return static_cast<long long>(film_.pixels()) * spp_;
   }
   long long photons_per_pass() const override { return photons_; }
   std::map<std::string, size_t> device_buffers() const override {
-    return {{"visible points", vp_bytes()},
-            {"photon store", capacity_ * photon_floats_ * sizeof(float)},
-            {"direct emission", film_.pixels() * film_.rows() * sizeof(float)}};
+    const size_t pixels = film_.pixels(), rows = film_.rows(), f = sizeof(float);
+    std::map<std::string, size_t> b{{"visible points", vp_bytes()},
+                                    {"photon store", capacity_ * photon_floats_ * f},
+                                    {"pixel statistics", pixels * (6 * rows + 5) * f}};
+    if (!host_gather_) b["photon grid"] = cells_ * 2 * f + capacity_ * kGridBytesPerRecord;
+    return b;
   }
 
  private:
   size_t vp_bytes() const { return film_.pixels() * vp_floats_ * sizeof(float); }
   size_t photon_items() const { return (photons_ + kPhotonsPerItem - 1) / kPhotonsPerItem; }
 
-  // The radii this pass gathers within: the SPPM radius so far, or for a pixel's first visible
-  // point --radius or one pixel's width at its distance, kept within the scene's bound.
-  std::vector<double> initial_radii() const {
-    std::vector<double> radius = accumulated_.photon_radius();
-    radius.resize(film_.pixels(), 0.0);
-    for (size_t p = 0; p < film_.pixels(); ++p) {
-      const float* vp = &vps_host_[p * vp_floats_];
-      if (radius[p] == 0 && vp[KASHA_VP_VALID] != 0) {
-        const double pixel = footprint_ * vp[KASHA_VP_DISTANCE];
-        radius[p] = std::min(radius_ > 0 ? radius_ : pixel, max_radius_);
-        if (!(radius[p] > 0)) radius[p] = max_radius_;
-        // A radius far below a pixel's footprint catches no photon for many passes.
-        if (radius_ > 0 && radius_ < pixel / 100 && !warned_small_) {
-          warned_small_ = true;
-          warn("--radius " + std::to_string(radius_) +
-               " is below 1/100 of a pixel's footprint at the visible points; using that");
-        }
-        if (radius_ > 0) radius[p] = std::max(radius[p], std::min(pixel / 100, max_radius_));
-      }
-    }
-    return radius;
+  cl::Buffer zeroed(size_t bytes, const std::string& what) {
+    cl::Buffer b = device_buffer(cl_, bytes, what);
+    cl_.queue().enqueueFillBuffer(b, cl_int(0), 0, bytes);
+    cl_.queue().finish();
+    return b;
+  }
+
+  void read_floats(const cl::Buffer& b, size_t count, std::vector<float>& out) {
+    out.resize(count);
+    cl_.queue().enqueueReadBuffer(b, CL_TRUE, 0, count * sizeof(float), out.data());
+  }
+
+  // The image so far: direct light's mean plus the SPPM radiance, per pixel and film row.
+  std::vector<float> read_image() {
+    launch(image_kernel_, film_.pixels(), direct_, radius_buf_, tau_,
+           static_cast<cl_float>(passes_), image_);
+    std::vector<float> image;
+    read_floats(image_, film_.pixels() * film_.rows(), image);
+    return image;
+  }
+
+  // A radius far below a pixel's footprint catches no photon for many passes (camera_pass).
+  void warn_raised_radii() {
+    if (radius_ <= 0 || warned_small_) return;
+    cl_int raised = 0;
+    cl_.queue().enqueueReadBuffer(raised_, CL_TRUE, 0, sizeof(cl_int), &raised);
+    if (raised == 0) return;
+    warned_small_ = true;
+    warn("--radius " + std::to_string(radius_) +
+         " is below 1/100 of a pixel's footprint at the visible points; using that");
   }
 
   // Traces the pass's photons in launches of bounded time into the store, gathering each time
   // the store is full and at the end; stops early on the deadline or Ctrl-C. Returns the
   // photons traced.
-  double trace_and_gather(int pass, GatherPass& g, std::map<std::string, double>& tallies) {
+  double trace_and_gather(int pass, std::map<std::string, double>& tallies) {
     size_t done = 0, stored = 0;  // photons traced, records in the store
     double per_photon = 4;        // records a photon stores, as measured so far
     double trace_s = 0, gather_s = 0, records = 0, cut = 0;
     auto gather_store = [&] {
-      auto t = Clock::now();
-      gather_batch(stored, g);
-      gather_s += since(t);
+      double t = device_seconds_;
+      gather_batch(stored);
+      gather_s += device_seconds_ - t;
       records += static_cast<double>(stored);
       stored = 0;
     };
@@ -177,8 +251,9 @@ class PhotonMapIntegrator : public KernelIntegrator {
       }
       n = std::max<size_t>(1, std::min(n, fit));
       auto t = Clock::now();
+      const double device_before = device_seconds_;
       cl_int after = launch_photons(pass, done, n, 0, stored);
-      trace_s += since(t);
+      trace_s += device_seconds_ - device_before;
       if (static_cast<size_t>(after) <= capacity_) {
         pacer_.record(n, since(t));
         per_photon = std::max(per_photon * 0.5, double(after - stored) / n);
@@ -196,13 +271,13 @@ class PhotonMapIntegrator : public KernelIntegrator {
         continue;  // fewer photons, as the new per-photon figure allows
       } else {
         // One photon stores more than the whole store: trace it again in segments.
-        cut += trace_long_photon(pass, done, g, gather_s, records, trace_s);
+        cut += trace_long_photon(pass, done, gather_s, records, trace_s);
         ++done;
       }
     }
     if (stored > 0) gather_store();
     tallies["time: photon tracing (s)"] = trace_s;
-    tallies["time: kd-tree and gather (s)"] = gather_s;
+    tallies["time: grid and gather (s)"] = gather_s;
     tallies["photons stored"] = records;
     tallies[kDepthGuardCut] = cut;  // per photon's start
     return static_cast<double>(done);
@@ -226,70 +301,79 @@ class PhotonMapIntegrator : public KernelIntegrator {
 
   // A photon whose stores exceed the store, traced again once per store-full of them (its path
   // is the same each time: its random numbers come from its index). Returns its depth-guard cut.
-  double trace_long_photon(int pass, size_t index, GatherPass& g, double& gather_s, double& records,
+  double trace_long_photon(int pass, size_t index, double& gather_s, double& records,
                            double& trace_s) {
     double cut = 0;
     for (size_t skip = 0;; skip += capacity_) {
       if (skip > (1u << 31) - 1) throw Error("photon: one photon stored more than 2^31 records");
-      auto t = Clock::now();
+      double t = device_seconds_;
       cl_int after = launch_photons(pass, index, 1, static_cast<int>(skip), 0);
-      trace_s += since(t);
+      trace_s += device_seconds_ - t;
       if (skip == 0) cut = read_sum<cl_float>(cut_, 1);
       const size_t batch = std::min<size_t>(static_cast<size_t>(after), capacity_);
-      t = Clock::now();
-      gather_batch(batch, g);
-      gather_s += since(t);
+      t = device_seconds_;
+      gather_batch(batch);
+      gather_s += device_seconds_ - t;
       records += static_cast<double>(batch);
       if (static_cast<size_t>(after) <= capacity_) return cut;
       if (interrupt_requested()) return cut;  // the photon's remaining stores are lost; rare
     }
   }
 
-  // Reads the first `count` stored photons back and adds their gather to g (its radii fixed).
-  void gather_batch(size_t count, GatherPass& g) {
+  // Adds the gather of the first `count` stored photons to the pass's (radii fixed in a pass).
+  void gather_batch(size_t count) {
     if (count == 0) return;
-    photons_host_.resize(count * photon_floats_);
-    cl_.queue().enqueueReadBuffer(store_, CL_TRUE, 0, photons_host_.size() * sizeof(float),
-                                  photons_host_.data());
-    PhotonKdTree tree(photons_host_.data(), count, photon_floats_);
-    GatherResult found =
-        tree.gather(vps_host_.data(), vp_floats_, film_.pixels(), g.radius, layout_);
-    if (embree_) {
-      // A fresh rotation of the probe pattern each pass, so its stratification leaves no pattern.
-      float rotation =
-          static_cast<float>(2 * M_PI * std::fmod(0.6180339887 * (++batches_) + 1e-3 * seed_, 1.0));
-      std::vector<float> coverage =
-          disc_coverage(*embree_, vps_host_.data(), vp_floats_, film_.pixels(), g.radius, rotation);
-      for (size_t p = 0; p < film_.pixels(); ++p)
-        for (int k = 0; k < film_.rows(); ++k) found.flux[p * film_.rows() + k] /= coverage[p];
+    if (host_gather_) {
+      read_floats(store_, count * photon_floats_, photons_host_);
+      PhotonKdTree tree(photons_host_.data(), count, photon_floats_);
+      std::vector<double> radius(radius_host_.begin(), radius_host_.end());
+      GatherResult found = tree.gather(vps_host_.data(), vp_floats_, film_.pixels(), radius, layout_);
+      for (size_t i = 0; i < host_flux_.size(); ++i) host_flux_[i] += found.flux[i];
+      for (size_t p = 0; p < host_found_.size(); ++p) host_found_[p] += found.found[p];
+      return;
     }
-    for (size_t i = 0; i < g.flux.size(); ++i) g.flux[i] += found.flux[i];
-    for (size_t p = 0; p < g.found.size(); ++p) g.found[p] += found.found[p];
+    // The grid by counting sort: photons per cell, each cell's end by a prefix sum, then each
+    // photon's place in its cell's run.
+    const cl_uint mask = static_cast<cl_uint>(cells_ - 1);
+    cl_.queue().enqueueFillBuffer(cell_count_, cl_int(0), 0, cells_ * sizeof(cl_int));
+    launch(count_kernel_, count, store_, cell_, mask, cell_count_, photon_cell_);
+    launch_range(scan_kernel_, 0, work_group_size(scan_kernel_), cell_count_,
+                 static_cast<cl_int>(cells_), cell_end_);
+    launch(scatter_kernel_, count, photon_cell_, cell_end_, sorted_);
+    launch(gather_kernel_, film_.pixels(), vps_, radius_buf_, store_, sorted_, cell_count_,
+           cell_end_, cell_, mask, pass_flux_, pass_found_);
   }
 
-  const Film& accumulated_;  // holds the SPPM radii the next gather uses
   long long photons_;
+  int spp_;
   double alpha_, radius_;
   unsigned seed_;
+  bool host_gather_;
   int photon_floats_, vp_floats_;
   VertexFactorLayout layout_;
   double footprint_;   // pixel width on the image plane at unit distance
   double max_radius_;  // no gather radius beyond this
-  mutable bool warned_small_ = false;
+  bool warned_small_ = false;
   size_t capacity_;  // photon records the store holds
-  size_t batches_ = 0;
+  size_t cells_ = 0;  // the grid's hash table
+  int passes_ = 0;
   LaunchPacer pacer_{0.2, 256};  // in photons: the first launch is small, as paths may be long
-  std::vector<float> vps_host_, photons_host_;
-  cl::Kernel photon_kernel_, camera_kernel_;
-  cl::Buffer store_, counter_, vps_, cut_, camera_cut_;
-  std::unique_ptr<EmbreeScene> embree_;  // probes the gather discs' coverage
+  std::vector<float> vps_host_, radius_host_, photons_host_;  // --gather host
+  std::vector<double> host_flux_;
+  std::vector<int> host_found_;
+  cl::Kernel photon_kernel_, camera_kernel_, cell_size_kernel_, count_kernel_, scan_kernel_,
+      scatter_kernel_, gather_kernel_, update_kernel_, image_kernel_;
+  cl::Buffer store_, counter_, raised_, vps_, cut_, camera_cut_, rejected_;
+  cl::Buffer direct_, direct_carry_, radius_buf_, count_, tau_, pass_flux_, pass_found_, image_;
+  cl::Buffer cell_, cell_count_, cell_end_, photon_cell_, sorted_;
 };
 
 KASHA_REGISTER_INTEGRATOR(
     PhotonMapIntegrator, "photon",
-    "bidirectional photon mapping (SPPM): visible points with compact rank-1 factors, "
-    "photons gathered on the host",
-    {"--photons", "--alpha", "--radius", "--edge-correction", "--memory"},
+    "bidirectional photon mapping (SPPM): next-event estimation for direct light, photons for "
+    "the rest, gathered at visible points with compact rank-1 factors through a hashed grid on "
+    "the device",
+    {"--photons", "--alpha", "--radius", "--memory", "--spp", "--gather"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
                      /*reference*/ false});
 

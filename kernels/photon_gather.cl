@@ -1,0 +1,171 @@
+/* Photon mapping's gather on the device (included by photon_map.cl): a hashed uniform grid over a
+ * batch of stored photons built by counting sort (SmallVCM's hash grid: count per cell, prefix
+ * sum, scatter), the gather at each pixel's visible point through it, and the per-pixel SPPM
+ * statistics (sppm_statistics.h) kept here between passes.
+ * Every kernel takes the scene's and the film's parameters first (KernelIntegrator binds them). */
+
+#include "sppm_statistics.h"
+
+/* The gather's tests must round as nanoflann's on the host does (the two are compared). */
+#pragma OPENCL FP_CONTRACT OFF
+
+inline int3 grid_cell(float3 x, float inv_cell) {
+  return convert_int3_sat_rtn(x * inv_cell);
+}
+
+inline uint grid_hash(int3 c, uint mask) {
+  return ((uint)c.x * 73856093u ^ (uint)c.y * 19349663u ^ (uint)c.z * 83492791u) & mask;
+}
+
+inline float3 record_position(const __global float* r) {
+  return (float3)(r[0], r[1], r[2]);
+}
+
+/* One work-group: the grid's cell size from the radii of this pass's visible points — twice their
+ * mean, but at least a quarter of the largest, so a gather visits at most 9³ cells and a typical
+ * one 2³. cell[0] = size, cell[1] = 1/size. */
+__kernel void grid_cell_size(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const float* visible_points,
+                             __global const float* radius, int pixels, __global float* cell, int item_end) {
+  __local float sum[256], most[256];
+  __local int valid[256];
+  const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
+  int l = get_local_id(0), n = min((int)get_local_size(0), 256);
+  float s = 0.0f, m = 0.0f;
+  int v = 0;
+  if (l < n)
+    for (int p = l; p < pixels; p += n)
+      if (visible_points[(long)p * vp_floats + KASHA_VP_VALID] != 0.0f) {
+        s += radius[p];
+        m = fmax(m, radius[p]);
+        ++v;
+      }
+  if (l < n) sum[l] = s, most[l] = m, valid[l] = v;
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (l == 0) {
+    for (int i = 1; i < n; ++i) s += sum[i], m = fmax(m, most[i]), v += valid[i];
+    float size = v > 0 ? fmax(2.0f * s / v, 0.25f * m) : 1.0f;
+    if (!(size > 0.0f)) size = 1.0f;
+    cell[0] = size;
+    cell[1] = 1.0f / size;
+  }
+}
+
+/* Per photon: its cell's hash, counted. */
+__kernel void grid_count(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const float* store,
+                         __global const float* cell, uint mask, __global int* cell_count,
+                         __global uint* photon_cell, int item_end) {
+  int i = get_global_id(0);
+  if (i >= item_end) return;
+  uint h = grid_hash(grid_cell(record_position(store + (long)i * KASHA_PHOTON_FLOATS(KASHA_BINS)), cell[1]), mask);
+  photon_cell[i] = h;
+  atomic_inc(cell_count + h);
+}
+
+/* One work-group: cell_end[h] = Σ_{j<h} cell_count[j], each work item scanning a contiguous chunk
+ * (the scatter then advances it to the cell's end). */
+__kernel void grid_scan(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const int* cell_count, int cells,
+                        __global int* cell_end, int item_end) {
+  __local int total[256];
+  int l = get_local_id(0), n = min((int)get_local_size(0), 256);
+  int chunk = (cells + n - 1) / n;
+  int first = min(l * chunk, cells), last = min(first + chunk, cells);
+  int s = 0;
+  if (l < n) {
+    for (int j = first; j < last; ++j) s += cell_count[j];
+    total[l] = s;
+  }
+  barrier(CLK_LOCAL_MEM_FENCE);
+  if (l >= n) return;
+  int offset = 0;
+  for (int i = 0; i < l; ++i) offset += total[i];
+  for (int j = first; j < last; ++j) {
+    cell_end[j] = offset;
+    offset += cell_count[j];
+  }
+}
+
+/* Per photon: its index into its cell's run of the sorted array. */
+__kernel void grid_scatter(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const uint* photon_cell,
+                           __global int* cell_end, __global int* sorted, int item_end) {
+  int i = get_global_id(0);
+  if (i >= item_end) return;
+  sorted[atomic_inc(cell_end + photon_cell[i])] = i;
+}
+
+/* Per pixel: adds Σ K·Φ over the batch's photons within its radius — on the same side of the
+ * surface, roughly the same orientation, and near the tangent plane (no leaks through thin walls,
+ * around corners or from a parallel surface just behind) — to pass_flux, and their number to
+ * pass_found. A photon is counted only from its own cell, which other cells may share a hash with. */
+__kernel void gather_photons(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const float* visible_points,
+                             __global const float* radius, __global const float* store,
+                             __global const int* sorted, __global const int* cell_count,
+                             __global const int* cell_end, __global const float* cell, uint mask,
+                             __global float* pass_flux, __global int* pass_found, int item_end) {
+  int pixel = get_global_id(0);
+  if (pixel >= item_end) return;
+  const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
+  const __global float* vp = visible_points + (long)pixel * vp_floats;
+  if (vp[KASHA_VP_VALID] == 0.0f) return;
+  const float r = radius[pixel], r2 = r * r, inv_cell = cell[1];
+  float3 x = record_position(vp), n = (float3)(vp[3], vp[4], vp[5]);
+  int3 lo = grid_cell(x - r, inv_cell), hi = grid_cell(x + r, inv_cell);
+  VertexFactorLayout layout = {KASHA_BINS, KASHA_FILM_ROWS, KASHA_SPECTRAL_FILM, KASHA_FLUORESCENCE, cmf};
+  kasha_real rows[KASHA_FILM_ROWS];
+  for (int k = 0; k < KASHA_FILM_ROWS; ++k) rows[k] = 0;
+  int found = 0;
+  for (int cz = lo.z; cz <= hi.z; ++cz)
+    for (int cy = lo.y; cy <= hi.y; ++cy)
+      for (int cx = lo.x; cx <= hi.x; ++cx) {
+        int3 c = (int3)(cx, cy, cz);
+        uint h = grid_hash(c, mask);
+        int end = cell_end[h];
+        for (int j = end - cell_count[h]; j < end; ++j) {
+          const __global float* ph = store + (long)sorted[j] * KASHA_PHOTON_FLOATS(KASHA_BINS);
+          float3 y = record_position(ph);
+          int3 own = grid_cell(y, inv_cell);
+          if (own.x != cx || own.y != cy || own.z != cz) continue;
+          float dx = x.x - y.x, dy = x.y - y.y, dz = x.z - y.z;
+          float d2 = dx * dx + dy * dy;
+          d2 = d2 + dz * dz;
+          if (!(d2 < r2)) continue;
+          float facing = ph[3] * vp[3] + ph[4] * vp[4];
+          if (facing + ph[5] * vp[5] < 0.5f) continue;
+          float off = (y.x - x.x) * n.x + (y.y - x.y) * n.y;
+          off = off + (y.z - x.z) * n.z;
+          if (fabs(off) > KASHA_GATHER_SLAB * r) continue;
+          ++found;
+          vf_apply(layout, vp, ph + KASHA_PHOTON_POWER, rows);
+        }
+      }
+  __global float* out = pass_flux + (long)pixel * KASHA_FILM_ROWS;
+  for (int k = 0; k < KASHA_FILM_ROWS; ++k) out[k] += (float)rows[k];
+  pass_found[pixel] += found;
+}
+
+/* Per pixel: the pass's gather (its flux scaled by `scale`, 1/the fraction of the pass's photons
+ * traced) into the SPPM statistics; clears the pass's sums for the next. */
+__kernel void sppm_update(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float* radius, __global float* count,
+                          __global float* tau, __global float* pass_flux, __global int* pass_found, float alpha,
+                          float scale, int item_end) {
+  int pixel = get_global_id(0);
+  if (pixel >= item_end) return;
+  __global float* phi = pass_flux + (long)pixel * KASHA_FILM_ROWS;
+  sppm_add_pass(radius + pixel, count + pixel, tau + (long)pixel * KASHA_FILM_ROWS, KASHA_FILM_ROWS, phi, scale,
+                pass_found[pixel], alpha);
+  pass_found[pixel] = 0;
+  for (int k = 0; k < KASHA_FILM_ROWS; ++k) phi[k] = 0.0f;
+}
+
+/* Per pixel: the image so far — the mean of the camera samples' direct estimates over `passes`
+ * passes plus the SPPM radiance. */
+__kernel void sppm_image(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const float* direct,
+                         __global const float* radius, __global const float* tau, float passes,
+                         __global float* image, int item_end) {
+  int pixel = get_global_id(0);
+  if (pixel >= item_end) return;
+  for (int k = 0; k < KASHA_FILM_ROWS; ++k) {
+    long i = (long)pixel * KASHA_FILM_ROWS + k;
+    image[i] = (passes > 0.0f ? direct[i] / passes : 0.0f) +
+               sppm_radiance(radius[pixel], tau + (long)pixel * KASHA_FILM_ROWS, k, passes, bin_nm);
+  }
+}
