@@ -26,14 +26,17 @@ constexpr long long kMaxInt = 2147483647;
 // The options of IntegratorSettings, each read by the integrators that list it in the registry.
 static void add_integrator_options(CLI::App* app, IntegratorSettings& s) {
   app->add_option("--spp", s.spp,
-                  "camera samples per pixel per pass (default 16; photon mapping 4)")
+                  "camera samples per pixel per pass (default 16; photon mapping 8)")
       ->check(integer_within(1, 1 << 20));
   app->add_option("--photons", s.photons, "photons per pass")->check(integer_within(1, kMaxInt));
-  app->add_option("--alpha", s.alpha, "photon mapping: radius reduction α (default 2/3)")
+  app->add_option("--alpha", s.alpha, "photon mapping: radius reduction α (default 0.8)")
       ->check(number_within(0.01, 0.99));
   app->add_option("--radius", s.radius,
                   "photon mapping: initial gather radius (default: from the pixel footprint)")
       ->check(positive_number());
+  app->add_flag("--edge-correction", s.edge_correction,
+                "photon mapping: divide the density by the measured fraction of the gather discs "
+                "on accepted surface (default; --edge-correction=false leaves it out)");
   app->add_option("--gather", s.gather,
                   "photon mapping: gather on the device (a hashed grid) or on the host "
                   "(nanoflann); default auto: the device")

@@ -142,6 +142,46 @@ __kernel void gather_photons(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global con
   pass_found[pixel] += found;
 }
 
+/* Edge correction: near an edge a gather disc hangs over it; the photons there are rejected by the
+ * normal test while the density estimate divides by the whole disc, so pixels darken towards
+ * edges and corners. Per pixel with a visible point: `probes` short rays along the normal through
+ * the gather's slab, at equal-area radii on a pattern rotated by `rotation`, find the fraction of
+ * the disc on surface the gather accepts; its sum and the number of passes measured go to
+ * coverage[2·pixel], coverage[2·pixel + 1]. The image divides by their ratio once (a ratio of
+ * sums: a per-pass division would be a mean of noisy ratios, biased high). */
+__kernel void disc_coverage(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const float* visible_points,
+                            __global const float* radius, __global float* coverage, int probes, float rotation,
+                            int item_end) {
+  KASHA_SCENE_VIEW(s);
+  int pixel = get_global_id(0);
+  if (pixel >= item_end) return;
+  const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
+  const __global float* vp = visible_points + (long)pixel * vp_floats;
+  if (vp[KASHA_VP_VALID] == 0.0f) return;
+  const float r = radius[pixel], slab = KASHA_GATHER_SLAB * r;
+  float3 x = record_position(vp), n = (float3)(vp[3], vp[4], vp[5]);
+  /* A tangent basis (t1, t2) around n (Duff et al. 2017). */
+  float sign = n.z >= 0.0f ? 1.0f : -1.0f, a = -1.0f / (sign + n.z), b = n.x * n.y * a;
+  float3 t1 = (float3)(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
+  float3 t2 = (float3)(b, sign + n.y * n.y * a, -n.y);
+  int covered = 0;
+  for (int j = 0; j < probes; ++j) {
+    float rho = r * sqrt((j + 0.5f) / probes);
+    float phi = rotation + 2.39996323f * j; /* the golden angle: probes spread over the disc */
+    float3 org = x + rho * (cos(phi) * t1 + sin(phi) * t2) + slab * n;
+    float t, u, v;
+    int hit = bvh_closest(s.nodes, s.tris, org, -n, 0.0f, 2.0f * slab, &t, &u, &v);
+    if (hit < 0) continue;
+    const __global KTriangle* tri = &s.tris[hit];
+    float3 v0 = load_float3(tri->v0);
+    float3 g = normalize(cross(load_float3(tri->v1) - v0, load_float3(tri->v2) - v0));
+    /* The normal on the side the probe arrives from, n's side, is |g·n| from n. */
+    if (fabs(dot(g, n)) > 0.5f) ++covered;
+  }
+  coverage[2 * pixel] += (float)covered / probes;
+  coverage[2 * pixel + 1] += 1.0f;
+}
+
 /* Per pixel: the pass's gather (its flux scaled by `scale`, 1/the fraction of the pass's photons
  * traced) into the SPPM statistics; clears the pass's sums for the next. */
 __kernel void sppm_update(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float* radius, __global float* count,
@@ -159,13 +199,16 @@ __kernel void sppm_update(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
 /* Per pixel: the image so far — the mean of the camera samples' direct estimates over `passes`
  * passes plus the SPPM radiance. */
 __kernel void sppm_image(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const float* direct,
-                         __global const float* radius, __global const float* tau, float passes,
+                         __global const float* radius, __global const float* tau,
+                         __global const float* coverage, int edge_correction, float passes,
                          __global float* image, int item_end) {
   int pixel = get_global_id(0);
   if (pixel >= item_end) return;
+  float covered = 1.0f;
+  if (edge_correction && coverage[2 * pixel] > 0.0f) covered = coverage[2 * pixel] / coverage[2 * pixel + 1];
   for (int k = 0; k < KASHA_FILM_ROWS; ++k) {
     long i = (long)pixel * KASHA_FILM_ROWS + k;
     image[i] = (passes > 0.0f ? direct[i] / passes : 0.0f) +
-               sppm_radiance(radius[pixel], tau + (long)pixel * KASHA_FILM_ROWS, k, passes, bin_nm);
+               sppm_radiance(radius[pixel], tau + (long)pixel * KASHA_FILM_ROWS, k, passes, bin_nm) / covered;
   }
 }

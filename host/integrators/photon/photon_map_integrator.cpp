@@ -41,9 +41,13 @@ bool gather_on_host(const std::string& gather) {
   throw Error("--gather " + gather + ": unknown (device, host or auto)");
 }
 
+// Probes per visible point and pass of the edge correction (disc_coverage in photon_gather.cl):
+// few, as their ratio of sums averages over passes.
+constexpr int kCoverageProbes = 4;
+
 // Camera samples per pixel per pass unless --spp says: direct light, lamps seen directly and
 // their edges converge with them while photon tracing dominates the pass (README).
-constexpr int kDefaultCameraSamples = 4;
+constexpr int kDefaultCameraSamples = 8;
 
 class PhotonMapIntegrator : public KernelIntegrator {
  public:
@@ -55,6 +59,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
         radius_(s.settings.radius),
         seed_(s.settings.seed),
         host_gather_(gather_on_host(s.settings.gather)),
+        edge_correction_(s.settings.edge_correction),
         photon_floats_(KASHA_PHOTON_FLOATS(s.scene.grid.bins)),
         vp_floats_(KASHA_VP_FLOATS(s.scene.grid.bins, film_.rows(), s.scene.fluorescent())),
         layout_{s.scene.grid.bins, film_.rows(), film_.spectral(), s.scene.fluorescent(),
@@ -64,6 +69,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
     photon_kernel_ = cl::Kernel(program_, "trace_photon_map");
     camera_kernel_ = cl::Kernel(program_, "camera_pass");
     cell_size_kernel_ = cl::Kernel(program_, "grid_cell_size");
+    coverage_kernel_ = cl::Kernel(program_, "disc_coverage");
     count_kernel_ = cl::Kernel(program_, "grid_count");
     scan_kernel_ = cl::Kernel(program_, "grid_scan");
     scatter_kernel_ = cl::Kernel(program_, "grid_scatter");
@@ -89,6 +95,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
     tau_ = zeroed(pixels * rows * sizeof(cl_float), "photon: the SPPM flux");
     pass_flux_ = zeroed(pixels * rows * sizeof(cl_float), "photon: the pass's gathered flux");
     pass_found_ = zeroed(pixels * sizeof(cl_int), "photon: the pass's photon counts");
+    coverage_ = zeroed(pixels * 2 * sizeof(cl_float), "photon: the gather discs' coverage");
     image_ = device_buffer(cl_, pixels * rows * sizeof(cl_float), "photon: the image");
     // The store holds about four photons per emitted one (what a pass of ordinary albedos stores)
     // within the memory budget; passes that store more are gathered in batches, so memory stays
@@ -163,6 +170,12 @@ class PhotonMapIntegrator : public KernelIntegrator {
     double t = device_seconds_;
     launch(update_kernel_, pixels, radius_buf_, count_, tau_, pass_flux_, pass_found_,
            static_cast<cl_float>(alpha_), static_cast<cl_float>(1.0 / r.fraction));
+    if (edge_correction_) {
+      // A fresh rotation of the probes each pass, so their pattern averages out over passes.
+      const float rotation =
+          static_cast<float>(2 * M_PI * std::fmod(0.6180339887 * pass + 1e-3 * seed_, 1.0));
+      launch(coverage_kernel_, pixels, vps_, radius_buf_, coverage_, kCoverageProbes, rotation);
+    }
     r.tallies["time: SPPM update (s)"] = device_seconds_ - t;
     ++passes_;
     r.kept = [this] { return read_image(); };
@@ -206,8 +219,8 @@ class PhotonMapIntegrator : public KernelIntegrator {
 
   // The image so far: direct light's mean plus the SPPM radiance, per pixel and film row.
   std::vector<float> read_image() {
-    launch(image_kernel_, film_.pixels(), direct_, radius_buf_, tau_,
-           static_cast<cl_float>(passes_), image_);
+    launch(image_kernel_, film_.pixels(), direct_, radius_buf_, tau_, coverage_,
+           static_cast<cl_int>(edge_correction_), static_cast<cl_float>(passes_), image_);
     std::vector<float> image;
     read_floats(image_, film_.pixels() * film_.rows(), image);
     return image;
@@ -349,6 +362,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
   double alpha_, radius_;
   unsigned seed_;
   bool host_gather_;
+  bool edge_correction_;
   int photon_floats_, vp_floats_;
   VertexFactorLayout layout_;
   double footprint_;   // pixel width on the image plane at unit distance
@@ -362,9 +376,9 @@ class PhotonMapIntegrator : public KernelIntegrator {
   std::vector<double> host_flux_;
   std::vector<int> host_found_;
   cl::Kernel photon_kernel_, camera_kernel_, cell_size_kernel_, count_kernel_, scan_kernel_,
-      scatter_kernel_, gather_kernel_, update_kernel_, image_kernel_;
+      scatter_kernel_, gather_kernel_, update_kernel_, image_kernel_, coverage_kernel_;
   cl::Buffer store_, counter_, raised_, vps_, cut_, camera_cut_, rejected_;
-  cl::Buffer direct_, direct_carry_, radius_buf_, count_, tau_, pass_flux_, pass_found_, image_;
+  cl::Buffer coverage_, direct_, direct_carry_, radius_buf_, count_, tau_, pass_flux_, pass_found_, image_;
   cl::Buffer cell_, cell_count_, cell_end_, photon_cell_, sorted_;
 };
 
@@ -373,7 +387,7 @@ KASHA_REGISTER_INTEGRATOR(
     "bidirectional photon mapping (SPPM): next-event estimation for direct light, photons for "
     "the rest, gathered at visible points with compact rank-1 factors through a hashed grid on "
     "the device",
-    {"--photons", "--alpha", "--radius", "--memory", "--spp", "--gather"},
+    {"--photons", "--alpha", "--radius", "--memory", "--spp", "--gather", "--edge-correction"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
                      /*reference*/ false});
 
