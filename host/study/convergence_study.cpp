@@ -150,7 +150,9 @@ void write_summary(const std::string& dir, const std::string& scene_path, const 
              "compilation at first launch) taken off the times; theory: −1/2 (RMSE) and −1 "
              "(relMSE) "
              "for unbiased "
-             "estimators, −1/3 and −2/3 for progressive photon mapping.\n";
+             "estimators; for progressive photon mapping −α/2 and −α where its bias is nil (a "
+             "furnace), down to −(1 − α) and −2(1 − α) where bias dominates (α = --alpha, "
+             "default 0.8).\n";
     });
   });
 }
