@@ -43,7 +43,7 @@ def main():
     table = os.path.join(args.out, "table.md")
     with open(table, "w") as f:
         f.write(f"{args.time:g} s per integrator on each scene; RMSE over X, Y, Z; slopes of log error over log "
-                "time (theory −1/2, and −1/3 for photon mapping).\n\n")
+                "time (theory −1/2, and −α/2 down to −(1 − α) for photon mapping).\n\n")
         f.write("| scene | integrator | final RMSE | final relMSE | RMSE slope | time to worst final RMSE (s) "
                 "| camera paths/s | photons/s |\n|---|---|---|---|---|---|---|---|\n")
         for name, r in rows:
