@@ -168,15 +168,16 @@ class PhotonMapIntegrator : public KernelIntegrator {
     // 1/photons of the lights' power, so their flux is scaled up to the pass's photons.
     r.fraction = traced / static_cast<double>(photons_);
     double t = device_seconds_;
-    launch(update_kernel_, pixels, radius_buf_, count_, tau_, pass_flux_, pass_found_,
-           static_cast<cl_float>(alpha_), static_cast<cl_float>(1.0 / r.fraction));
     if (edge_correction_) {
-      // A fresh rotation of the probes each pass, so their pattern averages out over passes.
+      // With the radii this pass gathered within; a fresh rotation of the probes each pass, so
+      // their pattern averages out over passes.
       const float rotation =
           static_cast<float>(2 * M_PI * std::fmod(0.6180339887 * pass + 1e-3 * seed_, 1.0));
       launch(coverage_kernel_, pixels, vps_, radius_buf_, coverage_, kCoverageProbes, rotation);
     }
-    r.tallies["time: SPPM update (s)"] = device_seconds_ - t;
+    launch(update_kernel_, pixels, radius_buf_, count_, tau_, pass_flux_, pass_found_,
+           static_cast<cl_float>(alpha_), static_cast<cl_float>(1.0 / r.fraction));
+    r.tallies["time: SPPM update and edge probes (s)"] = device_seconds_ - t;
     ++passes_;
     r.kept = [this] { return read_image(); };
     r.tallies[kDepthGuardOf] = traced;
@@ -196,7 +197,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
     const size_t pixels = film_.pixels(), rows = film_.rows(), f = sizeof(float);
     std::map<std::string, size_t> b{{"visible points", vp_bytes()},
                                     {"photon store", capacity_ * photon_floats_ * f},
-                                    {"pixel statistics", pixels * (6 * rows + 5) * f}};
+                                    {"pixel statistics", pixels * (5 * rows + 7) * f}};
     if (!host_gather_) b["photon grid"] = cells_ * 2 * f + capacity_ * kGridBytesPerRecord;
     return b;
   }
