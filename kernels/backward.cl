@@ -118,9 +118,7 @@ __kernel void render_backward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
     film_rows_clear(rows);
     guard += trace_camera_path(&s, &f, camera_position(&camera), camera_sample(&camera, pixel, sample_2d(&sampler)),
                                &sampler, rows);
-    bool finite = true;
-    for (int r = 0; r < KASHA_FILM_ROWS; ++r) finite = finite && isfinite(rows[r]);
-    if (finite)
+    if (film_rows_finite(rows))
       film_add(film, pixel, rows);
     else
       ++bad;

@@ -25,6 +25,13 @@ inline void film_rows_clear(float* rows) {
   for (int r = 0; r < KASHA_FILM_ROWS; ++r) rows[r] = 0.0f;
 }
 
+/* Whether a sample's rows are all finite (a sample that is not is left out and counted). */
+inline bool film_rows_finite(const float* rows) {
+  bool finite = true;
+  for (int r = 0; r < KASHA_FILM_ROWS; ++r) finite = finite && isfinite(rows[r]);
+  return finite;
+}
+
 /* Adds a work item's rows to its own pixel of a pass's per-pixel sums (no other item writes
  * there, so no atomics). */
 inline void film_add(__global float* sums, int pixel, const float* rows) {

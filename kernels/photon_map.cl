@@ -186,9 +186,7 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
     float rows[KASHA_FILM_ROWS];
     film_rows_clear(rows);
     guard += camera_path(&s, &f, pixel, &sampler, k == 0 ? vp : 0, rows);
-    bool finite = true;
-    for (int r = 0; r < KASHA_FILM_ROWS; ++r) finite = finite && isfinite(rows[r]);
-    if (!finite) {
+    if (!film_rows_finite(rows)) {
       ++bad;
       continue;
     }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "integrators/photon/photon_records.h"
+#include "kernel_harness.h"
 #include "render/device_scene.h"
 #include "render_support.h"
 #include "study/furnace.h"
@@ -12,6 +13,48 @@
 
 using namespace kasha;
 using namespace kasha::test;
+
+TEST(Photon, SppmStatisticsFollowAHandWorkedExample) {
+  // One pixel's statistics on the device (kernels/sppm_statistics.h) against the formulas worked
+  // by hand. Pass 1 finds 4 photons in radius 2, pass 2 none, pass 3 eight with its flux scaled
+  // by 2 (a pass cut short at half its photons): n = 4α, R² = 4·4α/4, τ = φ1·R²/4; then
+  // n' = 4α + 8α, R'² = R²·n'/(n + 8), τ' = (τ + 2φ3)·R'²/R²; radiance τ'/(3π R'² Δλ).
+  const char* source = R"(
+#include "sampling.h"
+#include "sppm_statistics.h"
+__kernel void sppm(__global const float* passes, int count, float alpha, float r0, float bin_nm,
+                   __global float* out) {
+  if (get_global_id(0) != 0) return;
+  out[0] = r0, out[1] = 0.0f, out[2] = out[3] = out[4] = 0.0f;
+  for (int k = 0; k < count; ++k)
+    sppm_add_pass(out, out + 1, out + 2, 3, passes + 5 * k + 2, passes[5 * k + 1], (int)passes[5 * k],
+                  alpha);
+  for (int r = 0; r < 3; ++r) out[5 + r] = sppm_radiance(out[0], out + 2, r, (float)count, bin_nm);
+}
+)";
+  const double alpha = 0.5, bin_nm = 10;
+  TestKernel k(source, "sppm_test.cl", "sppm");
+  // Per pass: found, scale, flux per row.
+  k.input(0, std::vector<float>{4, 1, 10, 20, 0, 0, 1, 0, 0, 0, 8, 2, 3, 6, 0});
+  k.scalar(1, cl_int(3));
+  k.scalar(2, cl_float(alpha));
+  k.scalar(3, cl_float(2));
+  k.scalar(4, cl_float(bin_nm));
+  k.output(5, 8);
+  k.run(1);
+  std::vector<float> out = k.read(5);
+  double n = 4 * alpha, r2 = 4.0 * n / 4, tau = 10.0 * r2 / 4;
+  double n2 = n + 8 * alpha, r2b = r2 * n2 / (n + 8);
+  tau = (tau + 2 * 3.0) * r2b / r2;
+  EXPECT_NEAR(out[0], std::sqrt(r2b), 1e-6);
+  EXPECT_NEAR(out[1], n2, 1e-6);
+  EXPECT_NEAR(out[2], tau, 1e-5 * tau);
+  EXPECT_NEAR(out[3], 2 * tau, 2e-5 * tau);
+  EXPECT_EQ(out[4], 0.0f);
+  const double radiance = tau / (3 * M_PI * r2b * bin_nm);
+  EXPECT_NEAR(out[5], radiance, 1e-5 * radiance);
+  EXPECT_NEAR(out[6], 2 * radiance, 2e-5 * radiance);
+}
 
 TEST(Photon, DeviceGatherEqualsNanoflannGather) {
   // The same seed gives the same visible points and photons: the hashed grid's gather on the

@@ -19,15 +19,8 @@ EmbreeScene::EmbreeScene(const std::vector<KTriangle>& triangles) {
   auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
       geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles.size()));
   if (!v || !idx) throw Error("Embree: cannot allocate geometry buffers");
-  normals_.resize(3 * triangles.size());
   for (size_t i = 0; i < triangles.size(); ++i) {
     const KTriangle& t = triangles[i];
-    float e1[3], e2[3];
-    for (int k = 0; k < 3; ++k) e1[k] = t.v1[k] - t.v0[k], e2[k] = t.v2[k] - t.v0[k];
-    float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                  e1[0] * e2[1] - e1[1] * e2[0]};
-    float len = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    for (int k = 0; k < 3; ++k) normals_[3 * i + k] = len > 0 ? n[k] / len : 0.0f;
     std::copy(t.v0, t.v0 + 3, v + 9 * i);
     std::copy(t.v1, t.v1 + 3, v + 9 * i + 3);
     std::copy(t.v2, t.v2 + 3, v + 9 * i + 6);
@@ -41,12 +34,6 @@ EmbreeScene::EmbreeScene(const std::vector<KTriangle>& triangles) {
 
 EmbreeScene::~EmbreeScene() {
   rtcReleaseScene(scene_);
-}
-
-float EmbreeScene::facing_normal_dot(int prim, const float dir[3], const float v[3]) const {
-  const float* n = &normals_[3 * prim];
-  float side = n[0] * dir[0] + n[1] * dir[1] + n[2] * dir[2] < 0 ? 1.0f : -1.0f;
-  return side * (n[0] * v[0] + n[1] * v[1] + n[2] * v[2]);
 }
 
 KHit EmbreeScene::intersect(const KRay& ray) const {

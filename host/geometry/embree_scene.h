@@ -18,15 +18,11 @@ class EmbreeScene {
 
   KHit intersect(const KRay& ray) const;
   bool occluded(const KRay& ray) const;
-  // dot(n_side, v) where n_side is triangle `prim`'s unit normal on the side a ray along `dir`
-  // arrives from (the normal the photon map stores).
-  float facing_normal_dot(int prim, const float dir[3], const float v[3]) const;
   // All rays, spread over the host's hardware threads.
   void intersect_all(const std::vector<KRay>& rays, std::vector<KHit>& hits) const;
 
  private:
   RTCScene scene_ = nullptr;
-  std::vector<float> normals_;  // unit geometric normal per triangle
 };
 
 }  // namespace kasha
