@@ -22,6 +22,9 @@ using namespace kasha::cli;
 // Seconds beyond this would overflow the steady clock's deadline (nanoseconds in 64 bits).
 constexpr double kMaxSeconds = 1e9;
 constexpr long long kMaxInt = 2147483647;
+constexpr const char* kDeviceHelp =
+    "OpenCL devices: an index, a comma-separated list (0,1; an index named twice gives its "
+    "device a second queue) or all; see `kasha devices`";
 
 // The options of IntegratorSettings, each read by the integrators that list it in the registry.
 static void add_integrator_options(CLI::App* app, IntegratorSettings& s) {
@@ -105,8 +108,7 @@ int main(int argc, char** argv) {
       ->add_option("--sampler", r.settings.sampler,
                    "sobol (default: Owen-scrambled Sobol points) or independent (PCG streams)")
       ->check(one_of({"sobol", "independent"}));
-  render->add_option("--device", r.device, "OpenCL device index (see `kasha devices`)")
-      ->check(integer_within(0, kMaxInt));
+  render->add_option("--device", r.device, kDeviceHelp)->check(device_list());
   render->add_option("--lamp", r.lamp, "switch on this one of the scene's \"lamps\"");
   render->add_option("--png", r.png, "also write a tone-mapped sRGB PNG preview");
   render->add_flag("--spectral", r.spectral, "add one channel per wavelength bin to the EXR");
@@ -245,8 +247,7 @@ int main(int argc, char** argv) {
       ->check(integer_within(1, 1 << 20));
   converge->add_option("--photons", study.settings.photons, "photons per pass")
       ->check(integer_within(1, kMaxInt));
-  converge->add_option("--device", study.device, "OpenCL device index")
-      ->check(integer_within(0, kMaxInt));
+  converge->add_option("--device", study.device, kDeviceHelp)->check(device_list());
   converge->add_option("--sampler", study.settings.sampler, "sobol (default) or independent")
       ->check(one_of({"sobol", "independent"}));
   converge->add_option("-o,--output", study.out_dir, "directory for logs, plot, images and summary")
@@ -262,7 +263,7 @@ int main(int argc, char** argv) {
   std::string reference_scene, reference_out;
   double reference_seconds = 0;
   unsigned reference_seed = 1;
-  int reference_device = 0;
+  std::string reference_device = "0";
   CLI::App* reference = app.add_subcommand(
       "reference", "render a reference image with the lowest-variance unbiased integrator");
   reference->add_option("scene", reference_scene, "scene JSON file")->required();
@@ -271,8 +272,7 @@ int main(int argc, char** argv) {
       ->check(positive_number(kMaxSeconds));
   reference->add_option("--seed", reference_seed, "random seed")
       ->check(integer_within(0, 4294967295LL));
-  reference->add_option("--device", reference_device, "OpenCL device index")
-      ->check(integer_within(0, kMaxInt));
+  reference->add_option("--device", reference_device, kDeviceHelp)->check(device_list());
   reference->add_option("-o,--output", reference_out, "reference EXR")->required();
 
   require_numbers(app);

@@ -92,6 +92,48 @@ __kernel void grid_scatter(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const
   sorted[atomic_inc(cell_end + photon_cell[i])] = i;
 }
 
+/* A stored photon's key: its index in the pass, then the bounce it was stored at. */
+inline ulong record_key(const __global float* store, int record) {
+  const __global float* r = store + (long)record * KASHA_PHOTON_FLOATS(KASHA_BINS);
+  return (ulong)as_uint(r[KASHA_PHOTON_INDEX]) << 32 | as_uint(r[KASHA_PHOTON_DEPTH]);
+}
+
+/* Per hash cell: its run of `sorted` ordered by key (heap sort, in place), as the scatter's atomics
+ * leave it in arrival order. A gather then sums each cell's photons in one order whatever the
+ * launches and the device, so the same photons always give the same image, bit for bit. */
+__kernel void grid_sort_cells(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const float* store,
+                              __global const int* cell_count, __global const int* cell_end,
+                              __global int* sorted, int item_end) {
+  int h = get_global_id(0);
+  if (h >= item_end) return;
+  int n = cell_count[h];
+  if (n < 2) return;
+  __global int* a = sorted + (cell_end[h] - n);
+  /* Sift-down heap sort: a max-heap over [0, size), its root swapped to the end each round. */
+  for (int start = n / 2 - 1, size = n; size > 1;) {
+    int root;
+    if (start >= 0) {
+      root = start--;
+    } else {
+      --size;
+      int t = a[0];
+      a[0] = a[size];
+      a[size] = t;
+      root = 0;
+    }
+    for (;;) {
+      int child = 2 * root + 1;
+      if (child >= size) break;
+      if (child + 1 < size && record_key(store, a[child + 1]) > record_key(store, a[child])) ++child;
+      if (record_key(store, a[child]) <= record_key(store, a[root])) break;
+      int t = a[root];
+      a[root] = a[child];
+      a[child] = t;
+      root = child;
+    }
+  }
+}
+
 /* Per pixel: adds Σ K·Φ over the batch's photons within its radius — on the same side of the
  * surface, roughly the same orientation, and near the tangent plane (no leaks through thin walls,
  * around corners or from a parallel surface just behind) — to pass_flux, and their number to

@@ -2,7 +2,10 @@
  * count N, the film rows R and whether the scene fluoresces, so they are float arrays with these
  * strides and offsets rather than structs.
  *
- * Photon: position (3), normal on the side it arrived from (3), power per bin (N).
+ * Photon: position (3), normal on the side it arrived from (3), its key — the photon's index in
+ * the pass and the bounce it was stored at, two ints in float bits, which order a cell's photons
+ * so a gather sums them in the same order on any device and in any launch order — then power per
+ * bin (N).
  * Visible point: position (3), normal on the camera's side (3), valid flag, path length from the
  * camera (for the initial radius), then the factor K = C∘d + c bᵀ that maps a photon's power to the
  * pixel's film rows: d (N) and, in a fluorescent scene only, c (R) and b (N). */
@@ -13,8 +16,10 @@
  * plane (the host's and the device's gathers alike). */
 #define KASHA_GATHER_SLAB 0.25f
 
-#define KASHA_PHOTON_FLOATS(N) (6 + (N))
-#define KASHA_PHOTON_POWER 6
+#define KASHA_PHOTON_FLOATS(N) (8 + (N))
+#define KASHA_PHOTON_INDEX 6
+#define KASHA_PHOTON_DEPTH 7
+#define KASHA_PHOTON_POWER 8
 
 #define KASHA_VP_VALID 6
 #define KASHA_VP_DISTANCE 7

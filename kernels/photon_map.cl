@@ -61,6 +61,7 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
             __global float* rec = store + (long)slot * KASHA_PHOTON_FLOATS(KASHA_BINS);
             rec[0] = x.x, rec[1] = x.y, rec[2] = x.z;
             rec[3] = ns.x, rec[4] = ns.y, rec[5] = ns.z;
+            rec[KASHA_PHOTON_INDEX] = as_float(index), rec[KASHA_PHOTON_DEPTH] = as_float(depth);
             for (int i = 0; i < KASHA_BINS; ++i) rec[KASHA_PHOTON_POWER + i] = p.power[i];
           }
         }

@@ -101,7 +101,11 @@ TEST(CliErrors, EveryBadCommandLineIsOneLineWithExitCode2AndNoOutput) {
       {render + "--passes 1 --photons 1e6", 2, "--photons: \"1e6\" is not an integer"},
       {render + "--passes 1 --spp 0", 2, "--spp: 0 is not in [1, 1048576]"},
       {render + "--passes 1 --seed -1", 2, "--seed: -1 is not in [0, 4294967295]"},
-      {render + "--passes 1 --device -1", 2, "--device: -1 is not in"},
+      {render + "--passes 1 --device -1", 2,
+       "--device: \"-1\" is not a device index, a comma-separated list of them, or all"},
+      {render + "--passes 1 --device 0,", 2, "--device: \"0,\" is not a device index"},
+      {render + "--passes 1 --device 0,,1", 2, "--device: \"0,,1\" is not a device index"},
+      {render + "--passes 1 --device al", 2, "--device: \"al\" is not a device index"},
       {render + "--passes 1 --memory 0", 2, "--memory: 0 is not in"},
       {render + "--passes 1 --max-depth 0", 2, "--max-depth: 0 is not in"},
       // measure

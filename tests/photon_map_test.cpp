@@ -121,7 +121,7 @@ TEST(Photon, NonFluorescentScenesCarryNoRankOneFactor) {
   const size_t M = fluorescent.grid.bins;
   EXPECT_EQ(visible_point_bytes(fluorescent, false), (8 + 2 * M + 3) * sizeof(float));
   EXPECT_EQ(visible_point_bytes(fluorescent, true), (8 + 3 * M) * sizeof(float));
-  EXPECT_EQ(photon_record_bytes(fluorescent), (6 + M) * sizeof(float));
+  EXPECT_EQ(photon_record_bytes(fluorescent), (8 + M) * sizeof(float));
 }
 
 TEST(Photon, RadiiThatCatchNoPhotonStayFinite) {

@@ -38,7 +38,8 @@ int run_converge(const std::string& scene, const std::string& integrators, Study
   return 0;
 }
 
-int run_reference(const std::string& scene_path, double seconds, unsigned seed, int device,
+int run_reference(const std::string& scene_path, double seconds, unsigned seed,
+                  const std::string& device,
                   const std::string& out) {
   install_interrupt_handler();
   OutputSet outputs;
@@ -46,9 +47,9 @@ int run_reference(const std::string& scene_path, double seconds, unsigned seed, 
   outputs.file("-o", out);
   Scene scene = load_scene(scene_path);
   outputs.inputs_read("the scene's material or data file");
-  ClContext cl(device);
+  DeviceSet devices(device);
   ReferenceInfo info;
-  Image image = render_reference(cl, scene, seconds, seed, info, true);
+  Image image = render_reference(devices, scene, seconds, seed, info, true);
   outputs.write(out, [&](const std::string& tmp) { write_reference(tmp, image, info); });
   outputs.commit();
   std::fprintf(stderr, "wrote %s: %s, %.1f s, %lld samples per pixel\n", out.c_str(),

@@ -43,9 +43,8 @@ int run_render(const RenderArgs& a) {
     options.reference = read_exr(a.reference);
     check_reference_size(*options.reference, scene.camera.width, scene.camera.height);
   }
-  ClContext cl(a.device);
-  DeviceScene device_scene(cl, scene);
-  RenderJob job(cl, scene, device_scene, a.integrator, a.settings, a.spectral);
+  DeviceSet devices(a.device);
+  RenderJob job(devices.upload(scene), scene, a.integrator, a.settings, a.spectral);
   RenderSummary summary = job.run(options);
   const Film& film = job.film();
   Image image = film.image();
@@ -57,7 +56,7 @@ int run_render(const RenderArgs& a) {
   outputs.commit();
   std::fprintf(stderr, "wrote %s%s%s: %d passes, %lld samples per pixel, %.2f s on %s\n",
                a.output.c_str(), a.png.empty() ? "" : " and ", a.png.c_str(), summary.passes,
-               film.samples_per_pixel(), summary.seconds, cl.info().name.c_str());
+               film.samples_per_pixel(), summary.seconds, devices.names().c_str());
   // Where a pass's time went, for integrators that time their stages ("time: <stage> (s)").
   double total = 0;
   std::string shares;
@@ -68,6 +67,17 @@ int run_render(const RenderArgs& a) {
       shares += (shares.empty() ? "" : ", ") + name.substr(6, name.size() - 10) + " " +
                 std::to_string(static_cast<int>(std::lround(100 * value / total))) + " %";
   if (!shares.empty()) std::fprintf(stderr, "%s time: %s\n", a.integrator.c_str(), shares.c_str());
+  if (job.devices() > 1) {
+    double work = 0;
+    for (size_t d = 0; d < job.devices(); ++d) work += film.tally(device_work_tally(d));
+    std::string each;
+    for (size_t d = 0; d < job.devices(); ++d)
+      each += (d ? ", " : "") + std::to_string(d) + " (" + devices[d].info().name + ") " +
+              std::to_string(static_cast<int>(std::lround(100 * film.tally(device_work_tally(d)) /
+                                                           std::max(work, 1e-300)))) +
+              " %";
+    std::fprintf(stderr, "work per device: %s\n", each.c_str());
+  }
   double cut_share = 0;
   for (auto [cut, of] : {std::pair{kDepthGuardCut, kDepthGuardOf},
                          std::pair{kCameraDepthGuardCut, kCameraDepthGuardOf}})

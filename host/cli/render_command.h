@@ -11,7 +11,8 @@ namespace kasha {
 struct RenderArgs {
   std::string scene, output, png, integrator = kDefaultIntegrator, reference, log, lamp;
   double seconds = 0;
-  int passes = 0, device = 0;
+  int passes = 0;
+  std::string device = "0";  // --device: an index, a list or all (opencl/device_list.h)
   bool spectral = false;
   IntegratorSettings settings;
   // The integrator-specific options given on the command line (the chosen one must take them).

@@ -22,6 +22,12 @@ constexpr const char* kDepthGuardOf = "depth guard: of";
 constexpr const char* kCameraDepthGuardCut = "depth guard: camera paths cut";
 constexpr const char* kCameraDepthGuardOf = "depth guard: camera paths of";
 
+// The work each device did when a render runs on several ("device 1: work"): passes, or for
+// photon mapping the photons traced; `render` shows each device's share.
+inline std::string device_work_tally(size_t device) {
+  return "device " + std::to_string(device) + ": work";
+}
+
 struct PassResult {
   int pass = 0;
   long long samples = 0;  // samples per pixel that `sums` adds up

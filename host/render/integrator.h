@@ -4,6 +4,7 @@
 // (render/integrator_registry.h).
 #include <map>
 #include <string>
+#include <vector>
 
 #include "film/pass_result.h"
 #include "render/pass_control.h"
@@ -23,7 +24,15 @@ class Integrator {
   // The device buffers it allocated beyond the scene's and the film's tables: bytes by purpose.
   virtual std::map<std::string, size_t> device_buffers() const { return {}; }
 
+  // Several devices (render/render_job.h). Passes that depend on nothing before them are handed
+  // out whole, one a device (render/pass_scheduler.h); an integrator whose passes build on the
+  // last (photon mapping's radii) says so, and shares each pass with its instances on the other
+  // devices, which it is given here.
+  virtual bool independent_passes() const { return true; }
+  virtual void set_helpers(const std::vector<Integrator*>& helpers) { (void)helpers; }
+
  protected:
+  void rename(const std::string& name) { name_ = name; }
   PassControl control_;  // no deadline by default: passes run whole unless Ctrl-C
 
  private:

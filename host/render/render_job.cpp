@@ -14,13 +14,34 @@ static const std::string& lit(const Scene& scene, const DeviceScene& device_scen
   return integrator;
 }
 
-RenderJob::RenderJob(ClContext& cl, const Scene& scene, DeviceScene& device_scene,
+RenderJob::RenderJob(const std::vector<RenderLane>& lanes, const Scene& scene,
                      const std::string& integrator, const IntegratorSettings& settings,
                      bool spectral_film)
-    : film_(scene.camera.width, scene.camera.height, scene.grid, spectral_film),
-      device_film_(cl, film_),
-      integrator_(IntegratorRegistry::make(
-          lit(scene, device_scene, integrator),
-          IntegratorSetup{cl, scene, device_scene, device_film_, film_, settings})) {}
+    : film_(scene.camera.width, scene.camera.height, scene.grid, spectral_film) {
+  if (lanes.empty()) throw Error("render: no device to render on");
+  lit(scene, lanes[0].scene, integrator);
+  for (const RenderLane& lane : lanes) {
+    device_films_.push_back(std::make_unique<DeviceFilm>(lane.cl, film_));
+    integrators_.push_back(IntegratorRegistry::make(
+        integrator,
+        IntegratorSetup{lane.cl, scene, lane.scene, *device_films_.back(), film_, settings}));
+  }
+  if (integrators_.size() == 1) return;
+  std::vector<Integrator*> others;
+  for (size_t i = 1; i < integrators_.size(); ++i) others.push_back(integrators_[i].get());
+  if (integrators_[0]->independent_passes()) {
+    std::vector<Integrator*> all{integrators_[0].get()};
+    all.insert(all.end(), others.begin(), others.end());
+    scheduler_ = std::make_unique<PassScheduler>(all);
+  } else {
+    integrators_[0]->set_helpers(others);
+  }
+}
+
+RenderSummary RenderJob::run(const RenderOptions& options) {
+  if (!scheduler_) return render_progressive(*integrators_[0], film_, options);
+  scheduler_->set_pass_limit(options.stop.passes);
+  return render_progressive(*scheduler_, film_, options);
+}
 
 }  // namespace kasha

@@ -1,37 +1,47 @@
 #pragma once
-// One integrator rendering one scene on one device into its film: the film, the film's tables on
-// the device and the integrator made by name from the registry — what `render`, `converge`,
-// `reference` and the tests set up.
+// One integrator rendering one scene into its film on one device or several: the film, the
+// film's tables on each device and an instance of the integrator made by name from the registry
+// on each — what `render`, `converge`, `bench`, `reference` and the tests set up. On several
+// devices, independent passes are handed out whole (render/pass_scheduler.h); photon mapping
+// shares each pass's photons among its instances. Either way the image is the one device's, bit
+// for bit, for the same seed and passes.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "film/film.h"
 #include "render/device_film.h"
+#include "render/device_set.h"
 #include "render/integrator_registry.h"
+#include "render/pass_scheduler.h"
 #include "render/progressive_render.h"
 
 namespace kasha {
 
 class RenderJob {
  public:
-  RenderJob(ClContext& cl, const Scene& scene, DeviceScene& device_scene,
+  RenderJob(const std::vector<RenderLane>& lanes, const Scene& scene,
             const std::string& integrator, const IntegratorSettings& settings, bool spectral_film);
+  RenderJob(ClContext& cl, const Scene& scene, DeviceScene& device_scene,
+            const std::string& integrator, const IntegratorSettings& settings, bool spectral_film)
+      : RenderJob({RenderLane{cl, device_scene}}, scene, integrator, settings, spectral_film) {}
   RenderJob(const RenderJob&) = delete;
   RenderJob& operator=(const RenderJob&) = delete;
 
   Film& film() { return film_; }
-  Integrator& integrator() { return *integrator_; }
+  // The first device's instance (its name, figures and buffers stand for all).
+  Integrator& integrator() { return *integrators_[0]; }
+  size_t devices() const { return integrators_.size(); }
   // The progressive loop (render/progressive_render.h) over this job.
-  RenderSummary run(const RenderOptions& options) {
-    return render_progressive(*integrator_, film_, options);
-  }
-  // One pass, accumulated.
-  void pass(int index) { film_.accumulate(integrator_->render_pass(index)); }
+  RenderSummary run(const RenderOptions& options);
+  // One pass on the first device, accumulated.
+  void pass(int index) { film_.accumulate(integrators_[0]->render_pass(index)); }
 
  private:
   Film film_;
-  DeviceFilm device_film_;
-  std::unique_ptr<Integrator> integrator_;
+  std::vector<std::unique_ptr<DeviceFilm>> device_films_;
+  std::vector<std::unique_ptr<Integrator>> integrators_;
+  std::unique_ptr<PassScheduler> scheduler_;  // several devices, independent passes
 };
 
 }  // namespace kasha

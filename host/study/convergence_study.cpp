@@ -55,7 +55,7 @@ Stats stats(const std::vector<double>& v) {
 
 // The reference the study measures against, and a line saying what it is.
 Image study_reference(const std::string& scene_path, const Scene& scene, const StudyOptions& o,
-                      ClContext* cl, std::string& description) {
+                      DeviceSet& devices, std::string& description) {
   if (o.reference == "furnace") {
     Furnace f = analyze_furnace(scene);
     if (!f.qualifies)
@@ -86,7 +86,7 @@ Image study_reference(const std::string& scene_path, const Scene& scene, const S
     }
   }
   ReferenceInfo info;
-  Image ref = render_reference(*cl, scene, wanted, 0x7e1f, info, o.show_progress);
+  Image ref = render_reference(devices, scene, wanted, 0x7e1f, info, o.show_progress);
   std::string where = cached.string();
   try {
     write_reference(cached.string(), ref, info);
@@ -181,10 +181,10 @@ StudyResult run_convergence_study(const std::string& scene_path, const StudyOpti
     throw Error("--reference " + o.reference + ": no such file");
   }
 
-  ClContext cl(o.device);
+  DeviceSet devices(o.device);
   StudyResult result;
-  Image reference = study_reference(scene_path, scene, o, &cl, result.reference_description);
-  DeviceScene device_scene(cl, scene);
+  Image reference = study_reference(scene_path, scene, o, devices, result.reference_description);
+  const std::vector<RenderLane> lanes = devices.upload(scene);
 
   std::vector<std::vector<std::vector<LogRow>>> by_integrator(o.integrators.size());
   std::vector<Image> finals;
@@ -192,7 +192,7 @@ StudyResult run_convergence_study(const std::string& scene_path, const StudyOpti
     for (int run = 0; run < o.repeats; ++run) {
       IntegratorSettings settings = o.settings;
       settings.seed = o.settings.seed + run;
-      RenderJob job(cl, scene, device_scene, o.integrators[k], settings, false);
+      RenderJob job(lanes, scene, o.integrators[k], settings, false);
       Film& film = job.film();
       RenderOptions ro;
       ro.stop = o.passes > 0 ? StopCondition{0, o.passes} : StopCondition{o.seconds, 0};

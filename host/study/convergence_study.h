@@ -21,7 +21,7 @@ struct StudyOptions {
   double target = -1;            // RMSE for time-to-target; < 0: the worst final RMSE
   std::string out_dir;
   IntegratorSettings settings;
-  int device = 0;
+  std::string device = "0";  // --device: an index, a list or all
   bool show_progress = true;
   bool plot = true;  // run scripts/plot_convergence.py (matplotlib)
 };

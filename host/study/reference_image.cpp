@@ -25,12 +25,11 @@ std::string scene_fingerprint(const std::string& scene_path) {
   return hex;
 }
 
-Image render_reference(ClContext& cl, const Scene& scene, double seconds, unsigned seed,
+Image render_reference(DeviceSet& devices, const Scene& scene, double seconds, unsigned seed,
                        ReferenceInfo& info, bool show_progress) {
-  DeviceScene device_scene(cl, scene);
   IntegratorSettings settings;
   settings.seed = seed;
-  RenderJob job(cl, scene, device_scene, IntegratorRegistry::reference(), settings, false);
+  RenderJob job(devices.upload(scene), scene, IntegratorRegistry::reference(), settings, false);
   RenderOptions options;
   options.stop.seconds = seconds;
   options.show_progress = show_progress;

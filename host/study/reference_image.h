@@ -6,7 +6,7 @@
 #include <string>
 
 #include "film/image.h"
-#include "opencl/device.h"
+#include "render/device_set.h"
 #include "scene/scene.h"
 
 namespace kasha {
@@ -20,7 +20,7 @@ struct ReferenceInfo {
 // A fingerprint of the scene file's bytes, to tell whether a cached reference still fits it.
 std::string scene_fingerprint(const std::string& scene_path);
 
-Image render_reference(ClContext& cl, const Scene& scene, double seconds, unsigned seed,
+Image render_reference(DeviceSet& devices, const Scene& scene, double seconds, unsigned seed,
                        ReferenceInfo& info, bool show_progress);
 void write_reference(const std::string& path, const Image& image, const ReferenceInfo& info);
 // The provenance of a reference EXR written by write_reference; empty integrator if it has none.

@@ -9,8 +9,15 @@
 // on the host's threads, photon_gather.h), the statistics staying on the device.
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <cstring>
+#include <exception>
+#include <mutex>
+#include <optional>
+#include <thread>
 
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -25,6 +32,10 @@ namespace kasha {
 
 namespace {
 constexpr int kPhotonsPerItem = 64;
+// A pass's photons go in about this many chunks, of at least kChunkPhotons each: enough to share
+// a pass among a few devices, few enough that the gathers' per-pixel work stays small.
+constexpr size_t kChunksPerPass = 8;
+constexpr size_t kChunkPhotons = 1 << 15;
 using Clock = std::chrono::steady_clock;
 double since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
@@ -73,6 +84,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
     count_kernel_ = cl::Kernel(program_, "grid_count");
     scan_kernel_ = cl::Kernel(program_, "grid_scan");
     scatter_kernel_ = cl::Kernel(program_, "grid_scatter");
+    sort_kernel_ = cl::Kernel(program_, "grid_sort_cells");
     gather_kernel_ = cl::Kernel(program_, "gather_photons");
     update_kernel_ = cl::Kernel(program_, "sppm_update");
     image_kernel_ = cl::Kernel(program_, "sppm_image");
@@ -97,17 +109,17 @@ class PhotonMapIntegrator : public KernelIntegrator {
     pass_found_ = zeroed(pixels * sizeof(cl_int), "photon: the pass's photon counts");
     coverage_ = zeroed(pixels * 2 * sizeof(cl_float), "photon: the gather discs' coverage");
     image_ = device_buffer(cl_, pixels * rows * sizeof(cl_float), "photon: the image");
-    // The store holds about four photons per emitted one (what a pass of ordinary albedos stores)
-    // within the memory budget; passes that store more are gathered in batches, so memory stays
-    // the same however long photon paths get.
+    // The store holds a chunk of a pass's photons (chunk_photons) at about four records each
+    // (what ordinary albedos store) with a margin, within the memory budget; chunks that store
+    // more are traced in smaller pieces, so memory stays the same however long photon paths get.
     const size_t record = photon_floats_ * sizeof(float) + (host_gather_ ? 0 : kGridBytesPerRecord);
     const size_t budget = s.settings.memory > 0 ? static_cast<size_t>(s.settings.memory)
                                                 : default_memory_budget(cl_.info());
     // At least 2^18 records, so a pass of few photons with long paths fills the store in
     // launches of many photons rather than one photon at a time.
-    capacity_ =
-        std::min<size_t>({std::max<size_t>(static_cast<size_t>(photons_) * 4 + 1024, 1u << 18),
-                          budget / record, (1u << 31) - 1});
+    capacity_ = std::min<size_t>(
+        {std::max<size_t>(base_chunk_photons() * 5 + 1024, 1u << 18), budget / record,
+         (1u << 31) - 1});
     if (capacity_ < 1)
       throw Error("--memory: " + std::to_string(budget) + " bytes hold no photon record (" +
                   std::to_string(record) + " bytes each)");
@@ -147,26 +159,24 @@ class PhotonMapIntegrator : public KernelIntegrator {
     PassResult r{pass, spp_, {}, {}, 1.0, {}, {}};
     r.tallies["time: camera pass (s)"] = device_seconds_ - device0;
     warn_raised_radii();
-    if (host_gather_) {
-      read_floats(vps_, pixels * vp_floats_, vps_host_);
-      read_floats(radius_buf_, pixels, radius_host_);
-      host_flux_.assign(pixels * film_.rows(), 0.0);
-      host_found_.assign(pixels, 0);
-    } else {
+    if (!host_gather_)
       launch_range(cell_size_kernel_, 0, work_group_size(cell_size_kernel_), vps_, radius_buf_,
                    static_cast<cl_int>(pixels), cell_);
+    PassInputs inputs;
+    if (host_gather_ || !helpers_.empty()) {
+      read_floats(vps_, pixels * vp_floats_, inputs.visible_points);
+      read_floats(radius_buf_, pixels, inputs.radius);
+      if (!host_gather_) read_floats(cell_, 2, inputs.cell);
     }
-    const double traced = trace_and_gather(pass, r.tallies);
-    if (host_gather_) {
-      std::vector<float> flux(host_flux_.begin(), host_flux_.end());
-      cl_.queue().enqueueWriteBuffer(pass_flux_, CL_TRUE, 0, flux.size() * sizeof(float),
-                                     flux.data());
-      cl_.queue().enqueueWriteBuffer(pass_found_, CL_TRUE, 0, pixels * sizeof(cl_int),
-                                     host_found_.data());
-    }
+    const ChunkResult gathered = gather_pass(pass, inputs);
+    const std::vector<float> flux(gathered.flux.begin(), gathered.flux.end());
+    cl_.queue().enqueueWriteBuffer(pass_flux_, CL_TRUE, 0, flux.size() * sizeof(float),
+                                   flux.data());
+    cl_.queue().enqueueWriteBuffer(pass_found_, CL_TRUE, 0, pixels * sizeof(cl_int),
+                                   gathered.found.data());
     // A pass cut short (deadline, Ctrl-C) estimates with the photons it traced: each carries
     // 1/photons of the lights' power, so their flux is scaled up to the pass's photons.
-    r.fraction = traced / static_cast<double>(photons_);
+    r.fraction = gathered.traced / static_cast<double>(photons_);
     double t = device_seconds_;
     if (edge_correction_) {
       // With the radii this pass gathered within; a fresh rotation of the probes each pass, so
@@ -180,13 +190,32 @@ class PhotonMapIntegrator : public KernelIntegrator {
     r.tallies["time: SPPM update and edge probes (s)"] = device_seconds_ - t;
     ++passes_;
     r.kept = [this] { return read_image(); };
-    r.tallies[kDepthGuardOf] = traced;
+    // Stage times add over the devices; with several, "host" is what this device's thread spent
+    // beyond its own launches (waiting for the others included).
+    r.tallies["time: photon tracing (s)"] = gathered.trace_s;
+    r.tallies["time: grid and gather (s)"] = gathered.gather_s;
+    r.tallies["photons stored"] = gathered.records;
+    r.tallies["photon store overflows"] = gathered.overflows;
+    r.tallies[kDepthGuardCut] = gathered.cut;  // per photon's start
+    r.tallies[kDepthGuardOf] = gathered.traced;
     r.tallies[kCameraDepthGuardCut] = read_sum<cl_float>(camera_cut_, pixels);
     r.tallies[kCameraDepthGuardOf] = static_cast<double>(pixels) * spp_;
     r.tallies["rejected samples"] = read_sum<cl_int>(rejected_, pixels);
-    // What the device did not do: everything else in the pass, the host's share.
-    r.tallies["time: host (s)"] = since(t0) - (device_seconds_ - device0);
+    r.tallies["time: host (s)"] = std::max(0.0, since(t0) - (device_seconds_ - device0));
+    for (const auto& [name, photons] : gathered.work) r.tallies[name] = photons;
     return r;
+  }
+
+  bool independent_passes() const override { return false; }
+
+  // Several devices: the others' instances trace and gather chunks of each pass's photons.
+  void set_helpers(const std::vector<Integrator*>& helpers) override {
+    helpers_.clear();
+    for (Integrator* h : helpers) {
+      auto* p = dynamic_cast<PhotonMapIntegrator*>(h);
+      if (!p) throw Error("photon: a helper device runs another integrator");
+      helpers_.push_back(p);
+    }
   }
 
   long long camera_paths_per_pass() const override {
@@ -238,63 +267,197 @@ class PhotonMapIntegrator : public KernelIntegrator {
          " is below 1/100 of a pixel's footprint at the visible points; using that");
   }
 
-  // Traces the pass's photons in launches of bounded time into the store, gathering each time
-  // the store is full and at the end; stops early on the deadline or Ctrl-C. Returns the
-  // photons traced.
-  double trace_and_gather(int pass, std::map<std::string, double>& tallies) {
-    size_t done = 0, stored = 0;  // photons traced, records in the store
-    double per_photon = 4;        // records a photon stores, as measured so far
-    double trace_s = 0, gather_s = 0, records = 0, cut = 0;
-    auto gather_store = [&] {
-      double t = device_seconds_;
-      gather_batch(stored);
-      gather_s += device_seconds_ - t;
-      records += static_cast<double>(stored);
-      stored = 0;
-    };
+  // What the camera pass left for the helpers: visible points, radii and the grid's cell size.
+  struct PassInputs {
+    std::vector<float> visible_points, radius, cell;
+  };
+
+  // The gather of some of a pass's photons: per pixel Σ K·Φ (pixels × rows) and the count, with
+  // what tracing them took.
+  struct ChunkResult {
+    std::vector<double> flux;
+    std::vector<int> found;
+    double traced = 0, records = 0, cut = 0, trace_s = 0, gather_s = 0;
+    double overflows = 0;   // ranges traced again in halves
+    double per_photon = 0;  // the most records a photon of a whole range stored
+    std::map<std::string, double> work;  // photons traced per device, with several
+  };
+
+  // Photons per chunk: a pass's photons are traced and gathered in chunks of fixed photon ranges,
+  // whichever device takes each, and the chunks' gathers add up in chunk order — so one device
+  // or several give the same image, bit for bit. A chunk's records fit the smallest store with a
+  // margin, as far as measured (a chunk that overflows is traced again in halves).
+  size_t chunk_photons() const {
+    size_t capacity = capacity_;
+    for (const PhotonMapIntegrator* h : helpers_) capacity = std::min(capacity, h->capacity_);
+    const size_t fit = static_cast<size_t>(static_cast<double>(capacity) / (per_photon_ * 1.25));
+    return std::clamp<size_t>(fit, 1, base_chunk_photons());
+  }
+  size_t base_chunk_photons() const {
     const size_t photons = static_cast<size_t>(photons_);
-    while (done < photons) {
-      if (done > 0 && control_.stop_now()) break;
-      size_t n = pacer_.next(photons - done);
-      // Leave room for what these photons will store, with a margin; else gather first.
-      const size_t room = capacity_ - stored;
-      const size_t fit = static_cast<size_t>(room / (per_photon * 1.25 + 1e-9));
-      if (fit < std::min<size_t>(n, kPhotonsPerItem) && stored > 0) {
-        gather_store();
-        continue;
+    return std::min(photons, std::max(kChunkPhotons, (photons + kChunksPerPass - 1) / kChunksPerPass));
+  }
+
+  // The pass's photons, chunk by chunk on this device and the helpers (a thread each), handed
+  // out in order as devices come free; the chunks' gathers add up on the host in chunk order.
+  ChunkResult gather_pass(int pass, const PassInputs& inputs) {
+    const size_t photons = static_cast<size_t>(photons_), chunk = chunk_photons();
+    const size_t chunks = (photons + chunk - 1) / chunk;
+    ChunkResult total;
+    total.flux.assign(film_.pixels() * film_.rows(), 0.0);
+    total.found.assign(film_.pixels(), 0);
+    std::vector<std::optional<ChunkResult>> results(chunks);
+    size_t added = 0;
+    std::mutex mutex;
+    std::condition_variable ready;
+    std::exception_ptr failure;
+    std::atomic<size_t> next{0}, progress{0};
+    // Adds the chunks that are ready, in order; called with the lock held.
+    auto add_ready = [&] {
+      for (; added < chunks && results[added]; ++added) {
+        ChunkResult& c = *results[added];
+        for (size_t i = 0; i < c.flux.size(); ++i) total.flux[i] += c.flux[i];
+        for (size_t p = 0; p < c.found.size(); ++p) total.found[p] += c.found[p];
+        total.traced += c.traced;
+        total.records += c.records;
+        total.cut += c.cut;
+        total.overflows += c.overflows;
+        total.trace_s += c.trace_s;
+        total.gather_s += c.gather_s;
+        total.per_photon = std::max(total.per_photon, c.per_photon);
+        c = ChunkResult{};
       }
-      n = std::max<size_t>(1, std::min(n, fit));
+    };
+    std::vector<double> work_done(helpers_.size() + 1, 0.0);
+    auto work = [&](PhotonMapIntegrator& lane, size_t index) {
+      for (size_t c; (c = next++) < chunks;) {
+        const size_t first = c * chunk;
+        ChunkResult result;
+        if (c == 0 || !lane.control_.stop_now())
+          result = lane.trace_chunk(pass, first, std::min(chunk, photons - first), progress);
+        std::lock_guard<std::mutex> lock(mutex);
+        work_done[index] += result.traced;
+        results[c] = std::move(result);
+        add_ready();
+        ready.notify_all();
+      }
+    };
+    std::vector<std::thread> threads;
+    PassControl quiet = control_;
+    quiet.progress = nullptr;  // progress is this thread's to show
+    for (size_t i = 0; i < helpers_.size(); ++i)
+      threads.emplace_back([&, i] {
+        PhotonMapIntegrator* h = helpers_[i];
+        try {
+          h->set_control(quiet);
+          h->take_inputs(inputs);
+          work(*h, i + 1);
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(mutex);
+          if (!failure) failure = std::current_exception();
+          next = chunks;  // no more chunks start; the ones in flight finish
+          ready.notify_all();
+        }
+      });
+    try {
+      if (host_gather_) take_inputs(inputs);
+      work(*this, 0);
+      std::unique_lock<std::mutex> lock(mutex);
+      ready.wait(lock, [&] { return added == chunks || failure; });
+    } catch (...) {
+      next = chunks;
+      for (std::thread& t : threads) t.join();
+      throw;
+    }
+    for (std::thread& t : threads) t.join();
+    if (failure) std::rethrow_exception(failure);
+    if (!helpers_.empty())
+      for (size_t i = 0; i < work_done.size(); ++i) total.work[device_work_tally(i)] = work_done[i];
+    if (total.traced == static_cast<double>(photons))
+      per_photon_ = std::max(per_photon_, total.per_photon);  // for the next pass's chunks
+    return total;
+  }
+
+  // A helper's copy of the main device's visible points, radii and cell size for this pass.
+  void take_inputs(const PassInputs& in) {
+    if (host_gather_) {
+      vps_host_ = in.visible_points;
+      radius_host_ = in.radius;
+      return;
+    }
+    cl_.queue().enqueueWriteBuffer(vps_, CL_FALSE, 0, in.visible_points.size() * sizeof(float),
+                                   in.visible_points.data());
+    cl_.queue().enqueueWriteBuffer(radius_buf_, CL_FALSE, 0, in.radius.size() * sizeof(float),
+                                   in.radius.data());
+    cl_.queue().enqueueWriteBuffer(cell_, CL_TRUE, 0, in.cell.size() * sizeof(float),
+                                   in.cell.data());
+  }
+
+  // Traces and gathers photons [first, first + count) on this device; `progress` counts the
+  // photons traced on every device (the main one shows it).
+  ChunkResult trace_chunk(int pass, size_t first, size_t count, std::atomic<size_t>& progress) {
+    const size_t pixels = film_.pixels(), rows = film_.rows();
+    ChunkResult c;
+    if (host_gather_) {
+      c.flux.assign(pixels * rows, 0.0);
+      c.found.assign(pixels, 0);
+    } else {  // the device's pass buffers hold the chunk's gather
+      cl_.queue().enqueueFillBuffer(pass_flux_, cl_float(0), 0, pixels * rows * sizeof(float));
+      cl_.queue().enqueueFillBuffer(pass_found_, cl_int(0), 0, pixels * sizeof(cl_int));
+    }
+    trace_range(pass, first, count, c, progress);
+    if (!host_gather_) {
+      std::vector<float> flux;
+      read_floats(pass_flux_, pixels * rows, flux);
+      c.flux.assign(flux.begin(), flux.end());
+      c.found.resize(pixels);
+      cl_.queue().enqueueReadBuffer(pass_found_, CL_TRUE, 0, pixels * sizeof(cl_int),
+                                    c.found.data());
+    }
+    return c;
+  }
+
+  // Photons [first, first + count) into the empty store in launches of bounded time, then
+  // gathered; stops early on the deadline or Ctrl-C. When they overflow the store the range is
+  // traced again as two halves — a split that depends on the store's size only.
+  void trace_range(int pass, size_t first, size_t count, ChunkResult& c,
+                   std::atomic<size_t>& progress) {
+    size_t done = 0, stored = 0;
+    double cut = 0, trace_s = 0;
+    while (done < count) {
+      if ((done > 0 || first > 0) && control_.stop_now()) break;
+      const size_t n = pacer_.next(count - done);
       auto t = Clock::now();
       const double device_before = device_seconds_;
-      cl_int after = launch_photons(pass, done, n, 0, stored);
+      cl_int after = launch_photons(pass, first + done, n, 0, stored);
       trace_s += device_seconds_ - device_before;
-      if (static_cast<size_t>(after) <= capacity_) {
-        pacer_.record(n, since(t));
-        per_photon = std::max(per_photon * 0.5, double(after - stored) / n);
-        cut += read_sum<cl_float>(cut_, (n + kPhotonsPerItem - 1) / kPhotonsPerItem);
-        stored = after;
-        done += n;
-        control_.report(static_cast<double>(done) / photons);
-        continue;
+      if (static_cast<size_t>(after) > capacity_) {
+        c.trace_s += trace_s;
+        progress -= done;
+        if (count == 1) {
+          trace_long_photon(pass, first, c);
+          progress += 1;
+        } else {
+          c.per_photon = std::max(c.per_photon, static_cast<double>(capacity_) / count);
+          c.overflows += 1;
+          trace_range(pass, first, count / 2, c, progress);
+          trace_range(pass, first + count / 2, count - count / 2, c, progress);
+        }
+        return;
       }
-      // The launch overflowed: its stores beyond `stored` are incomplete and dropped.
-      per_photon = std::max(per_photon, double(after - stored) / n);
-      if (stored > 0) {
-        gather_store();
-      } else if (n > 1) {
-        continue;  // fewer photons, as the new per-photon figure allows
-      } else {
-        // One photon stores more than the whole store: trace it again in segments.
-        cut += trace_long_photon(pass, done, gather_s, records, trace_s);
-        ++done;
-      }
+      pacer_.record(n, since(t));
+      cut += read_sum<cl_float>(cut_, (n + kPhotonsPerItem - 1) / kPhotonsPerItem);
+      stored = after;
+      done += n;
+      progress += n;
+      control_.report(static_cast<double>(progress) / photons_);
     }
-    if (stored > 0) gather_store();
-    tallies["time: photon tracing (s)"] = trace_s;
-    tallies["time: grid and gather (s)"] = gather_s;
-    tallies["photons stored"] = records;
-    tallies[kDepthGuardCut] = cut;  // per photon's start
-    return static_cast<double>(done);
+    gather_batch(stored, c);
+    c.trace_s += trace_s;
+    c.traced += static_cast<double>(done);
+    c.cut += cut;
+    if (done == count && done > 0)
+      c.per_photon = std::max(c.per_photon, static_cast<double>(stored) / done);
   }
 
   // Photons [first, first + count) into the store from slot `stored`, `skip` stores passed over
@@ -314,48 +477,68 @@ class PhotonMapIntegrator : public KernelIntegrator {
   }
 
   // A photon whose stores exceed the store, traced again once per store-full of them (its path
-  // is the same each time: its random numbers come from its index). Returns its depth-guard cut.
-  double trace_long_photon(int pass, size_t index, double& gather_s, double& records,
-                           double& trace_s) {
-    double cut = 0;
+  // is the same each time: its random numbers come from its index).
+  void trace_long_photon(int pass, size_t index, ChunkResult& c) {
     for (size_t skip = 0;; skip += capacity_) {
       if (skip > (1u << 31) - 1) throw Error("photon: one photon stored more than 2^31 records");
       double t = device_seconds_;
       cl_int after = launch_photons(pass, index, 1, static_cast<int>(skip), 0);
-      trace_s += device_seconds_ - t;
-      if (skip == 0) cut = read_sum<cl_float>(cut_, 1);
-      const size_t batch = std::min<size_t>(static_cast<size_t>(after), capacity_);
-      t = device_seconds_;
-      gather_batch(batch);
-      gather_s += device_seconds_ - t;
-      records += static_cast<double>(batch);
-      if (static_cast<size_t>(after) <= capacity_) return cut;
-      if (interrupt_requested()) return cut;  // the photon's remaining stores are lost; rare
+      c.trace_s += device_seconds_ - t;
+      if (skip == 0) c.cut += read_sum<cl_float>(cut_, 1);
+      gather_batch(std::min<size_t>(static_cast<size_t>(after), capacity_), c);
+      if (static_cast<size_t>(after) <= capacity_ || interrupt_requested()) break;
     }
+    c.traced += 1;  // a photon cut short by Ctrl-C loses its remaining stores; rare
   }
 
-  // Adds the gather of the first `count` stored photons to the pass's (radii fixed in a pass).
-  void gather_batch(size_t count) {
+  // Adds the gather of the first `count` stored photons to the chunk's (radii fixed in a pass).
+  void gather_batch(size_t count, ChunkResult& c) {
     if (count == 0) return;
+    const double t = device_seconds_;
+    const auto start = Clock::now();
+    c.records += static_cast<double>(count);
     if (host_gather_) {
       read_floats(store_, count * photon_floats_, photons_host_);
+      sort_by_key(photons_host_, count);
       PhotonKdTree tree(photons_host_.data(), count, photon_floats_);
       std::vector<double> radius(radius_host_.begin(), radius_host_.end());
       GatherResult found = tree.gather(vps_host_.data(), vp_floats_, film_.pixels(), radius, layout_);
-      for (size_t i = 0; i < host_flux_.size(); ++i) host_flux_[i] += found.flux[i];
-      for (size_t p = 0; p < host_found_.size(); ++p) host_found_[p] += found.found[p];
+      for (size_t i = 0; i < c.flux.size(); ++i) c.flux[i] += found.flux[i];
+      for (size_t p = 0; p < c.found.size(); ++p) c.found[p] += found.found[p];
+      c.gather_s += since(start);
       return;
     }
     // The grid by counting sort: photons per cell, each cell's end by a prefix sum, then each
-    // photon's place in its cell's run.
+    // photon's place in its cell's run, and each run in key order.
     const cl_uint mask = static_cast<cl_uint>(cells_ - 1);
     cl_.queue().enqueueFillBuffer(cell_count_, cl_int(0), 0, cells_ * sizeof(cl_int));
     launch(count_kernel_, count, store_, cell_, mask, cell_count_, photon_cell_);
     launch_range(scan_kernel_, 0, work_group_size(scan_kernel_), cell_count_,
                  static_cast<cl_int>(cells_), cell_end_);
     launch(scatter_kernel_, count, photon_cell_, cell_end_, sorted_);
+    launch(sort_kernel_, cells_, store_, cell_count_, cell_end_, sorted_);
     launch(gather_kernel_, film_.pixels(), vps_, radius_buf_, store_, sorted_, cell_count_,
            cell_end_, cell_, mask, pass_flux_, pass_found_);
+    c.gather_s += device_seconds_ - t;
+  }
+
+  // The host's gather takes the records in key order, as the device's does within each cell.
+  void sort_by_key(std::vector<float>& records, size_t count) const {
+    auto key = [&](size_t i) {
+      const float* r = &records[i * photon_floats_];
+      uint32_t index, depth;
+      std::memcpy(&index, r + KASHA_PHOTON_INDEX, sizeof index);
+      std::memcpy(&depth, r + KASHA_PHOTON_DEPTH, sizeof depth);
+      return static_cast<uint64_t>(index) << 32 | depth;
+    };
+    std::vector<size_t> order(count);
+    for (size_t i = 0; i < count; ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return key(a) < key(b); });
+    std::vector<float> sorted(count * photon_floats_);
+    for (size_t i = 0; i < count; ++i)
+      std::memcpy(&sorted[i * photon_floats_], &records[order[i] * photon_floats_],
+                  photon_floats_ * sizeof(float));
+    records.swap(sorted);
   }
 
   long long photons_;
@@ -372,12 +555,12 @@ class PhotonMapIntegrator : public KernelIntegrator {
   size_t capacity_;  // photon records the store holds
   size_t cells_ = 0;  // the grid's hash table
   int passes_ = 0;
+  double per_photon_ = 4;  // records per photon, as measured: the store holds ~4 for ordinary albedos
+  std::vector<PhotonMapIntegrator*> helpers_;  // the other devices' instances
   LaunchPacer pacer_{0.2, 256};  // in photons: the first launch is small, as paths may be long
   std::vector<float> vps_host_, radius_host_, photons_host_;  // --gather host
-  std::vector<double> host_flux_;
-  std::vector<int> host_found_;
   cl::Kernel photon_kernel_, camera_kernel_, cell_size_kernel_, count_kernel_, scan_kernel_,
-      scatter_kernel_, gather_kernel_, update_kernel_, image_kernel_, coverage_kernel_;
+      scatter_kernel_, sort_kernel_, gather_kernel_, update_kernel_, image_kernel_, coverage_kernel_;
   cl::Buffer store_, counter_, raised_, vps_, cut_, camera_cut_, rejected_;
   cl::Buffer coverage_, direct_, direct_carry_, radius_buf_, count_, tau_, pass_flux_, pass_found_, image_;
   cl::Buffer cell_, cell_count_, cell_end_, photon_cell_, sorted_;
