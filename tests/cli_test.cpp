@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 #include "image/exr_io.h"
 #include "test_support.h"
@@ -41,6 +42,28 @@ TEST(Cli, RenderWritesExrAndPng) {
   char sig[8] = {};
   in.read(sig, 8);
   EXPECT_EQ(std::string(sig + 1, 3), "PNG");
+}
+
+// `--device 0,0` (one device, two queues) writes the `--device 0` EXR byte for byte: photon
+// mapping, the default, shares each pass's photons between them.
+TEST(Cli, RenderOnTwoQueuesWritesTheOneDeviceFile) {
+  const std::string scene = shell_quoted(test::source_path("scenes/cornell_box.json"));
+  std::string files[2];
+  for (int k = 0; k < 2; ++k) {
+    files[k] = (test::scratch_dir() / ("device" + std::to_string(k) + ".exr")).string();
+    auto r = run_kasha("render " + scene + " --passes 2 --photons 70000 --spp 2 --device " +
+                       (k ? "0,0" : "0") + " -o " + shell_quoted(files[k]));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    if (k) {
+      EXPECT_NE(r.err.find("work per device: 0 ("), std::string::npos) << r.err;
+    }
+  }
+  auto bytes = [](const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  EXPECT_GT(bytes(files[0]).size(), 1000u);
+  EXPECT_TRUE(bytes(files[0]) == bytes(files[1]));
 }
 
 TEST(Cli, LogHasARowPerPassWithErrorsAgainstAReference) {
@@ -136,7 +159,7 @@ TEST(Cli, InfoReportsGridFeaturesOptionsAndMemory) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* s :
        {"wavelengths: 300–780 nm, 48 bins of 10 nm", "fluorescence yes", "-D KASHA_BINS=48",
-        "-D KASHA_FLUORESCENCE=1", "memory: ", "photon mapping: 216 bytes per photon",
+        "-D KASHA_FLUORESCENCE=1", "memory: ", "photon mapping: 224 bytes per photon (position, normal, key",
         "428 bytes per visible point", "2N + R = 99 values"})
     EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
 }

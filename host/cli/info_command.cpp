@@ -57,7 +57,7 @@ int run_info(const std::string& scene_path, bool spectral, const std::string& la
   std::printf("kernel build options: %s\n", build_options(scene_defines(scene, spectral)).c_str());
   size_t rows_count = spectral ? scene.grid.bins : 3;
   std::printf(
-      "photon mapping: %zu bytes per photon (position, normal, %d bins); %zu bytes per visible "
+      "photon mapping: %zu bytes per photon (position, normal, key, %d bins); %zu bytes per visible "
       "point "
       "(geometry 8 values%s)\n",
       photon_record_bytes(scene), scene.grid.bins, visible_point_bytes(scene, spectral),
