@@ -22,6 +22,12 @@ constexpr const char* kDepthGuardOf = "depth guard: of";
 constexpr const char* kCameraDepthGuardCut = "depth guard: camera paths cut";
 constexpr const char* kCameraDepthGuardOf = "depth guard: camera paths of";
 
+// Rays the pass's kernels traced (every bvh_closest and bvh_occluded query; kasha bench's rays/s).
+constexpr const char* kClosestRays = "rays: closest";
+constexpr const char* kShadowRays = "rays: shadow";
+// Photon mapping: visible points' queries of the photon store (a pixel's per gather of the store).
+constexpr const char* kGatherQueries = "gather queries";
+
 struct PassResult {
   int pass = 0;
   long long samples = 0;  // samples per pixel that `sums` adds up

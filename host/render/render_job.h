@@ -20,6 +20,7 @@ class RenderJob {
   RenderJob& operator=(const RenderJob&) = delete;
 
   Film& film() { return film_; }
+  const DeviceFilm& device_film() const { return device_film_; }
   Integrator& integrator() { return *integrator_; }
   // The progressive loop (render/progressive_render.h) over this job.
   RenderSummary run(const RenderOptions& options) {

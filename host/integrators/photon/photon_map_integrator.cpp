@@ -184,6 +184,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
     r.tallies[kCameraDepthGuardCut] = read_sum<cl_float>(camera_cut_, pixels);
     r.tallies[kCameraDepthGuardOf] = static_cast<double>(pixels) * spp_;
     r.tallies["rejected samples"] = read_sum<cl_int>(rejected_, pixels);
+    add_ray_tallies(r);
     // What the device did not do: everything else in the pass, the host's share.
     r.tallies["time: host (s)"] = since(t0) - (device_seconds_ - device0);
     return r;
@@ -245,6 +246,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
     size_t done = 0, stored = 0;  // photons traced, records in the store
     double per_photon = 4;        // records a photon stores, as measured so far
     double trace_s = 0, gather_s = 0, records = 0, cut = 0;
+    gathers_ = 0;
     auto gather_store = [&] {
       double t = device_seconds_;
       gather_batch(stored);
@@ -293,6 +295,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
     tallies["time: photon tracing (s)"] = trace_s;
     tallies["time: grid and gather (s)"] = gather_s;
     tallies["photons stored"] = records;
+    tallies[kGatherQueries] = gathers_ * static_cast<double>(film_.pixels());
     tallies[kDepthGuardCut] = cut;  // per photon's start
     return static_cast<double>(done);
   }
@@ -337,6 +340,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
   // Adds the gather of the first `count` stored photons to the pass's (radii fixed in a pass).
   void gather_batch(size_t count) {
     if (count == 0) return;
+    ++gathers_;
     if (host_gather_) {
       read_floats(store_, count * photon_floats_, photons_host_);
       PhotonKdTree tree(photons_host_.data(), count, photon_floats_);
@@ -372,6 +376,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
   size_t capacity_;  // photon records the store holds
   size_t cells_ = 0;  // the grid's hash table
   int passes_ = 0;
+  int gathers_ = 0;  // gathers of the store in this pass: each queries every visible point
   LaunchPacer pacer_{0.2, 256};  // in photons: the first launch is small, as paths may be long
   std::vector<float> vps_host_, radius_host_, photons_host_;  // --gather host
   std::vector<double> host_flux_;
