@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "core/printable.h"
+#include "opencl/device_list.h"
 
 namespace kasha::cli {
 
@@ -288,6 +289,11 @@ CLI::Validator list_of(const std::vector<std::string>& names, const std::string&
         return std::string();
       },
       "comma-separated list of " + join(names), "LIST_OF");
+}
+
+CLI::Validator device_list() {
+  return CLI::Validator([](std::string& text) { return device_list_syntax_error(text); },
+                        "INDEX, INDEX,INDEX... or all", "DEVICE_LIST");
 }
 
 void require_numbers(CLI::App& app) {

@@ -1,0 +1,64 @@
+#include "bench/bench_run.h"
+
+#include <chrono>
+
+#include "core/error.h"
+#include "core/peak_memory.h"
+#include "render/render_job.h"
+
+namespace kasha {
+
+double BenchRun::per_second(double count) const {
+  const double steady = seconds - startup_seconds;
+  return steady > 0 ? count / steady : 0;
+}
+
+BenchRun bench_on_devices(const LoadedBenchScene& s, const std::string& integrator,
+                          const std::vector<BenchDevice>& devices, double seconds,
+                          bool show_progress) {
+  if (devices.size() != 1)
+    throw Error("--device: bench renders an image on one device at a time (" +
+                std::to_string(devices.size()) + " given)");
+  ClContext& cl = devices[0].cl;
+  BenchRun run;
+  run.scene = s.bench->name;
+  run.integrator = integrator;
+  run.devices = {cl.info().index};
+  run.width = s.scene.camera.width;
+  run.height = s.scene.camera.height;
+  reset_peak_resident_memory();
+
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  IntegratorSettings settings;  // every integrator's defaults, seed 1
+  RenderJob job(cl, s.scene, devices[0].scene, integrator, settings, false);
+  run.kernel_build_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+
+  RenderOptions options;
+  options.stop.seconds = seconds;
+  options.show_progress = show_progress;
+  options.keep_log = true;  // rows without errors: the start-up comes from their times
+  RenderSummary summary = job.run(options);
+  const Film& film = job.film();
+  Integrator& in = job.integrator();
+  run.seconds = summary.seconds;
+  run.passes = summary.passes;
+  run.interrupted = summary.interrupted;
+  run.samples_per_pixel = film.samples_per_pixel();
+  run.startup_seconds = startup_seconds(summary.log);
+  run.camera_paths = static_cast<double>(in.camera_paths_per_pass()) * film.work_passes();
+  run.photons = static_cast<double>(in.photons_per_pass()) * film.work_passes();
+  run.closest_rays = film.tally(kClosestRays);
+  run.shadow_rays = film.tally(kShadowRays);
+  run.gather_queries = film.tally(kGatherQueries);
+  run.device_seconds = in.device_seconds();
+  run.host_seconds = std::max(0.0, run.seconds - run.device_seconds);
+  run.build_options = in.build_options();
+  run.device_memory_bytes = devices[0].scene.data().bytes() + job.device_film().table_bytes();
+  for (const auto& [what, bytes] : in.device_buffers()) run.device_memory_bytes += bytes;
+  run.validation = validate_image(film.image(), s.reference, s.bench->bound);
+  run.host_memory_bytes = peak_resident_memory_bytes();
+  return run;
+}
+
+}  // namespace kasha
