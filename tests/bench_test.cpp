@@ -118,6 +118,8 @@ TEST(Bench, TwoSecondRunsGiveARecordOfTheDocumentedSchema) {
                  {"complete", Type::boolean},
                  {"validation_block_pixels", Type::integer},
                  {"host_memory_per_run", Type::boolean},
+                 {"scenes_dir", Type::string},
+                 {"scenes", Type::array},
                  {"devices", Type::array},
                  {"runs", Type::array},
                  {"score", Type::number}},
@@ -125,6 +127,22 @@ TEST(Bench, TwoSecondRunsGiveARecordOfTheDocumentedSchema) {
   EXPECT_EQ(j["kasha_bench"], 1);
   EXPECT_EQ(j["seconds_per_run"], 2.0);
   EXPECT_TRUE(j["complete"]);
+  ASSERT_EQ(j["scenes"].size(), bench_scenes().size());
+  for (size_t k = 0; k < bench_scenes().size(); ++k) {
+    const json& s = j["scenes"][k];
+    expect_fields(s,
+                  {{"name", Type::string},
+                   {"file", Type::string},
+                   {"width", Type::integer},
+                   {"height", Type::integer},
+                   {"triangles", Type::integer},
+                   {"reference", Type::string},
+                   {"validation_bound", Type::number},
+                   {"integrators", Type::array}},
+                  "scenes[" + std::to_string(k) + "]");
+    EXPECT_EQ(s["name"], bench_scenes()[k].name);
+  }
+  EXPECT_GE(j["scenes"][3]["triangles"].get<long long>(), 1000000) << "the mesh scene";
   ASSERT_EQ(j["devices"].size(), 1u);
   const json& device = j["devices"][0];
   expect_fields(device, kDeviceFields, "devices[0]");

@@ -22,6 +22,7 @@ LoadedBenchScene load_bench_scene(const BenchScene& bench, const std::string& sc
   // The same view at the bench resolution: fov_deg spans the shorter side either way.
   s.scene.camera.width = bench.width;
   s.scene.camera.height = bench.height;
+  s.triangles = s.scene.triangles.size();
   return s;
 }
 

@@ -17,7 +17,8 @@ struct LoadedBenchScene {
   std::string path;            // the scene file
   std::string reference_path;  // the reference EXR, or empty for the furnace
   Scene scene;                 // its camera at the bench resolution
-  Image reference;             // empty until load_bench_reference
+  size_t triangles = 0;
+  Image reference;  // empty until load_bench_reference
   std::string reference_description;
 };
 

@@ -112,6 +112,17 @@ nlohmann::json bench_json(const BenchRecord& record) {
   j["complete"] = record.complete;
   j["validation_block_pixels"] = kValidationBlock;
   j["host_memory_per_run"] = record.host_memory_per_run;
+  j["scenes_dir"] = record.scenes_dir;
+  j["scenes"] = json::array();
+  for (const BenchSceneRecord& s : record.scenes)
+    j["scenes"].push_back({{"name", s.name},
+                           {"file", s.file},
+                           {"width", s.width},
+                           {"height", s.height},
+                           {"triangles", s.triangles},
+                           {"reference", s.reference},
+                           {"validation_bound", s.bound},
+                           {"integrators", s.integrators}});
   j["devices"] = json::array();
   for (const DeviceInfo& d : record.devices) {
     const std::vector<BenchRun> runs = runs_on(record, d.index);

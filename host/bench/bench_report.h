@@ -10,10 +10,20 @@
 
 namespace kasha {
 
+// A bench scene as the record describes it.
+struct BenchSceneRecord {
+  std::string name, file, reference;  // the reference's description
+  int width = 0, height = 0;
+  size_t triangles = 0;
+  double bound = 0;
+  std::vector<std::string> integrators;
+};
+
 struct BenchRecord {
   std::string version;  // kasha's
   double seconds = 0;   // asked per run (--time)
   std::string scenes_dir;
+  std::vector<BenchSceneRecord> scenes;
   std::vector<DeviceInfo> devices;  // in the order benchmarked
   std::vector<BenchRun> runs;
   bool complete = true;             // false when Ctrl-C stopped it

@@ -82,6 +82,10 @@ int run_bench_command(const BenchArgs& a) {
   record.seconds = a.seconds;
   record.scenes_dir = dir;
   record.host_memory_per_run = reset_peak_resident_memory();
+  for (const LoadedBenchScene& s : scenes)
+    record.scenes.push_back({s.bench->name, s.bench->file, s.reference_description, s.bench->width,
+                             s.bench->height, s.triangles, s.bench->bound,
+                             bench_integrators(*s.bench)});
   size_t total = 0, done = 0;
   for (const LoadedBenchScene& s : scenes) total += bench_integrators(*s.bench).size();
   total *= devices.size();
