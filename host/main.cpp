@@ -65,7 +65,7 @@ static int report_error(const std::string& message) {
 }
 
 int main(int argc, char** argv) {
-  install_exit_on_interrupt();  // render, converge and reference take over with their own
+  install_exit_on_interrupt();  // render, converge, reference and bench take over with their own
   CLI::App app{"kasha: a spectral renderer for fluorescent materials"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "kasha " KASHA_VERSION);
