@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 
+#include "cli/bench_command.h"
 #include "cli/colorimetry_command.h"
 #include "cli/command_line_errors.h"
 #include "cli/compare_command.h"
@@ -67,7 +68,7 @@ static int report_error(const std::string& message) {
 }
 
 int main(int argc, char** argv) {
-  install_exit_on_interrupt();  // render, converge and reference take over with their own
+  install_exit_on_interrupt();  // render, converge, reference and bench take over with their own
   CLI::App app{"kasha: a spectral renderer for fluorescent materials"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "kasha " KASHA_VERSION);
@@ -275,6 +276,30 @@ int main(int argc, char** argv) {
   reference->add_option("--device", reference_device, kDeviceHelp)->check(device_list());
   reference->add_option("-o,--output", reference_out, "reference EXR")->required();
 
+  BenchArgs bench_args;
+  bench_args.version = KASHA_VERSION;
+  CLI::App* bench = app.add_subcommand(
+      "bench",
+      "fixed scenes × the physical integrators for a fixed time on each device: throughput, "
+      "rays, time, memory, a validated image per run and a score per device");
+  bench
+      ->add_option("--device", bench_args.device,
+                   "OpenCL device index, indices (0,1) or all, each benchmarked in turn "
+                   "(default 0)")
+      ->check(device_list());
+  bench->add_option("--time", bench_args.seconds, "rendering seconds per run (default 10)")
+      ->check(positive_number(kMaxSeconds));
+  CLI::Option* bench_json = bench->add_option("--json", bench_args.json, "the record as JSON");
+  bench->add_option("--scenes", bench_args.scenes,
+                    "the folder holding the bench scenes and scenes/bench/ references (default: "
+                    "the source tree's scenes/)");
+  bench
+      ->add_option("--make-references", bench_args.make_references,
+                   "instead of benchmarking, render the bench scenes' reference images for this "
+                   "many seconds each (the reference integrator, first listed device)")
+      ->check(positive_number(kMaxSeconds))
+      ->excludes(bench_json);
+
   require_numbers(app);
   try {
     app.parse(argc, argv);
@@ -291,6 +316,7 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("delta-e")) return run_delta_e(lab1, lab2);
     if (app.got_subcommand("preview")) return run_preview(preview_exr, preview_png, preview_scale);
     if (app.got_subcommand("converge")) return run_converge(converge_scene, integrators, study);
+    if (app.got_subcommand("bench")) return run_bench_command(bench_args);
     if (app.got_subcommand("compare"))
       return run_compare(compare_image, compare_reference, compare_scene);
     if (app.got_subcommand("reference"))

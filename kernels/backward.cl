@@ -125,4 +125,5 @@ __kernel void render_backward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
   }
   rejected[pixel] += bad;
   cut[pixel] += guard;
+  add_ray_counts(&s, ray_counts);
 }

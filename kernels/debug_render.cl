@@ -48,4 +48,5 @@ __kernel void render_debug(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
     }
   }
   film_add(film, pixel, rows);
+  add_ray_counts(&s, ray_counts);
 }

@@ -1,7 +1,8 @@
 /* The film as every kernel sees it: the tables DeviceFilm uploads once (the film rows' weights C
- * and the branch importance u per bin). Kernels take KASHA_FILM_PARAMS after the scene's and
- * gather them into one FilmView with KASHA_FILM_VIEW. Defines: KASHA_BINS, KASHA_FILM_ROWS,
- * KASHA_SPECTRAL_FILM. */
+ * and the branch importance u per bin), and the job's ray counters (ray_counts: closest-hit and
+ * shadow rays, two 32-bit words each, added to by add_ray_counts in hit_point.h). Kernels take
+ * KASHA_FILM_PARAMS after the scene's and gather the tables into one FilmView with
+ * KASHA_FILM_VIEW. Defines: KASHA_BINS, KASHA_FILM_ROWS, KASHA_SPECTRAL_FILM. */
 #ifndef KASHA_FILM_VIEW_H
 #define KASHA_FILM_VIEW_H
 
@@ -12,7 +13,7 @@ typedef struct {
   const __global float* importance; /* N: what a bin is worth to the film, for branch choices */
 } FilmView;
 
-#define KASHA_FILM_PARAMS __global const float *cmf, __global const float *importance
+#define KASHA_FILM_PARAMS __global const float *cmf, __global const float *importance, __global uint *ray_counts
 #define KASHA_FILM_VIEW(name) FilmView name = {cmf, importance}
 
 /* rows += scale · C·(x∘y∘z), each factor null for ones (spectral_product.h). */

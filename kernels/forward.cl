@@ -27,7 +27,9 @@ inline bool camera_connection(const SceneView* s, float3 x, float3 ns, float eps
   float3 dir = to_camera / dist;
   float cos_x = dot(ns, dir);
   if (cos_x <= 0.0f) return false;
-  if (dist - eps <= 0.0f || bvh_occluded(s->nodes, s->tris, x + ns * eps, dir, 0.0f, dist - eps)) return false;
+  if (dist - eps <= 0.0f) return false;
+  ++s->rays->shadow;
+  if (bvh_occluded(s->nodes, s->tris, x + ns * eps, dir, 0.0f, dist - eps)) return false;
   *k = cos_x * importance;
   return true;
 }
@@ -118,4 +120,5 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
   stats[4 * item + 2] = escaped;
   stats[4 * item + 3] = in_flight;
   if (target.overflow) atomic_add(overflow, target.overflow);
+  add_ray_counts(&s, ray_counts);
 }

@@ -33,6 +33,7 @@ inline float surface_offset(float3 v0, float3 v1, float3 v2, float b0, float b1,
 
 inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint* h) {
   float t, u, v;
+  ++s->rays->closest;
   int hit = bvh_closest(s->nodes, s->tris, org, dir, 0.0f, INFINITY, &t, &u, &v);
   if (hit < 0) return false;
   const __global KTriangle* tri = &s->tris[hit];
@@ -54,7 +55,23 @@ inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint
  * wi, short of the far end's own offset far_eps and of the rounding of dist itself. */
 inline bool segment_occluded(const SceneView* s, float3 x, float3 ns, float eps, float3 wi, float dist, float far_eps) {
   float reach = dist - eps - far_eps - KASHA_GAMMA(8) * dist;
-  return reach > 0.0f && bvh_occluded(s->nodes, s->tris, x + ns * eps, wi, 0.0f, reach);
+  if (!(reach > 0.0f)) return false;
+  ++s->rays->shadow;
+  return bvh_occluded(s->nodes, s->tris, x + ns * eps, wi, 0.0f, reach);
+}
+
+/* n more into a 64-bit count kept as (low, high) 32-bit words: 32-bit atomics are everywhere, and
+ * the add that wraps the low word carries one into the high word, so the sum stays exact. */
+inline void add_count(volatile __global uint* lo_hi, uint n) {
+  if (n == 0u) return;
+  uint before = atomic_add(lo_hi, n);
+  if (before + n < before) atomic_inc(lo_hi + 1);
+}
+
+/* At the end of a work item: its rays into the job's counters (KASHA_FILM_PARAMS' ray_counts). */
+inline void add_ray_counts(const SceneView* s, __global uint* counts) {
+  add_count(counts, s->rays->closest);
+  add_count(counts + 2, s->rays->shadow);
 }
 
 #endif

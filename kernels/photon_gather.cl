@@ -212,6 +212,7 @@ __kernel void disc_coverage(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global cons
     float phi = rotation + 2.39996323f * j; /* the golden angle: probes spread over the disc */
     float3 org = x + rho * (cos(phi) * t1 + sin(phi) * t2) + slab * n;
     float t, u, v;
+    ++s.rays->closest;
     int hit = bvh_closest(s.nodes, s.tris, org, -n, 0.0f, 2.0f * slab, &t, &u, &v);
     if (hit < 0) continue;
     const __global KTriangle* tri = &s.tris[hit];
@@ -222,6 +223,7 @@ __kernel void disc_coverage(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global cons
   }
   coverage[2 * pixel] += (float)covered / probes;
   coverage[2 * pixel + 1] += 1.0f;
+  add_ray_counts(&s, ray_counts);
 }
 
 /* Per pixel: the pass's gather (its flux scaled by `scale`, 1/the fraction of the pass's photons

@@ -70,6 +70,7 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
     }
   }
   if (first < last) cut[item] = guard;
+  add_ray_counts(&s, ray_counts);
 }
 
 /* Dimension pairs of a camera sample per path vertex, as backward's: (branch choice, roulette), the
@@ -202,6 +203,7 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
   }
   rejected[pixel] = bad;
   cut[pixel] = guard;
+  add_ray_counts(&s, ray_counts);
   if (radius[pixel] == 0.0f && vp[KASHA_VP_VALID] != 0.0f) {
     float own = footprint * vp[KASHA_VP_DISTANCE], r = own;
     if (radius0 > 0.0f) {

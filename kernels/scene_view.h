@@ -6,6 +6,12 @@
 
 #include "shared_types.h"
 
+/* The rays a work item traced, counted in private memory and added to the launch's totals once at
+ * its end (add_ray_counts, hit_point.h): bench's rays/s, at the cost of an increment per ray. */
+typedef struct {
+  uint closest, shadow;
+} RayCounts;
+
 typedef struct {
   KCamera camera;
   const __global KBvhNode* nodes;
@@ -19,6 +25,7 @@ typedef struct {
   const __global float* light_cdf;
   int light_count;
   float bin_nm;
+  RayCounts* rays; /* private: the work item's own counts */
 } SceneView;
 
 #define KASHA_SCENE_PARAMS                                                                                    \
@@ -28,8 +35,9 @@ typedef struct {
       __global const int *light_tri, __global const float *light_cdf, int light_count, float bin_nm
 
 #define KASHA_SCENE_VIEW(name)                                                                                 \
-  SceneView name = {camera,          nodes,     tris,      materials,   spectra, lobes, emitter_radiance,       \
-                    emitter_area_pdf, light_tri, light_cdf, light_count, bin_nm}
+  RayCounts name##_rays = {0u, 0u};                                                                            \
+  SceneView name = {camera,           nodes,     tris,      materials,   spectra, lobes, emitter_radiance,      \
+                    emitter_area_pdf, light_tri, light_cdf, light_count, bin_nm, &name##_rays}
 
 /* An emitter's spectral radiance, N values. */
 inline const __global float* emitter_spectrum(const SceneView* s, int emitter) {

@@ -107,7 +107,8 @@ TEST(DeviceList, ParsesIndicesListsAndAll) {
   EXPECT_EQ(parse_device_list("all").size(), list_devices().size());
   for (const char* bad : {"", "0,", ",0", "a", "-1", "0,,0", "1e3"}) {
     std::string msg = test::error_of([&] { parse_device_list(bad); });
-    EXPECT_NE(msg.find("expected a device index"), std::string::npos) << bad << ": " << msg;
+    EXPECT_EQ(msg.rfind(std::string("--device ") + bad + ": ", 0), 0u) << bad << ": " << msg;
+    EXPECT_NE(msg.find("device index"), std::string::npos) << bad << ": " << msg;
   }
   std::string msg = test::error_of([] { parse_device_list("0,99"); });
   EXPECT_NE(msg.find("--device 0,99: no such OpenCL device 99"), std::string::npos) << msg;

@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "core/printable.h"
+#include "opencl/device_list.h"
 
 namespace kasha::cli {
 
@@ -270,25 +271,6 @@ CLI::Validator one_of(const std::vector<std::string>& names) {
       "one of " + join(names), "ONE_OF");
 }
 
-CLI::Validator device_list() {
-  return CLI::Validator(
-      [](std::string& text) {
-        if (text == "all") return std::string();
-        std::stringstream items(text);
-        bool any = false;
-        for (std::string item; std::getline(items, item, ',');) {
-          if (item.empty() || item.size() > 6 ||
-              item.find_first_not_of("0123456789") != std::string::npos)
-            return in_quotes(text) + " is not a device index, a comma-separated list of them, or all";
-          any = true;
-        }
-        if (!any || text.back() == ',')
-          return in_quotes(text) + " is not a device index, a comma-separated list of them, or all";
-        return std::string();
-      },
-      "INDEX[,INDEX...]|all", "DEVICE_LIST");
-}
-
 CLI::Validator list_of(const std::vector<std::string>& names, const std::string& what) {
   return CLI::Validator(
       [names, what](std::string& text) {
@@ -307,6 +289,11 @@ CLI::Validator list_of(const std::vector<std::string>& names, const std::string&
         return std::string();
       },
       "comma-separated list of " + join(names), "LIST_OF");
+}
+
+CLI::Validator device_list() {
+  return CLI::Validator([](std::string& text) { return device_list_syntax_error(text); },
+                        "INDEX, INDEX,INDEX... or all", "DEVICE_LIST");
 }
 
 void require_numbers(CLI::App& app) {

@@ -20,10 +20,10 @@ CLI::Validator integer_within(long long lo, long long hi);
 CLI::Validator byte_size();  // bytes with an optional unit, as CLI::AsSizeValue, our wording
 CLI::Validator utf8_text();  // the value goes into JSON, which needs valid UTF-8
 CLI::Validator one_of(const std::vector<std::string>& names);
-// --device: an index, a comma-separated list of indices, or "all" (which exist is checked later)
-CLI::Validator device_list();
 // A comma-separated list of distinct names, each one of `names` (each a `what`).
 CLI::Validator list_of(const std::vector<std::string>& names, const std::string& what);
+// `--device LIST`: an index, indices separated by commas or `all` (opencl/device_list.h).
+CLI::Validator device_list();
 
 // A safety net over every option of `app` and its subcommands: a FLOAT option must be finite and
 // an INT or UINT option an integer, whatever other checks it has.

@@ -1,8 +1,8 @@
 #pragma once
 // SIGINT (Ctrl-C) and SIGTERM. At first a signal ends the process at once with one line and exit
-// code 130 (nothing is written yet). A command that can stop early (render, converge, reference)
-// installs the deferred handler: a signal then only raises a flag, so the render loop can finish
-// the pass in flight and write the image so far; a third signal ends the process at once.
+// code 130 (nothing is written yet). A command that can stop early (render, converge, reference,
+// bench) installs the deferred handler: a signal then only raises a flag, so the render loop can
+// finish the pass in flight and write the image so far; a third signal ends the process at once.
 #include <exception>
 
 namespace kasha {

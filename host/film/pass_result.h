@@ -28,6 +28,12 @@ inline std::string device_work_tally(size_t device) {
   return "device " + std::to_string(device) + ": work";
 }
 
+// Rays the pass's kernels traced (every bvh_closest and bvh_occluded query; kasha bench's rays/s).
+constexpr const char* kClosestRays = "rays: closest";
+constexpr const char* kShadowRays = "rays: shadow";
+// Photon mapping: visible points' queries of the photon store (a pixel's per gather of the store).
+constexpr const char* kGatherQueries = "gather queries";
+
 struct PassResult {
   int pass = 0;
   long long samples = 0;  // samples per pixel that `sums` adds up

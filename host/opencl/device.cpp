@@ -44,6 +44,7 @@ std::vector<DeviceInfo> list_devices() {
       info.platform = p.getInfo<CL_PLATFORM_NAME>();
       info.name = d.getInfo<CL_DEVICE_NAME>();
       info.version = d.getInfo<CL_DEVICE_VERSION>();
+      info.driver = d.getInfo<CL_DRIVER_VERSION>();
       cl_device_type t = d.getInfo<CL_DEVICE_TYPE>();
       info.type = (t & CL_DEVICE_TYPE_GPU)   ? "GPU"
                   : (t & CL_DEVICE_TYPE_CPU) ? "CPU"

@@ -10,6 +10,7 @@ namespace kasha {
 struct DeviceInfo {
   int index = 0;  // kasha's flat index over all platforms, used by --device
   std::string platform, name, version, type;
+  std::string driver;  // CL_DRIVER_VERSION
   unsigned long long global_mem_bytes = 0;
   unsigned long long max_alloc_bytes = 0;  // the largest single buffer
   unsigned compute_units = 0;

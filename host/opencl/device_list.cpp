@@ -7,28 +7,40 @@
 
 namespace kasha {
 
-std::vector<int> parse_device_list(const std::string& text) {
-  const std::string where = "--device " + text;
-  const int count = static_cast<int>(list_devices().size());
+std::string device_list_syntax_error(const std::string& text) {
+  if (text == "all") return "";
+  if (text.empty() || text.back() == ',')
+    return "give a device index, indices separated by commas (0,1) or all";
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');) {
+    if (item.empty() || item.size() > 9 ||
+        item.find_first_not_of("0123456789") != std::string::npos)
+      return "\"" + item + "\" is not a device index (give indices separated by commas, or all)";
+  }
+  return "";
+}
+
+std::vector<int> parse_device_list(const std::string& text, int device_count) {
+  const std::string wrong = device_list_syntax_error(text);
+  if (!wrong.empty()) throw Error("--device " + text + ": " + wrong);
   std::vector<int> out;
   if (text == "all") {
-    for (int i = 0; i < count; ++i) out.push_back(i);
+    for (int i = 0; i < device_count; ++i) out.push_back(i);
     return out;
   }
-  std::stringstream items(text);
-  for (std::string item; std::getline(items, item, ',');) {
-    if (item.empty() || item.size() > 6 || item.find_first_not_of("0123456789") != std::string::npos)
-      throw Error(where + ": expected a device index, a comma-separated list of them, or all");
+  std::stringstream list(text);
+  for (std::string item; std::getline(list, item, ',');) {
     const int index = std::stoi(item);
-    if (index >= count)
-      throw Error(where + ": no such OpenCL device " + item + " (" + std::to_string(count) +
-                  " found; `kasha devices` lists them)");
+    if (index >= device_count)
+      throw Error("--device " + text + ": no such OpenCL device " + item + " (" +
+                  std::to_string(device_count) + " found; `kasha devices` lists them)");
     out.push_back(index);
   }
-  if (out.empty() || text.back() == ',')
-    throw Error(where + ": expected a device index, a comma-separated list of them, or all");
-  if (out.size() > 64) throw Error(where + ": at most 64 devices");
   return out;
+}
+
+std::vector<int> parse_device_list(const std::string& text) {
+  return parse_device_list(text, static_cast<int>(list_devices().size()));
 }
 
 }  // namespace kasha

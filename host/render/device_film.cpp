@@ -25,12 +25,22 @@ DeviceFilm::DeviceFilm(ClContext& cl, const Film& film)
   for (float& v : importance_) v += 0.05f * peak;
   cmf_buffer_ = upload(cl, cmf_);
   importance_buffer_ = upload(cl, importance_);
+  ray_counts_ = upload(cl, std::vector<cl_uint>(4, 0));
 }
 
 int DeviceFilm::bind(cl::Kernel& k, int a) const {
   k.setArg(a++, cmf_buffer_);
   k.setArg(a++, importance_buffer_);
+  k.setArg(a++, ray_counts_);
   return a;
+}
+
+DeviceFilm::RayCounts DeviceFilm::take_ray_counts() {
+  cl_uint words[4];
+  cl_.queue().enqueueReadBuffer(ray_counts_, CL_TRUE, 0, sizeof words, words);
+  cl_.queue().enqueueFillBuffer(ray_counts_, cl_uint(0), 0, sizeof words);
+  auto count = [&](int k) { return words[k] + 4294967296.0 * words[k + 1]; };
+  return {count(0), count(2)};
 }
 
 cl::Buffer& DeviceFilm::pixel_sums() {

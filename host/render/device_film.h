@@ -1,7 +1,8 @@
 #pragma once
 // The film on a device: the tables every kernel reads (the film rows' weights C and the branch
 // importance per bin), uploaded once and bound in the order of KASHA_FILM_PARAMS
-// (kernels/film_view.h), and the per-pixel sums buffer of kernels whose work items own a pixel.
+// (kernels/film_view.h) with the job's ray counters, and the per-pixel sums buffer of kernels
+// whose work items own a pixel.
 #include <vector>
 
 #include "film/film.h"
@@ -26,6 +27,16 @@ class DeviceFilm {
   // Sets KASHA_FILM_PARAMS from argument `first` on; returns the next argument's index.
   int bind(cl::Kernel& kernel, int first) const;
 
+  // The closest-hit and shadow rays the job's kernels traced since the last call; zeroes them.
+  struct RayCounts {
+    double closest = 0, shadow = 0;
+  };
+  RayCounts take_ray_counts();
+  // Bytes of the tables and counters on the device (the per-pixel sums apart).
+  size_t table_bytes() const {
+    return (cmf_.size() + importance_.size()) * sizeof(float) + 4 * sizeof(cl_uint);
+  }
+
   // pixels × rows floats that kernels add to with film_add; zeroed by clear_pixel_sums.
   cl::Buffer& pixel_sums();
   void clear_pixel_sums();
@@ -38,6 +49,7 @@ class DeviceFilm {
   bool spectral_;
   std::vector<float> cmf_, importance_;
   cl::Buffer cmf_buffer_, importance_buffer_, sums_;
+  cl::Buffer ray_counts_;  // closest, shadow: (low, high) 32-bit words each
 };
 
 }  // namespace kasha

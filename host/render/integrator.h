@@ -23,6 +23,10 @@ class Integrator {
   virtual long long photons_per_pass() const = 0;
   // The device buffers it allocated beyond the scene's and the film's tables: bytes by purpose.
   virtual std::map<std::string, size_t> device_buffers() const { return {}; }
+  // Seconds its kernels ran so far (enqueue to finish), and the options they were built with:
+  // what `kasha bench` reports beside the wall-clock time.
+  virtual double device_seconds() const { return 0; }
+  virtual std::string build_options() const { return {}; }
 
   // Several devices (render/render_job.h). Passes that depend on nothing before them are handed
   // out whole, one a device (render/pass_scheduler.h); an integrator whose passes build on the

@@ -15,6 +15,7 @@ KernelIntegrator::KernelIntegrator(const IntegratorSetup& s, const std::string& 
   defines["KASHA_SOBOL"] = s.settings.sampler == "sobol" ? "1" : "0";
   defines["KASHA_MAX_PATH_DEPTH"] = std::to_string(s.settings.max_depth);
   for (const auto& [name, value] : extra) defines[name] = value;
+  build_options_ = kasha::build_options(defines);
   program_ = build_program(cl_, assemble_kernel_source(file), defines, file);
 }
 

@@ -11,6 +11,10 @@
 namespace kasha {
 
 class KernelIntegrator : public Integrator {
+ public:
+  double device_seconds() const override { return device_seconds_; }
+  std::string build_options() const override { return build_options_; }
+
  protected:
   // Builds kernels/<file> with the scene's definitions and `extra` ones.
   KernelIntegrator(const IntegratorSetup& setup, const std::string& file, KernelDefines extra = {});
@@ -54,8 +58,17 @@ class KernelIntegrator : public Integrator {
     return sum;
   }
 
+  // The rays the pass's launches traced, as tallies (kClosestRays, kShadowRays): every pass
+  // result carries them, read from the job's counters (kernels/hit_point.h, add_ray_counts).
+  void add_ray_tallies(PassResult& result) {
+    DeviceFilm::RayCounts rays = film_.take_ray_counts();
+    result.tallies[kClosestRays] += rays.closest;
+    result.tallies[kShadowRays] += rays.shadow;
+  }
+
   // Seconds spent in launches so far (enqueue to finish): the rest of a pass is the host's.
   double device_seconds_ = 0;
+  std::string build_options_;
   ClContext& cl_;
   DeviceScene& scene_;
   DeviceFilm& film_;

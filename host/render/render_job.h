@@ -30,8 +30,10 @@ class RenderJob {
 
   Film& film() { return film_; }
   // The first device's instance (its name, figures and buffers stand for all).
-  Integrator& integrator() { return *integrators_[0]; }
+  Integrator& integrator(size_t lane = 0) { return *integrators_[lane]; }
   size_t devices() const { return integrators_.size(); }
+  // The film's tables on device `lane` (their bytes count in bench's device memory).
+  const DeviceFilm& device_film(size_t lane = 0) const { return *device_films_[lane]; }
   // The progressive loop (render/progressive_render.h) over this job.
   RenderSummary run(const RenderOptions& options);
   // One pass on the first device, accumulated.

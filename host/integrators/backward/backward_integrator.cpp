@@ -59,6 +59,7 @@ class BackwardIntegrator : public KernelIntegrator {
     r.tallies["rejected samples"] = read_sum<cl_int>(rejected_, film_.pixels());
     r.tallies[kDepthGuardCut] = read_sum<cl_float>(cut_, film_.pixels());  // relative to a start
     r.tallies[kDepthGuardOf] = work;
+    add_ray_tallies(r);
     return r;
   }
 

@@ -31,7 +31,9 @@ class DebugIntegrator : public KernelIntegrator {
     film_.clear_pixel_sums();
     launch(kernel_, film_.pixels(), film_.pixel_sums(), view_, spp_, seed_,
            static_cast<cl_uint>(pass));
-    return PassResult{pass, spp_, {}, film_.read_pixel_sums(), 1.0, {}, {}};
+    PassResult r{pass, spp_, {}, film_.read_pixel_sums(), 1.0, {}, {}};
+    add_ray_tallies(r);
+    return r;
   }
 
   long long camera_paths_per_pass() const override {

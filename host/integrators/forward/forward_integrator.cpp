@@ -78,6 +78,7 @@ class ForwardIntegrator : public KernelIntegrator {
                  {"power in flight (W)", power[3]},
                  {kDepthGuardCut, power[3]},  // photons the depth guard cut, still carrying power
                  {kDepthGuardOf, power[0]}};
+    add_ray_tallies(r);
     return r;
   }
 

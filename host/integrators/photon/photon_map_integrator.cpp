@@ -196,6 +196,11 @@ class PhotonMapIntegrator : public KernelIntegrator {
     r.tallies["time: grid and gather (s)"] = gathered.gather_s;
     r.tallies["photons stored"] = gathered.records;
     r.tallies["photon store overflows"] = gathered.overflows;
+    r.tallies[kGatherQueries] = gathered.gathers * static_cast<double>(pixels);
+    // The chunks' rays (on whichever device), then this device's camera pass and probes.
+    r.tallies[kClosestRays] = gathered.closest_rays;
+    r.tallies[kShadowRays] = gathered.shadow_rays;
+    add_ray_tallies(r);
     r.tallies[kDepthGuardCut] = gathered.cut;  // per photon's start
     r.tallies[kDepthGuardOf] = gathered.traced;
     r.tallies[kCameraDepthGuardCut] = read_sum<cl_float>(camera_cut_, pixels);
@@ -279,6 +284,8 @@ class PhotonMapIntegrator : public KernelIntegrator {
     std::vector<int> found;
     double traced = 0, records = 0, cut = 0, trace_s = 0, gather_s = 0;
     double overflows = 0;   // ranges traced again in halves
+    double gathers = 0;     // gathers of a store: each queries every visible point
+    double closest_rays = 0, shadow_rays = 0;
     double per_photon = 0;  // the most records a photon of a whole range stored
     std::map<std::string, double> work;  // photons traced per device, with several
   };
@@ -322,6 +329,9 @@ class PhotonMapIntegrator : public KernelIntegrator {
         total.records += c.records;
         total.cut += c.cut;
         total.overflows += c.overflows;
+        total.gathers += c.gathers;
+        total.closest_rays += c.closest_rays;
+        total.shadow_rays += c.shadow_rays;
         total.trace_s += c.trace_s;
         total.gather_s += c.gather_s;
         total.per_photon = std::max(total.per_photon, c.per_photon);
@@ -406,6 +416,9 @@ class PhotonMapIntegrator : public KernelIntegrator {
       cl_.queue().enqueueFillBuffer(pass_found_, cl_int(0), 0, pixels * sizeof(cl_int));
     }
     trace_range(pass, first, count, c, progress);
+    const DeviceFilm::RayCounts rays = film_.take_ray_counts();
+    c.closest_rays = static_cast<double>(rays.closest);
+    c.shadow_rays = static_cast<double>(rays.shadow);
     if (!host_gather_) {
       std::vector<float> flux;
       read_floats(pass_flux_, pixels * rows, flux);
@@ -497,6 +510,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
     const double t = device_seconds_;
     const auto start = Clock::now();
     c.records += static_cast<double>(count);
+    c.gathers += 1;
     if (host_gather_) {
       read_floats(store_, count * photon_floats_, photons_host_);
       sort_by_key(photons_host_, count);

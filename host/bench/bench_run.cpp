@@ -1,0 +1,69 @@
+#include "bench/bench_run.h"
+
+#include <chrono>
+
+#include "core/error.h"
+#include "core/peak_memory.h"
+#include "render/render_job.h"
+
+namespace kasha {
+
+double BenchRun::per_second(double count) const {
+  const double steady = seconds - startup_seconds;
+  return steady > 0 ? count / steady : 0;
+}
+
+BenchRun bench_on_devices(const LoadedBenchScene& s, const std::string& integrator,
+                          const std::vector<BenchDevice>& devices, double seconds,
+                          bool show_progress) {
+  if (devices.empty()) throw Error("bench: no device");
+  BenchRun run;
+  run.scene = s.bench->name;
+  run.integrator = integrator;
+  std::vector<RenderLane> lanes;
+  for (const BenchDevice& d : devices) {
+    run.devices.push_back(d.cl.info().index);
+    lanes.push_back({d.cl, d.scene});
+  }
+  run.width = s.scene.camera.width;
+  run.height = s.scene.camera.height;
+  reset_peak_resident_memory();
+
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
+  IntegratorSettings settings;  // every integrator's defaults, seed 1
+  RenderJob job(lanes, s.scene, integrator, settings, false);
+  run.kernel_build_seconds = std::chrono::duration<double>(clock::now() - t0).count();
+
+  RenderOptions options;
+  options.stop.seconds = seconds;
+  options.show_progress = show_progress;
+  options.keep_log = true;  // rows without errors: the start-up comes from their times
+  RenderSummary summary = job.run(options);
+  const Film& film = job.film();
+  Integrator& in = job.integrator();
+  run.seconds = summary.seconds;
+  run.passes = summary.passes;
+  run.interrupted = summary.interrupted;
+  run.samples_per_pixel = film.samples_per_pixel();
+  run.startup_seconds = startup_seconds(summary.log);
+  run.camera_paths = static_cast<double>(in.camera_paths_per_pass()) * film.work_passes();
+  run.photons = static_cast<double>(in.photons_per_pass()) * film.work_passes();
+  run.closest_rays = film.tally(kClosestRays);
+  run.shadow_rays = film.tally(kShadowRays);
+  run.gather_queries = film.tally(kGatherQueries);
+  // Device time and memory add over the devices (launches overlap in time across devices).
+  for (size_t d = 0; d < job.devices(); ++d) {
+    Integrator& lane = job.integrator(d);
+    run.device_seconds += lane.device_seconds();
+    run.device_memory_bytes += devices[d].scene.data().bytes() + job.device_film(d).table_bytes();
+    for (const auto& [what, bytes] : lane.device_buffers()) run.device_memory_bytes += bytes;
+  }
+  run.host_seconds = std::max(0.0, run.seconds - run.device_seconds / job.devices());
+  run.build_options = in.build_options();
+  run.validation = validate_image(film.image(), s.reference, s.bench->bound);
+  run.host_memory_bytes = peak_resident_memory_bytes();
+  return run;
+}
+
+}  // namespace kasha

@@ -1,0 +1,137 @@
+#include "cli/bench_command.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+
+#include "bench/bench_reference.h"
+#include "bench/bench_report.h"
+#include "bench/bench_run.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/interrupt.h"
+#include "core/output_set.h"
+#include "core/peak_memory.h"
+#include "opencl/device_list.h"
+#include "render/device_set.h"
+#include "study/reference_image.h"
+
+namespace kasha {
+
+namespace {
+
+// The listed devices, each benchmarked in turn: the same one twice would only repeat it.
+std::vector<int> bench_devices(const std::string& text) {
+  std::vector<int> devices = parse_device_list(text, static_cast<int>(list_devices().size()));
+  for (size_t i = 0; i < devices.size(); ++i)
+    if (std::count(devices.begin(), devices.end(), devices[i]) > 1)
+      throw Error("--device " + text + ": device " + std::to_string(devices[i]) +
+                  " is named twice (bench runs each listed device in turn)");
+  return devices;
+}
+
+// --make-references: every EXR reference rendered on the first listed device, all written
+// together once complete.
+int make_references(int device, double seconds, const std::vector<LoadedBenchScene>& scenes,
+                    OutputSet& outputs) {
+  for (const LoadedBenchScene& s : scenes)
+    if (!s.reference_path.empty()) outputs.file("--make-references", s.reference_path);
+  DeviceSet set(std::vector<int>{device});
+  ClContext& cl = set.main();
+  for (const LoadedBenchScene& s : scenes) {
+    if (s.reference_path.empty()) continue;
+    std::fprintf(stderr, "bench: the reference of %s, %dx%d, %g s on %s\n", s.path.c_str(),
+                 s.bench->width, s.bench->height, seconds, cl.info().name.c_str());
+    ReferenceInfo info;
+    Image image = render_reference(set, s.scene, seconds, 0x7e1f, info, true);
+    if (interrupt_requested()) throw Interrupted();  // a short reference is not one
+    outputs.write(s.reference_path,
+                  [&](const std::string& tmp) { write_reference(tmp, image, info); });
+  }
+  outputs.commit();
+  for (const LoadedBenchScene& s : scenes)
+    if (!s.reference_path.empty()) std::fprintf(stderr, "wrote %s\n", s.reference_path.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int run_bench_command(const BenchArgs& a) {
+  install_interrupt_handler();
+  OutputSet outputs;
+  outputs.file("--json", a.json);
+  const std::vector<int> devices = bench_devices(a.device);
+  const std::string dir = a.scenes.empty() ? default_bench_scenes_dir() : a.scenes;
+  // Every scene and reference is read, and checked, before any rendering; the scenes are let go
+  // again (and loaded anew for their runs), so each run's host memory is its own scene's.
+  std::vector<LoadedBenchScene> scenes;
+  for (const BenchScene& b : bench_scenes()) {
+    outputs.input((std::string(dir) + "/" + b.file), "a bench scene");
+    scenes.push_back(load_bench_scene(b, dir));
+    if (a.make_references > 0) continue;
+    load_bench_reference(scenes.back());
+    if (!scenes.back().reference_path.empty())
+      outputs.input(scenes.back().reference_path, "a bench reference");
+    scenes.back().scene = Scene();
+  }
+  outputs.inputs_read("a bench scene's material or data file");
+  if (a.make_references > 0)
+    return make_references(devices.front(), a.make_references, scenes, outputs);
+
+  BenchRecord record;
+  record.version = a.version;
+  record.seconds = a.seconds;
+  record.scenes_dir = dir;
+  record.host_memory_per_run = reset_peak_resident_memory();
+  for (const LoadedBenchScene& s : scenes)
+    record.scenes.push_back({s.bench->name, s.bench->file, s.reference_description, s.bench->width,
+                             s.bench->height, s.triangles, s.bench->bound,
+                             bench_integrators(*s.bench)});
+  size_t total = 0, done = 0;
+  for (const LoadedBenchScene& s : scenes) total += bench_integrators(*s.bench).size();
+  total *= devices.size();
+  for (int index : devices) {
+    if (!record.complete) break;
+    ClContext cl(index);
+    record.devices.push_back(cl.info());
+    for (LoadedBenchScene& s : scenes) {
+      if (!record.complete) break;
+      s.scene = load_bench_scene(*s.bench, dir).scene;
+      DeviceScene device_scene(cl, s.scene);
+      for (const std::string& integrator : bench_integrators(*s.bench)) {
+        std::fprintf(stderr, "bench [%zu/%zu]: %s, %s, device %d (%s), %dx%d, %g s\n", ++done,
+                     total, s.bench->name.c_str(), integrator.c_str(), index,
+                     cl.info().name.c_str(), s.bench->width, s.bench->height, a.seconds);
+        std::vector<BenchDevice> set = {BenchDevice{cl, device_scene}};
+        record.runs.push_back(bench_on_devices(s, integrator, set, a.seconds, true));
+        if (record.runs.back().interrupted || interrupt_requested()) {
+          record.complete = false;
+          break;
+        }
+      }
+      s.scene = Scene();
+    }
+  }
+
+  std::fputs(bench_table(record).c_str(), stdout);
+  std::fflush(stdout);
+  if (!a.json.empty())
+    outputs.write(a.json, [&](const std::string& tmp) {
+      write_text_atomically(tmp, bench_json(record).dump(1) + "\n");
+    });
+  outputs.commit();
+  if (!a.json.empty()) std::fprintf(stderr, "wrote %s\n", a.json.c_str());
+  if (!record.complete) return kInterruptExitCode;
+  size_t invalid = 0;
+  const BenchRun* first = nullptr;
+  for (const BenchRun& r : record.runs)
+    if (!r.valid()) ++invalid, first = first ? first : &r;
+  if (first)
+    throw Error("bench: " + std::to_string(invalid) + " of " + std::to_string(record.runs.size()) +
+                " runs are not valid, the first " + first->scene + " by " + first->integrator +
+                " on device " + std::to_string(first->devices.front()) + ": " +
+                first->validation.why);
+  return 0;
+}
+
+}  // namespace kasha

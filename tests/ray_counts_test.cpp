@@ -1,0 +1,109 @@
+// The rays kernels count (kernels/hit_point.h, add_ray_counts; `kasha bench`'s rays/s): exact
+// where the number of rays is known, and 64-bit sums that survive the low word wrapping.
+#include <gtest/gtest.h>
+
+#include "film/pass_result.h"
+#include "kernel_harness.h"
+#include "render_support.h"
+#include "test_support.h"
+
+using namespace kasha;
+
+namespace {
+
+test::RenderResult render(const std::string& scene, const std::string& integrator, int max_depth,
+                          int spp = 4) {
+  test::RenderSettings s;
+  s.integrator = integrator;
+  s.passes = 2;
+  s.spectral = false;
+  s.integrator_settings.max_depth = max_depth;
+  if (integrator != "forward") s.integrator_settings.spp = spp;
+  s.integrator_settings.photons = 1 << 14;
+  return render_scene(test::source_path(scene), s);
+}
+
+double tally(const test::RenderResult& r, const char* name) {
+  auto it = r.tallies.find(name);
+  return it == r.tallies.end() ? -1 : it->second;
+}
+
+}  // namespace
+
+// The first-hit views trace one closest-hit ray per camera sample, hit or miss, and no other.
+TEST(RayCounts, DebugCountsOneClosestRayPerCameraSample) {
+  test::RenderResult r = render("scenes/cornell_box.json", "debug", 1 << 18);
+  const double paths = r.scene.camera.width * r.scene.camera.height * 4.0 * 2;
+  EXPECT_EQ(tally(r, kClosestRays), paths);
+  EXPECT_EQ(tally(r, kShadowRays), 0);
+}
+
+// Inside a closed furnace every ray hits and no path ends by itself before the depth guard (no
+// black surface, roulette from the third vertex on), so backward traces exactly max-depth
+// closest-hit rays per path: 1 (the camera ray) and 3. Next-event estimation sends at most one
+// shadow ray a vertex; inside the sphere every light point but those on the vertex's own
+// triangle is in front of it, so nearly one.
+TEST(RayCounts, BackwardCountsMaxDepthClosestRaysPerPathInAFurnace) {
+  for (const char* scene : {"scenes/furnace_passive.json", "scenes/furnace_self_absorption.json"})
+    for (int depth : {1, 3}) {
+      test::RenderResult r = render(scene, "backward", depth);
+      const double paths = r.scene.camera.width * r.scene.camera.height * 4.0 * 2;
+      const double closest = tally(r, kClosestRays), shadow = tally(r, kShadowRays);
+      if (depth == 1) {
+        EXPECT_EQ(closest, paths) << scene;
+      } else {  // a ray slipping through a crack between the tessellation's triangles ends a path
+        EXPECT_NEAR(closest, depth * paths, 1e-4 * depth * paths) << scene;
+      }
+      EXPECT_LE(shadow, closest) << scene;
+      if (std::string(scene).find("passive") != std::string::npos) {
+        EXPECT_GT(shadow, 0.97 * closest) << scene;
+      } else {  // a box: light points on the vertex's own face are not in front of it
+        EXPECT_GT(shadow, 0.5 * closest) << scene;
+      }
+      std::printf("[ rays     ] %s, max depth %d: %.0f paths, %.0f closest, %.0f shadow rays\n",
+                  scene, depth, paths, closest, shadow);
+    }
+}
+
+// Every integrator counts at least one closest-hit ray per path it starts (camera paths and
+// photons) and some shadow rays; photon mapping a gather query per pixel and pass at least.
+TEST(RayCounts, EveryIntegratorCountsItsPaths) {
+  for (const char* integrator : {"backward", "forward", "photon"}) {
+    test::RenderResult r = render("scenes/cornell_box.json", integrator, 1 << 18, 1);
+    const double pixels = r.scene.camera.width * r.scene.camera.height;
+    const double photons = 2.0 * (1 << 14);
+    const std::string name = integrator;
+    const double least = name == "backward"  ? 2 * pixels
+                         : name == "forward" ? photons
+                                             : 2 * pixels + photons;
+    EXPECT_GE(tally(r, kClosestRays), least) << integrator;
+    EXPECT_GT(tally(r, kShadowRays), 0) << integrator;
+    if (name == "photon") {
+      EXPECT_GE(tally(r, kGatherQueries), 2 * pixels);
+    }
+  }
+}
+
+// add_count's (low, high) words: 4096 work items adding 2^21 + 1 each wrap the low word twice.
+TEST(RayCounts, SumsCarryIntoTheHighWord) {
+  const char* source = R"(
+#include "hit_point.h"
+__kernel void count(__global uint* words, uint n) { add_count(words, n); }
+)";
+  ClContext& cl = test::test_device();
+  cl::Program program = build_program(cl, assemble_kernel_source_text(source, "count_test.cl"),
+                                      test::test_kernel_defines(), "count_test.cl");
+  cl::Kernel kernel(program, "count");
+  std::vector<cl_uint> words(2, 0);
+  cl::Buffer buffer(cl.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR,
+                    words.size() * sizeof(cl_uint), words.data());
+  const cl_uint n = (1u << 21) + 1;
+  const size_t items = 4096;
+  kernel.setArg(0, buffer);
+  kernel.setArg(1, n);
+  cl.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(items), cl::NullRange);
+  cl.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, words.size() * sizeof(cl_uint), words.data());
+  const unsigned long long total = words[0] + (static_cast<unsigned long long>(words[1]) << 32);
+  EXPECT_EQ(total, static_cast<unsigned long long>(n) * items);
+  EXPECT_EQ(words[1], 2u);
+}
