@@ -21,14 +21,25 @@ double bench_score(const std::vector<BenchRun>& runs) {
   return std::exp(log_sum / runs.size());
 }
 
-std::vector<BenchRun> runs_on(const BenchRecord& record, int index) {
+std::vector<BenchRun> runs_on_set(const BenchRecord& record, const std::vector<int>& devices) {
   std::vector<BenchRun> out;
   for (const BenchRun& r : record.runs)
-    if (r.devices == std::vector<int>{index}) out.push_back(r);
+    if (r.devices == devices) out.push_back(r);
   return out;
 }
 
+std::vector<BenchRun> runs_on(const BenchRecord& record, int index) {
+  return runs_on_set(record, {index});
+}
+
 namespace {
+
+// "0+1", "0+0".
+std::string device_set_name(const std::vector<int>& devices) {
+  std::string out;
+  for (int d : devices) out += (out.empty() ? "" : "+") + std::to_string(d);
+  return out;
+}
 
 // The definitions every run on the device was built with, in the first run's order: the part of
 // the build options that does not depend on the scene.
@@ -64,40 +75,56 @@ std::string format(const char* fmt, double v) {
 std::string bench_table(const BenchRecord& record) {
   std::ostringstream out;
   char line[512];
+  auto table = [&](const std::vector<BenchRun>& runs) {
+      std::snprintf(
+          line, sizeof line, "%-19s %-8s %6s %7s %9s %9s %9s %9s %9s %7s %7s %7s %7s %9s %9s %s\n",
+          "scene", "integr.", "passes", "build s", "paths/s", "photons/s", "closest/s", "shadow/s",
+          "gather/s", "dev s", "host s", "dev MB", "host MB", "relMSE", "block rel", "valid");
+      out << line;
+      for (const BenchRun& r : runs) {
+        std::snprintf(
+            line, sizeof line,
+            "%-19s %-8s %6d %7.2f %9.3g %9.3g %9.3g %9.3g %9.3g %7.2f %7.2f %7.0f %7.0f %9.3g "
+            "%9.3g %s\n",
+            r.scene.c_str(), r.integrator.c_str(), r.passes, r.kernel_build_seconds,
+            r.per_second(r.camera_paths), r.per_second(r.photons), r.per_second(r.closest_rays),
+            r.per_second(r.shadow_rays), r.per_second(r.gather_queries), r.device_seconds,
+            r.host_seconds, r.device_memory_bytes / 1e6, r.host_memory_bytes / 1e6,
+            r.validation.rel_mse, r.validation.block_rel_mse,
+            r.interrupted        ? "interrupted"
+            : r.validation.valid ? "yes"
+                                 : "NO");
+        out << line;
+      }
+      for (const BenchRun& r : runs)
+        if (!r.validation.valid)
+          out << "  " << r.scene << ", " << r.integrator << ": not valid: " << r.validation.why
+              << "\n";
+  };
+  auto score_line = [&](const std::vector<BenchRun>& runs) {
+    const double score = bench_score(runs);
+    return score > 0 ? format("%.4g", score) + " samples/s (geometric mean over " +
+                           std::to_string(runs.size()) + " runs)"
+                     : std::string("0 (a run is not valid)");
+  };
+  double fastest = 0;
   for (const DeviceInfo& d : record.devices) {
     const std::vector<BenchRun> runs = runs_on(record, d.index);
     out << "device " << d.index << ": " << d.name << " (" << d.platform << ", driver " << d.driver
         << ", " << d.compute_units << " compute units), " << record.seconds << " s a run\n";
-    std::snprintf(
-        line, sizeof line, "%-19s %-8s %6s %7s %9s %9s %9s %9s %9s %7s %7s %7s %7s %9s %9s %s\n",
-        "scene", "integr.", "passes", "build s", "paths/s", "photons/s", "closest/s", "shadow/s",
-        "gather/s", "dev s", "host s", "dev MB", "host MB", "relMSE", "block rel", "valid");
-    out << line;
-    for (const BenchRun& r : runs) {
-      std::snprintf(
-          line, sizeof line,
-          "%-19s %-8s %6d %7.2f %9.3g %9.3g %9.3g %9.3g %9.3g %7.2f %7.2f %7.0f %7.0f %9.3g "
-          "%9.3g %s\n",
-          r.scene.c_str(), r.integrator.c_str(), r.passes, r.kernel_build_seconds,
-          r.per_second(r.camera_paths), r.per_second(r.photons), r.per_second(r.closest_rays),
-          r.per_second(r.shadow_rays), r.per_second(r.gather_queries), r.device_seconds,
-          r.host_seconds, r.device_memory_bytes / 1e6, r.host_memory_bytes / 1e6,
-          r.validation.rel_mse, r.validation.block_rel_mse,
-          r.interrupted        ? "interrupted"
-          : r.validation.valid ? "yes"
-                               : "NO");
-      out << line;
-    }
-    for (const BenchRun& r : runs)
-      if (!r.validation.valid)
-        out << "  " << r.scene << ", " << r.integrator << ": not valid: " << r.validation.why
-            << "\n";
-    const double score = bench_score(runs);
-    out << "score of device " << d.index << ": "
-        << (score > 0 ? format("%.4g", score) + " samples/s (geometric mean over " +
-                            std::to_string(runs.size()) + " runs)"
-                      : std::string("0 (a run is not valid)"))
-        << "\n";
+    table(runs);
+    out << "score of device " << d.index << ": " << score_line(runs) << "\n";
+    fastest = std::max(fastest, bench_score(runs));
+  }
+  if (!record.together.empty()) {
+    const std::vector<BenchRun> runs = runs_on_set(record, record.together);
+    out << "devices " << device_set_name(record.together) << " together, one image on all\n";
+    table(runs);
+    out << "score of devices " << device_set_name(record.together) << " together: "
+        << score_line(runs);
+    if (fastest > 0 && bench_score(runs) > 0)
+      out << format(", %.2f× the fastest device alone", bench_score(runs) / fastest);
+    out << "\n";
   }
   if (!record.complete) out << "interrupted: the record is incomplete\n";
   return out.str();
@@ -175,7 +202,16 @@ nlohmann::json bench_json(const BenchRecord& record) {
                          {"validation_bound", r.validation.bound},
                          {"interrupted", r.interrupted},
                          {"valid", r.valid()}});
-  // The whole record's: the runs of every device together (with one device, its score).
+  if (!record.together.empty()) {
+    const std::vector<BenchRun> runs = runs_on_set(record, record.together);
+    bool valid = !runs.empty();
+    for (const BenchRun& r : runs) valid = valid && r.valid();
+    j["together"] = {{"devices", record.together},
+                     {"runs", runs.size()},
+                     {"valid", valid},
+                     {"score", bench_score(runs)}};
+  }
+  // The whole record's: the runs of every device set (with one device, its score).
   j["score"] = bench_score(record.runs);
   return j;
 }

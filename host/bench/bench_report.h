@@ -24,7 +24,10 @@ struct BenchRecord {
   double seconds = 0;   // asked per run (--time)
   std::string scenes_dir;
   std::vector<BenchSceneRecord> scenes;
-  std::vector<DeviceInfo> devices;  // in the order benchmarked
+  std::vector<DeviceInfo> devices;  // in the order benchmarked, each on its own
+  // With several devices listed (--device 0,1 or 0,0): the list, whose runs render each image on
+  // all of them together (render/render_job.h) after each device's own runs.
+  std::vector<int> together;
   std::vector<BenchRun> runs;
   bool complete = true;             // false when Ctrl-C stopped it
   bool host_memory_per_run = true;  // each run's own peak (else the process's so far)
@@ -35,8 +38,9 @@ struct BenchRecord {
 // of their per-run speed ratios, whatever the runs' units.
 double bench_score(const std::vector<BenchRun>& runs);
 
-// The runs made on device set {index}.
+// The runs made on device set {index}, and on a set of devices.
 std::vector<BenchRun> runs_on(const BenchRecord& record, int index);
+std::vector<BenchRun> runs_on_set(const BenchRecord& record, const std::vector<int>& devices);
 
 std::string bench_table(const BenchRecord& record);
 nlohmann::json bench_json(const BenchRecord& record);

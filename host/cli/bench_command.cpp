@@ -20,14 +20,15 @@ namespace kasha {
 
 namespace {
 
-// The listed devices, each benchmarked in turn: the same one twice would only repeat it.
-std::vector<int> bench_devices(const std::string& text) {
-  std::vector<int> devices = parse_device_list(text, static_cast<int>(list_devices().size()));
-  for (size_t i = 0; i < devices.size(); ++i)
-    if (std::count(devices.begin(), devices.end(), devices[i]) > 1)
-      throw Error("--device " + text + ": device " + std::to_string(devices[i]) +
-                  " is named twice (bench runs each listed device in turn)");
-  return devices;
+// The device sets benchmarked: each listed device on its own (once, however often it is
+// named), then, with several listed, all of them together rendering each image.
+std::vector<std::vector<int>> bench_device_sets(const std::vector<int>& listed) {
+  std::vector<std::vector<int>> sets;
+  for (size_t i = 0; i < listed.size(); ++i)
+    if (std::find(listed.begin(), listed.begin() + i, listed[i]) == listed.begin() + i)
+      sets.push_back({listed[i]});
+  if (listed.size() > 1) sets.push_back(listed);
+  return sets;
 }
 
 // --make-references: every EXR reference rendered on the first listed device, all written
@@ -60,7 +61,7 @@ int run_bench_command(const BenchArgs& a) {
   install_interrupt_handler();
   OutputSet outputs;
   outputs.file("--json", a.json);
-  const std::vector<int> devices = bench_devices(a.device);
+  const std::vector<int> devices = parse_device_list(a.device);
   const std::string dir = a.scenes.empty() ? default_bench_scenes_dir() : a.scenes;
   // Every scene and reference is read, and checked, before any rendering; the scenes are let go
   // again (and loaded anew for their runs), so each run's host memory is its own scene's.
@@ -89,26 +90,31 @@ int run_bench_command(const BenchArgs& a) {
                              bench_integrators(*s.bench)});
   size_t total = 0, done = 0;
   for (const LoadedBenchScene& s : scenes) total += bench_integrators(*s.bench).size();
-  total *= devices.size();
-  for (int index : devices) {
+  const std::vector<std::vector<int>> sets = bench_device_sets(devices);
+  total *= sets.size();
+  if (sets.size() > 1) record.together = sets.back();
+  for (const std::vector<int>& indices : sets) {
     if (!record.complete) break;
-    ClContext cl(index);
-    record.devices.push_back(cl.info());
+    DeviceSet device_set(indices);
+    if (indices.size() == 1) record.devices.push_back(device_set.main().info());
+    std::string label;
+    for (int i : indices) label += (label.empty() ? "" : "+") + std::to_string(i);
     for (LoadedBenchScene& s : scenes) {
       if (!record.complete) break;
       s.scene = load_bench_scene(*s.bench, dir).scene;
-      DeviceScene device_scene(cl, s.scene);
+      std::vector<BenchDevice> set;
+      for (const RenderLane& lane : device_set.upload(s.scene)) set.push_back({lane.cl, lane.scene});
       for (const std::string& integrator : bench_integrators(*s.bench)) {
-        std::fprintf(stderr, "bench [%zu/%zu]: %s, %s, device %d (%s), %dx%d, %g s\n", ++done,
-                     total, s.bench->name.c_str(), integrator.c_str(), index,
-                     cl.info().name.c_str(), s.bench->width, s.bench->height, a.seconds);
-        std::vector<BenchDevice> set = {BenchDevice{cl, device_scene}};
+        std::fprintf(stderr, "bench [%zu/%zu]: %s, %s, device %s (%s), %dx%d, %g s\n", ++done,
+                     total, s.bench->name.c_str(), integrator.c_str(), label.c_str(),
+                     device_set.names().c_str(), s.bench->width, s.bench->height, a.seconds);
         record.runs.push_back(bench_on_devices(s, integrator, set, a.seconds, true));
         if (record.runs.back().interrupted || interrupt_requested()) {
           record.complete = false;
           break;
         }
       }
+      device_set.release_scene();  // its buffers go with the scene
       s.scene = Scene();
     }
   }

@@ -31,6 +31,7 @@ class DeviceSet {
   // Uploads `scene` to every device (replacing the last one's); the lanes stay valid until the
   // next upload.
   std::vector<RenderLane> upload(const Scene& scene);
+  void release_scene() { scenes_.clear(); }  // the lanes are invalid after this
 
  private:
   std::vector<std::unique_ptr<ClContext>> contexts_;
