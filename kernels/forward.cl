@@ -27,7 +27,7 @@ inline bool camera_connection(const SceneView* s, float3 x, float3 ns, float eps
   float3 dir = to_camera / dist;
   float cos_x = dot(ns, dir);
   if (cos_x <= 0.0f) return false;
-  if (dist - eps <= 0.0f || bvh_occluded(s->nodes, s->tris, x + ns * eps, dir, 0.0f, dist - eps)) return false;
+  if (dist - eps <= 0.0f || bvh_occluded(s->nodes, s->leaves, x + ns * eps, dir, 0.0f, dist - eps)) return false;
   *k = cos_x * importance;
   return true;
 }

@@ -7,6 +7,7 @@ namespace kasha {
 
 ClTraversal::ClTraversal(ClContext& cl, const FlatBvh& bvh) : cl_(cl) {
   nodes_ = upload(cl, bvh.nodes);
+  leaves_ = upload(cl, bvh.leaves);
   triangles_ = upload(cl, bvh.triangles);
   cl::Program program =
       build_program(cl, assemble_kernel_source("trace_rays.cl"), {}, "trace_rays.cl");
@@ -28,10 +29,11 @@ void ClTraversal::run(cl::Kernel& kernel, const std::vector<KRay>& rays, std::ve
   }
   cl_.queue().enqueueWriteBuffer(rays_, CL_FALSE, 0, rays.size() * sizeof(KRay), rays.data());
   kernel.setArg(0, nodes_);
-  kernel.setArg(1, triangles_);
-  kernel.setArg(2, rays_);
-  kernel.setArg(3, results_);
-  kernel.setArg(4, static_cast<int>(rays.size()));
+  kernel.setArg(1, leaves_);
+  kernel.setArg(2, triangles_);
+  kernel.setArg(3, rays_);
+  kernel.setArg(4, results_);
+  kernel.setArg(5, static_cast<int>(rays.size()));
   cl_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(rays.size()), cl::NullRange);
   cl_.queue().enqueueReadBuffer(results_, CL_TRUE, 0, rays.size() * sizeof(Out), out.data());
 }

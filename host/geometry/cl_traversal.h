@@ -23,7 +23,7 @@ class ClTraversal {
   void run(cl::Kernel& kernel, const std::vector<KRay>& rays, std::vector<Out>& out);
 
   ClContext& cl_;
-  cl::Buffer nodes_, triangles_;
+  cl::Buffer nodes_, leaves_, triangles_;
   cl::Buffer rays_, results_;  // kept between batches, grown when a batch needs more
   size_t ray_capacity_ = 0, result_bytes_ = 0;
   cl::Kernel closest_, occluded_;
