@@ -213,7 +213,7 @@ __kernel void disc_coverage(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global cons
     float3 org = x + rho * (cos(phi) * t1 + sin(phi) * t2) + slab * n;
     float t, u, v;
     ++s.rays->closest;
-    int hit = bvh_closest(s.nodes, s.tris, org, -n, 0.0f, 2.0f * slab, &t, &u, &v);
+    int hit = bvh_closest(s.nodes, s.leaves, org, -n, 0.0f, 2.0f * slab, &t, &u, &v);
     if (hit < 0) continue;
     const __global KTriangle* tri = &s.tris[hit];
     float3 v0 = load_float3(tri->v0);

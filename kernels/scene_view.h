@@ -15,6 +15,7 @@ typedef struct {
 typedef struct {
   KCamera camera;
   const __global KBvhNode* nodes;
+  const __global KBvhLeaf* leaves; /* the BVH's triangles, precomputed for its traversal */
   const __global KTriangle* tris;
   const __global KMaterial* materials;
   const __global float* spectra; /* material spectra; the first N values are zeros */
@@ -28,16 +29,18 @@ typedef struct {
   RayCounts* rays; /* private: the work item's own counts */
 } SceneView;
 
-#define KASHA_SCENE_PARAMS                                                                                    \
-  KCamera camera, __global const KBvhNode *nodes, __global const KTriangle *tris,                             \
-      __global const KMaterial *materials, __global const float *spectra, __global const float *lobes,        \
-      __global const float *emitter_radiance, __global const float *emitter_area_pdf,                         \
-      __global const int *light_tri, __global const float *light_cdf, int light_count, float bin_nm
+#define KASHA_SCENE_PARAMS                                                                                  \
+  KCamera camera, __global const KBvhNode *nodes, __global const KBvhLeaf *leaves,                          \
+      __global const KTriangle *tris, __global const KMaterial *materials, __global const float *spectra,   \
+      __global const float *lobes, __global const float *emitter_radiance,                                  \
+      __global const float *emitter_area_pdf, __global const int *light_tri,                                \
+      __global const float *light_cdf, int light_count, float bin_nm
 
-#define KASHA_SCENE_VIEW(name)                                                                                 \
-  RayCounts name##_rays = {0u, 0u};                                                                            \
-  SceneView name = {camera,           nodes,     tris,      materials,   spectra, lobes, emitter_radiance,      \
-                    emitter_area_pdf, light_tri, light_cdf, light_count, bin_nm, &name##_rays}
+#define KASHA_SCENE_VIEW(name)                                                                              \
+  RayCounts name##_rays = {0u, 0u};                                                                         \
+  SceneView name = {camera,           nodes,     leaves,    tris,        materials, spectra, lobes,         \
+                    emitter_radiance, emitter_area_pdf, light_tri, light_cdf, light_count, bin_nm,        \
+                    &name##_rays}
 
 /* An emitter's spectral radiance, N values. */
 inline const __global float* emitter_spectrum(const SceneView* s, int emitter) {

@@ -19,9 +19,6 @@ typedef double kasha_real;
 typedef float kasha_real;
 #endif
 
-/* The deepest BVH the builder may make; the traversal's stack holds one node per level. */
-#define KASHA_BVH_MAX_DEPTH 64
-
 /* Next-event estimation samples a triangle by solid angle between these (steradians), by area
  * outside: below, Arvo's construction in float lands points up to 1e-4 (barycentric) off small
  * triangles on some devices (seen at 1.3e-3 sr on an NVIDIA H100) while area sampling is as good
@@ -36,15 +33,37 @@ typedef float kasha_real;
 #define KASHA_MAX_PATH_DEPTH (1 << 18)
 #endif
 
-/* One node of the flattened binary BVH, in depth-first order. Interior: count == 0, the left child
- * is the next node and `offset` is the right child. Leaf: triangles [offset, offset + count). */
+/* The BVH that Embree builds and the OpenCL traversal reads (kernels/bvh_traversal.h). Children
+ * per node and triangles per leaf: one float8 expression tests all of a node's child boxes, or all
+ * of a leaf's triangles (PoCL keeps float8 arithmetic as AVX instructions). */
+#define KASHA_BVH_WIDTH 8
+#define KASHA_BVH_LEAF_SIZE 8
+/* The deepest BVH the builder may make, in levels of interior nodes (a million triangles take
+ * about 10). A visit pushes at most KASHA_BVH_WIDTH - 1 children: the traversal's stack size. */
+#define KASHA_BVH_MAX_DEPTH 32
+#define KASHA_BVH_STACK ((KASHA_BVH_WIDTH - 1) * KASHA_BVH_MAX_DEPTH + 1)
+
+/* An interior node, its children's boxes stored axis by axis (rows lo x, hi x, lo y, hi y, lo z,
+ * hi z; one float per child) so that one node fetch tests all of them. child[i] >= 0 is an
+ * interior node, < 0 the leaf ~child[i]. An unused slot has the empty box lo = +inf, hi = -inf,
+ * which no ray enters. Node 0 is the root, always an interior node. */
 typedef struct {
-  float lo[3];
-  int offset;
-  float hi[3];
-  int count;
+  float bounds[6][KASHA_BVH_WIDTH];
+  int child[KASHA_BVH_WIDTH];
+  int pad[KASHA_BVH_WIDTH]; /* to 256 bytes: a node spans four whole cache lines */
 } KBvhNode;
-KASHA_STATIC_SIZE(KBvhNode, 32);
+KASHA_STATIC_SIZE(KBvhNode, 256);
+
+/* A leaf's triangles, precomputed for Möller–Trumbore and stored coordinate by coordinate: v0,
+ * e1 = v1 - v0, e2 = v2 - v0 (rows x, y, z; one float per triangle). tri[i] is the triangle's
+ * index in leaf order (the KTriangle array), -1 for an unused slot, whose zero edges no ray hits. */
+typedef struct {
+  float v0[3][KASHA_BVH_LEAF_SIZE];
+  float e1[3][KASHA_BVH_LEAF_SIZE];
+  float e2[3][KASHA_BVH_LEAF_SIZE];
+  int tri[KASHA_BVH_LEAF_SIZE];
+} KBvhLeaf;
+KASHA_STATIC_SIZE(KBvhLeaf, 320);
 
 /* A triangle in BVH leaf order. `prim` is its index in scene order (what Embree reports as primID);
  * `emitter` indexes the emitter table, -1 when the triangle does not emit. */

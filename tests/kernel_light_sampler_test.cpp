@@ -214,18 +214,19 @@ TEST(KernelLightSampler, PointsFollowTheClaimedDensity) {
   TestKernel kernel(kLightFromSource, "light_from_test.cl", "light_from");
   kernel.scalar(0, KCamera{});
   kernel.input(1, std::vector<KBvhNode>(1));
-  kernel.input(2, tris);
-  kernel.input(3, std::vector<KMaterial>(1));
-  kernel.input(4, std::vector<float>(4, 0.0f));             // spectra
-  kernel.input(5, std::vector<float>(4, 0.0f));             // lobes
-  kernel.input(6, std::vector<float>(4 * lights_n, 1.0f));  // emitter radiance
-  kernel.input(7, emitter_area_pdf);
-  kernel.input(8, light_tri);
-  kernel.input(9, light_cdf);
-  kernel.scalar(10, lights_n);
-  kernel.scalar(11, 1.0f);  // bin_nm
-  kernel.input(12, std::vector<float>{float(x.x()), float(x.y()), float(x.z())});
-  const std::vector<float> out = kernel.sample(13, uniforms(3 * kSamples, 11), 14, 10, kSamples);
+  kernel.input(2, std::vector<KBvhLeaf>(1));
+  kernel.input(3, tris);
+  kernel.input(4, std::vector<KMaterial>(1));
+  kernel.input(5, std::vector<float>(4, 0.0f));             // spectra
+  kernel.input(6, std::vector<float>(4, 0.0f));             // lobes
+  kernel.input(7, std::vector<float>(4 * lights_n, 1.0f));  // emitter radiance
+  kernel.input(8, emitter_area_pdf);
+  kernel.input(9, light_tri);
+  kernel.input(10, light_cdf);
+  kernel.scalar(11, lights_n);
+  kernel.scalar(12, 1.0f);  // bin_nm
+  kernel.input(13, std::vector<float>{float(x.x()), float(x.y()), float(x.z())});
+  const std::vector<float> out = kernel.sample(14, uniforms(3 * kSamples, 11), 15, 10, kSamples);
 
   // Per light: the selection probability from the CDF the device has, the solid angle, the
   // branch, the cells' shares of its points. The claimed density integrated over a cell: a

@@ -51,7 +51,9 @@ int run_info(const std::string& scene_path, bool spectral, const std::string& la
     for (const std::string& n : scene.lamp_names) names += (names.empty() ? "" : ", ") + n;
     std::printf("lamp: %s (lamps: %s)\n", scene.lamp.c_str(), names.c_str());
   }
-  std::printf("bvh: %zu nodes, depth %d (Embree SAH)\n", data.bvh.nodes.size(), data.bvh.depth);
+  std::printf("bvh: %zu nodes, %zu leaves, depth %d (Embree SAH, %d-wide, leaves of <= %d)\n",
+              data.bvh.nodes.size(), data.bvh.leaves.size(), data.bvh.depth, KASHA_BVH_WIDTH,
+              KASHA_BVH_LEAF_SIZE);
   std::printf("camera: %dx%d, fov %g deg\n", scene.camera.width, scene.camera.height,
               scene.camera.fov_deg);
   std::printf("kernel build options: %s\n", build_options(scene_defines(scene, spectral)).c_str());
@@ -72,7 +74,9 @@ int run_info(const std::string& scene_path, bool spectral, const std::string& la
       "memory: scene %s (bvh %s, triangles %s, materials and spectra %s); film %s on the device, "
       "%s on the host\n",
       bytes_text(data.bytes()).c_str(),
-      bytes_text(data.bvh.nodes.size() * sizeof(KBvhNode)).c_str(),
+      bytes_text(data.bvh.nodes.size() * sizeof(KBvhNode) +
+                 data.bvh.leaves.size() * sizeof(KBvhLeaf))
+          .c_str(),
       bytes_text(data.bvh.triangles.size() * sizeof(KTriangle)).c_str(),
       bytes_text(data.materials.size() * sizeof(KMaterial) +
                  (data.spectra.size() + data.emitter_radiance.size()) * sizeof(float))

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+#include <string>
 
 #include "core/error.h"
 #include "geometry/embree_device.h"
@@ -12,25 +14,29 @@ namespace kasha {
 
 namespace {
 
+constexpr int W = KASHA_BVH_WIDTH;
+constexpr int L = KASHA_BVH_LEAF_SIZE;
+
 // Embree's builder hands us nodes and leaves through callbacks; they live in its thread-local
 // allocator until the RTCBVH is released, by which time they are flattened.
 struct BuildNode {
   virtual ~BuildNode() = default;
-  RTCBounds bounds{};
 };
 struct InnerNode : BuildNode {
-  BuildNode* child[2] = {nullptr, nullptr};
-  RTCBounds child_bounds[2]{};
+  unsigned count = 0;
+  BuildNode* child[W] = {};
+  RTCBounds child_bounds[W]{};
 };
 struct LeafNode : BuildNode {
-  unsigned first = 0, count = 0;  // into the leaf-ordered primitive id list
-  unsigned* ids = nullptr;
+  unsigned count = 0;
+  unsigned ids[L] = {};  // scene indices of its triangles
 };
 
 void* create_node(RTCThreadLocalAllocator alloc, unsigned int child_count, void*) {
-  (void)child_count;  // always 2: maxBranchingFactor = 2
   void* mem = rtcThreadLocalAlloc(alloc, sizeof(InnerNode), 16);
-  return static_cast<BuildNode*>(new (mem) InnerNode);
+  auto* node = new (mem) InnerNode;
+  node->count = child_count;  // at most maxBranchingFactor = W
+  return static_cast<BuildNode*>(node);
 }
 
 void set_children(void* node, void** children, unsigned int count, void*) {
@@ -47,55 +53,75 @@ void* create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims,
                   void*) {
   void* mem = rtcThreadLocalAlloc(alloc, sizeof(LeafNode), 16);
   auto* leaf = new (mem) LeafNode;
-  leaf->ids = static_cast<unsigned*>(rtcThreadLocalAlloc(alloc, count * sizeof(unsigned), 16));
-  leaf->count = static_cast<unsigned>(count);
-  for (size_t i = 0; i < count; ++i) leaf->ids[i] = prims[i].primID;
+  leaf->count = static_cast<unsigned>(count);  // at most maxLeafSize = L; flatten_leaf checks
+  for (size_t i = 0; i < count && i < L; ++i) leaf->ids[i] = prims[i].primID;
   return static_cast<BuildNode*>(leaf);
 }
 
-RTCBounds leaf_bounds(const LeafNode& leaf, const std::vector<KTriangle>& tris) {
+RTCBounds triangles_bounds(const std::vector<KTriangle>& tris) {
   RTCBounds b{INFINITY, INFINITY, INFINITY, 0, -INFINITY, -INFINITY, -INFINITY, 0};
-  for (unsigned i = 0; i < leaf.count; ++i) {
-    const KTriangle& t = tris[leaf.ids[i]];
+  for (const KTriangle& t : tris)
     for (const float* v : {t.v0, t.v1, t.v2}) {
       b.lower_x = std::min(b.lower_x, v[0]), b.upper_x = std::max(b.upper_x, v[0]);
       b.lower_y = std::min(b.lower_y, v[1]), b.upper_y = std::max(b.upper_y, v[1]);
       b.lower_z = std::min(b.lower_z, v[2]), b.upper_z = std::max(b.upper_z, v[2]);
     }
-  }
   return b;
 }
 
-void store_bounds(KBvhNode& n, const RTCBounds& b) {
-  n.lo[0] = b.lower_x, n.lo[1] = b.lower_y, n.lo[2] = b.lower_z;
-  n.hi[0] = b.upper_x, n.hi[1] = b.upper_y, n.hi[2] = b.upper_z;
+// Slot i of node n: the child's box and reference.
+void set_slot(KBvhNode& n, int i, const RTCBounds& b, int ref) {
+  const float lo[3] = {b.lower_x, b.lower_y, b.lower_z}, hi[3] = {b.upper_x, b.upper_y, b.upper_z};
+  for (int k = 0; k < 3; ++k) n.bounds[2 * k][i] = lo[k], n.bounds[2 * k + 1][i] = hi[k];
+  n.child[i] = ref;
 }
 
-void flatten(const BuildNode* node, const RTCBounds& bounds, const std::vector<KTriangle>& in,
-             FlatBvh& out, int depth) {
+KBvhNode empty_node() {
+  KBvhNode n{};
+  const RTCBounds none{INFINITY, INFINITY, INFINITY, 0, -INFINITY, -INFINITY, -INFINITY, 0};
+  for (int i = 0; i < W; ++i) set_slot(n, i, none, 0);
+  return n;
+}
+
+// Appends a leaf's triangles in leaf order and their precomputed form; returns its reference.
+int flatten_leaf(const LeafNode& leaf, const std::vector<KTriangle>& in, FlatBvh& out) {
+  if (leaf.count > L)
+    throw Error("Embree: BVH leaf of " + std::to_string(leaf.count) + " triangles");
+  KBvhLeaf block{};
+  for (int i = 0; i < L; ++i) block.tri[i] = -1;
+  for (unsigned i = 0; i < leaf.count; ++i) {
+    const KTriangle& t = in[leaf.ids[i]];
+    for (int k = 0; k < 3; ++k) {
+      block.v0[k][i] = t.v0[k];
+      block.e1[k][i] = t.v1[k] - t.v0[k];
+      block.e2[k][i] = t.v2[k] - t.v0[k];
+    }
+    block.tri[i] = static_cast<int>(out.triangles.size());
+    out.triangles.push_back(t);
+  }
+  out.leaves.push_back(block);
+  return ~static_cast<int>(out.leaves.size() - 1);
+}
+
+// Depth first: a node's children follow it, leaves in the order the traversal meets them.
+int flatten(const BuildNode* node, const std::vector<KTriangle>& in, FlatBvh& out, int depth) {
+  if (auto* leaf = dynamic_cast<const LeafNode*>(node)) return flatten_leaf(*leaf, in, out);
+  auto* inner = static_cast<const InnerNode*>(node);
   out.depth = std::max(out.depth, depth);
   int index = static_cast<int>(out.nodes.size());
-  out.nodes.push_back(KBvhNode{});
-  if (auto* leaf = dynamic_cast<const LeafNode*>(node)) {
-    KBvhNode& n = out.nodes[index];
-    store_bounds(n, bounds);
-    n.offset = static_cast<int>(out.triangles.size());
-    n.count = static_cast<int>(leaf->count);
-    for (unsigned i = 0; i < leaf->count; ++i) out.triangles.push_back(in[leaf->ids[i]]);
-    return;
+  out.nodes.push_back(empty_node());
+  for (unsigned i = 0; i < inner->count; ++i) {
+    int ref = flatten(inner->child[i], in, out, depth + 1);
+    set_slot(out.nodes[index], static_cast<int>(i), inner->child_bounds[i], ref);
   }
-  auto* inner = static_cast<const InnerNode*>(node);
-  store_bounds(out.nodes[index], bounds);
-  flatten(inner->child[0], inner->child_bounds[0], in, out, depth + 1);
-  out.nodes[index].offset = static_cast<int>(out.nodes.size());
-  out.nodes[index].count = 0;
-  flatten(inner->child[1], inner->child_bounds[1], in, out, depth + 1);
+  return index;
 }
 
 }  // namespace
 
 FlatBvh build_bvh(const std::vector<KTriangle>& triangles) {
   FlatBvh out;
+  out.nodes.push_back(empty_node());  // the root: for no triangles, one that no ray enters
   if (triangles.empty()) return out;
   std::vector<RTCBuildPrimitive> prims;
   prims.reserve(triangles.size());
@@ -113,16 +139,20 @@ FlatBvh build_bvh(const std::vector<KTriangle>& triangles) {
     prims.push_back(p);
   }
 
-  RTCBVH bvh = rtcNewBVH(embree_device());
+  // Owns the builder's nodes until they are flattened, also when flattening throws.
+  std::unique_ptr<RTCBVHTy, void (*)(RTCBVH)> bvh(rtcNewBVH(embree_device()), rtcReleaseBVH);
   RTCBuildArguments args = rtcDefaultBuildArguments();
   args.buildQuality = RTC_BUILD_QUALITY_MEDIUM;  // SAH binning, no spatial splits
-  args.maxBranchingFactor = 2;
+  args.maxBranchingFactor = W;
   args.maxDepth = KASHA_BVH_MAX_DEPTH;
-  args.minLeafSize = 1;
-  args.maxLeafSize = 4;
+  // A leaf costs one vector test whether it holds 1 or L triangles: SAH counts leaves so, and a
+  // set that fits one leaf is not split further just to fill a node's slots.
+  args.sahBlockSize = L;
+  args.minLeafSize = L;
+  args.maxLeafSize = L;
   args.traversalCost = 1.0f;
   args.intersectionCost = 1.0f;
-  args.bvh = bvh;
+  args.bvh = bvh.get();
   args.primitives = prims.data();
   args.primitiveCount = prims.size();
   args.primitiveArrayCapacity = prims.size();
@@ -133,27 +163,25 @@ FlatBvh build_bvh(const std::vector<KTriangle>& triangles) {
   args.splitPrimitive = nullptr;
   auto* root = static_cast<BuildNode*>(rtcBuildBVH(&args));
   if (!root) {
-    rtcReleaseBVH(bvh);
     throw Error("Embree: BVH build failed (error " +
                 std::to_string(rtcGetDeviceError(embree_device())) + ")");
   }
-  // The root's bounds are not reported through a parent; a lone leaf's come from its triangles.
-  RTCBounds root_bounds;
-  if (auto* leaf = dynamic_cast<LeafNode*>(root)) {
-    root_bounds = leaf_bounds(*leaf, triangles);
-  } else {
-    auto* inner = static_cast<InnerNode*>(root);
-    const RTCBounds &a = inner->child_bounds[0], &b = inner->child_bounds[1];
-    root_bounds = {std::min(a.lower_x, b.lower_x), std::min(a.lower_y, b.lower_y),
-                   std::min(a.lower_z, b.lower_z), 0,
-                   std::max(a.upper_x, b.upper_x), std::max(a.upper_y, b.upper_y),
-                   std::max(a.upper_z, b.upper_z), 0};
-  }
-  out.nodes.reserve(2 * triangles.size());
+  out.nodes.reserve(triangles.size() / (2 * L) + 1);
+  out.leaves.reserve(triangles.size() / (L / 2) + 1);
   out.triangles.reserve(triangles.size());
-  flatten(root, root_bounds, triangles, out, 1);
-  rtcReleaseBVH(bvh);
+  if (auto* leaf = dynamic_cast<LeafNode*>(root)) {
+    // A lone leaf hangs from a root of one child, so the traversal always starts at a node.
+    out.depth = 1;
+    set_slot(out.nodes[0], 0, triangles_bounds(triangles), flatten_leaf(*leaf, triangles, out));
+  } else {
+    out.nodes.clear();
+    flatten(root, triangles, out, 1);
+  }
+  bvh.reset();
   if (out.triangles.size() != triangles.size()) throw Error("Embree: BVH lost primitives");
+  if (out.depth > KASHA_BVH_MAX_DEPTH)  // the kernels' stack would overflow
+    throw Error("Embree: BVH of depth " + std::to_string(out.depth) + " (at most " +
+                std::to_string(KASHA_BVH_MAX_DEPTH) + ")");
   return out;
 }
 

@@ -7,6 +7,7 @@ namespace kasha {
 
 ClTraversal::ClTraversal(ClContext& cl, const FlatBvh& bvh) : cl_(cl) {
   nodes_ = upload(cl, bvh.nodes);
+  leaves_ = upload(cl, bvh.leaves);
   triangles_ = upload(cl, bvh.triangles);
   cl::Program program =
       build_program(cl, assemble_kernel_source("trace_rays.cl"), {}, "trace_rays.cl");
@@ -15,26 +16,43 @@ ClTraversal::ClTraversal(ClContext& cl, const FlatBvh& bvh) : cl_(cl) {
 }
 
 template <typename Out>
-std::vector<Out> ClTraversal::run(cl::Kernel& kernel, const std::vector<KRay>& rays) {
-  std::vector<Out> out(rays.size());
-  if (rays.empty()) return out;
-  cl::Buffer in = upload(cl_, rays);
-  cl::Buffer result(cl_.context(), CL_MEM_WRITE_ONLY, rays.size() * sizeof(Out));
+void ClTraversal::run(cl::Kernel& kernel, const std::vector<KRay>& rays, std::vector<Out>& out) {
+  out.resize(rays.size());
+  if (rays.empty()) return;
+  if (rays.size() > ray_capacity_) {
+    rays_ = cl::Buffer(cl_.context(), CL_MEM_READ_ONLY, rays.size() * sizeof(KRay));
+    ray_capacity_ = rays.size();
+  }
+  if (rays.size() * sizeof(Out) > result_bytes_) {
+    results_ = cl::Buffer(cl_.context(), CL_MEM_WRITE_ONLY, rays.size() * sizeof(Out));
+    result_bytes_ = rays.size() * sizeof(Out);
+  }
+  cl_.queue().enqueueWriteBuffer(rays_, CL_FALSE, 0, rays.size() * sizeof(KRay), rays.data());
   kernel.setArg(0, nodes_);
-  kernel.setArg(1, triangles_);
-  kernel.setArg(2, in);
-  kernel.setArg(3, result);
-  kernel.setArg(4, static_cast<int>(rays.size()));
+  kernel.setArg(1, leaves_);
+  kernel.setArg(2, triangles_);
+  kernel.setArg(3, rays_);
+  kernel.setArg(4, results_);
+  kernel.setArg(5, static_cast<int>(rays.size()));
   cl_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(rays.size()), cl::NullRange);
-  cl_.queue().enqueueReadBuffer(result, CL_TRUE, 0, rays.size() * sizeof(Out), out.data());
-  return out;
+  cl_.queue().enqueueReadBuffer(results_, CL_TRUE, 0, rays.size() * sizeof(Out), out.data());
 }
 
+void ClTraversal::closest(const std::vector<KRay>& rays, std::vector<KHit>& hits) {
+  run(closest_, rays, hits);
+}
+void ClTraversal::occluded(const std::vector<KRay>& rays, std::vector<int>& occluded) {
+  run(occluded_, rays, occluded);
+}
 std::vector<KHit> ClTraversal::closest(const std::vector<KRay>& rays) {
-  return run<KHit>(closest_, rays);
+  std::vector<KHit> hits;
+  closest(rays, hits);
+  return hits;
 }
 std::vector<int> ClTraversal::occluded(const std::vector<KRay>& rays) {
-  return run<int>(occluded_, rays);
+  std::vector<int> out;
+  occluded(rays, out);
+  return out;
 }
 
 }  // namespace kasha

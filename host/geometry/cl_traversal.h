@@ -13,13 +13,19 @@ class ClTraversal {
   ClTraversal(ClContext& cl, const FlatBvh& bvh);
   std::vector<KHit> closest(const std::vector<KRay>& rays);
   std::vector<int> occluded(const std::vector<KRay>& rays);
+  // Into the caller's vector, resized to the rays: a batch after the first of its size then
+  // allocates nothing, on either side (what the benchmark times).
+  void closest(const std::vector<KRay>& rays, std::vector<KHit>& hits);
+  void occluded(const std::vector<KRay>& rays, std::vector<int>& occluded);
 
  private:
   template <typename Out>
-  std::vector<Out> run(cl::Kernel& kernel, const std::vector<KRay>& rays);
+  void run(cl::Kernel& kernel, const std::vector<KRay>& rays, std::vector<Out>& out);
 
   ClContext& cl_;
-  cl::Buffer nodes_, triangles_;
+  cl::Buffer nodes_, leaves_, triangles_;
+  cl::Buffer rays_, results_;  // kept between batches, grown when a batch needs more
+  size_t ray_capacity_ = 0, result_bytes_ = 0;
   cl::Kernel closest_, occluded_;
 };
 

@@ -78,4 +78,11 @@ void EmbreeScene::intersect_all(const std::vector<KRay>& rays, std::vector<KHit>
   });
 }
 
+void EmbreeScene::occluded_all(const std::vector<KRay>& rays, std::vector<int>& occluded) const {
+  occluded.resize(rays.size());
+  parallel_for(rays.size(), [&](size_t begin, size_t end) {
+    for (size_t i = begin; i < end; ++i) occluded[i] = this->occluded(rays[i]) ? 1 : 0;
+  });
+}
+
 }  // namespace kasha

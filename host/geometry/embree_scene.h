@@ -20,6 +20,7 @@ class EmbreeScene {
   bool occluded(const KRay& ray) const;
   // All rays, spread over the host's hardware threads.
   void intersect_all(const std::vector<KRay>& rays, std::vector<KHit>& hits) const;
+  void occluded_all(const std::vector<KRay>& rays, std::vector<int>& occluded) const;
 
  private:
   RTCScene scene_ = nullptr;

@@ -113,8 +113,8 @@ KernelSceneData::KernelSceneData(const Scene& scene)
 }
 
 size_t KernelSceneData::bytes() const {
-  return bvh.nodes.size() * sizeof(KBvhNode) + bvh.triangles.size() * sizeof(KTriangle) +
-         materials.size() * sizeof(KMaterial) +
+  return bvh.nodes.size() * sizeof(KBvhNode) + bvh.leaves.size() * sizeof(KBvhLeaf) +
+         bvh.triangles.size() * sizeof(KTriangle) + materials.size() * sizeof(KMaterial) +
          (spectra.size() + lobes.size() + emitter_radiance.size() + light_cdf.size() +
           emitter_area_pdf.size()) *
              sizeof(float) +
@@ -134,6 +134,7 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
 int DeviceScene::bind(cl::Kernel& k, int a) const {
   k.setArg(a++, data_.camera);
   k.setArg(a++, nodes);
+  k.setArg(a++, leaves);
   k.setArg(a++, triangles);
   k.setArg(a++, materials);
   k.setArg(a++, spectra);
@@ -149,6 +150,7 @@ int DeviceScene::bind(cl::Kernel& k, int a) const {
 
 DeviceScene::DeviceScene(ClContext& cl, const Scene& scene) : data_(scene) {
   nodes = upload(cl, data_.bvh.nodes);
+  leaves = upload(cl, data_.bvh.leaves);
   triangles = upload(cl, data_.bvh.triangles);
   materials = upload(cl, data_.materials);
   spectra = upload(cl, data_.spectra);

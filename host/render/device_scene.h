@@ -46,8 +46,8 @@ class DeviceScene {
   // order of KASHA_SCENE_PARAMS (kernels/scene_view.h); returns the next argument's index.
   int bind(cl::Kernel& kernel, int first) const;
 
-  cl::Buffer nodes, triangles, materials, spectra, lobes, emitter_radiance, light_tri, light_cdf,
-      emitter_area_pdf;
+  cl::Buffer nodes, leaves, triangles, materials, spectra, lobes, emitter_radiance, light_tri,
+      light_cdf, emitter_area_pdf;
 
  private:
   KernelSceneData data_;

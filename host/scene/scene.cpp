@@ -2,10 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
-#include <set>
 #include <sstream>
 
 #include "core/error.h"
@@ -97,12 +98,63 @@ static std::filesystem::path relative_to(const JsonNode& node, const std::string
   return p.is_relative() ? node.base_dir() / p : p;
 }
 
+// The set of triangles met so far, by their float vertices: open addressing over 64-bit hashes
+// in one flat table, so a million-triangle scene costs one cache miss per triangle (an ordered
+// set took over a second there). -0 and +0 compare equal, so they hash alike.
+class TriangleKeys {
+ public:
+  using Key = std::array<float, 9>;
+  // Adds `key`; false when an equal key was added before.
+  bool insert(const Key& key) {
+    if (2 * (keys_.size() + 1) > slots_.size()) grow();
+    const std::uint64_t h = hash(key);
+    for (size_t i = h & (slots_.size() - 1);; i = (i + 1) & (slots_.size() - 1)) {
+      Slot& slot = slots_[i];
+      if (slot.index == 0) {
+        keys_.push_back(key);
+        slot = {h, static_cast<std::uint32_t>(keys_.size())};
+        return true;
+      }
+      if (slot.hash == h && keys_[slot.index - 1] == key) return false;
+    }
+  }
+
+ private:
+  struct Slot {
+    std::uint64_t hash = 0;
+    std::uint32_t index = 0;  // into keys_, plus one; 0 marks an empty slot
+  };
+  static std::uint64_t hash(const Key& key) {
+    std::uint64_t h = 0x9e3779b97f4a7c15ull;
+    for (float x : key) {
+      float y = x + 0.0f;  // -0 -> +0
+      std::uint32_t bits;
+      std::memcpy(&bits, &y, sizeof bits);
+      h = (h ^ bits) * 0xff51afd7ed558ccdull;
+      h ^= h >> 32;
+    }
+    return h;
+  }
+  void grow() {
+    std::vector<Slot> old = std::move(slots_);
+    slots_.assign(std::max<size_t>(64, 2 * old.size()), Slot{});
+    for (const Slot& s : old) {
+      if (s.index == 0) continue;
+      size_t i = s.hash & (slots_.size() - 1);
+      while (slots_[i].index != 0) i = (i + 1) & (slots_.size() - 1);
+      slots_[i] = s;
+    }
+  }
+  std::vector<Key> keys_;
+  std::vector<Slot> slots_;  // a power of two, at most half full
+};
+
 // Leaves out triangles with the same vertices in the same winding (as the kernels see them, in
 // float) as one met before: a coincident twin doubles an emitter's power for light sampling
 // while a ray sees one of the two, and rays leaving one copy hit the other. A twin of opposite
 // winding stays: it is how a two-sided lamp is made.
-static void drop_duplicate_triangles(std::vector<Triangle>& tris,
-                                     std::set<std::array<float, 9>>& seen, const JsonNode& shape) {
+static void drop_duplicate_triangles(std::vector<Triangle>& tris, TriangleKeys& seen,
+                                     const JsonNode& shape) {
   size_t kept = 0;
   for (const Triangle& t : tris) {
     std::array<std::array<float, 3>, 3> v;
@@ -112,7 +164,7 @@ static void drop_duplicate_triangles(std::vector<Triangle>& tris,
     std::array<float, 9> key;
     for (int k = 0; k < 3; ++k)
       for (int c = 0; c < 3; ++c) key[3 * k + c] = v[(first + k) % 3][c];
-    if (seen.insert(key).second) tris[kept++] = t;
+    if (seen.insert(key)) tris[kept++] = t;
   }
   if (kept < tris.size())
     warn(shape.file() + ": " + shape.path() + ": " + std::to_string(tris.size() - kept) +
@@ -234,7 +286,7 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
   }
 
   JsonNode shapes = root.at("shapes");
-  std::set<std::array<float, 9>> seen_triangles;
+  TriangleKeys seen_triangles;
   std::vector<bool> material_used(scene.material_descs.size(), false);
   for (size_t s = 0; s < shapes.size(); ++s) {
     JsonNode shape = shapes[s];

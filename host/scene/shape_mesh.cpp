@@ -46,6 +46,7 @@ std::vector<Triangle> sphere_triangles(const Eigen::Vector3d& center, double rad
                                                              std::sin(theta) * std::sin(phi)));
   };
   std::vector<Triangle> out;
+  out.reserve(2 * static_cast<size_t>(rings) * segments);
   for (int r = 0; r < rings; ++r)
     for (int s = 0; s < segments; ++s) {
       Eigen::Vector3d a = point(r, s), b = point(r, s + 1), c = point(r + 1, s),
