@@ -289,8 +289,10 @@ static int run(int argc, char** argv, const MpiWorld& world) {
   }
   if (world.rank() > 0) return app.got_subcommand("render") ? serve_render(r) : 0;
   if (world.several() && !app.got_subcommand("render"))
-    warn(app.get_subcommands().front()->get_name() + " runs on rank 0 alone under MPI; the other " +
-         std::to_string(world.size() - 1) + " ranks wait for it");
+    warn(app.get_subcommands().front()->get_name() + " runs on rank 0 alone under MPI; " +
+         (world.size() == 2 ? std::string("the other rank waits")
+                            : "the other " + std::to_string(world.size() - 1) + " ranks wait") +
+         " for it");
   try {
     if (app.got_subcommand("devices")) return run_devices();
     if (app.got_subcommand("info")) return run_info(info_scene, info_spectral, info_lamp);

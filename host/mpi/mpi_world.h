@@ -27,6 +27,10 @@ class MpiWorld {
   bool several() const { return size_ > 1; }
   // Ranks > 0: whether rank 0 said the job is over.
   bool stopped() const { return listener_ && listener_->stopped(); }
+  // Rank 0, after an interrupt: once every rank has answered it (mpi/rank_control.h).
+  void settle_interrupt() const {
+    if (watch_) watch_->settle();
+  }
 
   // The job's end. Rank 0 tells every other rank to stop and waits for their answers; the others
   // wait for that. Returns false (rank 0, with a line on stderr) when a rank gave no answer: MPI

@@ -78,7 +78,12 @@ void RankWatch::watch() {
   }
 }
 
+void RankWatch::settle() {
+  if (interrupt_requested() && thread_.joinable()) thread_.join();
+}
+
 bool RankWatch::stop_all() {
+  settle();  // an interrupt's verdict first: a rank that died is named as such
   ending_ = true;
   if (thread_.joinable()) thread_.join();
   std::vector<std::unique_ptr<Outgoing>> told;

@@ -22,6 +22,9 @@ class RankWatch {
   ~RankWatch();
   RankWatch(const RankWatch&) = delete;
   RankWatch& operator=(const RankWatch&) = delete;
+  // After an interrupt: returns once every rank has answered it, or ends the process naming one
+  // that did not. Before one: returns at once. From one thread only.
+  void settle();
   // Tells every rank to stop and waits for their answers; false (with a line on stderr) when one
   // gave none.
   bool stop_all();

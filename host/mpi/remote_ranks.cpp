@@ -16,7 +16,10 @@ RemoteRanks::RemoteRanks(const std::string& integrator) {
   // of a rank that failed ends the wait.
   mpi::Backoff backoff;
   for (int waiting = size - 1; waiting > 0;) {
-    if (interrupt_requested()) throw Interrupted();
+    if (interrupt_requested()) {
+      MpiWorld::get().settle_interrupt();  // a rank that died is named, not the interrupt
+      throw Interrupted();
+    }
     bool any = false;
     for (int r = 1; r < size; ++r)
       if (!hellos[r])
