@@ -39,7 +39,8 @@ struct Shell {
 Shell shell(const std::string& command) {
   const std::string err = (kasha::test::scratch_dir() / "stderr.txt").string();
   const auto t0 = Clock::now();
-  const int status = std::system((command + " > /dev/null 2> " + quoted(err) + " < /dev/null").c_str());
+  const int status =
+      std::system((command + " > /dev/null 2> " + quoted(err) + " < /dev/null").c_str());
   Shell r;
   r.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
   r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
@@ -61,9 +62,9 @@ std::string missing_mpi() {
   static const std::string why = [] {
     if (std::string(KASHA_MPIEXEC).empty()) return std::string("no mpirun found at configure time");
     const std::string version = (kasha::test::scratch_dir() / "mpirun_version.txt").string();
-    if (std::system((kAsRoot + std::string(KASHA_MPIEXEC) + " --version > " + quoted(version) +
-                     " 2>&1")
-                        .c_str()) != 0 ||
+    if (std::system(
+            (kAsRoot + std::string(KASHA_MPIEXEC) + " --version > " + quoted(version) + " 2>&1")
+                .c_str()) != 0 ||
         (slurp(version).find("Open MPI") == std::string::npos &&
          slurp(version).find("OpenRTE") == std::string::npos))
       return std::string(KASHA_MPIEXEC) + " is not Open MPI's mpirun";
@@ -73,10 +74,10 @@ std::string missing_mpi() {
 #endif
 }
 
-#define SKIP_WITHOUT_MPI()                                  \
-  do {                                                      \
-    const std::string why = missing_mpi();                  \
-    if (!why.empty()) GTEST_SKIP() << why;                  \
+#define SKIP_WITHOUT_MPI()                 \
+  do {                                     \
+    const std::string why = missing_mpi(); \
+    if (!why.empty()) GTEST_SKIP() << why; \
   } while (0)
 
 std::string render_args(const std::string& extra, const std::string& out) {
@@ -120,12 +121,11 @@ TEST_P(MpiRender, TwoAndThreeRanksWriteTheOneProcessFile) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Integrators, MpiRender,
-    ::testing::Values(Case{"backward", "--spp 1 --passes 3"},
-                      Case{"forward", "--photons 50000 --passes 3"},
-                      Case{"photon", "--photons 1000000 --spp 1 --passes 2"}),
-    [](const auto& info) { return info.param.integrator; });
+INSTANTIATE_TEST_SUITE_P(Integrators, MpiRender,
+                         ::testing::Values(Case{"backward", "--spp 1 --passes 3"},
+                                           Case{"forward", "--photons 50000 --passes 3"},
+                                           Case{"photon", "--photons 1000000 --spp 1 --passes 2"}),
+                         [](const auto& info) { return info.param.integrator; });
 
 // KASHA_TEST_KILL_RANK=1: rank 1 dies by SIGKILL as its second pass is asked of it. mpirun then
 // sends SIGTERM to the others; rank 0, interrupted, finds rank 1 not answering and names it.
@@ -133,7 +133,7 @@ TEST(Mpi, ARankKilledMidRenderEndsTheJobWithOneLine) {
   SKIP_WITHOUT_MPI();
   const std::string out = (kasha::test::scratch_dir() / "killed.exr").string();
   Shell r = shell("KASHA_TEST_KILL_RANK=1 " + mpirun() + " -np 2 " + KASHA_BINARY + " " +
-                render_args("--integrator backward --spp 1 --passes 100", out));
+                  render_args("--integrator backward --spp 1 --passes 100", out));
   EXPECT_NE(r.exit_code, 0) << r.err;
   EXPECT_NE(r.exit_code, 124) << "the job hung: " << r.err;
   EXPECT_LT(r.seconds, 60);
@@ -150,8 +150,8 @@ TEST(Mpi, ARankThatFailsToSetUpIsNamed) {
   const std::string out = (kasha::test::scratch_dir() / "failed.exr").string();
   const std::string args = "render --integrator backward --spp 1 --passes 2 -o " + quoted(out);
   Shell r = shell(mpirun() + " -np 1 " + KASHA_BINARY + " " + args + " " +
-                quoted(kasha::test::source_path("scenes/cornell_box.json")) + " : -np 1 " +
-                KASHA_BINARY + " " + args + " /nonexistent.json");
+                  quoted(kasha::test::source_path("scenes/cornell_box.json")) + " : -np 1 " +
+                  KASHA_BINARY + " " + args + " /nonexistent.json");
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("kasha: error: rank 1: /nonexistent.json: cannot open file"),
             std::string::npos)
@@ -169,7 +169,7 @@ TEST(Mpi, InterruptOnRankZeroWritesTheImageSoFar) {
   const std::string out = (kasha::test::scratch_dir() / "interrupted.exr").string();
   const std::string args = render_args("--integrator backward --spp 1 --passes 100000", out);
   Shell r = shell(mpirun() + " -np 1 timeout --preserve-status -s INT 4 " + KASHA_BINARY + " " +
-                args + " : -np 2 " + KASHA_BINARY + " " + args);
+                  args + " : -np 2 " + KASHA_BINARY + " " + args);
   EXPECT_EQ(r.exit_code, 130) << r.err;
   EXPECT_NE(r.err.find("interrupted: writing the image after"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("kasha: error"), std::string::npos) << r.err;

@@ -88,8 +88,8 @@ int run_render(const RenderArgs& a) {
     std::string each;
     for (size_t d = 0; d < job.devices(); ++d)
       each += (d ? ", " : "") + std::to_string(d) + " (" + names[d] + ") " +
-              std::to_string(static_cast<int>(std::lround(100 * film.tally(device_work_tally(d)) /
-                                                           std::max(work, 1e-300)))) +
+              std::to_string(static_cast<int>(
+                  std::lround(100 * film.tally(device_work_tally(d)) / std::max(work, 1e-300)))) +
               " %";
     std::fprintf(stderr, "work per device: %s\n", each.c_str());
   }

@@ -33,8 +33,10 @@ class Outgoing {
   template <typename GiveUp>
   bool wait(GiveUp give_up) {
     while (!done())
-      if (give_up()) return false;
-      else yield();
+      if (give_up())
+        return false;
+      else
+        yield();
     return true;
   }
   bool wait() {

@@ -55,8 +55,9 @@ MpiWorld::MpiWorld(int* argc, char*** argv) {
   if (rank_ > 0) silence();
   if (provided < MPI_THREAD_MULTIPLE) {
     MPI_Finalize();
-    throw Error("MPI: the MPI library gives no MPI_THREAD_MULTIPLE, which kasha's device threads "
-                "need");
+    throw Error(
+        "MPI: the MPI library gives no MPI_THREAD_MULTIPLE, which kasha's device threads "
+        "need");
   }
   initialized_ = true;
   g_world = this;

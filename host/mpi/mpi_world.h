@@ -41,7 +41,7 @@ class MpiWorld {
   MpiWorld() = default;  // alone
   int rank_ = 0, size_ = 1;
   bool initialized_ = false;
-  std::unique_ptr<mpi::RankWatch> watch_;            // rank 0 of several
+  std::unique_ptr<mpi::RankWatch> watch_;           // rank 0 of several
   std::unique_ptr<mpi::ControlListener> listener_;  // the other ranks
 };
 

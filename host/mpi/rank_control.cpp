@@ -52,7 +52,8 @@ void RankWatch::watch() {
       std::this_thread::sleep_for(std::chrono::milliseconds(2));
     if (ending_) return;
     std::vector<std::unique_ptr<Outgoing>> told;
-    for (int r = 1; r < size_; ++r) told.push_back(std::make_unique<Outgoing>(r, kControlTag, one(kInterrupt)));
+    for (int r = 1; r < size_; ++r)
+      told.push_back(std::make_unique<Outgoing>(r, kControlTag, one(kInterrupt)));
     const auto t0 = Clock::now();
     std::vector<bool> heard(size_, false);
     heard[0] = true;
@@ -87,7 +88,8 @@ bool RankWatch::stop_all() {
   ending_ = true;
   if (thread_.joinable()) thread_.join();
   std::vector<std::unique_ptr<Outgoing>> told;
-  for (int r = 1; r < size_; ++r) told.push_back(std::make_unique<Outgoing>(r, kControlTag, one(kStop)));
+  for (int r = 1; r < size_; ++r)
+    told.push_back(std::make_unique<Outgoing>(r, kControlTag, one(kStop)));
   const auto t0 = Clock::now();
   std::vector<bool> heard(size_, false);
   Backoff backoff;

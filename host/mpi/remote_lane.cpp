@@ -28,7 +28,8 @@ mpi::Reply RemoteLane::receive(mpi::Kind expected) {
   for (;;) {
     if (std::optional<std::vector<char>> bytes = mpi::try_receive(rank_, device_)) {
       mpi::Reply reply = mpi::decode_reply(*bytes);
-      if (reply.kind == mpi::Kind::error) throw Error("rank " + std::to_string(rank_) + ": " + reply.error);
+      if (reply.kind == mpi::Kind::error)
+        throw Error("rank " + std::to_string(rank_) + ": " + reply.error);
       if (reply.kind != expected)
         throw Error("rank " + std::to_string(rank_) + ": answered with a message of another kind");
       return reply;

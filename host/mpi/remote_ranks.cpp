@@ -34,8 +34,8 @@ RemoteRanks::RemoteRanks(const std::string& integrator) {
   }
   for (int r = 1; r < size; ++r) {
     for (size_t d = 0; d < hellos[r]->devices.size(); ++d)
-      lanes_.push_back(std::make_unique<RemoteLane>(r, static_cast<int>(d), integrator,
-                                                    hellos[r]->devices[d]));
+      lanes_.push_back(
+          std::make_unique<RemoteLane>(r, static_cast<int>(d), integrator, hellos[r]->devices[d]));
   }
 }
 

@@ -86,8 +86,8 @@ Reply decode_reply(const std::vector<char>& bytes) {
       ChunkResult& c = r.chunk;
       c.flux = in.get_vector<double>();
       c.found = in.get_vector<int>();
-      for (double* v : {&c.traced, &c.records, &c.cut, &c.trace_s, &c.gather_s, &c.overflows,
-                        &c.per_photon})
+      for (double* v :
+           {&c.traced, &c.records, &c.cut, &c.trace_s, &c.gather_s, &c.overflows, &c.per_photon})
         *v = in.get<double>();
       c.work = in.get_tallies();
       break;
@@ -133,17 +133,16 @@ Hello decode_hello(const std::vector<char>& bytes) {
 
 double seconds_left(const PassControl& control) {
   if (!control.deadline) return -1;
-  return std::max(0.0, std::chrono::duration<double>(*control.deadline -
-                                                     PassControl::Clock::now())
-                           .count());
+  return std::max(
+      0.0, std::chrono::duration<double>(*control.deadline - PassControl::Clock::now()).count());
 }
 
 PassControl control_for(double seconds_left) {
   PassControl control;
   if (seconds_left >= 0)
-    control.deadline = PassControl::Clock::now() +
-                       std::chrono::duration_cast<PassControl::Clock::duration>(
-                           std::chrono::duration<double>(seconds_left));
+    control.deadline =
+        PassControl::Clock::now() + std::chrono::duration_cast<PassControl::Clock::duration>(
+                                        std::chrono::duration<double>(seconds_left));
   return control;
 }
 

@@ -16,13 +16,13 @@
 namespace kasha::mpi {
 
 enum class Kind : char {
-  pass = 'P',     // rank 0: render pass `pass`
-  inputs = 'I',   // rank 0: the pass's visible points and radii (no answer unless it fails)
-  chunk = 'C',    // rank 0: trace and gather photons [first, first + count) of pass `pass`
-  result = 'R',   // the device: a pass's result
+  pass = 'P',    // rank 0: render pass `pass`
+  inputs = 'I',  // rank 0: the pass's visible points and radii (no answer unless it fails)
+  chunk = 'C',   // rank 0: trace and gather photons [first, first + count) of pass `pass`
+  result = 'R',  // the device: a pass's result
   chunk_result = 'K',
-  error = 'E',    // the device: what failed, one line
-  hello = 'H',    // a rank: its devices
+  error = 'E',  // the device: what failed, one line
+  hello = 'H',  // a rank: its devices
 };
 
 struct Request {

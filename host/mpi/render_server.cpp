@@ -112,9 +112,8 @@ int serve_render(const RenderArgs& a) {
     std::vector<RenderLane> lanes = devices->upload(*scene);
     for (size_t d = 0; d < lanes.size(); ++d) {
       // One job per device, each served alone: rank 0 shares the work out.
-      jobs.push_back(
-          std::make_unique<RenderJob>(std::vector<RenderLane>{lanes[d]}, *scene, a.integrator,
-                                      a.settings, a.spectral));
+      jobs.push_back(std::make_unique<RenderJob>(std::vector<RenderLane>{lanes[d]}, *scene,
+                                                 a.integrator, a.settings, a.spectral));
       const auto* worker = dynamic_cast<const ChunkWorker*>(&jobs.back()->integrator());
       hello.devices.push_back({(*devices)[d].info().name, worker ? worker->chunk_capacity() : 0});
     }

@@ -22,8 +22,8 @@ namespace kasha {
 class RenderJob {
  public:
   // `remote`: lanes whose instances live elsewhere (other MPI ranks); they outlive the job.
-  RenderJob(const std::vector<RenderLane>& lanes, const Scene& scene,
-            const std::string& integrator, const IntegratorSettings& settings, bool spectral_film,
+  RenderJob(const std::vector<RenderLane>& lanes, const Scene& scene, const std::string& integrator,
+            const IntegratorSettings& settings, bool spectral_film,
             const std::vector<Integrator*>& remote = {});
   RenderJob(ClContext& cl, const Scene& scene, DeviceScene& device_scene,
             const std::string& integrator, const IntegratorSettings& settings, bool spectral_film)

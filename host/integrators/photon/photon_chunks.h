@@ -24,8 +24,8 @@ struct ChunkResult {
   std::vector<double> flux;
   std::vector<int> found;
   double traced = 0, records = 0, cut = 0, trace_s = 0, gather_s = 0;
-  double overflows = 0;   // ranges traced again in halves
-  double per_photon = 0;  // the most records a photon of a whole range stored
+  double overflows = 0;                // ranges traced again in halves
+  double per_photon = 0;               // the most records a photon of a whole range stored
   std::map<std::string, double> work;  // photons traced per device, with several
 };
 
