@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 
@@ -17,10 +18,12 @@ namespace kasha {
 namespace {
 const MpiWorld* g_world = nullptr;
 
-bool launched_by_mpirun() {
-  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK"})
-    if (std::getenv(name)) return true;
-  return false;
+// The world's size as the launcher's environment gives it: 0 when not launched by mpirun (Open
+// MPI's, MPICH's or a PMIx launcher's), which is known before MPI starts.
+int launched_size() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
+    if (const char* size = std::getenv(name)) return std::max(1, std::atoi(size));
+  return std::getenv("PMIX_RANK") ? 1 : 0;
 }
 
 // Ranks > 0 print nothing (their errors reach rank 0 in messages); KASHA_MPI_RANK_OUTPUT=1 keeps
@@ -44,8 +47,17 @@ const MpiWorld& MpiWorld::get() {
 MpiWorld::MpiWorld(int* argc, char*** argv) {
   (void)argc;
   (void)argv;
-#ifdef KASHA_HAVE_MPI
-  if (g_world || !launched_by_mpirun()) return;
+  if (g_world || launched_size() == 0) return;
+#ifndef KASHA_HAVE_MPI
+  // Several copies of a build without MPI would each render the whole image into the same file.
+  if (launched_size() > 1) {
+    const char* rank = std::getenv("OMPI_COMM_WORLD_RANK");
+    if (!rank) rank = std::getenv("PMI_RANK");
+    if (rank && std::atoi(rank) > 0) silence();
+    throw Error("mpirun: this kasha was built without MPI (KASHA_MPI=OFF); rebuild with MPI "
+                "installed (scripts/setup.sh) to render on several ranks");
+  }
+#else
   int provided = 0;
   if (MPI_Init_thread(argc, argv, MPI_THREAD_MULTIPLE, &provided) != MPI_SUCCESS)
     throw Error("MPI: MPI_Init_thread failed");
