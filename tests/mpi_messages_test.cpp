@@ -95,7 +95,9 @@ TEST(MpiMessages, ChunkResultAndInputsRoundTrip) {
 TEST(MpiMessages, HelloCarriesDevicesOrTheFailure) {
   mpi::Hello hello;
   hello.devices = {{"GPU one", 1u << 20}, {"CPU", 0}};
+  hello.render = "scene.json|photon|1";
   mpi::Hello back = mpi::decode_hello(mpi::encode(hello));
+  EXPECT_EQ(back.render, "scene.json|photon|1");
   ASSERT_EQ(back.devices.size(), 2u);
   EXPECT_EQ(back.devices[0].name, "GPU one");
   EXPECT_EQ(back.devices[0].capacity, 1u << 20);

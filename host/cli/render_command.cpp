@@ -13,6 +13,7 @@
 #include "image/png_preview.h"
 #include "mpi/mpi_world.h"
 #include "mpi/remote_ranks.h"
+#include "mpi/render_server.h"
 #include "render/render_job.h"
 #include "shared_types.h"
 #include "study/convergence_log.h"
@@ -49,7 +50,8 @@ int run_render(const RenderArgs& a) {
   std::vector<RenderLane> lanes = devices.upload(scene);
   // Under mpirun the other ranks' devices join as lanes, after this rank's own.
   std::unique_ptr<RemoteRanks> remote;
-  if (MpiWorld::get().several()) remote = std::make_unique<RemoteRanks>(a.integrator);
+  if (MpiWorld::get().several())
+    remote = std::make_unique<RemoteRanks>(a.integrator, render_fingerprint(a));
   RenderJob job(lanes, scene, a.integrator, a.settings, a.spectral,
                 remote ? remote->lanes() : std::vector<Integrator*>{});
   std::vector<std::string> names;

@@ -54,8 +54,9 @@ MpiWorld::MpiWorld(int* argc, char*** argv) {
     const char* rank = std::getenv("OMPI_COMM_WORLD_RANK");
     if (!rank) rank = std::getenv("PMI_RANK");
     if (rank && std::atoi(rank) > 0) silence();
-    throw Error("mpirun: this kasha was built without MPI (KASHA_MPI=OFF); rebuild with MPI "
-                "installed (scripts/setup.sh) to render on several ranks");
+    throw Error(
+        "mpirun: this kasha was built without MPI (KASHA_MPI=OFF); rebuild with MPI "
+        "installed (scripts/setup.sh) to render on several ranks");
   }
 #else
   int provided = 0;

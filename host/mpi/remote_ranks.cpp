@@ -9,7 +9,7 @@
 
 namespace kasha {
 
-RemoteRanks::RemoteRanks(const std::string& integrator) {
+RemoteRanks::RemoteRanks(const std::string& integrator, const std::string& render) {
   const int size = MpiWorld::get().size();
   std::vector<std::optional<mpi::Hello>> hellos(size);
   // Ranks set up at once (scene, devices, kernel builds): hellos come in any order, and the first
@@ -27,6 +27,10 @@ RemoteRanks::RemoteRanks(const std::string& integrator) {
           hellos[r] = mpi::decode_hello(*bytes);
           if (!hellos[r]->error.empty())
             throw Error("rank " + std::to_string(r) + ": " + hellos[r]->error);
+          if (hellos[r]->render != render)
+            throw Error("rank " + std::to_string(r) +
+                        ": its command line renders another image than rank 0's (the ranks "
+                        "may differ in --device and --memory only)");
           --waiting;
           any = true;
         }

@@ -14,7 +14,8 @@ class RemoteRanks {
  public:
   // Waits for the hello of every rank of the world but 0. Throws kasha::Error `rank R: what` for
   // a rank that failed to set up, and Interrupted on an interrupt.
-  explicit RemoteRanks(const std::string& integrator);
+  // `render`: rank 0's render_fingerprint (mpi/render_server.h), which every rank's must equal.
+  RemoteRanks(const std::string& integrator, const std::string& render);
 
   std::vector<Integrator*> lanes() const;
   const std::vector<std::unique_ptr<RemoteLane>>& devices() const { return lanes_; }

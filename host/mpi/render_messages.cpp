@@ -106,7 +106,7 @@ std::vector<char> encode(const Hello& h) {
   MessageWriter out;
   out.put(static_cast<char>(h.error.empty() ? Kind::hello : Kind::error));
   if (!h.error.empty()) return out.put(h.error).take();
-  out.put<uint64_t>(h.devices.size());
+  out.put(h.render).put<uint64_t>(h.devices.size());
   for (const RemoteDevice& d : h.devices) out.put(d.name).put(d.capacity);
   return out.take();
 }
@@ -118,6 +118,7 @@ Hello decode_hello(const std::vector<char>& bytes) {
   if (kind == Kind::error) {
     h.error = in.get_string();
   } else if (kind == Kind::hello) {
+    h.render = in.get_string();
     for (uint64_t n = in.get<uint64_t>(); n > 0; --n) {
       RemoteDevice d;
       d.name = in.get_string();

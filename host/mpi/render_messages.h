@@ -47,7 +47,8 @@ struct RemoteDevice {
 };
 
 struct Hello {
-  std::string error;  // why the rank has no devices; empty when it has
+  std::string error;   // why the rank has no devices; empty when it has
+  std::string render;  // what the rank renders (render_fingerprint): rank 0's, or refused
   std::vector<RemoteDevice> devices;
 };
 

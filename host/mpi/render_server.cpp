@@ -1,6 +1,7 @@
 #include "mpi/render_server.h"
 
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -96,9 +97,22 @@ void serve_device(int tag, Integrator& integrator) {
 
 }  // namespace
 
+std::string render_fingerprint(const RenderArgs& a) {
+  const IntegratorSettings& s = a.settings;
+  std::string text = a.scene + "|" + a.lamp + "|" + a.integrator + "|" + (a.spectral ? "1" : "0");
+  for (double v : {double(s.spp), double(s.photons), s.alpha, s.radius, double(s.edge_correction),
+                   double(s.seed), double(s.max_depth)}) {
+    char number[32];
+    std::snprintf(number, sizeof number, "|%.17g", v);
+    text += number;
+  }
+  return text + "|" + s.gather + "|" + s.view + "|" + s.sampler;
+}
+
 int serve_render(const RenderArgs& a) {
   install_interrupt_handler();  // SIGTERM from mpirun ends the work in flight early
   mpi::Hello hello;
+  hello.render = render_fingerprint(a);
   std::unique_ptr<Scene> scene;
   std::unique_ptr<DeviceSet> devices;
   std::vector<std::unique_ptr<RenderJob>> jobs;

@@ -11,4 +11,9 @@ namespace kasha {
 // Returns once rank 0 has said stop: 0, as a rank's failure is rank 0's to report.
 int serve_render(const RenderArgs& args);
 
+// What a render's image depends on, as text: the scene's path, the integrator and every setting
+// but --device and --memory (a device's own). Rank 0 refuses a rank whose differs — mpirun's MPMD
+// form could give one another command line — as its passes would not add up to rank 0's image.
+std::string render_fingerprint(const RenderArgs& args);
+
 }  // namespace kasha
