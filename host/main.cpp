@@ -1,6 +1,8 @@
 // kasha: the command line of DESIGN §5.
 #include <CLI/CLI.hpp>
 #include <cstdio>
+#include <memory>
+#include <string>
 
 #include "cli/bench_command.h"
 #include "cli/colorimetry_command.h"
@@ -15,6 +17,9 @@
 #include "cli/render_command.h"
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "core/warning.h"
+#include "mpi/mpi_world.h"
+#include "mpi/render_server.h"
 #include "opencl/device.h"
 
 using namespace kasha;
@@ -67,8 +72,9 @@ static int report_error(const std::string& message) {
   return 1;
 }
 
-int main(int argc, char** argv) {
-  install_exit_on_interrupt();  // render, converge, reference and bench take over with their own
+// The command line of this process; under MPI, ranks > 0 serve rank 0's render instead (or wait
+// for its end: other commands run on rank 0 alone).
+static int run(int argc, char** argv, const MpiWorld& world) {
   CLI::App app{"kasha: a spectral renderer for fluorescent materials"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "kasha " KASHA_VERSION);
@@ -306,6 +312,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return exit_for_parse_error(app, e);
   }
+  if (world.rank() > 0) return app.got_subcommand("render") ? serve_render(r) : 0;
+  if (world.several() && !app.got_subcommand("render"))
+    warn(app.get_subcommands().front()->get_name() + " runs on rank 0 alone under MPI; " +
+         (world.size() == 2 ? std::string("the other rank waits")
+                            : "the other " + std::to_string(world.size() - 1) + " ranks wait") +
+         " for it");
   try {
     if (app.got_subcommand("devices")) return run_devices();
     if (app.got_subcommand("info")) return run_info(info_scene, info_spectral, info_lamp);
@@ -332,4 +344,18 @@ int main(int argc, char** argv) {
     return report_error(e.what());
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  install_exit_on_interrupt();  // render, converge, reference and bench take over with their own
+  std::unique_ptr<MpiWorld> world;
+  try {
+    world = std::make_unique<MpiWorld>(&argc, &argv);  // starts MPI only under mpirun
+  } catch (const Error& e) {
+    return report_error(e.what());
+  }
+  const int code = run(argc, argv, *world);
+  // Rank 0 speaks for the job: the other ranks' failures reached it in messages.
+  if (!world->finalize()) return 1;
+  return world->rank() == 0 ? code : 0;
 }

@@ -9,6 +9,7 @@ packages=(
   libembree-dev libopenexr-dev libnanoflann-dev
   nlohmann-json3-dev libtinyobjloader-dev libpng-dev libcli11-dev libeigen3-dev
   libgtest-dev
+  libopenmpi-dev openmpi-bin
   python3-numpy python3-matplotlib
 )
 

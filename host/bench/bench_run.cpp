@@ -53,13 +53,13 @@ BenchRun bench_on_devices(const LoadedBenchScene& s, const std::string& integrat
   run.shadow_rays = film.tally(kShadowRays);
   run.gather_queries = film.tally(kGatherQueries);
   // Device time and memory add over the devices (launches overlap in time across devices).
-  for (size_t d = 0; d < job.devices(); ++d) {
+  for (size_t d = 0; d < job.local_devices(); ++d) {
     Integrator& lane = job.integrator(d);
     run.device_seconds += lane.device_seconds();
     run.device_memory_bytes += devices[d].scene.data().bytes() + job.device_film(d).table_bytes();
     for (const auto& [what, bytes] : lane.device_buffers()) run.device_memory_bytes += bytes;
   }
-  run.host_seconds = std::max(0.0, run.seconds - run.device_seconds / job.devices());
+  run.host_seconds = std::max(0.0, run.seconds - run.device_seconds / job.local_devices());
   run.build_options = in.build_options();
   run.validation = validate_image(film.image(), s.reference, s.bench->bound);
   run.host_memory_bytes = peak_resident_memory_bytes();

@@ -11,6 +11,9 @@
 #include "film/film.h"
 #include "image/exr_io.h"
 #include "image/png_preview.h"
+#include "mpi/mpi_world.h"
+#include "mpi/remote_ranks.h"
+#include "mpi/render_server.h"
 #include "render/render_job.h"
 #include "shared_types.h"
 #include "study/convergence_log.h"
@@ -44,7 +47,21 @@ int run_render(const RenderArgs& a) {
     check_reference_size(*options.reference, scene.camera.width, scene.camera.height);
   }
   DeviceSet devices(a.device);
-  RenderJob job(devices.upload(scene), scene, a.integrator, a.settings, a.spectral);
+  std::vector<RenderLane> lanes = devices.upload(scene);
+  // Under mpirun the other ranks' devices join as lanes, after this rank's own.
+  std::unique_ptr<RemoteRanks> remote;
+  if (MpiWorld::get().several())
+    remote = std::make_unique<RemoteRanks>(a.integrator, render_fingerprint(a));
+  RenderJob job(lanes, scene, a.integrator, a.settings, a.spectral,
+                remote ? remote->lanes() : std::vector<Integrator*>{});
+  std::vector<std::string> names;
+  for (size_t d = 0; d < devices.size(); ++d) names.push_back(devices[d].info().name);
+  std::string where = devices.names();
+  if (remote) {
+    for (const auto& lane : remote->devices()) names.push_back(lane->description());
+    where += " and " + std::to_string(remote->devices().size()) + " devices of " +
+             std::to_string(MpiWorld::get().size() - 1) + " more ranks";
+  }
   RenderSummary summary = job.run(options);
   const Film& film = job.film();
   Image image = film.image();
@@ -56,7 +73,7 @@ int run_render(const RenderArgs& a) {
   outputs.commit();
   std::fprintf(stderr, "wrote %s%s%s: %d passes, %lld samples per pixel, %.2f s on %s\n",
                a.output.c_str(), a.png.empty() ? "" : " and ", a.png.c_str(), summary.passes,
-               film.samples_per_pixel(), summary.seconds, devices.names().c_str());
+               film.samples_per_pixel(), summary.seconds, where.c_str());
   // Where a pass's time went, for integrators that time their stages ("time: <stage> (s)").
   double total = 0;
   std::string shares;
@@ -72,9 +89,9 @@ int run_render(const RenderArgs& a) {
     for (size_t d = 0; d < job.devices(); ++d) work += film.tally(device_work_tally(d));
     std::string each;
     for (size_t d = 0; d < job.devices(); ++d)
-      each += (d ? ", " : "") + std::to_string(d) + " (" + devices[d].info().name + ") " +
-              std::to_string(static_cast<int>(std::lround(100 * film.tally(device_work_tally(d)) /
-                                                           std::max(work, 1e-300)))) +
+      each += (d ? ", " : "") + std::to_string(d) + " (" + names[d] + ") " +
+              std::to_string(static_cast<int>(
+                  std::lround(100 * film.tally(device_work_tally(d)) / std::max(work, 1e-300)))) +
               " %";
     std::fprintf(stderr, "work per device: %s\n", each.c_str());
   }

@@ -54,6 +54,11 @@ void set_interrupt_message_fd(int fd) {
   g_message_fd = fd;
 }
 
+void request_interrupt() {
+  int none = 0;
+  g_requests.compare_exchange_strong(none, 1);  // a signal's count stays as it is
+}
+
 bool interrupt_requested() {
   return g_requests > 0;
 }

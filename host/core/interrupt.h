@@ -14,6 +14,8 @@ void install_exit_on_interrupt();
 // For the commands that poll interrupt_requested().
 void install_interrupt_handler();
 bool interrupt_requested();
+// Raises the flag as a signal would: an MPI rank told by rank 0 that the job was interrupted.
+void request_interrupt();
 // Where the handler writes `kasha: interrupted` (default 2): the original stderr while fd 2 is
 // held elsewhere (a kernel build's compiler output).
 void set_interrupt_message_fd(int fd);

@@ -16,8 +16,9 @@ static const std::string& lit(const Scene& scene, const DeviceScene& device_scen
 
 RenderJob::RenderJob(const std::vector<RenderLane>& lanes, const Scene& scene,
                      const std::string& integrator, const IntegratorSettings& settings,
-                     bool spectral_film)
-    : film_(scene.camera.width, scene.camera.height, scene.grid, spectral_film) {
+                     bool spectral_film, const std::vector<Integrator*>& remote)
+    : film_(scene.camera.width, scene.camera.height, scene.grid, spectral_film),
+      remote_(remote.size()) {
   if (lanes.empty()) throw Error("render: no device to render on");
   lit(scene, lanes[0].scene, integrator);
   for (const RenderLane& lane : lanes) {
@@ -26,9 +27,10 @@ RenderJob::RenderJob(const std::vector<RenderLane>& lanes, const Scene& scene,
         integrator,
         IntegratorSetup{lane.cl, scene, lane.scene, *device_films_.back(), film_, settings}));
   }
-  if (integrators_.size() == 1) return;
+  if (devices() == 1) return;
   std::vector<Integrator*> others;
   for (size_t i = 1; i < integrators_.size(); ++i) others.push_back(integrators_[i].get());
+  others.insert(others.end(), remote.begin(), remote.end());
   if (integrators_[0]->independent_passes()) {
     std::vector<Integrator*> all{integrators_[0].get()};
     all.insert(all.end(), others.begin(), others.end());

@@ -22,6 +22,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/warning.h"
+#include "integrators/photon/photon_chunks.h"
 #include "integrators/photon/photon_gather.h"
 #include "integrators/photon/photon_records.h"
 #include "opencl/device_buffer.h"
@@ -60,7 +61,7 @@ constexpr int kCoverageProbes = 4;
 // their edges converge with them while photon tracing dominates the pass (README).
 constexpr int kDefaultCameraSamples = 8;
 
-class PhotonMapIntegrator : public KernelIntegrator {
+class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
  public:
   explicit PhotonMapIntegrator(const IntegratorSetup& s)
       : KernelIntegrator(s, "photon_map.cl"),
@@ -213,15 +214,19 @@ class PhotonMapIntegrator : public KernelIntegrator {
 
   bool independent_passes() const override { return false; }
 
-  // Several devices: the others' instances trace and gather chunks of each pass's photons.
+  // Several devices: the others' instances (or their proxies on other MPI ranks) trace and
+  // gather chunks of each pass's photons.
   void set_helpers(const std::vector<Integrator*>& helpers) override {
     helpers_.clear();
     for (Integrator* h : helpers) {
-      auto* p = dynamic_cast<PhotonMapIntegrator*>(h);
+      auto* p = dynamic_cast<ChunkWorker*>(h);
       if (!p) throw Error("photon: a helper device runs another integrator");
       helpers_.push_back(p);
     }
   }
+
+  size_t chunk_capacity() const override { return capacity_; }
+  void set_chunk_control(const PassControl& control) override { set_control(control); }
 
   long long camera_paths_per_pass() const override {
     return static_cast<long long>(film_.pixels()) * spp_;
@@ -272,31 +277,13 @@ class PhotonMapIntegrator : public KernelIntegrator {
          " is below 1/100 of a pixel's footprint at the visible points; using that");
   }
 
-  // What the camera pass left for the helpers: visible points, radii and the grid's cell size.
-  struct PassInputs {
-    std::vector<float> visible_points, radius, cell;
-  };
-
-  // The gather of some of a pass's photons: per pixel Σ K·Φ (pixels × rows) and the count, with
-  // what tracing them took.
-  struct ChunkResult {
-    std::vector<double> flux;
-    std::vector<int> found;
-    double traced = 0, records = 0, cut = 0, trace_s = 0, gather_s = 0;
-    double overflows = 0;   // ranges traced again in halves
-    double gathers = 0;     // gathers of a store: each queries every visible point
-    double closest_rays = 0, shadow_rays = 0;
-    double per_photon = 0;  // the most records a photon of a whole range stored
-    std::map<std::string, double> work;  // photons traced per device, with several
-  };
-
   // Photons per chunk: a pass's photons are traced and gathered in chunks of fixed photon ranges,
   // whichever device takes each, and the chunks' gathers add up in chunk order — so one device
   // or several give the same image, bit for bit. A chunk's records fit the smallest store with a
   // margin, as far as measured (a chunk that overflows is traced again in halves).
   size_t chunk_photons() const {
     size_t capacity = capacity_;
-    for (const PhotonMapIntegrator* h : helpers_) capacity = std::min(capacity, h->capacity_);
+    for (const ChunkWorker* h : helpers_) capacity = std::min(capacity, h->chunk_capacity());
     const size_t fit = static_cast<size_t>(static_cast<double>(capacity) / (per_photon_ * 1.25));
     return std::clamp<size_t>(fit, 1, base_chunk_photons());
   }
@@ -339,11 +326,12 @@ class PhotonMapIntegrator : public KernelIntegrator {
       }
     };
     std::vector<double> work_done(helpers_.size() + 1, 0.0);
-    auto work = [&](PhotonMapIntegrator& lane, size_t index) {
+    // Every worker's deadline is this pass's (its control's), so it is checked here for all.
+    auto work = [&](ChunkWorker& lane, size_t index) {
       for (size_t c; (c = next++) < chunks;) {
         const size_t first = c * chunk;
         ChunkResult result;
-        if (c == 0 || !lane.control_.stop_now())
+        if (c == 0 || !control_.stop_now())
           result = lane.trace_chunk(pass, first, std::min(chunk, photons - first), progress);
         std::lock_guard<std::mutex> lock(mutex);
         work_done[index] += result.traced;
@@ -357,9 +345,9 @@ class PhotonMapIntegrator : public KernelIntegrator {
     quiet.progress = nullptr;  // progress is this thread's to show
     for (size_t i = 0; i < helpers_.size(); ++i)
       threads.emplace_back([&, i] {
-        PhotonMapIntegrator* h = helpers_[i];
+        ChunkWorker* h = helpers_[i];
         try {
-          h->set_control(quiet);
+          h->set_chunk_control(quiet);
           h->take_inputs(inputs);
           work(*h, i + 1);
         } catch (...) {
@@ -389,7 +377,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
   }
 
   // A helper's copy of the main device's visible points, radii and cell size for this pass.
-  void take_inputs(const PassInputs& in) {
+  void take_inputs(const PassInputs& in) override {
     if (host_gather_) {
       vps_host_ = in.visible_points;
       radius_host_ = in.radius;
@@ -405,7 +393,8 @@ class PhotonMapIntegrator : public KernelIntegrator {
 
   // Traces and gathers photons [first, first + count) on this device; `progress` counts the
   // photons traced on every device (the main one shows it).
-  ChunkResult trace_chunk(int pass, size_t first, size_t count, std::atomic<size_t>& progress) {
+  ChunkResult trace_chunk(int pass, size_t first, size_t count,
+                          std::atomic<size_t>& progress) override {
     const size_t pixels = film_.pixels(), rows = film_.rows();
     ChunkResult c;
     if (host_gather_) {
@@ -570,7 +559,7 @@ class PhotonMapIntegrator : public KernelIntegrator {
   size_t cells_ = 0;  // the grid's hash table
   int passes_ = 0;
   double per_photon_ = 4;  // records per photon, as measured: the store holds ~4 for ordinary albedos
-  std::vector<PhotonMapIntegrator*> helpers_;  // the other devices' instances
+  std::vector<ChunkWorker*> helpers_;  // the other devices' instances, or remote proxies
   LaunchPacer pacer_{0.2, 256};  // in photons: the first launch is small, as paths may be long
   std::vector<float> vps_host_, radius_host_, photons_host_;  // --gather host
   cl::Kernel photon_kernel_, camera_kernel_, cell_size_kernel_, count_kernel_, scan_kernel_,

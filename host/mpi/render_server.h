@@ -1,0 +1,19 @@
+#pragma once
+// What ranks > 0 run for `mpirun … kasha render …`: the same command line's scene (read from the
+// same path: the ranks share a file system) on this rank's own --device list, one RenderJob per
+// device, and a thread per device answering rank 0's requests on the device's tag (mpi/
+// remote_lane.h) until rank 0 says stop. The rank writes nothing and prints nothing: a failure
+// goes to rank 0 as one line, in the hello or in the answer to the request that failed.
+#include "cli/render_command.h"
+
+namespace kasha {
+
+// Returns once rank 0 has said stop: 0, as a rank's failure is rank 0's to report.
+int serve_render(const RenderArgs& args);
+
+// What a render's image depends on, as text: the scene's path, the integrator and every setting
+// but --device and --memory (a device's own). Rank 0 refuses a rank whose differs — mpirun's MPMD
+// form could give one another command line — as its passes would not add up to rank 0's image.
+std::string render_fingerprint(const RenderArgs& args);
+
+}  // namespace kasha
