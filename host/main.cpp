@@ -310,11 +310,18 @@ static int run(int argc, char** argv, const MpiWorld& world) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
+    if (world.rank() > 0 && e.get_exit_code() != 0)
+      refuse_render("its command line: " + parse_error_line(app, e));
     return exit_for_parse_error(app, e);
   }
-  if (world.rank() > 0) return app.got_subcommand("render") ? serve_render(r) : 0;
-  if (world.several() && !app.got_subcommand("render"))
-    warn(app.get_subcommands().front()->get_name() + " runs on rank 0 alone under MPI; " +
+  const std::string command = app.get_subcommands().front()->get_name();
+  if (world.rank() > 0) {
+    if (command == "render") return serve_render(r);
+    refuse_render("it runs kasha " + command + ", not render");
+    return 0;
+  }
+  if (world.several() && command != "render")
+    warn(command + " runs on rank 0 alone under MPI; " +
          (world.size() == 2 ? std::string("the other rank waits")
                             : "the other " + std::to_string(world.size() - 1) + " ranks wait") +
          " for it");

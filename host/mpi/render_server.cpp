@@ -97,6 +97,12 @@ void serve_device(int tag, Integrator& integrator) {
 
 }  // namespace
 
+void refuse_render(const std::string& why) {
+  mpi::Hello hello;
+  hello.error = why;
+  send(mpi::kHelloTag, mpi::encode(hello));
+}
+
 std::string render_fingerprint(const RenderArgs& a) {
   const IntegratorSettings& s = a.settings;
   std::string text = a.scene + "|" + a.lamp + "|" + a.integrator + "|" + (a.spectral ? "1" : "0");

@@ -11,6 +11,10 @@ namespace kasha {
 // Returns once rank 0 has said stop: 0, as a rank's failure is rank 0's to report.
 int serve_render(const RenderArgs& args);
 
+// A rank > 0 that will not serve a render (its command line failed to parse, or names another
+// command) says so in its hello, in case rank 0 renders and waits for it; `why` is one line.
+void refuse_render(const std::string& why);
+
 // What a render's image depends on, as text: the scene's path, the integrator and every setting
 // but --device and --memory (a device's own). Rank 0 refuses a rank whose differs — mpirun's MPMD
 // form could give one another command line — as its passes would not add up to rank 0's image.
