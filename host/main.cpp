@@ -361,6 +361,9 @@ int main(int argc, char** argv) {
   } catch (const Error& e) {
     return report_error(e.what());
   }
+  // Ranks > 0 end when rank 0 says so: a signal (mpirun's SIGTERM on Ctrl-C) only raises the flag
+  // their work and rank 0's questions see (mpi/rank_control.h), lest they vanish unanswering.
+  if (world->rank() > 0) install_interrupt_handler();
   const int code = run(argc, argv, *world);
   // Rank 0 speaks for the job: the other ranks' failures reached it in messages.
   if (!world->finalize()) return 1;
