@@ -168,7 +168,7 @@ TEST(Mpi, InterruptOnRankZeroWritesTheImageSoFar) {
   SKIP_WITHOUT_MPI();
   const std::string out = (kasha::test::scratch_dir() / "interrupted.exr").string();
   const std::string args = render_args("--integrator backward --spp 1 --passes 100000", out);
-  Shell r = shell(mpirun() + " -np 1 timeout --preserve-status -s INT 4 " + KASHA_BINARY + " " +
+  Shell r = shell(mpirun() + " -np 1 timeout --preserve-status -s INT 6 " + KASHA_BINARY + " " +
                   args + " : -np 2 " + KASHA_BINARY + " " + args);
   EXPECT_EQ(r.exit_code, 130) << r.err;
   EXPECT_NE(r.err.find("interrupted: writing the image after"), std::string::npos) << r.err;
