@@ -1,4 +1,4 @@
-// kasha: the command line of DESIGN §5.
+// kasha: the command line of docs/commands.md
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <memory>

@@ -1,4 +1,4 @@
-/* Backward Monte Carlo ray tracing (DESIGN §2.2): camera paths whose colour is a diagonal spectrum
+/* Backward Monte Carlo ray tracing (docs/design.md#backward-transport): camera paths whose colour is a diagonal spectrum
  * or, after a fluorescent bounce, a rank-1 factor (path_weight.h). At each vertex: emission,
  * next-event estimation to an emitting triangle (by solid angle where it subtends enough; MIS with
  * the branch that could have hit it), then one branch — gloss, passive, fluorescent — chosen in

@@ -1,6 +1,6 @@
 /* The choice of branch at a path vertex, shared by backward paths and photon mapping's camera
  * paths: gloss, passive or fluorescent in proportion to the energy each would bring to the film
- * under equal-energy light (DESIGN §2.2). */
+ * under equal-energy light (docs/design.md#backward-transport). */
 #ifndef KASHA_BRANCH_CHOICE_H
 #define KASHA_BRANCH_CHOICE_H
 

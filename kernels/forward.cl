@@ -1,4 +1,4 @@
-/* Forward Monte Carlo ray tracing (DESIGN §2.1) as light tracing: photons leave the lights, branch
+/* Forward Monte Carlo ray tracing (docs/design.md#forward-transport) as light tracing: photons leave the lights, branch
  * at each hit with constant energy (photon_transport.h), and every hit with a Lambert part is
  * connected to the pinhole camera and splatted to the film (film_splat.h). Each photon draws its
  * random numbers from a stream of its own index, so the image does not depend on how photons are

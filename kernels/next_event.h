@@ -1,4 +1,4 @@
-/* Next-event estimation (DESIGN §2.2): at a camera path's vertex, one point on an emitting
+/* Next-event estimation (docs/design.md#backward-transport): at a camera path's vertex, one point on an emitting
  * triangle (by solid angle where it subtends enough), its light through the surface's parts —
  * passive, fluorescent (K applied to the light's spectrum: rank-1 through ê aᵀ), the gloss lobe —
  * each weighed by MIS against the branch that could also have hit the light. Shared by backward

@@ -1,4 +1,4 @@
-/* The colour of a camera path (DESIGN §1): the linear map T from spectral radiance arriving at the
+/* The colour of a camera path (docs/design.md#why-transport-stays-compact): the linear map T from spectral radiance arriving at the
  * current vertex to the pixel's film rows. Diagonal mode T = C∘w (N values) until the first
  * fluorescent bounce, then rank-1 mode T = c bᵀ (R + N values, b kept at max 1). With
  * KASHA_FULL_MATRIX (a test-only reference) T is carried as the full R×N matrix instead.

@@ -1,4 +1,4 @@
-/* Bidirectional photon mapping (DESIGN §2.3), the two tracing passes; the grid, the gather and the
+/* Bidirectional photon mapping (docs/design.md#photon-mapping), the two tracing passes; the grid, the gather and the
  * SPPM statistics are in photon_gather.cl, in the same program.
  * Photon pass: photons as in forward transport, stored at every hit with a Lambert part (before
  * they scatter) after their first bounce — direct light at the visible points is next-event

@@ -1,4 +1,4 @@
-/* Photons from the lights (DESIGN §2.1): emission, and the one routine that decides what happens
+/* Photons from the lights (docs/design.md#forward-transport): emission, and the one routine that decides what happens
  * at a hit — constant-energy branching by the branch energies under the photon's spectrum. The
  * caller decides what to do at the hit (splat to the camera, or store in the photon map).
  * A photon's spectrum is its power per bin (W). */

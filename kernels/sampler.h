@@ -1,4 +1,4 @@
-/* Sample values for every sampled dimension (DESIGN §2.5). With KASHA_SOBOL (the default,
+/* Sample values for every sampled dimension (docs/design.md#samples). With KASHA_SOBOL (the default,
  * `--sampler sobol`) they come from Owen-scrambled Sobol points (Burley 2020, "Practical hash-based
  * Owen scrambling"): each dimension pair is the (0,2)-sequence of Sobol dimensions 0 and 1 with a
  * nested-uniform shuffle of the sample index and a nested-uniform scramble of each coordinate, all

@@ -1,4 +1,4 @@
-/* The factor K of a photon-mapping visible point (DESIGN §2.3), shared by host and kernels: it maps
+/* The factor K of a photon-mapping visible point (docs/design.md#photon-mapping), shared by host and kernels: it maps
  * the power of a photon arriving there to the pixel's film rows,
  *     K = C∘d + c bᵀ     (d: N values; c: R values and b: N values in a fluorescent scene only),
  * stored in the visible-point record of photon_layout.h. vf_build makes it from a camera path's

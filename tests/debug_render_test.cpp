@@ -1,5 +1,6 @@
 // The first-hit kernel against geometry worked out by hand: an emitter covering a known part of
-// the image, seen from the front and from behind, through the camera conventions of DESIGN §5.
+// the image, seen from the front and from behind, through the camera conventions of
+// docs/formats.md#scenes
 #include <gtest/gtest.h>
 
 #include <cmath>

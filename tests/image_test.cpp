@@ -1,5 +1,5 @@
-// Images: EXR channels, names and values as DESIGN §5 fixes them; the film; whole-or-nothing
-// writes.
+// Images: EXR channels, names and values as docs/formats.md#images fixes them; the film;
+// whole-or-nothing writes.
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>

@@ -43,7 +43,8 @@ std::string scene_json(const std::string& material = R"({"passive": {"reflectanc
          shape + "]}";
 }
 
-// An EEM in the layout of DESIGN §5 from a function of (emission, excitation) wavelengths.
+// An EEM in the layout of docs/formats.md#measurement-csv from a function of (emission, excitation)
+// wavelengths.
 std::string eem_csv(const std::vector<double>& ex, const std::vector<double>& em,
                     const std::function<double(double, double)>& value) {
   std::string s = "em\\ex";

@@ -1,10 +1,11 @@
-// Every physical integrator in the registry against the analytic fluorescent furnace (DESIGN §1),
-// in every furnace scene, on the default 10 nm grid (from two cameras) and on a 1 nm grid over
-// 300–780 nm (480 bins). A new integrator is tested here by its registry line alone: its traits
-// say whether it is unbiased (its image mean within 4 standard errors and 1 % of the truth, with
-// passes until the standard error is 0.2 %) or consistent (within 2 % after a fixed number of
-// passes, with the per-pixel error falling over them), and whether it sees ideal mirrors from the
-// camera (light tracing cannot: it estimates (1 − g)·L in a mirror furnace).
+// Every physical integrator in the registry against the analytic fluorescent furnace
+// (docs/design.md#the-fluorescent-furnace), in every furnace scene, on the default 10 nm grid (from
+// two cameras) and on a 1 nm grid over 300–780 nm (480 bins). A new integrator is tested here by
+// its registry line alone: its traits say whether it is unbiased (its image mean within 4 standard
+// errors and 1 % of the truth, with passes until the standard error is 0.2 %) or consistent (within
+// 2 % after a fixed number of passes, with the per-pixel error falling over them), and whether it
+// sees ideal mirrors from the camera (light tracing cannot: it estimates (1 − g)·L in a mirror
+// furnace).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,7 +1,8 @@
-// Output safety (DESIGN §5, issue 13): every output path is checked before any work, no output
-// replaces an input, another output or a non-regular file, and a failed command leaves every file
-// as it was. Each case runs the binary on a tiny scene and compares the whole folder before and
-// after; the checks fail before any rendering, so no case waits for kernels.
+// Output safety (docs/commands.md#errors-and-exit-codes, issue 13): every output path is checked
+// before any work, no output replaces an input, another output or a non-regular file, and a failed
+// command leaves every file as it was. Each case runs the binary on a tiny scene and compares the
+// whole folder before and after; the checks fail before any rendering, so no case waits for
+// kernels.
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -267,7 +268,8 @@ TEST(OutputSafety, AWriteThatFailsAtTheFlushIsReported) {
 
 namespace {
 
-// An excitation–emission matrix in the CSV layout of DESIGN §5, reading(λo, λi).
+// An excitation–emission matrix in the CSV layout of docs/formats.md#measurement-csv, reading(λo,
+// λi).
 void write_eem(const fs::path& file, const std::vector<double>& ex,
                const std::function<double(double, double)>& reading) {
   std::ofstream out(file);

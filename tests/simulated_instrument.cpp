@@ -70,7 +70,7 @@ ExcitationEmissionMatrix Instrument::measure(const TrueMaterial& m,
   const bool etalon = !m.excitation;
   // Light leaving the sample at the detector's input, on a fine grid, before the emission
   // monochromator: reflection spread by the excitation band-pass, plus fluorescence excited by
-  // all of it (DESIGN §3, paper eq. 5–6), plus the grating's second order.
+  // all of it (docs/measurement.md#the-equations, paper eq. 5–6), plus the grating's second order.
   const double fine = 0.5;
   std::vector<double> grid;
   for (double l = em_nm.front() - 20; l <= em_nm.back() + 20; l += fine) grid.push_back(l);

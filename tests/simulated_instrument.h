@@ -51,7 +51,7 @@ std::string write_instrument_files(const std::string& dir, const Instrument& in,
 double gaussian(double x, double center, double fwhm);
 // A normalized gaussian emission (∫ = 1).
 SpectralFunction emission_gaussian(double center, double fwhm);
-// Writes an EEM in the CSV layout of DESIGN §5.
+// Writes an EEM in the CSV layout of docs/formats.md#measurement-csv
 void write_eem_csv(const std::string& path, const ExcitationEmissionMatrix& m);
 
 }  // namespace kasha::test

@@ -1,13 +1,13 @@
-// Stiff and extreme cases (issue 12, DESIGN §6), table-driven: each case is a generated scene that
-// every physical integrator of the registry renders, checked against the analytic furnace where
-// the scene is one (or has a furnace twin: the same enclosure as an OBJ), else against the same
-// integrator on the untransformed scene (translated far away, a tiny lamp against an ordinary one
-// of the same power). Unbiased integrators render passes until the image mean's standard error
-// (from the spread of the passes, so pixels that share photons do not fake precision) reaches a
-// target, then every lit row must be within 4 standard errors and 1 %; photon mapping renders a
-// fixed number of passes and must be within a few per cent. Every render: finite pixels, no
-// rejected sample, no depth-guard cut above 1e-4. Most cases share a 40-bin spectral film, so the
-// catalogue compiles few kernel variants.
+// Stiff and extreme cases (issue 12, docs/stiff-cases.md), table-driven: each case is a generated
+// scene that every physical integrator of the registry renders, checked against the analytic
+// furnace where the scene is one (or has a furnace twin: the same enclosure as an OBJ), else
+// against the same integrator on the untransformed scene (translated far away, a tiny lamp against
+// an ordinary one of the same power). Unbiased integrators render passes until the image mean's
+// standard error (from the spread of the passes, so pixels that share photons do not fake
+// precision) reaches a target, then every lit row must be within 4 standard errors and 1 %; photon
+// mapping renders a fixed number of passes and must be within a few per cent. Every render: finite
+// pixels, no rejected sample, no depth-guard cut above 1e-4. Most cases share a 40-bin spectral
+// film, so the catalogue compiles few kernel variants.
 #include <gtest/gtest.h>
 
 #include <algorithm>

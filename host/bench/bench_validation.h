@@ -13,7 +13,8 @@ namespace kasha {
 constexpr int kValidationBlock = 16;
 
 struct Validation {
-  double rel_mse = 0;        // per pixel, as the convergence log's relmse (DESIGN §5)
+  double rel_mse =
+      0;  // per pixel, as the convergence log's relmse (docs/formats.md#convergence-log)
   double block_rel_mse = 0;  // the same over kValidationBlock² block averages
   double bound = 0;
   bool finite = true;

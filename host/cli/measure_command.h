@@ -1,5 +1,6 @@
 #pragma once
-// `kasha measure`: fluorimeter or bispectral data to a material file (DESIGN §3, §5).
+// `kasha measure`: fluorimeter or bispectral data to a material file
+// (docs/measurement.md#the-equations, docs/formats.md#material-files).
 #include <string>
 
 namespace kasha {

@@ -24,7 +24,8 @@ struct AsIsMaterial {
 AsIsMaterial as_is_material(const Material& material, const std::vector<double>& lamp,
                             const WavelengthGrid& grid, const std::string& lamp_label);
 
-// A material file (DESIGN §5) with the reflectance and, in "diagnostics", where it came from.
+// A material file (docs/formats.md#material-files) with the reflectance and, in "diagnostics",
+// where it came from.
 void write_as_is_material(const std::string& path, const AsIsMaterial& as_is,
                           const std::string& source);
 

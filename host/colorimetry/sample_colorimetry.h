@@ -51,9 +51,10 @@ struct Colorimetry {
   std::optional<AsIsMaterial> as_is;
 };
 
-// One grid for every illuminant: `bin_nm` bins over 380–780 nm, extended down (DESIGN §1) to the
-// shortest wavelength at which some illuminant (or the as-is lamp) emits and the material is
-// excited. Throws kasha::Error for an illuminant the observer cannot see at all.
+// One grid for every illuminant: `bin_nm` bins over 380–780 nm, extended down
+// (docs/design.md#the-wavelength-grid) to the shortest wavelength at which some illuminant (or the
+// as-is lamp) emits and the material is excited. Throws kasha::Error for an illuminant the observer
+// cannot see at all.
 Colorimetry evaluate_colorimetry(const ColorimetryRequest& request);
 
 // XYZ of the radiance `leaving` a surface under `lamp` (both per bin), scaled so that a perfect

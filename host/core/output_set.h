@@ -1,10 +1,10 @@
 #pragma once
-// The outputs of one command (DESIGN §5). Every output path is checked before any work: its
-// folder exists and is writable, it is not a directory, a link, a device or another non-regular
-// file, nor under /proc or /sys, and it is none of the command's inputs nor another of its
-// outputs (after resolving links). Outputs are written to temporaries beside their targets and
-// renamed into place together by commit(), only once all of them are complete; whatever was not
-// committed is removed, so a failed command leaves no file written or changed.
+// The outputs of one command (docs/commands.md#errors-and-exit-codes). Every output path is checked
+// before any work: its folder exists and is writable, it is not a directory, a link, a device or
+// another non-regular file, nor under /proc or /sys, and it is none of the command's inputs nor
+// another of its outputs (after resolving links). Outputs are written to temporaries beside their
+// targets and renamed into place together by commit(), only once all of them are complete; whatever
+// was not committed is removed, so a failed command leaves no file written or changed.
 #include <functional>
 #include <memory>
 #include <string>

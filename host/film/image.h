@@ -1,6 +1,6 @@
 #pragma once
-// A finished image: per-pixel XYZ (DESIGN §5 convention, no 683 factor) and, for a spectral film,
-// per-bin radiance. Linear sRGB is derived from XYZ when written.
+// A finished image: per-pixel XYZ (docs/formats.md#images convention, no 683 factor) and, for a
+// spectral film, per-bin radiance. Linear sRGB is derived from XYZ when written.
 #include <string>
 #include <vector>
 

@@ -1,6 +1,6 @@
 #pragma once
-// OpenEXR images as DESIGN §5 fixes them: linear sRGB channels R, G, B; an XYZ layer (XYZ.X,
-// XYZ.Y, XYZ.Z); with a spectral film, one channel per bin named after the spectral OpenEXR
+// OpenEXR images as docs/formats.md#images fixes them: linear sRGB channels R, G, B; an XYZ layer
+// (XYZ.X, XYZ.Y, XYZ.Z); with a spectral film, one channel per bin named after the spectral OpenEXR
 // layout (Fichet, Pacanowski, Wilkie, JCGT 2021): "S0.555,000000nm", radiance in W·m⁻²·sr⁻¹·nm⁻¹.
 #include <map>
 #include <string>

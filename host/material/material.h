@@ -1,7 +1,7 @@
 #pragma once
-// The surface model of DESIGN §1: white gloss lobe + coloured Lambert passive part + Lambert
-// fluorescent part e(λo)·a(λi)/π. MaterialDesc is the continuous description as read;
-// Material is the same on a wavelength grid, checked for energy conservation.
+// The surface model of docs/design.md#the-surface-model: white gloss lobe + coloured Lambert
+// passive part + Lambert fluorescent part e(λo)·a(λi)/π. MaterialDesc is the continuous description
+// as read; Material is the same on a wavelength grid, checked for energy conservation.
 #include <optional>
 #include <string>
 #include <vector>

@@ -1,7 +1,8 @@
 #pragma once
-// Excitation–emission matrices as DESIGN §5 lays them out: first row a label then the excitation
-// wavelengths λi; each further row an emission wavelength λo then the readings R(λo; λi). Also
-// read from JASCO 3-D exports, whose first XYDATA row holds the excitation wavelengths.
+// Excitation–emission matrices as docs/formats.md#measurement-csv lays them out: first row a label
+// then the excitation wavelengths λi; each further row an emission wavelength λo then the readings
+// R(λo; λi). Also read from JASCO 3-D exports, whose first XYDATA row holds the excitation
+// wavelengths.
 #include <Eigen/Dense>
 #include <string>
 #include <vector>

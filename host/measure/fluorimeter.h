@@ -1,6 +1,6 @@
 #pragma once
 // From a fluorimeter's excitation–emission matrices of a sample and of a white diffuse reference
-// (the etalon) to a material, by the corrected equations of DESIGN §3:
+// (the etalon) to a material, by the corrected equations of docs/measurement.md#the-equations:
 //   ρ(λi)       = ρ_e(λi) · (R̄(λi) − fluorescence inside the band) / R̄_e(λi)
 //   f^f(λo, λi) = f_e(λi) · R(λo; λi) / R̄_e(λi) · C(λi)/C(λo),   |λo − λi| > ε
 //   a(λi)       = π ∫ f^f dλo,   e(λo) the emission shape, from the best non-negative rank-1 fit.

@@ -1,5 +1,6 @@
 #pragma once
-// Writes a measured material as a kasha material file (DESIGN §5), diagnostics included.
+// Writes a measured material as a kasha material file (docs/formats.md#material-files), diagnostics
+// included.
 #include <string>
 
 #include "measure/measured_material.h"

@@ -1,6 +1,6 @@
 #pragma once
 // Kernel programs built at run time from the sources compiled into the binary, with per-scene
-// preprocessor definitions (DESIGN §4).
+// preprocessor definitions (docs/architecture.md).
 #include <map>
 #include <string>
 #include <vector>

@@ -1,6 +1,6 @@
 #pragma once
-// Pinhole camera of DESIGN §5: fov_deg spans the shorter image side, row 0 is the top, the image's
-// right is forward × up.
+// Pinhole camera of docs/formats.md#scenes: fov_deg spans the shorter image side, row 0 is the top,
+// the image's right is forward × up.
 #include <array>
 
 #include "core/json_node.h"

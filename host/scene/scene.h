@@ -1,6 +1,6 @@
 #pragma once
-// A scene as loaded from its JSON file (DESIGN §5): camera, materials on the chosen wavelength
-// grid, and every shape turned into triangles.
+// A scene as loaded from its JSON file (docs/formats.md#scenes): camera, materials on the chosen
+// wavelength grid, and every shape turned into triangles.
 #include <optional>
 #include <string>
 #include <vector>

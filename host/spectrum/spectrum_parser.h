@@ -1,6 +1,6 @@
 #pragma once
-// The spectrum value of DESIGN §5: a number, a built-in name, or an object form with optional
-// scale.
+// The spectrum value of docs/formats.md#spectrum-values: a number, a built-in name, or an object
+// form with optional scale.
 #include <string>
 #include <vector>
 

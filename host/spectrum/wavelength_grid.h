@@ -35,8 +35,9 @@ struct GridRequest {
   double min_nm = -1, max_nm = -1, bin_nm = 10.0;
 };
 
-// The automatic range of DESIGN §1: the visible range, extended down to the shortest wavelength
-// at which some emitter emits and some material is excited, on bin edges aligned with 380 nm.
+// The automatic range of docs/design.md#the-wavelength-grid: the visible range, extended down to
+// the shortest wavelength at which some emitter emits and some material is excited, on bin edges
+// aligned with 380 nm.
 WavelengthGrid choose_grid(const GridRequest& request, const std::vector<SpectralSupport>& emitters,
                            const std::vector<SpectralSupport>& excitations);
 

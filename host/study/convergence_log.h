@@ -1,5 +1,5 @@
 #pragma once
-// The convergence log of DESIGN §5: a row after every pass.
+// The convergence log of docs/formats.md#convergence-log: a row after every pass.
 //   integrator,pass,seconds,camera_paths,photons,rmse,relmse
 #include <string>
 #include <vector>

@@ -1,7 +1,7 @@
 #pragma once
-// The analytic fluorescent furnace of DESIGN §1: a closed enclosure whose inside is one uniform
-// material (passive ρ, fluorescent ê aᵀ, no gloss or an ideal mirror of reflectance g) emitting the
-// same Lambertian radiance Le everywhere has uniform radiance
+// The analytic fluorescent furnace of docs/design.md#the-fluorescent-furnace: a closed enclosure
+// whose inside is one uniform material (passive ρ, fluorescent ê aᵀ, no gloss or an ideal mirror of
+// reflectance g) emitting the same Lambertian radiance Le everywhere has uniform radiance
 //   L = B⁻¹Le + B⁻¹ê · (aᵀB⁻¹Le) / (1 − aᵀB⁻¹ê),   B = diag(1 − g − ρ).
 #include <string>
 #include <vector>

@@ -1,6 +1,7 @@
 #pragma once
-// Error of an image against a reference, as the convergence log reports it (DESIGN §5): RMSE over
-// all pixels and X, Y, Z; relMSE = mean of (x − r)² / (r² + 0.01).
+// Error of an image against a reference, as the convergence log reports it
+// (docs/formats.md#convergence-log): RMSE over all pixels and X, Y, Z; relMSE = mean of (x − r)² /
+// (r² + 0.01).
 #include <vector>
 
 #include "film/image.h"

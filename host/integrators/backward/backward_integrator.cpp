@@ -1,6 +1,6 @@
-// `--integrator backward`: the OpenCL camera path tracer of kernels/backward.cl (DESIGN §2.2).
-// A pass is `spp` paths per pixel; the kernel's work items own their pixels and add to the film's
-// per-pixel sums, over launches of bounded work.
+// `--integrator backward`: the OpenCL camera path tracer of kernels/backward.cl
+// (docs/design.md#backward-transport). A pass is `spp` paths per pixel; the kernel's work items own
+// their pixels and add to the film's per-pixel sums, over launches of bounded work.
 #include <algorithm>
 #include <chrono>
 

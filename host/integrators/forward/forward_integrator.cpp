@@ -1,7 +1,7 @@
-// `--integrator forward`: light tracing of kernels/forward.cl (DESIGN §2.1). A pass traces
-// `photons` photons carrying the lights' total power; their splats, added in 128-bit fixed point
-// (integrators/forward/fixed_point_film.h: exact, so independent of the order work items run in),
-// are one estimate of the image.
+// `--integrator forward`: light tracing of kernels/forward.cl (docs/design.md#forward-transport). A
+// pass traces `photons` photons carrying the lights' total power; their splats, added in 128-bit
+// fixed point (integrators/forward/fixed_point_film.h: exact, so independent of the order work
+// items run in), are one estimate of the image.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
