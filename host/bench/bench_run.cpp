@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/peak_memory.h"
 #include "render/render_job.h"
+#include "study/convergence_log.h"
 
 namespace kasha {
 
@@ -38,7 +39,8 @@ BenchRun bench_on_devices(const LoadedBenchScene& s, const std::string& integrat
   RenderOptions options;
   options.stop.seconds = seconds;
   options.show_progress = show_progress;
-  options.keep_log = true;  // rows without errors: the start-up comes from their times
+  ConvergenceLog log;  // rows without errors: the start-up comes from their times
+  options.observer = &log;
   RenderSummary summary = job.run(options);
   const Film& film = job.film();
   Integrator& in = job.integrator();
@@ -46,7 +48,7 @@ BenchRun bench_on_devices(const LoadedBenchScene& s, const std::string& integrat
   run.passes = summary.passes;
   run.interrupted = summary.interrupted;
   run.samples_per_pixel = film.samples_per_pixel();
-  run.startup_seconds = startup_seconds(summary.log);
+  run.startup_seconds = startup_seconds(log.rows());
   run.camera_paths = static_cast<double>(in.camera_paths_per_pass()) * film.work_passes();
   run.photons = static_cast<double>(in.photons_per_pass()) * film.work_passes();
   run.closest_rays = film.tally(kClosestRays);

@@ -1,12 +1,17 @@
-#include "cli/bench_command.h"
-
+// `kasha bench`: the fixed bench scenes × the physical integrators, each for a fixed time on each
+// listed device in turn (LuxMark-like): throughput, rays, time, memory and a validated image per
+// run, a score per device, a table on the terminal and optionally a JSON record.
 #include <algorithm>
 #include <cstdio>
 #include <memory>
+#include <string>
 
 #include "bench/bench_reference.h"
 #include "bench/bench_report.h"
 #include "bench/bench_run.h"
+#include "cli/command.h"
+#include "cli/command_line_errors.h"
+#include "cli/render_options.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/interrupt.h"
@@ -17,6 +22,15 @@
 #include "study/reference_image.h"
 
 namespace kasha {
+
+struct BenchArgs {
+  std::string device = "0";    // --device: an index, indices (0,1) or all
+  double seconds = 10;         // --time: per run
+  std::string json;            // --json: the record
+  std::string scenes;          // --scenes: the scenes folder (default: the source tree's)
+  double make_references = 0;  // > 0: render the references for this long each instead
+  std::string version;         // kasha's, for the record
+};
 
 namespace {
 
@@ -57,7 +71,7 @@ int make_references(int device, double seconds, const std::vector<LoadedBenchSce
 
 }  // namespace
 
-int run_bench_command(const BenchArgs& a) {
+static int run_bench_command(const BenchArgs& a) {
   install_interrupt_handler();
   OutputSet outputs;
   outputs.file("--json", a.json);
@@ -103,7 +117,8 @@ int run_bench_command(const BenchArgs& a) {
       if (!record.complete) break;
       s.scene = load_bench_scene(*s.bench, dir).scene;
       std::vector<BenchDevice> set;
-      for (const RenderLane& lane : device_set.upload(s.scene)) set.push_back({lane.cl, lane.scene});
+      for (const RenderLane& lane : device_set.upload(s.scene))
+        set.push_back({lane.cl, lane.scene});
       for (const std::string& integrator : bench_integrators(*s.bench)) {
         std::fprintf(stderr, "bench [%zu/%zu]: %s, %s, device %s (%s), %dx%d, %g s\n", ++done,
                      total, s.bench->name.c_str(), integrator.c_str(), label.c_str(),
@@ -139,5 +154,31 @@ int run_bench_command(const BenchArgs& a) {
                 first->validation.why);
   return 0;
 }
+
+static Command::Action declare_bench(CLI::App& app) {
+  auto a = std::make_shared<BenchArgs>();
+  a->version = KASHA_VERSION;
+  app.add_option("--device", a->device,
+                 "OpenCL device index, indices (0,1) or all, each benchmarked in turn (default 0)")
+      ->check(cli::device_list());
+  app.add_option("--time", a->seconds, "rendering seconds per run (default 10)")
+      ->check(cli::positive_number(cli::kMaxSeconds));
+  CLI::Option* json = app.add_option("--json", a->json, "the record as JSON");
+  app.add_option("--scenes", a->scenes,
+                 "the folder holding the bench scenes and scenes/bench/ references (default: the "
+                 "source tree's scenes/)");
+  app.add_option("--make-references", a->make_references,
+                 "instead of benchmarking, render the bench scenes' reference images for this "
+                 "many seconds each (the reference integrator, first listed device)")
+      ->check(cli::positive_number(cli::kMaxSeconds))
+      ->excludes(json);
+  return [a] { return run_bench_command(*a); };
+}
+
+KASHA_REGISTER_COMMAND(
+    bench, "bench",
+    "fixed scenes × the physical integrators for a fixed time on each device: throughput, rays, "
+    "time, memory, a validated image per run and a score per device",
+    12, false, declare_bench);
 
 }  // namespace kasha

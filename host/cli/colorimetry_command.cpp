@@ -1,10 +1,15 @@
-#include "cli/colorimetry_command.h"
-
+// `kasha colorimetry`: a material's total radiance factor, XYZ, CIELAB and CIE whiteness/tint under
+// each illuminant, and ΔE2000 against its "as is" material.
 #include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
 
+#include "cli/command.h"
+#include "cli/command_line_errors.h"
 #include "colorimetry/colorimetry_report.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -13,6 +18,13 @@
 #include "spectrum/spectrum_argument.h"
 
 namespace kasha {
+
+struct ColorimetryArgs {
+  std::string material, json, csv, plot, as_is, write_as_is;
+  std::vector<std::string> illuminants;  // default: D65
+  int observer = 2;                      // 2 or 10 (degrees)
+  double bin_nm = 10;
+};
 
 namespace fs = std::filesystem;
 
@@ -33,7 +45,7 @@ static void write_plot(const std::string& path, const std::string& who,
   fs::remove_all(scratch);
 }
 
-int run_colorimetry(const ColorimetryArgs& a) {
+static int run_colorimetry(const ColorimetryArgs& a) {
   OutputSet outputs;
   outputs.input(a.material, "the material file");
   for (const std::string& text : a.illuminants) outputs.input(text, "the --illuminant file");
@@ -77,5 +89,31 @@ int run_colorimetry(const ColorimetryArgs& a) {
   std::fputs(colorimetry_table(c, a.material).c_str(), stdout);
   return 0;
 }
+
+static Command::Action declare_colorimetry(CLI::App& app) {
+  auto col = std::make_shared<ColorimetryArgs>();
+  app.add_option("material", col->material, "material JSON file")->required();
+  app.add_option("--illuminant", col->illuminants,
+                 "a spectrum: built-in name (D65, A, F11, …), CSV file or JSON value; repeat for a "
+                 "table (default D65)");
+  app.add_option("--observer", col->observer, "CIE 1931 2° or CIE 1964 10° (default 2)")
+      ->check(cli::one_of({"2", "10"}));
+  app.add_option("--bin-nm", col->bin_nm, "wavelength bin width (default 10)")
+      ->check(cli::number_within(0.1, 100.0));
+  app.add_option("--as-is", col->as_is,
+                 "compare with the material taken \"as is\": its radiance factor under this lamp "
+                 "as a plain reflectance (ΔE2000 per illuminant)");
+  app.add_option("--write-as-is", col->write_as_is,
+                 "write that \"as is\" material as a material file");
+  app.add_option("--json", col->json, "results as JSON");
+  app.add_option("--csv", col->csv, "results as CSV, a row per illuminant");
+  app.add_option("--plot", col->plot, "radiance factors as a PNG figure");
+  return [col] { return run_colorimetry(*col); };
+}
+
+KASHA_REGISTER_COMMAND(
+    colorimetry, "colorimetry",
+    "a material's total radiance factor, XYZ, CIELAB and CIE whiteness/tint under illuminants", 5,
+    false, declare_colorimetry);
 
 }  // namespace kasha

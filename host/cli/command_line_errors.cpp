@@ -320,23 +320,4 @@ int exit_for_parse_error(const CLI::App& app, const CLI::ParseError& e) {
   return kUsageExitCode;
 }
 
-std::string one_line(const std::string& message) {
-  std::string out;
-  for (size_t i = 0; i < message.size();) {
-    auto special = [&](size_t k) {
-      const unsigned char c = static_cast<unsigned char>(message[k]);
-      return c < 0x20 || c >= 0x7f;
-    };
-    size_t j = i;
-    while (j < message.size() && special(j)) ++j;
-    if (j == i) {
-      out += message[i++];
-    } else {  // a run of control or non-ASCII bytes: printable() escapes only what must be
-      out += printable(std::string_view(message).substr(i, j - i));
-      i = j;
-    }
-  }
-  return out;
-}
-
 }  // namespace kasha::cli

@@ -36,9 +36,5 @@ std::string parse_error_line(const CLI::App& app, const CLI::ParseError& e);
 // else as one error line on stderr (exit 2).
 int exit_for_parse_error(const CLI::App& app, const CLI::ParseError& e);
 
-// A message made safe for one line: control bytes and invalid UTF-8 escaped as \xNN (backslashes
-// left alone: parts of the message may already be escaped).
-std::string one_line(const std::string& message);
-
 }  // namespace cli
 }  // namespace kasha

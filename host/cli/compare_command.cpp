@@ -1,7 +1,12 @@
-#include "cli/compare_command.h"
-
+// `kasha compare IMAGE.exr REFERENCE.exr [--scene SCENE.json]`: the error of an image against a
+// reference as the convergence log measures it, and, given the scene, with the pixels that see an
+// emitter directly left out.
 #include <cstdio>
+#include <memory>
+#include <string>
 
+#include "cli/command.h"
+#include "cli/command_line_errors.h"
 #include "core/error.h"
 #include "image/exr_io.h"
 #include "study/emitter_pixels.h"
@@ -9,8 +14,8 @@
 
 namespace kasha {
 
-int run_compare(const std::string& image_path, const std::string& reference_path,
-                const std::string& scene_path) {
+static int run_compare(const std::string& image_path, const std::string& reference_path,
+                       const std::string& scene_path) {
   Image image = read_exr(image_path), reference = read_exr(reference_path);
   ImageError all = image_error(image, reference);
   std::printf("rmse %.6g relmse %.6g", all.rmse, all.relmse);
@@ -31,5 +36,20 @@ int run_compare(const std::string& image_path, const std::string& reference_path
   std::printf("\n");
   return 0;
 }
+
+static Command::Action declare_compare(CLI::App& app) {
+  struct Args {
+    std::string image, reference, scene;
+  };
+  auto a = std::make_shared<Args>();
+  app.add_option("image", a->image, "EXR to measure")->required();
+  app.add_option("reference", a->reference, "reference EXR")->required();
+  app.add_option("--scene", a->scene,
+                 "the scene: also report the error without the pixels that see an emitter");
+  return [a] { return run_compare(a->image, a->reference, a->scene); };
+}
+
+KASHA_REGISTER_COMMAND(compare, "compare", "error of an image against a reference", 10, false,
+                       declare_compare);
 
 }  // namespace kasha

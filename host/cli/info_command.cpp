@@ -1,7 +1,11 @@
-#include "cli/info_command.h"
-
+// `kasha info`: what a scene needs before it is rendered: its grid, features, geometry, kernel
+// build options, record sizes and a memory estimate.
 #include <cstdio>
+#include <memory>
+#include <string>
 
+#include "cli/command.h"
+#include "cli/command_line_errors.h"
 #include "integrators/photon/photon_records.h"
 #include "opencl/device.h"
 #include "render/device_scene.h"
@@ -25,16 +29,7 @@ std::string bytes_text(double b) {
 
 }  // namespace
 
-int run_devices() {
-  for (const DeviceInfo& d : list_devices()) {
-    std::printf("%d: %s — %s [%s, %s, %u compute units, %.1f GiB]\n", d.index, d.platform.c_str(),
-                d.name.c_str(), d.type.c_str(), d.version.c_str(), d.compute_units,
-                d.global_mem_bytes / 1073741824.0);
-  }
-  return 0;
-}
-
-int run_info(const std::string& scene_path, bool spectral, const std::string& lamp) {
+static int run_info(const std::string& scene_path, bool spectral, const std::string& lamp) {
   Scene scene = load_scene(scene_path, std::nullopt, lamp);
   KernelSceneData data(scene);
   int emitting_triangles = 0;
@@ -59,7 +54,8 @@ int run_info(const std::string& scene_path, bool spectral, const std::string& la
   std::printf("kernel build options: %s\n", build_options(scene_defines(scene, spectral)).c_str());
   size_t rows_count = spectral ? scene.grid.bins : 3;
   std::printf(
-      "photon mapping: %zu bytes per photon (position, normal, key, %d bins); %zu bytes per visible "
+      "photon mapping: %zu bytes per photon (position, normal, key, %d bins); %zu bytes per "
+      "visible "
       "point "
       "(geometry 8 values%s)\n",
       photon_record_bytes(scene), scene.grid.bins, visible_point_bytes(scene, spectral),
@@ -85,5 +81,21 @@ int run_info(const std::string& scene_path, bool spectral, const std::string& la
       bytes_text(pixels * rows * sizeof(double)).c_str());
   return 0;
 }
+
+static Command::Action declare_info(CLI::App& app) {
+  struct Args {
+    std::string scene, lamp;
+    bool spectral = false;
+  };
+  auto a = std::make_shared<Args>();
+  app.add_option("scene", a->scene, "scene JSON file")->required();
+  app.add_flag("--spectral", a->spectral, "report for a spectral film");
+  app.add_option("--lamp", a->lamp, "switch on this one of the scene's \"lamps\"");
+  return [a] { return run_info(a->scene, a->spectral, a->lamp); };
+}
+
+KASHA_REGISTER_COMMAND(info, "info",
+                       "what a scene needs: bins, features, memory, kernel build options", 2, false,
+                       declare_info);
 
 }  // namespace kasha

@@ -1,8 +1,12 @@
-#include "cli/measure_command.h"
-
+// `kasha measure`: fluorimeter or bispectral data to a material file
+// (docs/measurement.md#the-equations, docs/formats.md#material-files).
 #include <cstdio>
 #include <filesystem>
+#include <memory>
+#include <string>
 
+#include "cli/command.h"
+#include "cli/command_line_errors.h"
 #include "core/error.h"
 #include "core/output_set.h"
 #include "core/printable.h"
@@ -16,6 +20,17 @@
 
 namespace kasha {
 
+struct MeasureArgs {
+  std::string sample, etalon, etalon_reflectance, sensitivity, gloss, bispectral, output, plots,
+      name;
+  double band_nm = 0, cone_deg = 10;
+  bool clip = false;
+};
+
+// A rank-1 residual (over the entries with signal) above this is reported as a sample that does not
+// follow Kasha's rule.
+constexpr double kRank1WarningResidual = 0.15;
+
 // What measure writes must be a material render takes: read back with the loader it uses, so a
 // degenerate measurement fails here naming its input, not later in a scene.
 static void check_material_loads(const std::string& file, const std::string& name,
@@ -28,7 +43,7 @@ static void check_material_loads(const std::string& file, const std::string& nam
   }
 }
 
-int run_measure(const MeasureArgs& a) {
+static int run_measure(const MeasureArgs& a) {
   std::filesystem::path out(a.output);
   OutputSet outputs;
   for (const auto& [path, option] : {std::pair{a.sample, "--sample"},
@@ -98,5 +113,44 @@ int run_measure(const MeasureArgs& a) {
                  m.clipped_nm.size());
   return 0;
 }
+
+static Command::Action declare_measure(CLI::App& app) {
+  auto m = std::make_shared<MeasureArgs>();
+  CLI::Option* sample = app.add_option("--sample", m->sample,
+                                       "sample excitation–emission matrix (CSV or JASCO export)");
+  CLI::Option* etalon = app.add_option(
+      "--etalon", m->etalon, "etalon (white diffuse reference) excitation–emission matrix");
+  CLI::Option* etalon_reflectance = app.add_option("--etalon-reflectance", m->etalon_reflectance,
+                                                   "the etalon's reflectance spectrum (CSV)");
+  CLI::Option* sensitivity = app.add_option("--sensitivity", m->sensitivity,
+                                            "detector relative spectral sensitivity C(λ) (CSV)");
+  app.add_option("--gloss", m->gloss, "goniometer CSV: theta_in_deg, theta_out_deg, brdf");
+  app.add_option("--band-nm", m->band_nm,
+                 "half-width of the near-diagonal band (default: from the etalon)")
+      ->check(cli::positive_number(1000));
+  app.add_option("--cone-deg", m->cone_deg, "gloss cone around the mirror direction")
+      ->check(cli::number_within(0.1, 90.0));
+  app.add_option("--bispectral", m->bispectral, "a measured bispectral (Donaldson) matrix instead")
+      ->excludes(sample)
+      ->excludes(etalon)
+      ->excludes(etalon_reflectance)
+      ->excludes(sensitivity);
+  app.add_option("-o,--output", m->output, "material JSON to write")->required();
+  app.add_option("--plots", m->plots, "write the method's figures (PNG) into this directory");
+  app.add_option("--name", m->name, "material name (default: the output file's stem)")
+      ->check(cli::utf8_text());
+  app.add_flag("--clip", m->clip, "clip an energy gain instead of failing, and record it");
+  app.callback([m] {
+    if (m->bispectral.empty() &&
+        (m->sample.empty() || m->etalon.empty() || m->etalon_reflectance.empty()))
+      throw CLI::ValidationError(
+          "measure", "give --sample, --etalon and --etalon-reflectance (or --bispectral)");
+  });
+  return [m] { return run_measure(*m); };
+}
+
+KASHA_REGISTER_COMMAND(measure, "measure",
+                       "turn fluorimeter or bispectral data into a material file", 4, false,
+                       declare_measure);
 
 }  // namespace kasha

@@ -1,9 +1,16 @@
-#include "cli/regions_command.h"
-
+// `kasha regions`: an image's mean XYZ over each shape of its scene, from pixels well inside the
+// shape — a rendered sample measured as a photographed one would be. With a white-reference image
+// (the same scene and light with the samples replaced by a perfect white diffuser, as a white
+// standard is measured in the sample's place), also XYZ relative to that white (Y = 100) and
+// CIELAB about it.
 #include <cstdio>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <string>
 
+#include "cli/command.h"
+#include "cli/command_line_errors.h"
 #include "colorimetry/cie_lab.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -12,6 +19,11 @@
 #include "study/image_regions.h"
 
 namespace kasha {
+
+struct RegionsArgs {
+  std::string scene, image, white, json;
+  double margin_px = 1;
+};
 
 static Image read_image_of(const Scene& scene, const std::string& path) {
   Image image = read_exr(path);
@@ -26,7 +38,7 @@ static Vec3d scaled(const Vec3d& v, double k) {
   return {k * v[0], k * v[1], k * v[2]};
 }
 
-int run_regions(const RegionsArgs& a) {
+static int run_regions(const RegionsArgs& a) {
   OutputSet outputs;
   outputs.input(a.scene, "the scene file");
   outputs.input(a.image, "the image");
@@ -88,5 +100,25 @@ int run_regions(const RegionsArgs& a) {
   }
   return 0;
 }
+
+static Command::Action declare_regions(CLI::App& app) {
+  auto reg = std::make_shared<RegionsArgs>();
+  app.add_option("scene", reg->scene, "scene JSON file (its camera made the image)")->required();
+  app.add_option("image", reg->image, "EXR image")->required();
+  app.add_option("--margin", reg->margin_px,
+                 "pixels count when the shape is also seen this many pixels around their centre "
+                 "(default 1)")
+      ->check(cli::number_within(0, 1 << 20));
+  app.add_option("--white", reg->white,
+                 "white-reference EXR (the samples replaced by a perfect white): adds XYZ "
+                 "relative to it (Y = 100) and CIELAB");
+  app.add_option("--json", reg->json, "the regions as JSON");
+  return [reg] { return run_regions(*reg); };
+}
+
+KASHA_REGISTER_COMMAND(
+    regions, "regions",
+    "an image's mean XYZ over each shape of its scene, from pixels well inside it", 8, false,
+    declare_regions);
 
 }  // namespace kasha

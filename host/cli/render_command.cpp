@@ -1,10 +1,14 @@
-#include "cli/render_command.h"
-
+// `kasha render`: a scene through one integrator to an EXR (and PNG), with progress, Ctrl-C, a
+// convergence log and a reference. Under mpirun, rank 0 runs it with the other ranks' devices as
+// lanes; the other ranks serve rank 0 (mpi/render_server.h).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 
+#include "cli/command.h"
+#include "cli/command_line_errors.h"
+#include "cli/render_options.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/output_set.h"
@@ -15,65 +19,24 @@
 #include "mpi/remote_ranks.h"
 #include "mpi/render_server.h"
 #include "render/render_job.h"
+#include "render/render_spec.h"
 #include "shared_types.h"
 #include "study/convergence_log.h"
-#include "study/furnace.h"
-#include "study/image_error.h"
+#include "study/reference_image.h"
 
 namespace kasha {
 
-int run_render(const RenderArgs& a) {
-  install_interrupt_handler();  // from the start, so an early Ctrl-C still gets one pass written
-  if (a.passes <= 0 && a.seconds <= 0) throw Error("render: give --time SECONDS or --passes N");
-  IntegratorRegistry::check_options(a.integrator, a.integrator_options_given);
-  OutputSet outputs;
-  outputs.input(a.scene, "the scene file");
-  if (a.reference != "furnace") outputs.input(a.reference, "the --reference image");
-  outputs.file("-o", a.output);
-  outputs.file("--png", a.png);
-  outputs.file("--log", a.log);
-  Scene scene = load_scene(a.scene, std::nullopt, a.lamp);
-  outputs.inputs_read("the scene's material or data file");
-  RenderOptions options;
-  options.stop = {a.seconds, a.passes};
-  options.keep_log = !a.log.empty();  // written below with the other outputs
-  if (a.reference == "furnace") {
-    Furnace f = analyze_furnace(scene);
-    if (!f.qualifies)
-      throw Error("--reference furnace: " + a.scene + " is not an analytic furnace: " + f.why_not);
-    options.reference = furnace_image(scene, f.radiance, a.spectral);
-  } else if (!a.reference.empty()) {
-    options.reference = read_exr(a.reference);
-    check_reference_size(*options.reference, scene.camera.width, scene.camera.height);
-  }
-  DeviceSet devices(a.device);
-  std::vector<RenderLane> lanes = devices.upload(scene);
-  // Under mpirun the other ranks' devices join as lanes, after this rank's own.
-  std::unique_ptr<RemoteRanks> remote;
-  if (MpiWorld::get().several())
-    remote = std::make_unique<RemoteRanks>(a.integrator, render_fingerprint(a));
-  RenderJob job(lanes, scene, a.integrator, a.settings, a.spectral,
-                remote ? remote->lanes() : std::vector<Integrator*>{});
-  std::vector<std::string> names;
-  for (size_t d = 0; d < devices.size(); ++d) names.push_back(devices[d].info().name);
-  std::string where = devices.names();
-  if (remote) {
-    for (const auto& lane : remote->devices()) names.push_back(lane->description());
-    where += " and " + std::to_string(remote->devices().size()) + " devices of " +
-             std::to_string(MpiWorld::get().size() - 1) + " more ranks";
-  }
-  RenderSummary summary = job.run(options);
+namespace {
+
+struct RenderArgs {
+  RenderSpec spec;
+  std::string output, png, reference, log;
+};
+
+// What the render's passes went to: stage shares, devices' shares, the depth guard, rejections.
+void report_render(const RenderArgs& a, const RenderJob& job,
+                   const std::vector<std::string>& names) {
   const Film& film = job.film();
-  Image image = film.image();
-  outputs.write(a.output, [&](const std::string& tmp) { write_exr(tmp, image); });
-  if (!a.png.empty())
-    outputs.write(a.png, [&](const std::string& tmp) { write_png_preview(tmp, image); });
-  if (!a.log.empty())
-    outputs.write(a.log, [&](const std::string& tmp) { write_convergence_log(tmp, summary.log); });
-  outputs.commit();
-  std::fprintf(stderr, "wrote %s%s%s: %d passes, %lld samples per pixel, %.2f s on %s\n",
-               a.output.c_str(), a.png.empty() ? "" : " and ", a.png.c_str(), summary.passes,
-               film.samples_per_pixel(), summary.seconds, where.c_str());
   // Where a pass's time went, for integrators that time their stages ("time: <stage> (s)").
   double total = 0;
   std::string shares;
@@ -83,7 +46,8 @@ int run_render(const RenderArgs& a) {
     if (name.rfind("time: ", 0) == 0 && total > 0)
       shares += (shares.empty() ? "" : ", ") + name.substr(6, name.size() - 10) + " " +
                 std::to_string(static_cast<int>(std::lround(100 * value / total))) + " %";
-  if (!shares.empty()) std::fprintf(stderr, "%s time: %s\n", a.integrator.c_str(), shares.c_str());
+  if (!shares.empty())
+    std::fprintf(stderr, "%s time: %s\n", a.spec.integrator.c_str(), shares.c_str());
   if (job.devices() > 1) {
     double work = 0;
     for (size_t d = 0; d < job.devices(); ++d) work += film.tally(device_work_tally(d));
@@ -105,11 +69,98 @@ int run_render(const RenderArgs& a) {
         "kasha: warning: paths reaching the %d-vertex depth guard were cut still carrying %.3g "
         "of the weight they started with; the image lacks what they would have added (too "
         "dark: the scene keeps nearly all its light)\n",
-        a.settings.max_depth, cut_share);
+        a.spec.settings.max_depth, cut_share);
   if (film.tally("rejected samples") > 0)
     std::fprintf(stderr, "kasha: warning: %.0f samples were not finite and were left out\n",
                  film.tally("rejected samples"));
+}
+
+int run_render(const RenderArgs& a) {
+  install_interrupt_handler();  // from the start, so an early Ctrl-C still gets one pass written
+  const RenderSpec& spec = a.spec;
+  OutputSet outputs;
+  outputs.input(spec.scene, "the scene file");
+  if (a.reference != kFurnaceReference) outputs.input(a.reference, "the --reference image");
+  outputs.file("-o", a.output);
+  outputs.file("--png", a.png);
+  outputs.file("--log", a.log);
+  Scene scene = load_scene(spec.scene, std::nullopt, spec.lamp);
+  outputs.inputs_read("the scene's material or data file");
+  ConvergenceLog log(reference_for(a.reference, scene, spec.spectral));
+  RenderOptions options;
+  options.stop = spec.stop;
+  if (!a.log.empty()) options.observer = &log;  // written below with the other outputs
+  DeviceSet devices(spec.device);
+  std::vector<RenderLane> lanes = devices.upload(scene);
+  // Under mpirun the other ranks' devices join as lanes, after this rank's own.
+  std::unique_ptr<RemoteRanks> remote;
+  if (MpiWorld::get().several())
+    remote = std::make_unique<RemoteRanks>(spec.integrator, render_fingerprint(spec));
+  RenderJob job(lanes, scene, spec.integrator, spec.settings, spec.spectral,
+                remote ? remote->lanes() : std::vector<Integrator*>{});
+  std::vector<std::string> names;
+  for (size_t d = 0; d < devices.size(); ++d) names.push_back(devices[d].info().name);
+  std::string where = devices.names();
+  if (remote) {
+    for (const auto& lane : remote->devices()) names.push_back(lane->description());
+    where += " and " + std::to_string(remote->devices().size()) + " devices of " +
+             std::to_string(MpiWorld::get().size() - 1) + " more ranks";
+  }
+  RenderSummary summary = job.run(options);
+  const Film& film = job.film();
+  Image image = film.image();
+  outputs.write(a.output, [&](const std::string& tmp) { write_exr(tmp, image); });
+  if (!a.png.empty())
+    outputs.write(a.png, [&](const std::string& tmp) { write_png_preview(tmp, image); });
+  if (!a.log.empty())
+    outputs.write(a.log, [&](const std::string& tmp) { write_convergence_log(tmp, log.rows()); });
+  outputs.commit();
+  std::fprintf(stderr, "wrote %s%s%s: %d passes, %lld samples per pixel, %.2f s on %s\n",
+               a.output.c_str(), a.png.empty() ? "" : " and ", a.png.c_str(), summary.passes,
+               film.samples_per_pixel(), summary.seconds, where.c_str());
+  report_render(a, job, names);
   return summary.interrupted ? 130 : 0;
 }
+
+Command::Action declare(CLI::App& app) {
+  auto a = std::make_shared<RenderArgs>();
+  RenderSpec& r = a->spec;
+  app.add_option("scene", r.scene, "scene JSON file")->required();
+  app.add_option("-o,--output", a->output, "output EXR")->required();
+  std::string integrator_help = "the integrator (default " + std::string(kDefaultIntegrator) + "):";
+  for (const IntegratorInfo& info : IntegratorRegistry::all())
+    integrator_help += "\n  " + info.name + ": " + info.description;
+  app.add_option("--integrator", r.integrator, integrator_help)
+      ->check(cli::one_of(IntegratorRegistry::names(false)));
+  // Both may be given: the render stops at whichever comes first.
+  app.add_option("--time", r.stop.seconds, "stop after this many seconds")
+      ->check(cli::positive_number(cli::kMaxSeconds));
+  app.add_option("--passes", r.stop.passes, "stop after this many passes")
+      ->check(cli::integer_within(1, 2147483647));
+  cli::add_setting_options(app, r.settings);
+  cli::add_device_option(app, r.device);
+  app.add_option("--lamp", r.lamp, "switch on this one of the scene's \"lamps\"");
+  app.add_option("--png", a->png, "also write a tone-mapped sRGB PNG preview");
+  app.add_flag("--spectral", r.spectral, "add one channel per wavelength bin to the EXR");
+  app.add_option("--reference", a->reference,
+                 "reference EXR for the convergence log's error columns, or furnace");
+  app.add_option("--log", a->log, "convergence log CSV, a row after every pass");
+  // Usage errors found after the parse, still reported as usage errors (exit 2).
+  app.callback([a, &app] {
+    if (!a->spec.stop.given())
+      throw CLI::ValidationError("render", "give --time SECONDS or --passes N");
+    try {
+      IntegratorRegistry::check_options(a->spec.integrator, cli::integrator_options_given(app));
+    } catch (const Error& e) {
+      throw CLI::ValidationError(e.what());  // already `--OPTION: what`
+    }
+  });
+  return [a] { return MpiWorld::get().rank() > 0 ? serve_render(a->spec) : run_render(*a); };
+}
+
+}  // namespace
+
+KASHA_REGISTER_COMMAND(render, "render", "render a scene to an EXR", 3, /*every rank*/ true,
+                       declare);
 
 }  // namespace kasha

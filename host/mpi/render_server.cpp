@@ -7,33 +7,17 @@
 #include <string>
 #include <thread>
 
-#include "cli/command_line_errors.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "mpi/mpi_transport.h"
 #include "mpi/mpi_world.h"
 #include "mpi/render_messages.h"
-#include "opencl/device.h"
+#include "opencl/failure_text.h"
 #include "render/render_job.h"
 
 namespace kasha {
 
 namespace {
-
-// The one line main() would print for the exception in flight.
-std::string failure_text() {
-  try {
-    throw;
-  } catch (const Interrupted&) {
-    return "interrupted";
-  } catch (const cl::Error& e) {
-    return cli::one_line("OpenCL: " + cl_error_text(e));
-  } catch (const std::exception& e) {
-    return cli::one_line(e.what());
-  } catch (...) {
-    return "an unknown failure";
-  }
-}
 
 // Sends and waits until the bytes are out, or rank 0 has ended the job.
 void send(int tag, std::vector<char> bytes) {
@@ -103,37 +87,23 @@ void refuse_render(const std::string& why) {
   send(mpi::kHelloTag, mpi::encode(hello));
 }
 
-std::string render_fingerprint(const RenderArgs& a) {
-  const IntegratorSettings& s = a.settings;
-  std::string text = a.scene + "|" + a.lamp + "|" + a.integrator + "|" + (a.spectral ? "1" : "0");
-  for (double v : {double(s.spp), double(s.photons), s.alpha, s.radius, double(s.edge_correction),
-                   double(s.seed), double(s.max_depth)}) {
-    char number[32];
-    std::snprintf(number, sizeof number, "|%.17g", v);
-    text += number;
-  }
-  return text + "|" + s.gather + "|" + s.view + "|" + s.sampler;
-}
-
-int serve_render(const RenderArgs& a) {
+int serve_render(const RenderSpec& spec) {
   install_interrupt_handler();  // SIGTERM from mpirun ends the work in flight early
   mpi::Hello hello;
-  hello.render = render_fingerprint(a);
+  hello.render = render_fingerprint(spec);
   std::unique_ptr<Scene> scene;
   std::unique_ptr<DeviceSet> devices;
   std::vector<std::unique_ptr<RenderJob>> jobs;
   try {
-    if (a.passes <= 0 && a.seconds <= 0) throw Error("render: give --time SECONDS or --passes N");
-    IntegratorRegistry::check_options(a.integrator, a.integrator_options_given);
-    scene = std::make_unique<Scene>(load_scene(a.scene, std::nullopt, a.lamp));
-    devices = std::make_unique<DeviceSet>(a.device);
+    scene = std::make_unique<Scene>(load_scene(spec.scene, std::nullopt, spec.lamp));
+    devices = std::make_unique<DeviceSet>(spec.device);
     if (devices->size() > static_cast<size_t>(mpi::kMaxDevices))
       throw Error("--device: more than " + std::to_string(mpi::kMaxDevices) + " devices");
     std::vector<RenderLane> lanes = devices->upload(*scene);
     for (size_t d = 0; d < lanes.size(); ++d) {
       // One job per device, each served alone: rank 0 shares the work out.
       jobs.push_back(std::make_unique<RenderJob>(std::vector<RenderLane>{lanes[d]}, *scene,
-                                                 a.integrator, a.settings, a.spectral));
+                                                 spec.integrator, spec.settings, spec.spectral));
       const auto* worker = dynamic_cast<const ChunkWorker*>(&jobs.back()->integrator());
       hello.devices.push_back({(*devices)[d].info().name, worker ? worker->chunk_capacity() : 0});
     }

@@ -1,7 +1,7 @@
 #include "render/integrator_registry.h"
 
 #include <algorithm>
-#include <set>
+#include <stdexcept>
 
 #include "core/error.h"
 
@@ -13,6 +13,11 @@ std::vector<IntegratorInfo>& IntegratorRegistry::entries() {
 }
 
 IntegratorRegistry::Registrar::Registrar(IntegratorInfo info) {
+  // The options it takes are render settings of its own (render/render_settings.h), or the
+  // command line would not declare them.
+  for (const std::string& option : info.options)
+    if (render_setting(option).common)
+      throw std::logic_error(info.name + ": " + option + " is every integrator's");
   auto& e = entries();
   e.insert(std::upper_bound(
                e.begin(), e.end(), info,
@@ -54,12 +59,6 @@ std::unique_ptr<Integrator> IntegratorRegistry::make(const std::string& name,
   std::unique_ptr<Integrator> integrator = find(name).make(setup);
   integrator->name_ = name;
   return integrator;
-}
-
-std::vector<std::string> IntegratorRegistry::options() {
-  std::set<std::string> all;
-  for (const IntegratorInfo& info : entries()) all.insert(info.options.begin(), info.options.end());
-  return {all.begin(), all.end()};
 }
 
 void IntegratorRegistry::check_options(const std::string& name,

@@ -14,28 +14,10 @@
 #include "render/device_film.h"
 #include "render/device_scene.h"
 #include "render/integrator.h"
+#include "render/render_settings.h"
 #include "shared_types.h"
 
 namespace kasha {
-
-// Every integrator's settings, filled by name; each integrator reads the ones it takes.
-struct IntegratorSettings {
-  int spp = 0;  // --spp: camera paths per pixel per pass (0: the integrator's default)
-  static constexpr int kDefaultSpp = 16;  // backward's and debug's
-  long long photons = 1 << 18;    // --photons: photons per pass
-  double alpha = 0.8;  // --alpha: SPPM radius reduction (pbrt-v4: 2/3; 0.8 measured better here)
-  double radius = 0;              // --radius: initial gather radius (0: from the pixel footprint)
-  bool edge_correction = true;    // --edge-correction: photon mapping's gathers at edges
-  std::string gather = "auto";    // --gather: where photon mapping gathers (device, host)
-  std::string view = "emission";  // --view: the debug view
-  unsigned seed = 1;              // --seed (every integrator)
-  std::string sampler = "sobol";  // --sampler (every integrator): sobol or independent
-  int max_depth = KASHA_MAX_PATH_DEPTH;  // --max-depth (every integrator): the path-length guard
-  unsigned long long memory = 0;  // --memory: photon mapping's store budget, bytes (0: automatic)
-  // Test hooks, not on the command line.
-  bool full_matrix = false;   // backward: carry the full rows × N path matrix
-  int photons_per_item = 64;  // forward: photons per work item
-};
 
 // What an integrator is given: the device, the scene on it, the film's tables on it, the film it
 // will be accumulated into (photon mapping reads its radii there), and its settings.
@@ -71,8 +53,6 @@ class IntegratorRegistry {
   static std::vector<std::string> names(bool physical_only);
   static std::string reference();  // the reference integrator's name
   static std::unique_ptr<Integrator> make(const std::string& name, const IntegratorSetup& setup);
-  // Every option some integrator takes.
-  static std::vector<std::string> options();
   // Throws kasha::Error for the first of `given` (option names) the integrator does not take.
   static void check_options(const std::string& name, const std::vector<std::string>& given);
 

@@ -11,6 +11,13 @@
 
 namespace kasha {
 
+// When a render stops: at whichever of its time and its passes comes first.
+struct StopCondition {
+  double seconds = 0;  // > 0: stop once this much time has passed
+  int passes = 0;      // > 0: stop after this many passes
+  bool given() const { return seconds > 0 || passes > 0; }
+};
+
 struct PassControl {
   using Clock = std::chrono::steady_clock;
   std::optional<Clock::time_point> deadline;

@@ -3,38 +3,65 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <stdexcept>
 #include <string>
 
-#include "core/error.h"
 #include "core/interrupt.h"
-#include "study/image_error.h"
 
 namespace kasha {
 
+namespace {
+
+// Seconds left of a render, counting the pass in flight: from its reported fraction where there
+// is one, else from the passes before it; negative while nothing tells (the first pass, before
+// it reports).
+double seconds_left(const StopCondition& stop, int passes_done, double done_seconds,
+                    double in_flight_seconds, double fraction) {
+  double left = -1;
+  if (stop.passes > 0) {
+    const double elapsed = done_seconds + in_flight_seconds;
+    if (fraction > 0) {
+      left = elapsed / (passes_done + fraction) * (stop.passes - passes_done - fraction);
+    } else if (passes_done > 0) {
+      const double per_pass = done_seconds / passes_done;
+      const int after_this = stop.passes - passes_done - 1;
+      left = std::max(per_pass * after_this, per_pass * (after_this + 1) - in_flight_seconds);
+    }
+  }
+  if (stop.seconds > 0) {
+    const double by_time = std::max(0.0, stop.seconds - done_seconds - in_flight_seconds);
+    left = left < 0 ? by_time : std::min(left, by_time);
+  }
+  return left;
+}
+
+}  // namespace
+
 RenderSummary render_progressive(Integrator& integrator, Film& film, const RenderOptions& options) {
-  if (options.stop.seconds <= 0 && options.stop.passes <= 0)
-    throw Error("give --time SECONDS or --passes N");
+  if (!options.stop.given()) throw std::logic_error("render_progressive: no stop condition");
   using clock = std::chrono::steady_clock;
   RenderSummary summary;
   double shown_at = -1.0;
-  auto show = [&](double seconds, double pass_fraction, bool last) {
+  // The progress line: `in_flight` seconds into the pass after summary.passes, `fraction` of it
+  // done (0: not reported); `last` ends the line.
+  auto show = [&](double in_flight, double fraction, bool last) {
+    const double seconds = summary.seconds + in_flight;
     if (!options.show_progress || (!last && seconds - shown_at < 0.25)) return;
     shown_at = seconds;
-    const double passes = summary.passes + pass_fraction;
-    double left = 0;
-    if (options.stop.passes > 0 && passes > 0)
-      left = seconds / passes * (options.stop.passes - passes);
-    if (options.stop.seconds > 0) left = std::max(0.0, options.stop.seconds - seconds);
     std::string pass = std::to_string(summary.passes + (last ? 0 : 1));
     if (options.stop.passes > 0) pass += "/" + std::to_string(options.stop.passes);
-    if (!last && pass_fraction > 0)
-      pass += " (" + std::to_string(static_cast<int>(100 * pass_fraction)) + " %)";
-    std::fprintf(stderr, "\r%s: pass %s, %.1f s elapsed, ~%.1f s left   ",
-                 integrator.name().c_str(), pass.c_str(), seconds, left);
+    if (!last && fraction > 0)
+      pass += " (" + std::to_string(static_cast<int>(100 * fraction)) + " %)";
+    const double left =
+        last ? 0 : seconds_left(options.stop, summary.passes, summary.seconds, in_flight, fraction);
+    char left_text[64] = "estimating time left";
+    if (left >= 0) std::snprintf(left_text, sizeof left_text, "~%.1f s left", left);
+    std::fprintf(stderr, "\r%s: pass %s, %.1f s elapsed, %s   ", integrator.name().c_str(),
+                 pass.c_str(), seconds, left_text);
     if (last) std::fprintf(stderr, "\n");
   };
   for (int pass = 0;; ++pass) {
-    // Only rendering counts towards the time: evaluating the error for the log does not. The
+    // Only rendering counts towards the time: what the observer does after a pass does not. The
     // deadline reaches into the pass: its launches stop there (render/pass_control.h).
     const auto pass_start = clock::now();
     PassControl control;
@@ -42,10 +69,8 @@ RenderSummary render_progressive(Integrator& integrator, Film& film, const Rende
       control.deadline =
           pass_start + std::chrono::duration_cast<clock::duration>(
                            std::chrono::duration<double>(options.stop.seconds - summary.seconds));
-    const double before = summary.seconds;
     control.progress = [&](double fraction) {
-      show(before + std::chrono::duration<double>(clock::now() - pass_start).count(), fraction,
-           false);
+      show(std::chrono::duration<double>(clock::now() - pass_start).count(), fraction, false);
     };
     integrator.set_control(control);
     PassResult result = integrator.render_pass(pass);
@@ -54,26 +79,20 @@ RenderSummary render_progressive(Integrator& integrator, Film& film, const Rende
     summary.passes = pass + 1;
     summary.seconds += std::chrono::duration<double>(clock::now() - pass_start).count();
 
-    if (!options.log_path.empty() || options.keep_log) {
-      LogRow row;
-      row.integrator = integrator.name();
-      row.pass = summary.passes;
-      row.seconds = summary.seconds;
-      row.camera_paths =
+    if (options.observer) {
+      PassRecord record;
+      record.integrator = integrator.name();
+      record.pass = summary.passes;
+      record.seconds = summary.seconds;
+      record.camera_paths =
           static_cast<long long>(integrator.camera_paths_per_pass() * film.work_passes());
-      row.photons = static_cast<long long>(integrator.photons_per_pass() * film.work_passes());
-      if (options.reference) {
-        ImageError e = image_error(film.image(), *options.reference);
-        row.has_error = true;
-        row.rmse = e.rmse;
-        row.relmse = e.relmse;
-      }
-      summary.log.push_back(row);
+      record.photons = static_cast<long long>(integrator.photons_per_pass() * film.work_passes());
+      options.observer->pass_done(record, film);
     }
 
     bool done = cut_short || (options.stop.passes > 0 && summary.passes >= options.stop.passes) ||
                 (options.stop.seconds > 0 && summary.seconds >= options.stop.seconds);
-    show(summary.seconds, 0, done || interrupt_requested());
+    show(0, 0, done || interrupt_requested());
     if (interrupt_requested()) {
       summary.interrupted = true;
       if (options.show_progress)
@@ -82,7 +101,6 @@ RenderSummary render_progressive(Integrator& integrator, Film& film, const Rende
     }
     if (done) break;
   }
-  if (!options.log_path.empty()) write_convergence_log(options.log_path, summary.log);
   return summary;
 }
 

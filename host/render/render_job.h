@@ -32,6 +32,7 @@ class RenderJob {
   RenderJob& operator=(const RenderJob&) = delete;
 
   Film& film() { return film_; }
+  const Film& film() const { return film_; }
   // The first device's instance (its name, figures and buffers stand for all).
   Integrator& integrator(size_t lane = 0) { return *integrators_[lane]; }
   size_t devices() const { return integrators_.size() + remote_; }  // remote lanes last

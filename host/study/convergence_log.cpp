@@ -9,8 +9,25 @@
 #include "core/atomic_file.h"
 #include "core/csv_table.h"
 #include "core/error.h"
+#include "study/image_error.h"
 
 namespace kasha {
+
+void ConvergenceLog::pass_done(const PassRecord& record, const Film& film) {
+  LogRow row;
+  row.integrator = record.integrator;
+  row.pass = record.pass;
+  row.seconds = record.seconds;
+  row.camera_paths = record.camera_paths;
+  row.photons = record.photons;
+  if (reference_) {
+    ImageError e = image_error(film.image(), *reference_);
+    row.has_error = true;
+    row.rmse = e.rmse;
+    row.relmse = e.relmse;
+  }
+  rows_.push_back(row);
+}
 
 void write_convergence_log(const std::string& path, const std::vector<LogRow>& rows) {
   write_atomically(path, [&](const std::string& tmp) {

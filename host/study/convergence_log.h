@@ -1,8 +1,12 @@
 #pragma once
 // The convergence log of docs/formats.md#convergence-log: a row after every pass.
 //   integrator,pass,seconds,camera_paths,photons,rmse,relmse
+#include <optional>
 #include <string>
 #include <vector>
+
+#include "film/image.h"
+#include "render/pass_observer.h"
 
 namespace kasha {
 
@@ -13,6 +17,20 @@ struct LogRow {
   long long camera_paths = 0, photons = 0;
   bool has_error = false;
   double rmse = 0, relmse = 0;
+};
+
+// The log as a render's observer: a row after every pass, with the error against `reference`
+// when there is one (evaluated outside the render's time).
+class ConvergenceLog : public PassObserver {
+ public:
+  explicit ConvergenceLog(std::optional<Image> reference = std::nullopt)
+      : reference_(std::move(reference)) {}
+  void pass_done(const PassRecord& record, const Film& film) override;
+  const std::vector<LogRow>& rows() const { return rows_; }
+
+ private:
+  std::optional<Image> reference_;
+  std::vector<LogRow> rows_;
 };
 
 void write_convergence_log(const std::string& path, const std::vector<LogRow>& rows);

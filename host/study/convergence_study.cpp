@@ -15,6 +15,7 @@
 #include "image/exr_io.h"
 #include "image/png_preview.h"
 #include "render/render_job.h"
+#include "study/convergence_log.h"
 #include "study/furnace.h"
 #include "study/reference_image.h"
 
@@ -55,22 +56,10 @@ Stats stats(const std::vector<double>& v) {
 
 // The reference the study measures against, and a line saying what it is.
 Image study_reference(const std::string& scene_path, const Scene& scene, const StudyOptions& o,
-                      DeviceSet& devices, std::string& description) {
-  if (o.reference == "furnace") {
-    Furnace f = analyze_furnace(scene);
-    if (!f.qualifies)
-      throw Error("--reference furnace: " + scene_path +
-                  " is not an analytic furnace: " + f.why_not);
-    description = "the analytic furnace";
-    return furnace_image(scene, f.radiance, false);
-  }
-  if (!o.reference.empty()) {
-    Image ref = read_exr(o.reference);
-    if (ref.width != scene.camera.width || ref.height != scene.camera.height)
-      throw Error("--reference " + o.reference + ": " + std::to_string(ref.width) + "x" +
-                  std::to_string(ref.height) + " does not match the scene's camera");
-    description = o.reference;
-    return ref;
+                      DeviceSet& devices, std::optional<Image> given, std::string& description) {
+  if (given) {
+    description = o.reference == kFurnaceReference ? "the analytic furnace" : o.reference;
+    return *given;
   }
   // Cached next to the scene, remade when the scene file changed or the cache is shorter.
   fs::path scene_file(scene_path);
@@ -172,18 +161,11 @@ StudyResult run_convergence_study(const std::string& scene_path, const StudyOpti
   check_directory(o.out_dir);
   Scene scene = load_scene(scene_path);
   // A reference that cannot exist is refused before the device is touched.
-  if (o.reference == "furnace") {
-    Furnace f = analyze_furnace(scene);
-    if (!f.qualifies)
-      throw Error("--reference furnace: " + scene_path +
-                  " is not an analytic furnace: " + f.why_not);
-  } else if (!o.reference.empty() && !fs::exists(o.reference)) {
-    throw Error("--reference " + o.reference + ": no such file");
-  }
-
+  std::optional<Image> given = reference_for(o.reference, scene, false);
   DeviceSet devices(o.device);
   StudyResult result;
-  Image reference = study_reference(scene_path, scene, o, devices, result.reference_description);
+  Image reference = study_reference(scene_path, scene, o, devices, std::move(given),
+                                    result.reference_description);
   const std::vector<RenderLane> lanes = devices.upload(scene);
 
   std::vector<std::vector<std::vector<LogRow>>> by_integrator(o.integrators.size());
@@ -194,17 +176,17 @@ StudyResult run_convergence_study(const std::string& scene_path, const StudyOpti
       settings.seed = o.settings.seed + run;
       RenderJob job(lanes, scene, o.integrators[k], settings, false);
       Film& film = job.film();
+      ConvergenceLog log(reference);
       RenderOptions ro;
       ro.stop = o.passes > 0 ? StopCondition{0, o.passes} : StopCondition{o.seconds, 0};
-      ro.reference = reference;
-      ro.keep_log = true;
+      ro.observer = &log;
       ro.show_progress = o.show_progress;
       RenderSummary summary = job.run(ro);
       write_convergence_log((fs::path(o.out_dir) /
                              ("log_" + o.integrators[k] + "_" + std::to_string(run + 1) + ".csv"))
                                 .string(),
-                            summary.log);
-      by_integrator[k].push_back(summary.log);
+                            log.rows());
+      by_integrator[k].push_back(log.rows());
       if (run == 0) {
         Image img = film.image();
         write_exr((fs::path(o.out_dir) / (o.integrators[k] + ".exr")).string(), img);

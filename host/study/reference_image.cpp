@@ -1,5 +1,6 @@
 #include "study/reference_image.h"
 
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <sstream>
@@ -9,6 +10,8 @@
 #include "image/exr_io.h"
 #include "render/device_scene.h"
 #include "render/render_job.h"
+#include "study/furnace.h"
+#include "study/image_error.h"
 
 namespace kasha {
 
@@ -23,6 +26,23 @@ std::string scene_fingerprint(const std::string& scene_path) {
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", h);
   return hex;
+}
+
+std::optional<Image> reference_for(const std::string& reference, const Scene& scene,
+                                   bool spectral) {
+  if (reference.empty()) return std::nullopt;
+  if (reference == kFurnaceReference) {
+    Furnace f = analyze_furnace(scene);
+    if (!f.qualifies)
+      throw Error("--reference furnace: " + scene.file +
+                  " is not an analytic furnace: " + f.why_not);
+    return furnace_image(scene, f.radiance, spectral);
+  }
+  if (!std::filesystem::exists(reference))
+    throw Error("--reference " + reference + ": no such file");
+  Image image = read_exr(reference);
+  check_reference_size(image, scene.camera.width, scene.camera.height);
+  return image;
 }
 
 Image render_reference(DeviceSet& devices, const Scene& scene, double seconds, unsigned seed,

@@ -3,6 +3,7 @@
 // the lowest-variance unbiased integrator kasha has — backward, with next-event estimation and MIS
 // (forward is unbiased too but sees the camera side of a scene through light paths alone; photon
 // mapping is biased). The EXR records how it was made.
+#include <optional>
 #include <string>
 
 #include "film/image.h"
@@ -10,6 +11,14 @@
 #include "scene/scene.h"
 
 namespace kasha {
+
+// `--reference furnace`: the analytic furnace's image instead of a file.
+constexpr const char* kFurnaceReference = "furnace";
+
+// The reference that `--reference` names for a render of `scene`, checked before anything is
+// rendered: none (empty), the analytic furnace's image (the scene must be one) or an EXR of the
+// scene's size.
+std::optional<Image> reference_for(const std::string& reference, const Scene& scene, bool spectral);
 
 struct ReferenceInfo {
   std::string integrator, scene_fingerprint;

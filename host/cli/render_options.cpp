@@ -1,0 +1,63 @@
+#include "cli/render_options.h"
+
+#include "cli/command_line_errors.h"
+
+namespace kasha::cli {
+
+namespace {
+
+CLI::Validator check_for(const RenderSetting& s) {
+  using V = RenderSetting::Value;
+  switch (s.value) {
+    case V::integer:
+    case V::bytes:
+      return integer_within(static_cast<long long>(s.lo), static_cast<long long>(s.hi));
+    case V::number:
+      return number_within(s.lo, s.hi);
+    case V::positive:
+      return positive_number(s.hi);
+    case V::choice:
+      return one_of(s.choices);
+    case V::flag:
+      break;
+  }
+  return CLI::Validator();
+}
+
+}  // namespace
+
+void add_setting_options(CLI::App& app, IntegratorSettings& settings,
+                         const std::vector<std::string>& names) {
+  for (const RenderSetting& s : render_settings()) {
+    if (!names.empty() && std::find(names.begin(), names.end(), s.name) == names.end()) continue;
+    std::visit(
+        [&](auto* field) {
+          using T = std::remove_pointer_t<decltype(field)>;
+          if constexpr (std::is_same_v<T, bool>) {
+            app.add_flag(s.name, *field, s.help);
+          } else {
+            CLI::Option* option = app.add_option(s.name, *field, s.help);
+            if (s.value == RenderSetting::Value::bytes) option->transform(byte_size());
+            option->check(check_for(s));
+          }
+        },
+        s.field(settings));
+  }
+}
+
+std::vector<std::string> integrator_options_given(const CLI::App& app) {
+  std::vector<std::string> given;
+  for (const RenderSetting& s : render_settings())
+    if (!s.common && app.count(s.name) > 0) given.push_back(s.name);
+  return given;
+}
+
+CLI::Option* add_device_option(CLI::App& app, std::string& device) {
+  return app
+      .add_option("--device", device,
+                  "OpenCL devices: an index, a comma-separated list (0,1; an index named twice "
+                  "gives its device a second queue) or all; see `kasha devices`")
+      ->check(device_list());
+}
+
+}  // namespace kasha::cli

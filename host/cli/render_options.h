@@ -1,0 +1,27 @@
+#pragma once
+// The command-line options several commands share, declared in one place: the render settings
+// from their one description (render/render_settings.h), --device, and the bound on seconds.
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "render/render_settings.h"
+
+namespace kasha::cli {
+
+// Seconds beyond this would overflow the steady clock's deadline (nanoseconds in 64 bits).
+constexpr double kMaxSeconds = 1e9;
+
+// Declares the render settings named in `names` (all of them when empty) on `app`, each with its
+// help and its check.
+void add_setting_options(CLI::App& app, IntegratorSettings& settings,
+                         const std::vector<std::string>& names = {});
+
+// The integrator-specific settings given on `app`'s command line (the chosen integrator must
+// take each of them).
+std::vector<std::string> integrator_options_given(const CLI::App& app);
+
+// `--device LIST`.
+CLI::Option* add_device_option(CLI::App& app, std::string& device);
+
+}  // namespace kasha::cli

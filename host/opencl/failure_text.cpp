@@ -1,0 +1,23 @@
+#include "opencl/failure_text.h"
+
+#include "core/interrupt.h"
+#include "core/printable.h"
+#include "opencl/device.h"
+
+namespace kasha {
+
+std::string failure_text() {
+  try {
+    throw;
+  } catch (const Interrupted&) {
+    return "interrupted";
+  } catch (const cl::Error& e) {
+    return one_line("OpenCL: " + cl_error_text(e));
+  } catch (const std::exception& e) {
+    return one_line(e.what());
+  } catch (...) {
+    return "an unknown failure";
+  }
+}
+
+}  // namespace kasha

@@ -1,0 +1,151 @@
+#include "render/render_settings.h"
+
+#include <cstdio>
+
+#include "core/error.h"
+
+namespace kasha {
+
+namespace {
+using V = RenderSetting::Value;
+constexpr double kMaxInt = 2147483647;
+}  // namespace
+
+const std::vector<RenderSetting>& render_settings() {
+  static const std::vector<RenderSetting> table = {
+      {"--spp",
+       "camera samples per pixel per pass (default 16; photon mapping 8)",
+       V::integer,
+       1,
+       1 << 20,
+       {},
+       false,
+       false,
+       [](IntegratorSettings& s) -> SettingField { return &s.spp; }},
+      {"--photons",
+       "photons per pass",
+       V::integer,
+       1,
+       kMaxInt,
+       {},
+       false,
+       false,
+       [](IntegratorSettings& s) -> SettingField { return &s.photons; }},
+      {"--alpha",
+       "photon mapping: radius reduction α (default 0.8)",
+       V::number,
+       0.01,
+       0.99,
+       {},
+       false,
+       false,
+       [](IntegratorSettings& s) -> SettingField { return &s.alpha; }},
+      {"--radius",
+       "photon mapping: initial gather radius (default: from the pixel footprint)",
+       V::positive,
+       0,
+       1e300,
+       {},
+       false,
+       false,
+       [](IntegratorSettings& s) -> SettingField { return &s.radius; }},
+      {"--edge-correction",
+       "photon mapping: divide the density by the measured fraction of the gather discs on "
+       "accepted surface (default; --edge-correction=false leaves it out)",
+       V::flag,
+       0,
+       0,
+       {},
+       false,
+       false,
+       [](IntegratorSettings& s) -> SettingField { return &s.edge_correction; }},
+      {"--gather",
+       "photon mapping: gather on the device (a hashed grid) or on the host (nanoflann); default "
+       "auto: the device",
+       V::choice,
+       0,
+       0,
+       {"auto", "device", "host"},
+       false,
+       false,
+       [](IntegratorSettings& s) -> SettingField { return &s.gather; }},
+      {"--memory",
+       "photon mapping: memory for the photon store, bytes with an optional unit (512MiB, 2GB); "
+       "default: a quarter of the device's memory (an eighth on a CPU)",
+       V::bytes,
+       1,
+       1125899906842624.0 /* 2^50 */,
+       {},
+       false,
+       true,
+       [](IntegratorSettings& s) -> SettingField { return &s.memory; }},
+      {"--view",
+       "debug view: emission, normals or albedo",
+       V::choice,
+       0,
+       0,
+       {"emission", "normals", "albedo"},
+       false,
+       false,
+       [](IntegratorSettings& s) -> SettingField { return &s.view; }},
+      {"--seed",
+       "random seed",
+       V::integer,
+       0,
+       4294967295.0,
+       {},
+       true,
+       false,
+       [](IntegratorSettings& s) -> SettingField { return &s.seed; }},
+      {"--max-depth",
+       "safety limit on path length in vertices (default 262144, far beyond what Russian "
+       "roulette reaches); what it cuts is reported",
+       V::integer,
+       1,
+       1 << 30,
+       {},
+       true,
+       false,
+       [](IntegratorSettings& s) -> SettingField { return &s.max_depth; }},
+      {"--sampler",
+       "sobol (default: Owen-scrambled Sobol points) or independent (PCG streams)",
+       V::choice,
+       0,
+       0,
+       {"sobol", "independent"},
+       true,
+       false,
+       [](IntegratorSettings& s) -> SettingField { return &s.sampler; }},
+  };
+  return table;
+}
+
+const RenderSetting& render_setting(const std::string& name) {
+  for (const RenderSetting& s : render_settings())
+    if (s.name == name) return s;
+  throw Error("no render setting " + name);
+}
+
+std::string settings_fingerprint(const IntegratorSettings& settings) {
+  IntegratorSettings s = settings;  // the table's fields are writable ones
+  std::string text;
+  for (const RenderSetting& setting : render_settings()) {
+    if (setting.device_own) continue;
+    text += "|";
+    std::visit(
+        [&](auto* value) {
+          using T = std::remove_pointer_t<decltype(value)>;
+          if constexpr (std::is_same_v<T, std::string>) {
+            text += *value;
+          } else {
+            char number[32];
+            std::snprintf(number, sizeof number, "%.17g", static_cast<double>(*value));
+            text += number;
+          }
+        },
+        setting.field(s));
+  }
+  return text;
+}
+
+}  // namespace kasha

@@ -1,0 +1,62 @@
+#pragma once
+// The render settings, described once: each setting's option name, help, value range and which
+// integrators take it. The command line declares its options from this table (cli/
+// render_options.h), the integrator registry checks a render's options against it, and MPI ranks
+// compare renders by the fingerprint it yields (render/render_spec.h).
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "shared_types.h"
+
+namespace kasha {
+
+// Every integrator's settings, filled by name; each integrator reads the ones it takes.
+struct IntegratorSettings {
+  int spp = 0;  // --spp: camera paths per pixel per pass (0: the integrator's default)
+  static constexpr int kDefaultSpp = 16;  // backward's and debug's
+  long long photons = 1 << 18;            // --photons: photons per pass
+  double alpha = 0.8;  // --alpha: SPPM radius reduction (pbrt-v4: 2/3; 0.8 measured better here)
+  double radius = 0;   // --radius: initial gather radius (0: from the pixel footprint)
+  bool edge_correction = true;           // --edge-correction: photon mapping's gathers at edges
+  std::string gather = "auto";           // --gather: where photon mapping gathers (device, host)
+  std::string view = "emission";         // --view: the debug view
+  unsigned seed = 1;                     // --seed (every integrator)
+  std::string sampler = "sobol";         // --sampler (every integrator): sobol or independent
+  int max_depth = KASHA_MAX_PATH_DEPTH;  // --max-depth (every integrator): the path-length guard
+  unsigned long long memory = 0;  // --memory: photon mapping's store budget, bytes (0: automatic)
+  // Test hooks, not on the command line.
+  bool full_matrix = false;   // backward: carry the full rows × N path matrix
+  int photons_per_item = 64;  // forward: photons per work item
+};
+
+// Where a setting's value lives in IntegratorSettings.
+using SettingField =
+    std::variant<int*, long long*, unsigned*, unsigned long long*, double*, bool*, std::string*>;
+
+struct RenderSetting {
+  enum class Value {
+    integer,   // within [lo, hi]
+    number,    // finite, within [lo, hi]
+    positive,  // finite, in (0, hi]
+    bytes,     // bytes with an optional unit (512MiB, 2GB), within [lo, hi]
+    flag,      // --name or --name=false
+    choice,    // one of `choices`
+  };
+  std::string name, help;
+  Value value;
+  double lo = 0, hi = 0;
+  std::vector<std::string> choices;
+  bool common = false;      // every integrator takes it (else the registry lists who does)
+  bool device_own = false;  // a device's own (its memory): not part of what the image depends on
+  SettingField (*field)(IntegratorSettings&);
+};
+
+const std::vector<RenderSetting>& render_settings();
+const RenderSetting& render_setting(const std::string& name);  // throws for an unknown name
+
+// The settings' values as text, in the table's order, the device's own left out: what a render's
+// image depends on besides its scene, integrator and film.
+std::string settings_fingerprint(const IntegratorSettings& settings);
+
+}  // namespace kasha
