@@ -3,9 +3,11 @@
 
 Usage: python3 scripts/check_links.py [ROOT]   (ROOT: the source tree, default: this script's ..)
 
-1. Every relative link and image in README.md and in the Markdown files under docs/ names an
-   existing file or folder, and every #anchor in such a link (to a Markdown file, or #anchor
-   alone for the same file) is the slug of one of the target's headings, as GitHub makes them.
+1. Every relative link and image (Markdown, or HTML <a href> and <img src>) in README.md and in
+   the Markdown files under docs/ names an existing file or folder, and every #anchor in such a
+   link (to a Markdown file, or #anchor alone for the same file) is the slug of one of the
+   target's headings, as GitHub makes them: lowercase; letters of any script, digits, '-' and
+   '_' kept; spaces to '-'; other punctuation dropped; repeated headings numbered -1, -2, ...
 2. Every pointer into the Markdown docs from the code (a path such as docs/design.md or
    docs/formats.md#scenes in a comment of a file under host/, kernels/, tests/ or scripts/)
    resolves the same way, relative to ROOT.
@@ -28,6 +30,7 @@ HTML_ANCHOR = re.compile(r"""<a\s[^>]*?(?:name|id)\s*=\s*["']([^"']+)["']""", re
 CODE_SPAN = re.compile(r"(`+)(.+?)\1")
 # [text](target "title") and ![alt](target); the target may be in <angle brackets>.
 INLINE_LINK = re.compile(r"!?\[(?:[^\[\]]|\[[^\[\]]*\])*\]\(\s*(<[^>]*>|[^\s()]*(?:\([^\s()]*\)[^\s()]*)*)")
+HTML_LINK = re.compile(r"""<(?:a|img)\s[^>]*?(?:href|src)\s*=\s*["']([^"']*)["']""", re.IGNORECASE)
 REFERENCE_DEFINITION = re.compile(r"^ {0,3}\[[^\]]+\]:\s*(<[^>]*>|\S+)")
 # A pointer into the docs from the code: a path under docs/ ending in .md, with an optional
 # #anchor; any folder depth. Resolved against ROOT.
@@ -170,6 +173,7 @@ def check_markdown(root, path, report):
             targets.append(m.group(1))
         without_code = CODE_SPAN.sub(lambda c: " " * len(c.group(0)), line)
         targets += [m.group(1) for m in INLINE_LINK.finditer(without_code)]
+        targets += [m.group(1) for m in HTML_LINK.finditer(without_code)]
         for target in targets:
             if target.startswith("<") and target.endswith(">"):
                 target = target[1:-1]
