@@ -1,0 +1,90 @@
+#!/usr/bin/env bash
+# Renders the README's gallery into docs/renders/gallery/ with an existing build of kasha:
+#   KASHA_BUILD=build bash scripts/gallery.sh [NAME...]   (the build folder, default build;
+#                                                          NAMEs: only those images)
+# The demo image is the exact command of scripts/demo.sh at the scene's own 256 × 256; the others
+# are shipped scenes at 512 × 512, each with the integrator that converges best on it at equal
+# time (docs/integrators.md#which-integrator-for-which-scene). Prints each image's command and
+# seconds, and writes them to docs/renders/gallery/times.txt for the README's captions.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+BUILD="${KASHA_BUILD:-build}"
+KASHA="$BUILD/kasha"
+GALLERY=docs/renders/gallery
+EXR=out/gallery  # the EXRs stay out of the source tree's docs
+SIZE=512
+ONLY=("$@")
+[ -x "$KASHA" ] || { echo "gallery: no $KASHA (build kasha first, or set KASHA_BUILD)" >&2; exit 1; }
+mkdir -p "$GALLERY" "$EXR"
+TIMES="$GALLERY/times.txt"
+# Lines of times.txt for the images not rendered this time are kept.
+if [ -f "$TIMES" ] && [ ${#ONLY[@]} -gt 0 ]; then cp "$TIMES" "$TIMES.tmp"; else : > "$TIMES.tmp"; fi
+
+# Temporary scene copies live beside their originals (a scene's relative paths resolve against
+# its own folder) and are removed however the script ends.
+TEMPORARY=()
+cleanup() { for f in "${TEMPORARY[@]}"; do rm -f "$f"; done; rm -f "$TIMES.tmp" "$TIMES.tmp2"; }
+trap cleanup EXIT
+
+# A copy of scene $1 with the camera at $2 × $3 pixels; prints its path.
+resized() {
+  local scene="$1" copy
+  copy="$(dirname "$scene")/.gallery_$(basename "$scene" .json)_$2x$3.json"
+  python3 - "$scene" "$copy" "$2" "$3" <<'EOF'
+import json, sys
+scene, copy, width, height = sys.argv[1], sys.argv[2], int(sys.argv[3]), int(sys.argv[4])
+with open(scene) as f:
+    d = json.load(f)
+d["camera"]["width"], d["camera"]["height"] = width, height
+with open(copy, "w") as f:
+    json.dump(d, f, indent=1)
+EOF
+  echo "$copy"
+}
+
+# render NAME SHOWN-SCENE SCENE-FILE OPTIONS...: renders to $GALLERY/NAME.png, prints and records
+# the command (with the scene as shown) and its wall-clock seconds.
+render() {
+  local name="$1" shown="$2" scene="$3"
+  shift 3
+  local start end seconds
+  if [ ${#ONLY[@]} -gt 0 ] && [[ " ${ONLY[*]} " != *" $name "* ]]; then return; fi
+  start=$(date +%s.%N)
+  "$KASHA" render "$scene" "$@" -o "$EXR/$name.exr" --png "$GALLERY/$name.png"
+  end=$(date +%s.%N)
+  seconds=$(python3 -c "print(f'{$end - $start:.0f}')")
+  grep -v "^$name	" "$TIMES.tmp" > "$TIMES.tmp2" || true
+  printf '%s\t%s s\tkasha render %s %s\n' "$name" "$seconds" "$shown" "$*" | tee -a "$TIMES.tmp2"
+  mv "$TIMES.tmp2" "$TIMES.tmp"
+}
+
+# The demo, exactly as scripts/demo.sh renders it (photon mapping, 40 passes, 256 × 256).
+render cornell_box_demo scenes/cornell_box.json scenes/cornell_box.json --passes 40
+
+# The same box at 512 × 512: photon mapping, the default, converges best in closed rooms. Four
+# times the pixels of the scene's 256², so four times the default photons per pass: the same
+# photons per pixel.
+scene=$(resized scenes/cornell_box.json $SIZE $SIZE); TEMPORARY+=("$scene")
+render cornell_box_512 "scenes/cornell_box.json (${SIZE}²)" "$scene" --photons 1048576 --time 90
+
+# The light booth under D65: every sample lit directly by a large lamp, where backward's
+# next-event estimation has next to no variance.
+scene=$(resized scenes/light_booth.json $SIZE $SIZE); TEMPORARY+=("$scene")
+render light_booth_512 "scenes/light_booth.json (${SIZE}²)" "$scene" --integrator backward \
+  --time 60
+
+# The mirror caustic: light reaches the Post-it tile only by the mirror, and the camera sees it
+# only in the mirror; photon mapping carries both halves (backward is noise, forward black).
+# More photons per pass, as the 512² camera's gather radii are 8 times smaller than at 64².
+scene=$(resized scenes/mirror_caustic.json $SIZE $SIZE); TEMPORARY+=("$scene")
+render mirror_caustic_512 "scenes/mirror_caustic.json (${SIZE}²)" "$scene" --photons 1048576 \
+  --time 90
+
+# The glossy Cornell box: a tabulated 12° lobe on the floor; backward has the lowest error at
+# equal time over all pixels (the lamp and its reflection included).
+scene=$(resized scenes/glossy_cornell_box.json $SIZE $SIZE); TEMPORARY+=("$scene")
+render glossy_cornell_box_512 "scenes/glossy_cornell_box.json (${SIZE}²)" "$scene" \
+  --integrator backward --time 60
+
+mv "$TIMES.tmp" "$TIMES"
+echo "gallery: wrote $GALLERY/*.png and $TIMES"
