@@ -311,7 +311,7 @@ void require_numbers(CLI::App& app) {
 }
 
 std::string parse_error_line(const CLI::App& app, const CLI::ParseError& e) {
-  return one_line(translate(app, *deepest_parsed(app), e));
+  return as_one_line(translate(app, *deepest_parsed(app), e));
 }
 
 int exit_for_parse_error(const CLI::App& app, const CLI::ParseError& e) {

@@ -54,7 +54,7 @@ std::string printable(std::string_view s) {
   return out;
 }
 
-std::string one_line(const std::string& message) {
+std::string as_one_line(const std::string& message) {
   std::string out;
   for (size_t i = 0; i < message.size();) {
     auto special = [&](size_t k) {

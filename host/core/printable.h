@@ -11,7 +11,7 @@ std::string printable(std::string_view bytes);
 
 // A message made safe for one line: control bytes and invalid UTF-8 escaped as \xNN (backslashes
 // left alone: parts of the message may already be escaped).
-std::string one_line(const std::string& message);
+std::string as_one_line(const std::string& message);
 
 // Whether the bytes are valid UTF-8 (what nlohmann::json needs to write them).
 bool valid_utf8(std::string_view bytes);

@@ -7,9 +7,9 @@
 #include <atomic>
 #include <string>
 
-#include "integrators/photon/photon_chunks.h"
 #include "mpi/render_messages.h"
 #include "render/integrator.h"
+#include "render/pass_chunks.h"
 
 namespace kasha {
 
@@ -26,6 +26,7 @@ class RemoteLane : public Integrator, public ChunkWorker {
   long long camera_paths_per_pass() const override { return 0; }
   long long photons_per_pass() const override { return 0; }
 
+  ChunkWorker* chunk_worker() override { return this; }
   size_t chunk_capacity() const override { return static_cast<size_t>(info_.capacity); }
   void set_chunk_control(const PassControl& control) override { set_control(control); }
   void take_inputs(const PassInputs& inputs) override;

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "film/pass_result.h"
-#include "integrators/photon/photon_chunks.h"
+#include "render/pass_chunks.h"
 #include "render/pass_control.h"
 
 namespace kasha::mpi {

@@ -33,7 +33,7 @@ bool dies_here(int requests) {
 
 // Answers rank 0's requests for device `tag` of this rank until rank 0 says stop.
 void serve_device(int tag, Integrator& integrator) {
-  ChunkWorker* worker = dynamic_cast<ChunkWorker*>(&integrator);
+  ChunkWorker* worker = integrator.chunk_worker();
   std::string inputs_failed;  // a pass's inputs that failed to arrive: the next chunk's answer
   std::atomic<size_t> progress{0};
   int requests = 0;
@@ -104,7 +104,7 @@ int serve_render(const RenderSpec& spec) {
       // One job per device, each served alone: rank 0 shares the work out.
       jobs.push_back(std::make_unique<RenderJob>(std::vector<RenderLane>{lanes[d]}, *scene,
                                                  spec.integrator, spec.settings, spec.spectral));
-      const auto* worker = dynamic_cast<const ChunkWorker*>(&jobs.back()->integrator());
+      const ChunkWorker* worker = jobs.back()->integrator().chunk_worker();
       hello.devices.push_back({(*devices)[d].info().name, worker ? worker->chunk_capacity() : 0});
     }
   } catch (...) {

@@ -12,9 +12,9 @@ std::string failure_text() {
   } catch (const Interrupted&) {
     return "interrupted";
   } catch (const cl::Error& e) {
-    return one_line("OpenCL: " + cl_error_text(e));
+    return as_one_line("OpenCL: " + cl_error_text(e));
   } catch (const std::exception& e) {
-    return one_line(e.what());
+    return as_one_line(e.what());
   } catch (...) {
     return "an unknown failure";
   }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "film/pass_result.h"
+#include "render/pass_chunks.h"
 #include "render/pass_control.h"
 
 namespace kasha {
@@ -29,11 +30,11 @@ class Integrator {
   virtual std::string build_options() const { return {}; }
 
   // Several devices (render/render_job.h). Passes that depend on nothing before them are handed
-  // out whole, one a device (render/pass_scheduler.h); an integrator whose passes build on the
-  // last (photon mapping's radii) says so, and shares each pass with its instances on the other
-  // devices, which it is given here.
-  virtual bool independent_passes() const { return true; }
-  virtual void set_helpers(const std::vector<Integrator*>& helpers) { (void)helpers; }
+  // out whole, one a device (render/pass_scheduler.h). An integrator whose passes build on the
+  // last (photon mapping's radii) shares each pass in chunks instead (render/pass_chunks.h): it
+  // returns its chunk worker here, and its first instance is given the others' in set_helpers.
+  virtual ChunkWorker* chunk_worker() { return nullptr; }
+  virtual void set_helpers(const std::vector<ChunkWorker*>& helpers) { (void)helpers; }
 
  protected:
   void rename(const std::string& name) { name_ = name; }

@@ -1,14 +1,12 @@
 #include "render/kernel_integrator.h"
 
-#include <algorithm>
-
 #include "core/error.h"
 
 namespace kasha {
 
 KernelIntegrator::KernelIntegrator(const IntegratorSetup& s, const std::string& file,
                                    KernelDefines extra)
-    : cl_(s.cl), scene_(s.device_scene), film_(s.device_film) {
+    : KernelLauncher(s.cl, s.device_scene, s.device_film) {
   KernelDefines defines = scene_defines(s.scene, film_.spectral());
   if (s.settings.sampler != "sobol" && s.settings.sampler != "independent")
     throw Error("--sampler " + s.settings.sampler + ": unknown sampler (sobol, independent)");
@@ -17,11 +15,6 @@ KernelIntegrator::KernelIntegrator(const IntegratorSetup& s, const std::string& 
   for (const auto& [name, value] : extra) defines[name] = value;
   build_options_ = kasha::build_options(defines);
   program_ = build_program(cl_, assemble_kernel_source(file), defines, file);
-}
-
-size_t KernelIntegrator::work_group_size(cl::Kernel& kernel) {
-  size_t most = kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(cl_.device());
-  return std::max<size_t>(1, std::min<size_t>(64, most));
 }
 
 }  // namespace kasha

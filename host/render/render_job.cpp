@@ -31,13 +31,19 @@ RenderJob::RenderJob(const std::vector<RenderLane>& lanes, const Scene& scene,
   std::vector<Integrator*> others;
   for (size_t i = 1; i < integrators_.size(); ++i) others.push_back(integrators_[i].get());
   others.insert(others.end(), remote.begin(), remote.end());
-  if (integrators_[0]->independent_passes()) {
+  if (!integrators_[0]->chunk_worker()) {
     std::vector<Integrator*> all{integrators_[0].get()};
     all.insert(all.end(), others.begin(), others.end());
     scheduler_ = std::make_unique<PassScheduler>(all);
-  } else {
-    integrators_[0]->set_helpers(others);
+    return;
   }
+  std::vector<ChunkWorker*> helpers;
+  for (Integrator* other : others) {
+    if (!other->chunk_worker())
+      throw Error(integrator + ": a helper device runs another integrator");
+    helpers.push_back(other->chunk_worker());
+  }
+  integrators_[0]->set_helpers(helpers);
 }
 
 RenderSummary RenderJob::run(const RenderOptions& options) {

@@ -1,10 +1,12 @@
-#include "integrators/photon/photon_gather.h"
+#include "integrators/photon/photon_host_gather.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <nanoflann.hpp>
 
 #include "core/parallel_for.h"
+#include "photon_layout.h"
 
 namespace kasha {
 
@@ -83,6 +85,37 @@ GatherResult PhotonKdTree::gather(const float* vps, int vp_floats, size_t pixels
     }
   });
   return out;
+}
+
+void HostGather::take_inputs(const PassInputs& inputs) {
+  visible_points_ = inputs.visible_points;
+  radius_.assign(inputs.radius.begin(), inputs.radius.end());
+}
+
+void HostGather::gather(std::vector<float>& records, size_t count, ChunkResult& c) const {
+  sort_by_key(records, count);
+  PhotonKdTree tree(records.data(), count, photon_floats_);
+  GatherResult found = tree.gather(visible_points_.data(), vp_floats_, pixels_, radius_, layout_);
+  for (size_t i = 0; i < c.flux.size(); ++i) c.flux[i] += found.flux[i];
+  for (size_t p = 0; p < c.found.size(); ++p) c.found[p] += found.found[p];
+}
+
+void HostGather::sort_by_key(std::vector<float>& records, size_t count) const {
+  auto key = [&](size_t i) {
+    const float* r = &records[i * photon_floats_];
+    uint32_t index, depth;
+    std::memcpy(&index, r + KASHA_PHOTON_INDEX, sizeof index);
+    std::memcpy(&depth, r + KASHA_PHOTON_DEPTH, sizeof depth);
+    return static_cast<uint64_t>(index) << 32 | depth;
+  };
+  std::vector<size_t> order(count);
+  for (size_t i = 0; i < count; ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return key(a) < key(b); });
+  std::vector<float> sorted(count * photon_floats_);
+  for (size_t i = 0; i < count; ++i)
+    std::memcpy(&sorted[i * photon_floats_], &records[order[i] * photon_floats_],
+                photon_floats_ * sizeof(float));
+  records.swap(sorted);
 }
 
 }  // namespace kasha

@@ -1,8 +1,9 @@
 #pragma once
-// Photon mapping's shared pass (photon_map_integrator.cpp): the main device runs the camera pass,
-// then a pass's photons are traced and gathered in fixed chunks by whichever worker comes free —
-// the integrator's instances on other devices, or their proxies on other MPI ranks
-// (mpi/remote_lane.h) — and the chunks' gathers add up in chunk order.
+// A pass shared in chunks, for an integrator whose passes build on the ones before (photon
+// mapping: integrators/photon/photon_pass_chunks.h). The main device prepares the pass (the
+// camera pass), then the pass's photons are traced and gathered in fixed chunks by whichever
+// worker comes free — the integrator's instances on other devices, or their proxies on other MPI
+// ranks (mpi/remote_lane.h) — and the chunks' gathers add up in chunk order.
 #include <atomic>
 #include <cstddef>
 #include <map>
@@ -24,8 +25,8 @@ struct ChunkResult {
   std::vector<double> flux;
   std::vector<int> found;
   double traced = 0, records = 0, cut = 0, trace_s = 0, gather_s = 0;
-  double overflows = 0;                // ranges traced again in halves
-  double gathers = 0;                  // gathers of a store: each queries every visible point
+  double overflows = 0;  // ranges traced again in halves
+  double gathers = 0;    // gathers of a store: each queries every visible point
   double closest_rays = 0, shadow_rays = 0;
   double per_photon = 0;               // the most records a photon of a whole range stored
   std::map<std::string, double> work;  // photons traced per device, with several
