@@ -83,9 +83,10 @@ double band_from_etalon(const ExcitationEmissionMatrix& etalon) {
   return widths[static_cast<size_t>(0.9 * (widths.size() - 1))] + step;
 }
 
-MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in) {
-  const ExcitationEmissionMatrix &S = in.sample, &E = in.etalon;
-  if (!S.same_grid(E)) {
+// The grids of the sample's and the etalon's matrices must be one.
+static void check_same_grid(const ExcitationEmissionMatrix& S, const ExcitationEmissionMatrix& E) {
+  if (S.same_grid(E)) return;
+  {
     std::ostringstream msg;
     msg << "grids do not match: " << S.source << " has " << S.ex_nm.size() << " excitation x "
         << S.em_nm.size() << " emission wavelengths (" << S.ex_nm.front() << "–" << S.ex_nm.back()
@@ -94,6 +95,56 @@ MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in) {
         << E.ex_nm.back() << " / " << E.em_nm.front() << "–" << E.em_nm.back() << " nm)";
     throw Error(msg.str());
   }
+}
+
+// Per excitation wavelength: the band's sums of the etalon (R̄_e) and the sample (R̄), the
+// etalon's reflectance over π (f_e) and the detector's sensitivity (C(λi)), where a band exists.
+struct BandSums {
+  std::vector<double> rbar_e, rbar, f_e, c_i;
+  std::vector<bool> has_band;
+};
+
+static BandSums band_sums(const FluorimeterInput& in, const Eigen::MatrixXd& band,
+                          const std::vector<double>& w, double eps) {
+  const ExcitationEmissionMatrix &S = in.sample, &E = in.etalon;
+  const Eigen::Index n_o = S.em_nm.size(), n_i = S.ex_nm.size();
+  BandSums r{std::vector<double>(n_i, 0.0), std::vector<double>(n_i, 0.0),
+             std::vector<double>(n_i, 0.0), std::vector<double>(n_i, 1.0),
+             std::vector<bool>(n_i, false)};
+  for (Eigen::Index i = 0; i < n_i; ++i) {
+    double li = S.ex_nm[i];
+    for (Eigen::Index o = 0; o < n_o; ++o)
+      if (band(o, i) > 0) {
+        r.rbar_e[i] += E.value(o, i) * w[o];
+        r.rbar[i] += S.value(o, i) * w[o];
+        r.has_band[i] = true;
+      }
+    bool inside = li >= S.em_nm.front() && li <= S.em_nm.back();
+    if (inside && !r.has_band[i])
+      throw Error(printable(S.source) + ": empty band: no emission sample lies within ±" +
+                  std::to_string(eps) + " nm of the excitation at " + nm_text(li) +
+                  " (--band-nm is narrower than the emission grid's step)");
+    if (!r.has_band[i]) continue;
+    if (!(r.rbar_e[i] > 0))
+      throw Error(printable(E.source) + ": the etalon reading is zero in the band at excitation " +
+                  nm_text(li));
+    r.f_e[i] = positive_value(*in.etalon_reflectance, li, in.etalon_reflectance_source,
+                              "etalon reflectance") /
+               M_PI;
+    if (in.sensitivity)
+      r.c_i[i] = positive_value(*in.sensitivity, li, in.sensitivity_source, "detector sensitivity");
+  }
+  if (std::count(r.has_band.begin(), r.has_band.end(), true) < 2)
+    throw Error(printable(S.source) +
+                ": fewer than two excitation wavelengths lie inside the emission range (" +
+                nm_text(S.em_nm.front()) + " to " + nm_text(S.em_nm.back()) +
+                "); the material's spectra need two");
+  return r;
+}
+
+MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in) {
+  const ExcitationEmissionMatrix &S = in.sample, &E = in.etalon;
+  check_same_grid(S, E);
   MeasuredMaterial m;
   m.source = S.source;
   m.method = "fluorimeter";
@@ -118,36 +169,10 @@ MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in) {
     }
 
   // Per excitation wavelength: R̄_e, f_e and the sensitivity at λi.
-  std::vector<double> rbar_e(n_i, 0.0), rbar(n_i, 0.0), f_e(n_i, 0.0), c_i(n_i, 1.0);
-  std::vector<bool> has_band(n_i, false);
-  for (Eigen::Index i = 0; i < n_i; ++i) {
-    double li = S.ex_nm[i];
-    for (Eigen::Index o = 0; o < n_o; ++o)
-      if (band(o, i) > 0) {
-        rbar_e[i] += E.value(o, i) * w[o];
-        rbar[i] += S.value(o, i) * w[o];
-        has_band[i] = true;
-      }
-    bool inside = li >= S.em_nm.front() && li <= S.em_nm.back();
-    if (inside && !has_band[i])
-      throw Error(printable(S.source) + ": empty band: no emission sample lies within ±" +
-                  std::to_string(eps) + " nm of the excitation at " + nm_text(li) +
-                  " (--band-nm is narrower than the emission grid's step)");
-    if (!has_band[i]) continue;
-    if (!(rbar_e[i] > 0))
-      throw Error(printable(E.source) + ": the etalon reading is zero in the band at excitation " +
-                  nm_text(li));
-    f_e[i] = positive_value(*in.etalon_reflectance, li, in.etalon_reflectance_source,
-                            "etalon reflectance") /
-             M_PI;
-    if (in.sensitivity)
-      c_i[i] = positive_value(*in.sensitivity, li, in.sensitivity_source, "detector sensitivity");
-  }
-  if (std::count(has_band.begin(), has_band.end(), true) < 2)
-    throw Error(printable(S.source) +
-                ": fewer than two excitation wavelengths lie inside the emission range (" +
-                nm_text(S.em_nm.front()) + " to " + nm_text(S.em_nm.back()) +
-                "); the material's spectra need two");
+  const BandSums sums = band_sums(in, band, w, eps);
+  const std::vector<double>&rbar_e = sums.rbar_e, &rbar = sums.rbar, &f_e = sums.f_e,
+        &c_i = sums.c_i;
+  const std::vector<bool>& has_band = sums.has_band;
   std::vector<double> c_o(n_o, 1.0);
   if (in.sensitivity)
     for (Eigen::Index o = 0; o < n_o; ++o)

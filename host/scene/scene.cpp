@@ -256,6 +256,51 @@ static LampChoice choose_lamp(const JsonNode& root, const std::string& requested
   return parsed.at(scene.lamp);
 }
 
+// The scene's "materials": each inline, or {"file": ...} relative to the scene's folder.
+static void parse_materials(const JsonNode& materials, Scene& scene) {
+  for (const std::string& name : materials.keys()) {
+    JsonNode m = materials.at(name);
+    if (!m.is_object()) m.fail("expected a material object or {\"file\": ...}");
+    if (auto file = m.find("file")) {
+      std::filesystem::path p = relative_to(m, file->string());
+      m.finish();
+      scene.material_descs.push_back(load_material_file(p.string(), name));
+    } else {
+      scene.material_descs.push_back(parse_material(m, name));
+    }
+  }
+}
+
+// Vertices must be finite and well inside float range after transforms: squared distances of
+// them must not overflow, and Embree asserts on non-finite bounds.
+static void check_vertices(const std::vector<Triangle>& tris, const JsonNode& shape) {
+  for (const Triangle& t : tris)
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c)
+        if (!(std::abs(t[k][c]) <= kMaxCoordinate)) {
+          char v[128];
+          std::snprintf(v, sizeof v, "(%g, %g, %g)", t[k][0], t[k][1], t[k][2]);
+          shape.fail(std::string("a vertex at ") + v + " is not finite or beyond ±1e18");
+        }
+}
+
+// A shape's triangles in kernel layout, after the scene's.
+static void append_triangles(const std::vector<Triangle>& tris, int material, int emitter,
+                             Scene& scene) {
+  for (const Triangle& t : tris) {
+    KTriangle k{};
+    for (int c = 0; c < 3; ++c) {
+      k.v0[c] = static_cast<float>(t[0][c]);
+      k.v1[c] = static_cast<float>(t[1][c]);
+      k.v2[c] = static_cast<float>(t[2][c]);
+    }
+    k.material = material;
+    k.emitter = emitter;
+    k.prim = static_cast<int>(scene.triangles.size());
+    scene.triangles.push_back(k);
+  }
+}
+
 Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid,
                  const std::string& lamp) {
   JsonNode root = JsonNode::load_file(path);
@@ -272,18 +317,7 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
   const LampChoice lamp_on = choose_lamp(root, lamp, scene);
   bool lamp_used = false;
 
-  JsonNode materials = root.at("materials");
-  for (const std::string& name : materials.keys()) {
-    JsonNode m = materials.at(name);
-    if (!m.is_object()) m.fail("expected a material object or {\"file\": ...}");
-    if (auto file = m.find("file")) {
-      std::filesystem::path p = relative_to(m, file->string());
-      m.finish();
-      scene.material_descs.push_back(load_material_file(p.string(), name));
-    } else {
-      scene.material_descs.push_back(parse_material(m, name));
-    }
-  }
+  parse_materials(root.at("materials"), scene);
 
   JsonNode shapes = root.at("shapes");
   TriangleKeys seen_triangles;
@@ -297,16 +331,7 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
     if (material < 0) shape.at("material").fail("no material named \"" + material_name + "\"");
     material_used[material] = true;
     std::vector<Triangle> tris = shape_triangles(shape, type);
-    // Vertices must be finite and well inside float range after transforms: squared distances of
-    // them must not overflow, and Embree asserts on non-finite bounds.
-    for (const Triangle& t : tris)
-      for (int k = 0; k < 3; ++k)
-        for (int c = 0; c < 3; ++c)
-          if (!(std::abs(t[k][c]) <= kMaxCoordinate)) {
-            char v[128];
-            std::snprintf(v, sizeof v, "(%g, %g, %g)", t[k][0], t[k][1], t[k][2]);
-            shape.fail(std::string("a vertex at ") + v + " is not finite or beyond ±1e18");
-          }
+    check_vertices(tris, shape);
     drop_duplicate_triangles(tris, seen_triangles, shape);
 
     int emitter = -1;
@@ -339,18 +364,7 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
     scene.shapes.push_back(ShapeInfo{type, inward, material, emitter,
                                      static_cast<int>(scene.triangles.size()),
                                      static_cast<int>(tris.size())});
-    for (const Triangle& t : tris) {
-      KTriangle k{};
-      for (int c = 0; c < 3; ++c) {
-        k.v0[c] = static_cast<float>(t[0][c]);
-        k.v1[c] = static_cast<float>(t[1][c]);
-        k.v2[c] = static_cast<float>(t[2][c]);
-      }
-      k.material = material;
-      k.emitter = emitter;
-      k.prim = static_cast<int>(scene.triangles.size());
-      scene.triangles.push_back(k);
-    }
+    append_triangles(tris, material, emitter, scene);
   }
   root.finish();
   if (scene.triangles.empty()) root.fail("the scene has no shapes");

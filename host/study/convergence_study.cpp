@@ -148,7 +148,8 @@ void write_summary(const std::string& dir, const std::string& scene_path, const 
 
 }  // namespace
 
-StudyResult run_convergence_study(const std::string& scene_path, const StudyOptions& o) {
+// The study's options that no parser checked (a library caller's as much as the CLI's).
+static void check_study(const StudyOptions& o) {
   const std::vector<std::string> physical = IntegratorRegistry::names(true);
   std::string known;
   for (const std::string& name : physical) known += (known.empty() ? "" : ", ") + name;
@@ -158,6 +159,10 @@ StudyResult run_convergence_study(const std::string& scene_path, const StudyOpti
       throw Error("--integrators: unknown integrator \"" + name + "\" (" + known + ")");
   if (!(o.seconds > 0) && o.passes <= 0) throw Error("--time must be positive");
   if (o.repeats < 1) throw Error("--repeats must be at least 1");
+}
+
+StudyResult run_convergence_study(const std::string& scene_path, const StudyOptions& o) {
+  check_study(o);
   check_directory(o.out_dir);
   Scene scene = load_scene(scene_path);
   // A reference that cannot exist is refused before the device is touched.
