@@ -9,12 +9,33 @@
 
 #include "render/integrator_registry.h"
 #include "render/launch_pacer.h"
+#include "render/progressive_render.h"
 #include "render_support.h"
 #include "study/furnace.h"
 #include "test_support.h"
 
 using namespace kasha;
 using namespace kasha::test;
+
+// The progress line's time left counts the pass in flight: one long pass half done after 10 s
+// has 10 s left (not 0), a pass whose integrator reports no fraction is estimated from the passes
+// before it, and the first such pass says nothing rather than a wrong 0.
+TEST(ProgressLine, TimeLeftCountsThePassInFlight) {
+  const StopCondition one_pass{0, 1}, four_passes{0, 4}, both{30, 4};
+  EXPECT_DOUBLE_EQ(seconds_left(one_pass, 0, 0, 10, 0.5), 10);
+  EXPECT_DOUBLE_EQ(seconds_left(one_pass, 0, 0, 9, 0.9), 1);
+  EXPECT_LT(seconds_left(one_pass, 0, 0, 10, 0), 0);  // unknown yet
+  // Two passes of 5 s done, 2 s into the third, no fraction: 3 s of it and 5 s of the last.
+  EXPECT_DOUBLE_EQ(seconds_left(four_passes, 2, 10, 2, 0), 8);
+  // A pass running longer than the others: at least the passes after it.
+  EXPECT_DOUBLE_EQ(seconds_left(four_passes, 2, 10, 7, 0), 5);
+  // Between passes: the remaining passes at the mean so far.
+  EXPECT_DOUBLE_EQ(seconds_left(four_passes, 1, 5, 0, 0), 15);
+  // --time and --passes: whichever ends first.
+  EXPECT_DOUBLE_EQ(seconds_left(both, 2, 10, 2, 0), 8);
+  EXPECT_DOUBLE_EQ(seconds_left(StopCondition{12, 4}, 2, 10, 1, 0), 1);
+  EXPECT_DOUBLE_EQ(seconds_left(StopCondition{12, 0}, 0, 0, 5, 0.1), 7);
+}
 
 TEST(LaunchPacer, StartsSmallGrowsAtMostFourfoldAndFitsTheTarget) {
   LaunchPacer pacer(0.2, 100);

@@ -10,11 +10,6 @@
 
 namespace kasha {
 
-namespace {
-
-// Seconds left of a render, counting the pass in flight: from its reported fraction where there
-// is one, else from the passes before it; negative while nothing tells (the first pass, before
-// it reports).
 double seconds_left(const StopCondition& stop, int passes_done, double done_seconds,
                     double in_flight_seconds, double fraction) {
   double left = -1;
@@ -35,7 +30,6 @@ double seconds_left(const StopCondition& stop, int passes_done, double done_seco
   return left;
 }
 
-}  // namespace
 
 RenderSummary render_progressive(Integrator& integrator, Film& film, const RenderOptions& options) {
   if (!options.stop.given()) throw std::logic_error("render_progressive: no stop condition");

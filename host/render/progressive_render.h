@@ -22,6 +22,13 @@ struct RenderSummary {
   bool interrupted = false;
 };
 
+// Seconds left of a render, counting the pass in flight (`in_flight_seconds` into it, `fraction`
+// of it done, 0 when its integrator does not say): from that fraction where there is one, else
+// from the `passes_done` passes before it; negative while nothing tells (the first pass, before
+// it reports). What the progress line shows.
+double seconds_left(const StopCondition& stop, int passes_done, double done_seconds,
+                    double in_flight_seconds, double fraction);
+
 // Stops early, after a whole pass, once interrupt_requested() (core/interrupt.h).
 RenderSummary render_progressive(Integrator& integrator, Film& film, const RenderOptions& options);
 
