@@ -13,6 +13,7 @@
 #include "core/interrupt.h"
 #include "core/output_set.h"
 #include "study/convergence_study.h"
+#include "study/reference_image.h"
 
 namespace kasha {
 
@@ -28,7 +29,7 @@ static int run_converge(const std::string& scene, const std::string& integrators
   // leaves none (or, when it exists, leaves its files as they were).
   OutputSet outputs;
   outputs.input(scene, "the scene file");
-  if (study.reference != "furnace") outputs.input(study.reference, "the --reference image");
+  if (study.reference != kFurnaceReference) outputs.input(study.reference, "the --reference image");
   const std::string out_dir = study.out_dir;
   outputs.directory("-o", out_dir);
   study.out_dir = outputs.staging(out_dir);

@@ -43,7 +43,8 @@ ChunkResult share_pass(int pass, size_t photons, size_t chunk,
                        const PassControl& control, size_t flux_size, size_t pixels) {
   const size_t chunks = (photons + chunk - 1) / chunk;
   std::vector<double> work_done(workers.size(), 0.0);  // each written by its worker's thread only
-  std::vector<bool> ready(workers.size(), false);      // given the pass's inputs
+  // Given the pass's inputs; not vector<bool>, as each worker's thread writes its own element.
+  std::vector<char> ready(workers.size(), 0);
   std::atomic<size_t> progress{0};
   PassControl quiet = control;
   quiet.progress = nullptr;  // progress is the first worker's to show
@@ -52,7 +53,7 @@ ChunkResult share_pass(int pass, size_t photons, size_t chunk,
     if (lane > 0 && !ready[lane]) {
       worker.set_chunk_control(quiet);
       worker.take_inputs(inputs);
-      ready[lane] = true;
+      ready[lane] = 1;
     }
     const size_t first = static_cast<size_t>(c) * chunk;
     ChunkResult result;
