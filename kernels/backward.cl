@@ -57,9 +57,8 @@ __kernel void render_backward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
                   int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
-  int pixel = get_global_id(0);
-  if (pixel >= item_end) return;
-  if (pixel >= camera.width * camera.height) return;
+  int pixel = launch_pixel(&camera, item_end);
+  if (pixel < 0) return;
   int bad = 0;
   float guard = 0.0f;
   Sampler sampler = sampler_start(seed, (uint)pixel, 0, pass, (uint)pixel);

@@ -124,9 +124,8 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
                           int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
-  int pixel = get_global_id(0);
-  if (pixel >= item_end) return;
-  if (pixel >= camera.width * camera.height) return;
+  int pixel = launch_pixel(&camera, item_end);
+  if (pixel < 0) return;
   const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
   __global float* vp = visible_points + (long)pixel * vp_floats;
   vp[KASHA_VP_VALID] = 0.0f;
