@@ -1,7 +1,7 @@
 #pragma once
 // The plumbing every OpenCL integrator shares: its program built for this scene and film, and
 // launches that set the scene's and the film's parameters (KASHA_SCENE_PARAMS,
-// KASHA_FILM_PARAMS) before the kernel's own arguments.
+// KASHA_FILM_PARAMS) before the kernel's own arguments, or (launch_own) only its own arguments.
 #include <chrono>
 #include <string>
 #include <vector>
@@ -32,16 +32,18 @@ class KernelIntegrator : public Integrator {
   // size, so launches of varying sizes must not each choose their own.
   template <typename... Args>
   void launch_range(cl::Kernel& kernel, size_t first, size_t count, const Args&... args) {
-    const auto start = std::chrono::steady_clock::now();
-    cl_uint a = static_cast<cl_uint>(film_.bind(kernel, scene_.bind(kernel, 0)));
-    (kernel.setArg(a++, args), ...);
-    kernel.setArg(a, static_cast<cl_int>(first + count));
-    const size_t local = work_group_size(kernel);
-    cl_.queue().enqueueNDRangeKernel(kernel, first > 0 ? cl::NDRange(first) : cl::NullRange,
-                                     cl::NDRange((count + local - 1) / local * local),
-                                     cl::NDRange(local));
-    cl_.queue().finish();
-    device_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    launch_items(kernel, true, first, count, args...);
+  }
+
+  // launch and launch_range for kernels that take neither the scene's nor the film's parameters
+  // (they read neither and trace no rays): only `args`, then `item_end`.
+  template <typename... Args>
+  void launch_own(cl::Kernel& kernel, size_t items, const Args&... args) {
+    launch_own_range(kernel, 0, items, args...);
+  }
+  template <typename... Args>
+  void launch_own_range(cl::Kernel& kernel, size_t first, size_t count, const Args&... args) {
+    launch_items(kernel, false, first, count, args...);
   }
 
   // 64 work items a group, or what the device allows for this kernel.
@@ -73,6 +75,23 @@ class KernelIntegrator : public Integrator {
   DeviceScene& scene_;
   DeviceFilm& film_;
   cl::Program program_;
+
+ private:
+  // The one launch path: the scene's and the film's parameters first if `views`, then `args` and
+  // item_end; enqueues the range in whole work-groups, waits, and counts the time.
+  template <typename... Args>
+  void launch_items(cl::Kernel& kernel, bool views, size_t first, size_t count, const Args&... args) {
+    const auto start = std::chrono::steady_clock::now();
+    cl_uint a = views ? static_cast<cl_uint>(film_.bind(kernel, scene_.bind(kernel, 0))) : 0;
+    (kernel.setArg(a++, args), ...);
+    kernel.setArg(a, static_cast<cl_int>(first + count));
+    const size_t local = work_group_size(kernel);
+    cl_.queue().enqueueNDRangeKernel(kernel, first > 0 ? cl::NDRange(first) : cl::NullRange,
+                                     cl::NDRange((count + local - 1) / local * local),
+                                     cl::NDRange(local));
+    cl_.queue().finish();
+    device_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
 };
 
 }  // namespace kasha

@@ -161,8 +161,8 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
     r.tallies["time: camera pass (s)"] = device_seconds_ - device0;
     warn_raised_radii();
     if (!host_gather_)
-      launch_range(cell_size_kernel_, 0, work_group_size(cell_size_kernel_), vps_, radius_buf_,
-                   static_cast<cl_int>(pixels), cell_);
+      launch_own_range(cell_size_kernel_, 0, work_group_size(cell_size_kernel_), vps_, radius_buf_,
+                       static_cast<cl_int>(pixels), cell_);
     PassInputs inputs;
     if (host_gather_ || !helpers_.empty()) {
       read_floats(vps_, pixels * vp_floats_, inputs.visible_points);
@@ -186,8 +186,8 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
           static_cast<float>(2 * M_PI * std::fmod(0.6180339887 * pass + 1e-3 * seed_, 1.0));
       launch(coverage_kernel_, pixels, vps_, radius_buf_, coverage_, kCoverageProbes, rotation);
     }
-    launch(update_kernel_, pixels, radius_buf_, count_, tau_, pass_flux_, pass_found_,
-           static_cast<cl_float>(alpha_), static_cast<cl_float>(1.0 / r.fraction));
+    launch_own(update_kernel_, pixels, radius_buf_, count_, tau_, pass_flux_, pass_found_,
+               static_cast<cl_float>(alpha_), static_cast<cl_float>(1.0 / r.fraction));
     r.tallies["time: SPPM update and edge probes (s)"] = device_seconds_ - t;
     ++passes_;
     r.kept = [this] { return read_image(); };
@@ -259,8 +259,9 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
 
   // The image so far: direct light's mean plus the SPPM radiance, per pixel and film row.
   std::vector<float> read_image() {
-    launch(image_kernel_, film_.pixels(), direct_, radius_buf_, tau_, coverage_,
-           static_cast<cl_int>(edge_correction_), static_cast<cl_float>(passes_), image_);
+    launch_own(image_kernel_, film_.pixels(), scene_.data().bin_nm, direct_, radius_buf_, tau_,
+               coverage_, static_cast<cl_int>(edge_correction_), static_cast<cl_float>(passes_),
+               image_);
     std::vector<float> image;
     read_floats(image_, film_.pixels() * film_.rows(), image);
     return image;
@@ -515,13 +516,13 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
     // photon's place in its cell's run, and each run in key order.
     const cl_uint mask = static_cast<cl_uint>(cells_ - 1);
     cl_.queue().enqueueFillBuffer(cell_count_, cl_int(0), 0, cells_ * sizeof(cl_int));
-    launch(count_kernel_, count, store_, cell_, mask, cell_count_, photon_cell_);
-    launch_range(scan_kernel_, 0, work_group_size(scan_kernel_), cell_count_,
-                 static_cast<cl_int>(cells_), cell_end_);
-    launch(scatter_kernel_, count, photon_cell_, cell_end_, sorted_);
-    launch(sort_kernel_, cells_, store_, cell_count_, cell_end_, sorted_);
-    launch(gather_kernel_, film_.pixels(), vps_, radius_buf_, store_, sorted_, cell_count_,
-           cell_end_, cell_, mask, pass_flux_, pass_found_);
+    launch_own(count_kernel_, count, store_, cell_, mask, cell_count_, photon_cell_);
+    launch_own_range(scan_kernel_, 0, work_group_size(scan_kernel_), cell_count_,
+                     static_cast<cl_int>(cells_), cell_end_);
+    launch_own(scatter_kernel_, count, photon_cell_, cell_end_, sorted_);
+    launch_own(sort_kernel_, cells_, store_, cell_count_, cell_end_, sorted_);
+    launch_own(gather_kernel_, film_.pixels(), film_.cmf_buffer(), vps_, radius_buf_, store_,
+               sorted_, cell_count_, cell_end_, cell_, mask, pass_flux_, pass_found_);
     c.gather_s += device_seconds_ - t;
   }
 
