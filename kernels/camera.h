@@ -24,4 +24,11 @@ inline float3 camera_sample(const KCamera* c, int pixel, float2 u) {
   return camera_direction(c, px + u.x, py + u.y);
 }
 
+/* The pixel a work item renders in a launch of one item per pixel, or -1 for an item past the
+ * launch's end (item_end: launches are rounded up to whole work-groups) or past the image. */
+inline int launch_pixel(const KCamera* c, int item_end) {
+  int pixel = get_global_id(0);
+  return pixel < item_end && pixel < c->width * c->height ? pixel : -1;
+}
+
 #endif

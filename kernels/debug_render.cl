@@ -26,9 +26,8 @@ __kernel void render_debug(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
                   int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
-  int pixel = get_global_id(0);
-  if (pixel >= item_end) return;
-  if (pixel >= camera.width * camera.height) return;
+  int pixel = launch_pixel(&camera, item_end);
+  if (pixel < 0) return;
   Sampler sampler = sampler_start(seed, (uint)pixel, 0, pass, (uint)pixel);
   float rows[KASHA_FILM_ROWS];
   film_rows_clear(rows);

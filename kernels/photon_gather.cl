@@ -2,7 +2,8 @@
  * batch of stored photons built by counting sort (SmallVCM's hash grid: count per cell, prefix
  * sum, scatter), the gather at each pixel's visible point through it, and the per-pixel SPPM
  * statistics (sppm_statistics.h) kept here between passes.
- * Every kernel takes the scene's and the film's parameters first (KernelIntegrator binds them). */
+ * Only disc_coverage, which traces rays, takes the scene's and the film's parameters; the others
+ * take their own arguments alone (KernelIntegrator::launch_own). */
 
 #include "sppm_statistics.h"
 
@@ -24,8 +25,8 @@ inline float3 record_position(const __global float* r) {
 /* One work-group: the grid's cell size from the radii of this pass's visible points — twice their
  * mean, but at least a quarter of the largest, so a gather visits at most 9³ cells and a typical
  * one 2³. cell[0] = size, cell[1] = 1/size. */
-__kernel void grid_cell_size(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const float* visible_points,
-                             __global const float* radius, int pixels, __global float* cell, int item_end) {
+__kernel void grid_cell_size(__global const float* visible_points, __global const float* radius, int pixels,
+                             __global float* cell, int item_end) {
   __local float sum[256], most[256];
   __local int valid[256];
   const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
@@ -51,9 +52,8 @@ __kernel void grid_cell_size(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global con
 }
 
 /* Per photon: its cell's hash, counted. */
-__kernel void grid_count(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const float* store,
-                         __global const float* cell, uint mask, __global int* cell_count,
-                         __global uint* photon_cell, int item_end) {
+__kernel void grid_count(__global const float* store, __global const float* cell, uint mask,
+                         __global int* cell_count, __global uint* photon_cell, int item_end) {
   int i = get_global_id(0);
   if (i >= item_end) return;
   uint h = grid_hash(grid_cell(record_position(store + (long)i * KASHA_PHOTON_FLOATS(KASHA_BINS)), cell[1]), mask);
@@ -63,8 +63,7 @@ __kernel void grid_count(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const f
 
 /* One work-group: cell_end[h] = Σ_{j<h} cell_count[j], each work item scanning a contiguous chunk
  * (the scatter then advances it to the cell's end). */
-__kernel void grid_scan(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const int* cell_count, int cells,
-                        __global int* cell_end, int item_end) {
+__kernel void grid_scan(__global const int* cell_count, int cells, __global int* cell_end, int item_end) {
   __local int total[256];
   int l = get_local_id(0), n = min((int)get_local_size(0), 256);
   int chunk = (cells + n - 1) / n;
@@ -85,8 +84,8 @@ __kernel void grid_scan(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const in
 }
 
 /* Per photon: its index into its cell's run of the sorted array. */
-__kernel void grid_scatter(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const uint* photon_cell,
-                           __global int* cell_end, __global int* sorted, int item_end) {
+__kernel void grid_scatter(__global const uint* photon_cell, __global int* cell_end, __global int* sorted,
+                           int item_end) {
   int i = get_global_id(0);
   if (i >= item_end) return;
   sorted[atomic_inc(cell_end + photon_cell[i])] = i;
@@ -101,9 +100,8 @@ inline ulong record_key(const __global float* store, int record) {
 /* Per hash cell: its run of `sorted` ordered by key (heap sort, in place), as the scatter's atomics
  * leave it in arrival order. A gather then sums each cell's photons in one order whatever the
  * launches and the device, so the same photons always give the same image, bit for bit. */
-__kernel void grid_sort_cells(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const float* store,
-                              __global const int* cell_count, __global const int* cell_end,
-                              __global int* sorted, int item_end) {
+__kernel void grid_sort_cells(__global const float* store, __global const int* cell_count,
+                              __global const int* cell_end, __global int* sorted, int item_end) {
   int h = get_global_id(0);
   if (h >= item_end) return;
   int n = cell_count[h];
@@ -138,11 +136,12 @@ __kernel void grid_sort_cells(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global co
  * surface, roughly the same orientation, and near the tangent plane (no leaks through thin walls,
  * around corners or from a parallel surface just behind) — to pass_flux, and their number to
  * pass_found. A photon is counted only from its own cell, which other cells may share a hash with. */
-__kernel void gather_photons(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const float* visible_points,
-                             __global const float* radius, __global const float* store,
-                             __global const int* sorted, __global const int* cell_count,
-                             __global const int* cell_end, __global const float* cell, uint mask,
-                             __global float* pass_flux, __global int* pass_found, int item_end) {
+__kernel void gather_photons(__global const float* cmf, /* the film's C (film_view.h) */
+                             __global const float* visible_points, __global const float* radius,
+                             __global const float* store, __global const int* sorted,
+                             __global const int* cell_count, __global const int* cell_end,
+                             __global const float* cell, uint mask, __global float* pass_flux,
+                             __global int* pass_found, int item_end) {
   int pixel = get_global_id(0);
   if (pixel >= item_end) return;
   const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
@@ -228,9 +227,9 @@ __kernel void disc_coverage(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global cons
 
 /* Per pixel: the pass's gather (its flux scaled by `scale`, 1/the fraction of the pass's photons
  * traced) into the SPPM statistics; clears the pass's sums for the next. */
-__kernel void sppm_update(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float* radius, __global float* count,
-                          __global float* tau, __global float* pass_flux, __global int* pass_found, float alpha,
-                          float scale, int item_end) {
+__kernel void sppm_update(__global float* radius, __global float* count, __global float* tau,
+                          __global float* pass_flux, __global int* pass_found, float alpha, float scale,
+                          int item_end) {
   int pixel = get_global_id(0);
   if (pixel >= item_end) return;
   __global float* phi = pass_flux + (long)pixel * KASHA_FILM_ROWS;
@@ -242,8 +241,8 @@ __kernel void sppm_update(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
 
 /* Per pixel: the image so far — the mean of the camera samples' direct estimates over `passes`
  * passes plus the SPPM radiance. */
-__kernel void sppm_image(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const float* direct,
-                         __global const float* radius, __global const float* tau,
+__kernel void sppm_image(float bin_nm, /* the scene's bin width (KASHA_SCENE_PARAMS' bin_nm) */
+                         __global const float* direct, __global const float* radius, __global const float* tau,
                          __global const float* coverage, int edge_correction, float passes,
                          __global float* image, int item_end) {
   int pixel = get_global_id(0);

@@ -8,16 +8,13 @@
  * gloss lobe: no path continues from the Lambert part) and emission hit along the way; the first
  * of a pixel's samples stores a visible point with the compact factor K (vertex_factor.h) there. */
 #include "camera.h"
-#include "branch_choice.h"
+#include "camera_walk.h"
 #include "film_view.h"
 #include "hit_point.h"
-#include "next_event.h"
 #include "photon_layout.h"
 #include "photon_transport.h"
 #include "scene_view.h"
 #include "vertex_factor.h"
-
-#include "roulette.h"
 
 /* Photons [first_photon, first_photon + count) of the pass's `photons`, `photons_per_item` per work
  * item, stored from slot *stored on; a store past `capacity` is counted but not written, so the
@@ -73,86 +70,42 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
   add_ray_counts(&s, ray_counts);
 }
 
-/* Dimension pairs of a camera sample per path vertex, as backward's: (branch choice, roulette), the
- * light, the direction, (the lobe's azimuth, —); pair 0 is the pixel position. */
-#define CAMERA_PAIRS_PER_VERTEX 4
-
-/* One camera path of pixel `pixel`; adds emission and next-event estimates to rows. With `vp`
- * (a pixel's first sample) it stores the visible point where the path ends on a Lambert part.
- * Returns what the path still carried (relative to its start) if the depth guard cut it. */
+/* One camera path of pixel `pixel` (camera_walk.h) through gloss bounces alone, so its weight
+ * stays diagonal; adds emission and next-event estimates to rows. With `vp` (a pixel's first
+ * sample) it stores the visible point where the path ends on a Lambert part. Returns what the
+ * path still carried (relative to its start) if the depth guard cut it. */
 inline float camera_path(const SceneView* s, const FilmView* f, int pixel, Sampler* sampler, __global float* vp,
                          float* rows) {
-  float3 org = camera_position(&s->camera);
-  float3 dir = camera_sample(&s->camera, pixel, sample_2d(sampler));
-  PathWeight p; /* diagonal mode only: the path goes through gloss bounces alone */
-  pw_init(&p, f);
-  const float start = pw_magnitude(&p, f);
+  CameraWalk w;
+  walk_start(&w, f, camera_position(&s->camera), camera_sample(&s->camera, pixel, sample_2d(sampler)));
   float travelled = 0.0f;
-  bool specular = true; /* the camera ray, or a mirror bounce: emission is not also sampled by NEE */
-  float prev_pdf = 0.0f;
-  float3 prev_x = org;
-  for (int depth = 0;; ++depth) {
-    if (depth == KASHA_MAX_PATH_DEPTH) return pw_magnitude(&p, f) / start;
-    HitPoint h;
-    if (!intersect_scene(s, org, dir, &h)) return 0.0f;
-    travelled += h.t;
-    float3 wo = -dir, ns = h.ns, x = h.x;
-    if (h.emitter >= 0 && h.front) {
-      float weight = 1.0f;
-      if (!specular) weight = mis_weight(prev_pdf, light_pdf_from(s, h.tri, prev_x, x, dot(h.n, wo)));
-      pw_add(&p, f, emitter_spectrum(s, h.emitter), 0, weight, rows);
-    }
-    Surface surf;
-    load_surface(s, h.material, &surf);
+  CameraVertex v;
+  while (walk_vertex(&w, s, f, sampler, &v, rows)) {
+    travelled += v.h.t;
     /* Gloss or the Lambert parts, by their energies under equal-energy light (as backward). */
-    float3 probs = branch_probabilities(&p, f, &surf);
-    float p_gloss = probs.x;
-    bool lambert = probs.y + probs.z > 0.0f;
-    sampler_at(sampler, 1 + CAMERA_PAIRS_PER_VERTEX * depth);
-    float2 u_choice = sample_2d(sampler), u_light = sample_2d(sampler), u_dir = sample_2d(sampler);
-    if (s->light_count > 0 && (lambert || (surf.g > 0.0f && !surf.mirror)))
-      next_event(&p, s, f, &surf, x, ns, h.eps, wo, (float3)(p_gloss, 0.0f, 0.0f), u_light, rows);
-    if (lambert && u_choice.x >= p_gloss) {
+    float p_gloss = v.probs.x;
+    bool lambert = v.probs.y + v.probs.z > 0.0f;
+    walk_next_event(&w, s, f, &v, lambert, (float3)(p_gloss, 0.0f, 0.0f), rows);
+    if (lambert && v.u_choice.x >= p_gloss) {
       if (vp) {
         /* The visible point, K over 1 − P_gloss. */
+        float3 x = v.h.x, ns = v.h.ns;
         vp[0] = x.x, vp[1] = x.y, vp[2] = x.z;
         vp[3] = ns.x, vp[4] = ns.y, vp[5] = ns.z;
         vp[KASHA_VP_VALID] = 1.0f;
         vp[KASHA_VP_DISTANCE] = travelled;
         VertexFactorLayout layout = {KASHA_BINS, KASHA_FILM_ROWS, KASHA_SPECTRAL_FILM, KASHA_FLUORESCENCE, f->cmf};
 #if KASHA_FLUORESCENCE
-        vf_build(layout, vp, p.w, surf.rho, surf.ehat, surf.a, KASHA_INV_PI / (1.0f - p_gloss));
+        vf_build(layout, vp, w.p.w, v.surf.rho, v.surf.ehat, v.surf.a, KASHA_INV_PI / (1.0f - p_gloss));
 #else
-        vf_build(layout, vp, p.w, surf.rho, 0, 0, KASHA_INV_PI / (1.0f - p_gloss));
+        vf_build(layout, vp, w.p.w, v.surf.rho, 0, 0, KASHA_INV_PI / (1.0f - p_gloss));
 #endif
       }
       return 0.0f;
     }
-    if (p_gloss <= 0.0f) return 0.0f;
-    float3 mirror = reflect_dir(dir, ns);
-    float weight = surf.g / p_gloss;
-    if (surf.mirror) {
-      dir = mirror;
-      specular = true;
-    } else {
-      float pdf;
-      float3 wi = sample_lobe(surf.m, s->lobes, mirror, u_dir.x, u_dir.y, sample_2d(sampler).x, &pdf);
-      float ci = dot(wi, ns), co = dot(wo, ns);
-      if (ci <= 0.0f) return 0.0f;
-      weight *= 2.0f * ci / (ci + co);
-      dir = wi;
-      specular = false;
-      prev_pdf = p_gloss * pdf;
-    }
-    pw_scatter_diagonal(&p, 0, weight);
-    if (depth >= KASHA_CAMERA_ROULETTE_FROM) {
-      float keep = roulette(pw_magnitude(&p, f) / start, u_choice.y);
-      if (keep == 0.0f) return 0.0f;
-      if (keep != 1.0f) pw_scatter_diagonal(&p, 0, keep);
-    }
-    prev_x = x;
-    org = x + ns * h.eps;
+    if (!walk_gloss(&w, s, &v, sampler) || !walk_on(&w, f, &v)) return 0.0f;
   }
+  return walk_cut(&w, f);
 }
 
 /* `spp` camera samples per pixel: their mean emission and next-event estimate goes to `direct`
@@ -171,9 +124,8 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
                           int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
-  int pixel = get_global_id(0);
-  if (pixel >= item_end) return;
-  if (pixel >= camera.width * camera.height) return;
+  int pixel = launch_pixel(&camera, item_end);
+  if (pixel < 0) return;
   const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
   __global float* vp = visible_points + (long)pixel * vp_floats;
   vp[KASHA_VP_VALID] = 0.0f;

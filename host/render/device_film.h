@@ -19,6 +19,7 @@ class DeviceFilm {
   bool spectral() const { return spectral_; }
   // Per-bin XYZ weights (x̄ȳz̄ times the bin width), 3 × N, as the kernels read them.
   const std::vector<float>& cmf() const { return cmf_; }
+  const cl::Buffer& cmf_buffer() const { return cmf_buffer_; }
   // Per bin, what it is worth to the film when a path chooses a branch: x̄ + ȳ + z̄ times the bin
   // width plus 5 % of its peak, so bins no row sees directly (UV feeding fluorescence, a spectral
   // film's edges) keep a chance and the estimator stays unbiased for every row.

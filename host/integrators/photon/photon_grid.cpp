@@ -25,21 +25,22 @@ PhotonGrid::PhotonGrid(KernelLauncher& device, const cl::Program& program, size_
 
 void PhotonGrid::size_cells(const cl::Buffer& visible_points, const cl::Buffer& radius,
                             size_t pixels) {
-  device_.launch_range(cell_size_kernel_, 0, device_.work_group_size(cell_size_kernel_),
-                       visible_points, radius, static_cast<cl_int>(pixels), cell_);
+  device_.launch_own_range(cell_size_kernel_, 0, device_.work_group_size(cell_size_kernel_),
+                           visible_points, radius, static_cast<cl_int>(pixels), cell_);
 }
 
 void PhotonGrid::gather(const cl::Buffer& store, size_t count, const cl::Buffer& visible_points,
                         const cl::Buffer& radius, cl::Buffer& flux, cl::Buffer& found) {
   const cl_uint mask = static_cast<cl_uint>(cells_ - 1);
   device_.cl().queue().enqueueFillBuffer(cell_count_, cl_int(0), 0, cells_ * sizeof(cl_int));
-  device_.launch(count_kernel_, count, store, cell_, mask, cell_count_, photon_cell_);
-  device_.launch_range(scan_kernel_, 0, device_.work_group_size(scan_kernel_), cell_count_,
-                       static_cast<cl_int>(cells_), cell_end_);
-  device_.launch(scatter_kernel_, count, photon_cell_, cell_end_, sorted_);
-  device_.launch(sort_kernel_, cells_, store, cell_count_, cell_end_, sorted_);
-  device_.launch(gather_kernel_, device_.film().pixels(), visible_points, radius, store, sorted_,
-                 cell_count_, cell_end_, cell_, mask, flux, found);
+  device_.launch_own(count_kernel_, count, store, cell_, mask, cell_count_, photon_cell_);
+  device_.launch_own_range(scan_kernel_, 0, device_.work_group_size(scan_kernel_), cell_count_,
+                           static_cast<cl_int>(cells_), cell_end_);
+  device_.launch_own(scatter_kernel_, count, photon_cell_, cell_end_, sorted_);
+  device_.launch_own(sort_kernel_, cells_, store, cell_count_, cell_end_, sorted_);
+  device_.launch_own(gather_kernel_, device_.film().pixels(), device_.film().cmf_buffer(),
+                     visible_points, radius, store, sorted_, cell_count_, cell_end_, cell_, mask,
+                     flux, found);
 }
 
 }  // namespace kasha

@@ -189,8 +189,8 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
           static_cast<float>(2 * M_PI * std::fmod(0.6180339887 * pass + 1e-3 * seed_, 1.0));
       launch(coverage_kernel_, pixels, vps_, radius_buf_, coverage_, kCoverageProbes, rotation);
     }
-    launch(update_kernel_, pixels, radius_buf_, count_, tau_, pass_flux_, pass_found_,
-           static_cast<cl_float>(alpha_), static_cast<cl_float>(1.0 / r.fraction));
+    launch_own(update_kernel_, pixels, radius_buf_, count_, tau_, pass_flux_, pass_found_,
+               static_cast<cl_float>(alpha_), static_cast<cl_float>(1.0 / r.fraction));
     r.tallies["time: SPPM update and edge probes (s)"] = device_seconds_ - t;
   }
 
@@ -217,8 +217,9 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
 
   // The image so far: direct light's mean plus the SPPM radiance, per pixel and film row.
   std::vector<float> read_image() {
-    launch(image_kernel_, film_.pixels(), direct_, radius_buf_, tau_, coverage_,
-           static_cast<cl_int>(edge_correction_), static_cast<cl_float>(passes_), image_);
+    launch_own(image_kernel_, film_.pixels(), scene_.data().bin_nm, direct_, radius_buf_, tau_,
+               coverage_, static_cast<cl_int>(edge_correction_), static_cast<cl_float>(passes_),
+               image_);
     std::vector<float> image;
     read_floats(image_, film_.pixels() * film_.rows(), image);
     return image;

@@ -1,0 +1,131 @@
+/* The camera walk backward (backward.cl) and photon mapping's camera pass (photon_map.cl) share, so
+ * both weigh emission, next-event estimation and gloss bounces alike on the same sample dimensions;
+ * each kernel keeps only what it does at a Lambert part (backward scatters on, photon mapping stops). */
+#ifndef KASHA_CAMERA_WALK_H
+#define KASHA_CAMERA_WALK_H
+
+#include "branch_choice.h"
+#include "film_view.h"
+#include "gloss_lobe.h"
+#include "hit_point.h"
+#include "lights.h"
+#include "next_event.h"
+#include "path_weight.h"
+#include "roulette.h"
+#include "sampler.h"
+#include "scene_view.h"
+#include "surface.h"
+
+/* Dimension pairs of the sampler per path vertex: (branch choice, roulette), the light (triangle
+ * and point), the direction, and (the lobe's azimuth, —) drawn only for a lobe; pair 0 is the
+ * pixel position. */
+#define KASHA_CAMERA_PAIRS_PER_VERTEX 4
+
+/* What a path carries from vertex to vertex. */
+typedef struct {
+  PathWeight p;
+  float start;    /* pw_magnitude at the camera: what roulette and the depth guard compare with */
+  float3 org, dir;
+  float3 prev_x;  /* the previous vertex itself (org is offset off its surface) */
+  float prev_pdf; /* the density with which the last bounce chose dir, for MIS with NEE */
+  bool specular;  /* the camera ray, or a mirror bounce: emission is not also sampled by NEE */
+  int depth;      /* the vertex the path is at */
+} CameraWalk;
+
+/* A vertex of the walk: the hit, its surface, the branch probabilities (gloss, passive,
+ * fluorescent) and the vertex's sample values. */
+typedef struct {
+  HitPoint h;
+  Surface surf;
+  float3 probs;
+  float2 u_choice, u_light, u_dir;
+} CameraVertex;
+
+inline void walk_start(CameraWalk* w, const FilmView* f, float3 org, float3 dir) {
+  pw_init(&w->p, f);
+  w->start = pw_magnitude(&w->p, f);
+  w->org = org;
+  w->dir = dir;
+  w->prev_x = org;
+  w->prev_pdf = 0.0f;
+  w->specular = true;
+  w->depth = 0;
+}
+
+/* The path's next vertex: adds the emission it hits to rows (MIS-weighted against next-event
+ * estimation unless a specular bounce led there), then loads the vertex's surface, branch
+ * probabilities and samples into v. False where the path ends: it escaped, no branch carries
+ * anything on, or the depth guard (walk_cut) stopped it. */
+inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sampler* sampler, CameraVertex* v,
+                        float* rows) {
+  if (w->depth == KASHA_MAX_PATH_DEPTH) return false;
+  HitPoint* h = &v->h;
+  if (!intersect_scene(s, w->org, w->dir, h)) return false;
+  if (h->emitter >= 0 && h->front) {
+    float weight = 1.0f;
+    if (!w->specular) weight = mis_weight(w->prev_pdf, light_pdf_from(s, h->tri, w->prev_x, h->x, dot(h->n, -w->dir)));
+    pw_add(&w->p, f, emitter_spectrum(s, h->emitter), 0, weight, rows);
+  }
+  load_surface(s, h->material, &v->surf);
+  v->probs = branch_probabilities(&w->p, f, &v->surf);
+  if (v->probs.x + v->probs.y + v->probs.z <= 0.0f) return false;
+  sampler_at(sampler, 1 + w->depth * KASHA_CAMERA_PAIRS_PER_VERTEX);
+  v->u_choice = sample_2d(sampler);
+  v->u_light = sample_2d(sampler);
+  v->u_dir = sample_2d(sampler);
+  return true;
+}
+
+/* Next-event estimation at the vertex where a Lambert part (`lambert`) or the gloss lobe takes
+ * light, MIS against the branches `probs` that could also reach it (next_event.h). */
+inline void walk_next_event(const CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v,
+                            bool lambert, float3 probs, float* rows) {
+  const Surface* surf = &v->surf;
+  if (s->light_count > 0 && (lambert || (surf->g > 0.0f && !surf->mirror)))
+    next_event(&w->p, s, f, surf, v->h.x, v->h.ns, v->h.eps, -w->dir, probs, v->u_light, rows);
+}
+
+/* The gloss branch, chosen with probability probs.x: white, weight g over that (times the lobe's
+ * cosine ratio); the mirror direction, or one drawn from the lobe. False: the lobe's direction
+ * lies below the horizon, absorbed. */
+inline bool walk_gloss(CameraWalk* w, const SceneView* s, const CameraVertex* v, Sampler* sampler) {
+  const Surface* surf = &v->surf;
+  float3 ns = v->h.ns, mirror = reflect_dir(w->dir, ns);
+  float weight = surf->g;
+  if (surf->mirror) {
+    w->dir = mirror;
+    w->specular = true;
+  } else {
+    float pdf;
+    float3 wi = sample_lobe(surf->m, s->lobes, mirror, v->u_dir.x, v->u_dir.y, sample_2d(sampler).x, &pdf);
+    float ci = dot(wi, ns), co = dot(-w->dir, ns);
+    if (ci <= 0.0f) return false;
+    weight = weight * 2.0f * ci / (ci + co);
+    w->dir = wi;
+    w->specular = false;
+    w->prev_pdf = v->probs.x * pdf;
+  }
+  pw_scatter_diagonal(&w->p, 0, weight / v->probs.x);
+  return true;
+}
+
+/* After the vertex's bounce: Russian roulette from the path's KASHA_CAMERA_ROULETTE_FROM-th vertex
+ * on (false: the path ends), then the next ray's origin just off the surface. */
+inline bool walk_on(CameraWalk* w, const FilmView* f, const CameraVertex* v) {
+  if (w->depth >= KASHA_CAMERA_ROULETTE_FROM) {
+    float keep = roulette(pw_magnitude(&w->p, f) / w->start, v->u_choice.y);
+    if (keep == 0.0f) return false;
+    if (keep != 1.0f) pw_scatter_diagonal(&w->p, 0, keep);
+  }
+  w->prev_x = v->h.x;
+  w->org = v->h.x + v->h.ns * v->h.eps;
+  ++w->depth;
+  return true;
+}
+
+/* What the path still carried (relative to its start) if the depth guard cut it, else 0. */
+inline float walk_cut(const CameraWalk* w, const FilmView* f) {
+  return w->depth == KASHA_MAX_PATH_DEPTH ? pw_magnitude(&w->p, f) / w->start : 0.0f;
+}
+
+#endif
