@@ -107,6 +107,9 @@ int run_render(const RenderArgs& a) {
              std::to_string(MpiWorld::get().size() - 1) + " more ranks";
   }
   RenderSummary summary = job.run(options);
+  // Under mpirun an interrupt may be its word that a rank died: that verdict (the rank named, no
+  // image) comes before anything is written.
+  MpiWorld::get().settle_interrupt();
   const Film& film = job.film();
   Image image = film.image();
   outputs.write(a.output, [&](const std::string& tmp) { write_exr(tmp, image); });
