@@ -54,8 +54,6 @@ static int run_colorimetry(const ColorimetryArgs& a) {
   outputs.file("--csv", a.csv);
   outputs.file("--plot", a.plot);
   outputs.file("--write-as-is", a.write_as_is);
-  if (!a.write_as_is.empty() && a.as_is.empty())
-    throw Error("--write-as-is: give the lamp the \"as is\" material is taken under (--as-is)");
 
   ColorimetryRequest request;
   request.material = load_material_file(a.material, "");
@@ -100,11 +98,14 @@ static Command::Action declare_colorimetry(CLI::App& app) {
       ->check(cli::one_of({"2", "10"}));
   app.add_option("--bin-nm", col->bin_nm, "wavelength bin width (default 10)")
       ->check(cli::number_within(0.1, 100.0));
-  app.add_option("--as-is", col->as_is,
-                 "compare with the material taken \"as is\": its radiance factor under this lamp "
-                 "as a plain reflectance (ΔE2000 per illuminant)");
+  CLI::Option* as_is = app.add_option(
+      "--as-is", col->as_is,
+      "compare with the material taken \"as is\": its radiance factor under this lamp "
+      "as a plain reflectance (ΔE2000 per illuminant)");
+  // A usage error: the "as is" material is taken under the --as-is lamp.
   app.add_option("--write-as-is", col->write_as_is,
-                 "write that \"as is\" material as a material file");
+                 "write that \"as is\" material as a material file (needs --as-is)")
+      ->needs(as_is);
   app.add_option("--json", col->json, "results as JSON");
   app.add_option("--csv", col->csv, "results as CSV, a row per illuminant");
   app.add_option("--plot", col->plot, "radiance factors as a PNG figure");

@@ -20,7 +20,7 @@ int run_command_line(int argc, char** argv) {
   std::vector<Command::Action> actions;
   for (const Command& command : CommandRegistry::all())
     actions.push_back(command.declare(*app.add_subcommand(command.name, command.description)));
-  cli::require_numbers(app);
+  cli::require_values(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -99,6 +99,16 @@ std::vector<std::string> option_names(const CLI::App& app) {
   return names;
 }
 
+// A value must be there: empty text is refused (an empty -o or --lamp would otherwise read as not
+// given), and so is one that is another option of the command (`--lamp --png`, `--time= -o`):
+// CLI11 takes the next argument as a required value whatever it looks like.
+std::string missing_value(const std::string& text, const std::vector<std::string>& option_names) {
+  if (text.empty()) return "the value is empty";
+  if (std::find(option_names.begin(), option_names.end(), text) != option_names.end())
+    return "a value is required (" + text + " is an option)";
+  return "";
+}
+
 // "kasha render", for "see kasha render --help".
 std::string command_name(const CLI::App& app) {
   const CLI::App* parent = app.get_parent();
@@ -154,13 +164,25 @@ std::string translate(const CLI::App& root, const CLI::App& at, const CLI::Parse
     static const std::regex could_not(R"(^Could not convert: (\S+) = (.*)$)");
     static const std::regex not_allowed(R"(^The value (.*) is not an allowed value for (\S+)$)");
     static const std::regex flag(R"(^(\S+): (too many inputs for a flag|Should be true/false.*)$)");
-    if (std::regex_match(message, m, could_not))
+    if (std::regex_match(message, m, could_not)) {
+      const std::string missing = missing_value(m[2], option_names(at));
+      if (!missing.empty()) return m[1].str() + ": " + missing;
       return m[1].str() + ": " + in_quotes(m[2]) + " is not " + value_kind(find_option(at, m[1]));
+    }
     if (std::regex_match(message, m, not_allowed))
       return m[2].str() + ": " + in_quotes(m[1]) + " is not " + value_kind(find_option(at, m[2]));
     if (std::regex_match(message, m, flag)) return m[1].str() + ": a flag takes no value";
   }
   if (dynamic_cast<const CLI::ArgumentMismatch*>(&e)) {
+    static const std::regex at_most(R"(^(\S+): At Most (\d+) required but received (\d+)$)");
+    static const std::regex at_least(R"(^(\S+): At least (\d+) required but received (\d+)$)");
+    static const std::regex overridden(R"(^(\S+) was given a disallowed flag override$)");
+    if (std::regex_match(message, m, at_most))
+      return m[1].str() + (m[2] == "1" ? ": given " + m[3].str() + " times; give it once"
+                                       : ": at most " + m[2].str() + " values, got " + m[3].str());
+    if (std::regex_match(message, m, at_least))
+      return m[1].str() + ": at least " + m[2].str() + " values, got " + m[3].str();
+    if (std::regex_match(message, m, overridden)) return m[1].str() + ": a flag takes no value";
     static const std::regex missing(R"(^(\S+): \d+ required .* missing$)");
     static const std::regex expected(R"(^Expected .* arguments to (\S+), got \d+$)");
     static const std::regex named(R"(^(\S+)(: | was given ).*$)");
@@ -175,9 +197,52 @@ std::string translate(const CLI::App& root, const CLI::App& at, const CLI::Parse
       return m[1].str() + (m[2] == "excludes" ? ": cannot be given with " : ": needs ") +
              m[3].str();
   }
-  // Validation errors are already `NAME: what` (our validators word the what).
+  if (dynamic_cast<const CLI::RequiredError*>(&e)) {
+    // Subcommand counts and option groups: kasha's commands declare neither, but a CLI11 that
+    // raised them would still be worded as kasha words it.
+    static const std::regex subcommands(
+        R"(^(A subcommand is required|Requires at least \d+ subcommands)$)");
+    static const std::regex exactly(R"(^Exactly 1 option from \[(.*)\].*$)");
+    static const std::regex at_least_one(R"(^At least 1 option from \[(.*)\] is required$)");
+    static const std::regex at_least(R"(^Requires at least (\d+) options .* from \[(.*)\]$)");
+    static const std::regex at_most(R"(^Requires at most (\d+) options .* from \[(.*)\]$)");
+    if (std::regex_match(message, m, subcommands))
+      return command_name(at) + ": give a subcommand (see " + command_name(at) + " --help)";
+    if (std::regex_match(message, m, exactly))
+      return command_name(at) + ": give exactly one of " + m[1].str();
+    if (std::regex_match(message, m, at_least_one))
+      return command_name(at) + ": give at least one of " + m[1].str();
+    if (std::regex_match(message, m, at_least))
+      return command_name(at) + ": give at least " + m[1].str() + " of " + m[2].str();
+    if (std::regex_match(message, m, at_most))
+      return command_name(at) + ": give at most " + m[1].str() + " of " + m[2].str();
+  }
+  // Configuration files, runtime and internal errors: kasha reads no CLI11 configuration file and
+  // throws none of these itself, but their words are still not CLI11's.
+  if (dynamic_cast<const CLI::FileError*>(&e) || dynamic_cast<const CLI::ConfigError*>(&e))
+    return command_name(at) +
+           ": a configuration file is not taken (give the options on the "
+           "command line)";
+  if (dynamic_cast<const CLI::InvalidError*>(&e) || dynamic_cast<const CLI::HorribleError*>(&e) ||
+      dynamic_cast<const CLI::RuntimeError*>(&e))
+    return command_name(at) + ": the command line could not be read";
+  if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+    static const std::regex listed(
+        R"(^The following arguments? (was|were) not expected: (\S+).*$)");
+    if (std::regex_match(message, m, listed)) return unexpected_argument(at, m[2].str());
+  }
+  // Validation errors are already `NAME: what` (our validators word the what). The option's own
+  // checks run before the safety net's, so a missing value is named here rather than as, say,
+  // "" is not a number.
   static const std::regex named(R"(^(-{0,2}[A-Za-z][\w-]*): (.+)$)");
-  if (std::regex_match(message, m, named)) return message;
+  if (std::regex_match(message, m, named)) {
+    if (const CLI::Option* opt = find_option(at, m[1]))
+      for (const std::string& value : opt->results()) {
+        const std::string missing = missing_value(value, option_names(at));
+        if (!missing.empty()) return m[1].str() + ": " + missing;
+      }
+    return message;
+  }
   std::string what = message;
   if (!what.empty()) what[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(what[0])));
   return command_name(at) + ": " + what;
@@ -296,18 +361,25 @@ CLI::Validator device_list() {
                         "INDEX, INDEX,INDEX... or all", "DEVICE_LIST");
 }
 
-void require_numbers(CLI::App& app) {
+static CLI::Validator a_value(const std::vector<std::string>& option_names) {
+  return CLI::Validator(
+      [option_names](std::string& text) { return missing_value(text, option_names); }, "", "VALUE");
+}
+
+void require_values(CLI::App& app) {
+  const std::vector<std::string> names = option_names(app);
   for (CLI::Option* opt : app.get_options()) {
     if (opt->get_expected_max() == 0) continue;  // a flag
+    // An empty description keeps the help's type column as it was.
+    opt->check(CLI::Validator(a_value(names)).description(""));
     std::string type = opt->get_type_name();
     type = type.substr(0, type.find(':'));
-    // An empty description keeps the help's type column as it was.
     if (type == "FLOAT") opt->check(CLI::Validator(finite_number()).description(""));
     if (type == "INT" || type == "UINT")
       opt->check(CLI::Validator(integer_within(type == "UINT" ? 0 : LLONG_MIN, LLONG_MAX))
                      .description(""));
   }
-  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) require_numbers(*sub);
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) require_values(*sub);
 }
 
 std::string parse_error_line(const CLI::App& app, const CLI::ParseError& e) {

@@ -25,9 +25,10 @@ CLI::Validator list_of(const std::vector<std::string>& names, const std::string&
 // `--device LIST`: an index, indices separated by commas or `all` (opencl/device_list.h).
 CLI::Validator device_list();
 
-// A safety net over every option of `app` and its subcommands: a FLOAT option must be finite and
-// an INT or UINT option an integer, whatever other checks it has.
-void require_numbers(CLI::App& app);
+// A safety net over every option and argument of `app` and its subcommands, whatever other checks
+// it has: a value is not empty nor another option's name, a FLOAT is finite and an INT or UINT an
+// integer.
+void require_values(CLI::App& app);
 
 // `WHERE: what is wrong` for a parse error of `app` (the top-level app, parsed or not).
 std::string parse_error_line(const CLI::App& app, const CLI::ParseError& e);
