@@ -281,6 +281,43 @@ TEST(Colorimetry, BadInputsGiveOneLineAndNoOutput) {
   EXPECT_NE(r.err.find(": is a directory"), std::string::npos) << r.err;
 }
 
+TEST(Colorimetry, ControlBytesInNamesAreEscapedInTheTable) {
+  // A material name or an illuminant file name holding terminal controls used to reach stdout raw.
+  const std::string material = write_file(
+      "m.json",
+      R"({"kasha_material": 1, "name": "\u001b[31mred\u0007", "passive": {"reflectance": 0.5}})");
+  const std::string lamp = write_file("x\x1b[2Jname.csv", "400,1\n700,1\n");
+  auto r = run_kasha("colorimetry '" + material + "' --illuminant '" + lamp + "' --as-is '" + lamp +
+                     "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find('\x07'), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\\x1B[31mred\\x07"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("x\\x1B[2Jname.csv"), std::string::npos) << r.out;
+}
+
+TEST(Colorimetry, NamesThatAreNotUtf8GoIntoTheAsIsMaterialEscaped) {
+  // The material path and the lamp's label reach the JSON of --write-as-is; JSON needs UTF-8 and
+  // nlohmann used to fail there (type_error.316).
+  const std::string material = write_file(
+      "m\xff.json", R"({"kasha_material": 1, "name": "w", "passive": {"reflectance": 0.5}})");
+  const std::string lamp = write_file("l\xfe.csv", "400,1\n700,2\n");
+  const std::string d = scratch_dir().string();
+  auto r = run_kasha("colorimetry '" + material + "' --as-is '" + lamp + "' --write-as-is " + d +
+                     "/as_is.json --json " + d + "/c.json --csv " + d + "/c.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json as_is = nlohmann::json::parse(std::ifstream(d + "/as_is.json"));
+  EXPECT_NE(as_is["diagnostics"]["source"].get<std::string>().find("m\\xFF.json"),
+            std::string::npos);
+  EXPECT_NE(as_is["diagnostics"]["lamp"].get<std::string>().find("l\\xFE.csv"), std::string::npos);
+  EXPECT_NE(as_is["name"].get<std::string>().find("l\\xFE.csv"), std::string::npos);
+  nlohmann::json c = nlohmann::json::parse(std::ifstream(d + "/c.json"));
+  EXPECT_NE(c["as_is_material"]["lamp"].get<std::string>().find("l\\xFE.csv"), std::string::npos);
+  // The written material reads back.
+  r = run_kasha("colorimetry " + d + "/as_is.json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
 namespace {
 
 // A flat 1 × 1 sample facing up at the centre of an inward sphere (r = 0.8) that emits `lamp`
