@@ -281,6 +281,33 @@ TEST(Colorimetry, BadInputsGiveOneLineAndNoOutput) {
   EXPECT_NE(r.err.find(": is a directory"), std::string::npos) << r.err;
 }
 
+TEST(Colorimetry, JsonOnTheCommandLineResolvesCsvPathsAgainstTheWorkingDirectory) {
+  // The folder used to be taken from the option's text: {"csv": "data/A.csv"} looked for
+  // data/data/A.csv and {"csv": "./A.csv"} failed.
+  const std::string d = scratch_dir().string();
+  write_file("data/lamp.csv", "400,1\n500,2\n600,3\n700,2\n");
+  const std::string material = source_path("scenes/materials/postit.json");
+  auto r = run_kasha_env("-C '" + d + "'",
+                         "colorimetry '" + material +
+                             "' --illuminant data/lamp.csv --illuminant '{\"csv\": "
+                             "\"data/lamp.csv\"}' --illuminant '{\"csv\": \"./data/lamp.csv\"}' "
+                             "--json out.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(d + "/out.json"));
+  ASSERT_EQ(j["illuminants"].size(), 3u);
+  for (int i = 1; i < 3; ++i) EXPECT_EQ(j["illuminants"][i]["XYZ"], j["illuminants"][0]["XYZ"]);
+  // A JSON value longer than a file name may be is still a JSON value (it used to fail in
+  // std::filesystem with "File name too long").
+  std::string nm, value;
+  for (int w = 400; w <= 700; w += 2) {
+    nm += (nm.empty() ? "" : ", ") + std::to_string(w);
+    value += (value.empty() ? "" : ", ") + std::string("1");
+  }
+  r = run_kasha("colorimetry '" + material + "' --illuminant '{\"nm\": [" + nm + "], \"value\": [" +
+                value + "]}'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
 TEST(Colorimetry, ControlBytesInNamesAreEscapedInTheTable) {
   // A material name or an illuminant file name holding terminal controls used to reach stdout raw.
   const std::string material = write_file(
