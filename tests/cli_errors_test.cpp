@@ -226,6 +226,36 @@ TEST(CliErrors, FileNamesThatAreNotUtf8AreEscapedInJson) {
   EXPECT_NE(text.find("m\\\\xFF.json"), std::string::npos) << text;
 }
 
+TEST(CliErrors, FileSystemAndJsonErrorsNameTheOptionWithoutLibraryText) {
+  // std::filesystem's "filesystem error: status: File name too long" and nlohmann's
+  // "[json.exception…]" used to pass through; each is now the option's or the file's own line.
+  const fs::path out = test::scratch_dir() / "out";
+  fs::create_directories(out);
+  const fs::path loop = test::scratch_dir() / "loop.csv";
+  fs::create_symlink(loop.filename(), loop);  // a link to itself
+  const std::string material = test::write_file(
+      "m.json", R"({"kasha_material": 1, "name": "w", "passive": {"reflectance": 0.5}})");
+  const std::string colorimetry = "colorimetry " + quoted(material) + " ";
+  const std::vector<Case> cases = {
+      {colorimetry + "--illuminant {long}", 1,
+       "--illuminant {long}: cannot open file: file name too long"},
+      {colorimetry + "--illuminant {loop}", 1,
+       "--illuminant {loop}: cannot open file: too many levels of symbolic links"},
+      {colorimetry + "--json {out}/{long}.json", 1, "--json {out}/{long}.json: file name too long"},
+      // checked before the render, not after it
+      {"render {scene} --passes 1 -o {out}/{long}.exr", 1,
+       "-o {out}/{long}.exr: file name too long"},
+      // JSON given on the command line is read as strictly as a file
+      {colorimetry + "--illuminant '{\"line_nm\": 500, \"line_nm\": 600}'", 1,
+       "--illuminant {\"line_nm\": 500, \"line_nm\": 600}: /line_nm: duplicate key \"line_nm\""},
+  };
+  expect_cases(cases,
+               {{"scene", quoted(test::source_path("scenes/torus.json"))},
+                {"long", std::string(300, 'a')},
+                {"loop", loop.string()}},
+               out);
+}
+
 TEST(CliErrors, NamesOnTheTerminalAreEscaped) {
   // A scene file and lamp names holding terminal controls: info prints them escaped.
   const std::string scene = test::write_file("s\x1b[2J.json", R"({"kasha_scene": 1,
