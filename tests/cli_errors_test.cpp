@@ -64,6 +64,26 @@ test::CommandResult run_with_signal(const std::string& env, const std::string& a
   return test::run_kasha_env(prefix.str(), args);
 }
 
+// Runs each case with {out} (an empty folder that must stay empty) and `vars` expanded in its
+// arguments and in its expected WHERE: one line, the exit code, nothing on stdout, nothing written.
+void expect_cases(const std::vector<Case>& cases,
+                  std::vector<std::pair<std::string, std::string>> vars, const fs::path& out) {
+  vars.push_back({"out", out.string()});
+  for (const Case& c : cases) {
+    const std::string args = expand(c.args, vars);
+    test::CommandResult r = test::run_kasha(args);
+    SCOPED_TRACE("kasha " + args);
+    EXPECT_EQ(r.exit_code, c.exit_code) << r.err;
+    const std::vector<std::string> err = lines(r.err);
+    ASSERT_EQ(err.size(), 1u) << r.err;
+    EXPECT_EQ(err[0].rfind("kasha: error: " + expand(c.where, vars), 0), 0u) << err[0];
+    EXPECT_EQ(r.out, "") << "printed before the error was known";
+    EXPECT_TRUE(empty_dir(out)) << "something was written";
+    fs::remove_all(out);
+    fs::create_directories(out);
+  }
+}
+
 }  // namespace
 
 TEST(CliErrors, EveryBadCommandLineIsOneLineWithExitCode2AndNoOutput) {
@@ -146,18 +166,7 @@ TEST(CliErrors, EveryBadCommandLineIsOneLineWithExitCode2AndNoOutput) {
       {"render '/nonexistent\xff\x1b.json' --passes 1 -o {out}/a.exr", 1,
        "/nonexistent\\xFF\\x1B.json: "},
   };
-  for (const Case& c : cases) {
-    const std::string args = expand(c.args, {{"scene", quoted(scene)}, {"out", out.string()}});
-    test::CommandResult r = test::run_kasha(args);
-    SCOPED_TRACE("kasha " + args);
-    EXPECT_EQ(r.exit_code, c.exit_code) << r.err;
-    const std::vector<std::string> err = lines(r.err);
-    ASSERT_EQ(err.size(), 1u) << r.err;
-    EXPECT_EQ(err[0].rfind("kasha: error: " + c.where, 0), 0u) << err[0];
-    EXPECT_TRUE(empty_dir(out)) << "something was written";
-    fs::remove_all(out);
-    fs::create_directories(out);
-  }
+  expect_cases(cases, {{"scene", quoted(scene)}}, out);
 }
 
 // A value that is not there is a usage error before any work: an option given twice, an empty
@@ -334,4 +343,50 @@ TEST(CliErrors, FileNamesThatAreNotUtf8AreEscapedInJson) {
   std::ifstream in(json);
   const std::string text((std::istreambuf_iterator<char>(in)), {});
   EXPECT_NE(text.find("m\\\\xFF.json"), std::string::npos) << text;
+}
+
+TEST(CliErrors, FileSystemAndJsonErrorsNameTheOptionWithoutLibraryText) {
+  // std::filesystem's "filesystem error: status: File name too long" and nlohmann's
+  // "[json.exception…]" used to pass through; each is now the option's or the file's own line.
+  const fs::path out = test::scratch_dir() / "out";
+  fs::create_directories(out);
+  const fs::path loop = test::scratch_dir() / "loop.csv";
+  fs::create_symlink(loop.filename(), loop);  // a link to itself
+  const std::string material = test::write_file(
+      "m.json", R"({"kasha_material": 1, "name": "w", "passive": {"reflectance": 0.5}})");
+  const std::string colorimetry = "colorimetry " + quoted(material) + " ";
+  const std::vector<Case> cases = {
+      {colorimetry + "--illuminant {long}", 1,
+       "--illuminant {long}: cannot open file: file name too long"},
+      {colorimetry + "--illuminant {loop}", 1,
+       "--illuminant {loop}: cannot open file: too many levels of symbolic links"},
+      {colorimetry + "--json {out}/{long}.json", 1, "--json {out}/{long}.json: file name too long"},
+      // checked before the render, not after it
+      {"render {scene} --passes 1 -o {out}/{long}.exr", 1,
+       "-o {out}/{long}.exr: file name too long"},
+      // JSON given on the command line is read as strictly as a file
+      {colorimetry + "--illuminant '{\"line_nm\": 500, \"line_nm\": 600}'", 1,
+       "--illuminant {\"line_nm\": 500, \"line_nm\": 600}: /line_nm: duplicate key \"line_nm\""},
+  };
+  expect_cases(cases,
+               {{"scene", quoted(test::source_path("scenes/torus.json"))},
+                {"long", std::string(300, 'a')},
+                {"loop", loop.string()}},
+               out);
+}
+
+TEST(CliErrors, NamesOnTheTerminalAreEscaped) {
+  // A scene file and lamp names holding terminal controls: info prints them escaped.
+  const std::string scene = test::write_file("s\x1b[2J.json", R"({"kasha_scene": 1,
+    "camera": {"position": [0, 0, -2], "look_at": [0, 0, 0], "fov_deg": 90, "width": 4, "height": 4},
+    "materials": {"grey": {"passive": {"reflectance": 0.5}}},
+    "lamps": {"\u001b[31mred\u0007": 1, "plain": 2}, "lamp": "plain",
+    "shapes": [{"type": "quad", "corner": [-2, -2, 0], "u": [4, 0, 0], "v": [0, 4, 0],
+                "material": "grey", "lamp": true}]})");
+  test::CommandResult r = test::run_kasha("info " + quoted(scene));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find('\x07'), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("s\\x1B[2J.json"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\\x1B[31mred\\x07"), std::string::npos) << r.out;
 }

@@ -281,6 +281,70 @@ TEST(Colorimetry, BadInputsGiveOneLineAndNoOutput) {
   EXPECT_NE(r.err.find(": is a directory"), std::string::npos) << r.err;
 }
 
+TEST(Colorimetry, JsonOnTheCommandLineResolvesCsvPathsAgainstTheWorkingDirectory) {
+  // The folder used to be taken from the option's text: {"csv": "data/A.csv"} looked for
+  // data/data/A.csv and {"csv": "./A.csv"} failed.
+  const std::string d = scratch_dir().string();
+  write_file("data/lamp.csv", "400,1\n500,2\n600,3\n700,2\n");
+  const std::string material = source_path("scenes/materials/postit.json");
+  auto r = run_kasha_env("-C '" + d + "'",
+                         "colorimetry '" + material +
+                             "' --illuminant data/lamp.csv --illuminant '{\"csv\": "
+                             "\"data/lamp.csv\"}' --illuminant '{\"csv\": \"./data/lamp.csv\"}' "
+                             "--json out.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(d + "/out.json"));
+  ASSERT_EQ(j["illuminants"].size(), 3u);
+  for (int i = 1; i < 3; ++i) EXPECT_EQ(j["illuminants"][i]["XYZ"], j["illuminants"][0]["XYZ"]);
+  // A JSON value longer than a file name may be is still a JSON value (it used to fail in
+  // std::filesystem with "File name too long").
+  std::string nm, value;
+  for (int w = 400; w <= 700; w += 2) {
+    nm += (nm.empty() ? "" : ", ") + std::to_string(w);
+    value += (value.empty() ? "" : ", ") + std::string("1");
+  }
+  r = run_kasha("colorimetry '" + material + "' --illuminant '{\"nm\": [" + nm + "], \"value\": [" +
+                value + "]}'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST(Colorimetry, ControlBytesInNamesAreEscapedInTheTable) {
+  // A material name or an illuminant file name holding terminal controls used to reach stdout raw.
+  const std::string material = write_file(
+      "m.json",
+      R"({"kasha_material": 1, "name": "\u001b[31mred\u0007", "passive": {"reflectance": 0.5}})");
+  const std::string lamp = write_file("x\x1b[2Jname.csv", "400,1\n700,1\n");
+  auto r = run_kasha("colorimetry '" + material + "' --illuminant '" + lamp + "' --as-is '" + lamp +
+                     "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find('\x07'), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\\x1B[31mred\\x07"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("x\\x1B[2Jname.csv"), std::string::npos) << r.out;
+}
+
+TEST(Colorimetry, NamesThatAreNotUtf8GoIntoTheAsIsMaterialEscaped) {
+  // The material path and the lamp's label reach the JSON of --write-as-is; JSON needs UTF-8 and
+  // nlohmann used to fail there (type_error.316).
+  const std::string material = write_file(
+      "m\xff.json", R"({"kasha_material": 1, "name": "w", "passive": {"reflectance": 0.5}})");
+  const std::string lamp = write_file("l\xfe.csv", "400,1\n700,2\n");
+  const std::string d = scratch_dir().string();
+  auto r = run_kasha("colorimetry '" + material + "' --as-is '" + lamp + "' --write-as-is " + d +
+                     "/as_is.json --json " + d + "/c.json --csv " + d + "/c.csv");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json as_is = nlohmann::json::parse(std::ifstream(d + "/as_is.json"));
+  EXPECT_NE(as_is["diagnostics"]["source"].get<std::string>().find("m\\xFF.json"),
+            std::string::npos);
+  EXPECT_NE(as_is["diagnostics"]["lamp"].get<std::string>().find("l\\xFE.csv"), std::string::npos);
+  EXPECT_NE(as_is["name"].get<std::string>().find("l\\xFE.csv"), std::string::npos);
+  nlohmann::json c = nlohmann::json::parse(std::ifstream(d + "/c.json"));
+  EXPECT_NE(c["as_is_material"]["lamp"].get<std::string>().find("l\\xFE.csv"), std::string::npos);
+  // The written material reads back.
+  r = run_kasha("colorimetry " + d + "/as_is.json");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
 namespace {
 
 // A flat 1 × 1 sample facing up at the centre of an inward sphere (r = 0.8) that emits `lamp`

@@ -112,3 +112,22 @@ TEST(ImageRegions, PreviewAndDeltaECommands) {
   EXPECT_NE(r.err.find("kasha: error: delta-e 50,2.6772: expected L*,a*,b*"), std::string::npos)
       << r.err;
 }
+
+TEST(ImageRegions, NamesAreEscapedInJsonAndOnTheTerminal) {
+  // A scene or image name that is not UTF-8 used to fail in nlohmann (type_error.316) after the
+  // table was printed; a material name holding terminal controls reached stdout raw.
+  std::string text = R"({"kasha_scene": 1,
+    "camera": {"position": [0, 0, -2], "look_at": [0, 0, 0], "fov_deg": 90, "width": 8, "height": 8},
+    "materials": {"\u001b[2Jleft": {"passive": {"reflectance": 0.2}}},
+    "shapes": [{"type": "quad", "corner": [-2, -2, 0], "u": [4, 0, 0], "v": [0, 4, 0], "material": "\u001b[2Jleft"}]})";
+  const std::string scene = write_file("s\xff.json", text), d = scratch_dir().string();
+  write_exr(d + "/i\xfe.exr", constant_halves({20, 30, 40}, {20, 30, 40}));
+  auto r = run_kasha("regions '" + scene + "' '" + d + "/i\xfe.exr' --json " + d + "/r.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\\x1B[2Jleft"), std::string::npos) << r.out;
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(d + "/r.json"));
+  EXPECT_NE(j["scene"].get<std::string>().find("s\\xFF.json"), std::string::npos);
+  EXPECT_NE(j["image"].get<std::string>().find("i\\xFE.exr"), std::string::npos);
+  EXPECT_EQ(j["regions"][0]["material"], "\x1b[2Jleft");  // valid UTF-8: JSON keeps it as it is
+}

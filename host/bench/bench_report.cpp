@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "bench/bench_validation.h"
+#include "core/printable.h"
 
 namespace kasha {
 
@@ -76,30 +77,30 @@ std::string bench_table(const BenchRecord& record) {
   std::ostringstream out;
   char line[512];
   auto table = [&](const std::vector<BenchRun>& runs) {
+    std::snprintf(
+        line, sizeof line, "%-19s %-8s %6s %7s %9s %9s %9s %9s %9s %7s %7s %7s %7s %9s %9s %s\n",
+        "scene", "integr.", "passes", "build s", "paths/s", "photons/s", "closest/s", "shadow/s",
+        "gather/s", "dev s", "host s", "dev MB", "host MB", "relMSE", "block rel", "valid");
+    out << line;
+    for (const BenchRun& r : runs) {
       std::snprintf(
-          line, sizeof line, "%-19s %-8s %6s %7s %9s %9s %9s %9s %9s %7s %7s %7s %7s %9s %9s %s\n",
-          "scene", "integr.", "passes", "build s", "paths/s", "photons/s", "closest/s", "shadow/s",
-          "gather/s", "dev s", "host s", "dev MB", "host MB", "relMSE", "block rel", "valid");
+          line, sizeof line,
+          "%-19s %-8s %6d %7.2f %9.3g %9.3g %9.3g %9.3g %9.3g %7.2f %7.2f %7.0f %7.0f %9.3g "
+          "%9.3g %s\n",
+          r.scene.c_str(), r.integrator.c_str(), r.passes, r.kernel_build_seconds,
+          r.per_second(r.camera_paths), r.per_second(r.photons), r.per_second(r.closest_rays),
+          r.per_second(r.shadow_rays), r.per_second(r.gather_queries), r.device_seconds,
+          r.host_seconds, r.device_memory_bytes / 1e6, r.host_memory_bytes / 1e6,
+          r.validation.rel_mse, r.validation.block_rel_mse,
+          r.interrupted        ? "interrupted"
+          : r.validation.valid ? "yes"
+                               : "NO");
       out << line;
-      for (const BenchRun& r : runs) {
-        std::snprintf(
-            line, sizeof line,
-            "%-19s %-8s %6d %7.2f %9.3g %9.3g %9.3g %9.3g %9.3g %7.2f %7.2f %7.0f %7.0f %9.3g "
-            "%9.3g %s\n",
-            r.scene.c_str(), r.integrator.c_str(), r.passes, r.kernel_build_seconds,
-            r.per_second(r.camera_paths), r.per_second(r.photons), r.per_second(r.closest_rays),
-            r.per_second(r.shadow_rays), r.per_second(r.gather_queries), r.device_seconds,
-            r.host_seconds, r.device_memory_bytes / 1e6, r.host_memory_bytes / 1e6,
-            r.validation.rel_mse, r.validation.block_rel_mse,
-            r.interrupted        ? "interrupted"
-            : r.validation.valid ? "yes"
-                                 : "NO");
-        out << line;
-      }
-      for (const BenchRun& r : runs)
-        if (!r.validation.valid)
-          out << "  " << r.scene << ", " << r.integrator << ": not valid: " << r.validation.why
-              << "\n";
+    }
+    for (const BenchRun& r : runs)
+      if (!r.validation.valid)
+        out << "  " << r.scene << ", " << r.integrator << ": not valid: " << r.validation.why
+            << "\n";
   };
   auto score_line = [&](const std::vector<BenchRun>& runs) {
     const double score = bench_score(runs);
@@ -120,8 +121,8 @@ std::string bench_table(const BenchRecord& record) {
     const std::vector<BenchRun> runs = runs_on_set(record, record.together);
     out << "devices " << device_set_name(record.together) << " together, one image on all\n";
     table(runs);
-    out << "score of devices " << device_set_name(record.together) << " together: "
-        << score_line(runs);
+    out << "score of devices " << device_set_name(record.together)
+        << " together: " << score_line(runs);
     if (fastest > 0 && bench_score(runs) > 0)
       out << format(", %.2f× the fastest device alone", bench_score(runs) / fastest);
     out << "\n";
@@ -139,7 +140,7 @@ nlohmann::json bench_json(const BenchRecord& record) {
   j["complete"] = record.complete;
   j["validation_block_pixels"] = kValidationBlock;
   j["host_memory_per_run"] = record.host_memory_per_run;
-  j["scenes_dir"] = record.scenes_dir;
+  j["scenes_dir"] = json_text(record.scenes_dir);  // a command-line folder: any bytes
   j["scenes"] = json::array();
   for (const BenchSceneRecord& s : record.scenes)
     j["scenes"].push_back({{"name", s.name},
@@ -156,10 +157,11 @@ nlohmann::json bench_json(const BenchRecord& record) {
     bool valid = !runs.empty();
     for (const BenchRun& r : runs) valid = valid && r.valid();
     j["devices"].push_back({{"index", d.index},
-                            {"name", d.name},
-                            {"platform", d.platform},
-                            {"driver", d.driver},
-                            {"version", d.version},
+                            // driver strings: no promise they are UTF-8
+                            {"name", json_text(d.name)},
+                            {"platform", json_text(d.platform)},
+                            {"driver", json_text(d.driver)},
+                            {"version", json_text(d.version)},
                             {"type", d.type},
                             {"compute_units", d.compute_units},
                             {"global_memory_bytes", d.global_mem_bytes},

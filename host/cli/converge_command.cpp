@@ -12,6 +12,7 @@
 #include "cli/render_options.h"
 #include "core/interrupt.h"
 #include "core/output_set.h"
+#include "core/printable.h"
 #include "study/convergence_study.h"
 #include "study/reference_image.h"
 
@@ -39,7 +40,7 @@ static int run_converge(const std::string& scene, const std::string& integrators
   std::printf(
       "converge: reference %s; wrote "
       "%s/{summary.md,summary.csv,convergence.png,images.png,log_*.csv}\n",
-      r.reference_description.c_str(), out_dir.c_str());
+      printable(r.reference_description).c_str(), printable(out_dir).c_str());
   std::ifstream summary(out_dir + "/summary.md");
   std::printf("%s", std::string(std::istreambuf_iterator<char>(summary), {}).c_str());
   return 0;

@@ -6,6 +6,7 @@
 
 #include "cli/command.h"
 #include "cli/command_line_errors.h"
+#include "core/printable.h"
 #include "integrators/photon/photon_records.h"
 #include "opencl/device.h"
 #include "render/device_scene.h"
@@ -34,7 +35,8 @@ static int run_info(const std::string& scene_path, bool spectral, const std::str
   KernelSceneData data(scene);
   int emitting_triangles = 0;
   for (const Emitter& e : scene.emitters) emitting_triangles += e.triangle_count;
-  std::printf("scene: %s\n", scene_path.c_str());
+  // The file name and lamp names are input bytes: printable() keeps terminal controls out.
+  std::printf("scene: %s\n", printable(scene_path).c_str());
   std::printf("wavelengths: %s\n", scene.grid.describe().c_str());
   std::printf("features: fluorescence %s, gloss %s\n", scene.fluorescent() ? "yes" : "no",
               scene.glossy() ? "yes" : "no");
@@ -43,8 +45,9 @@ static int run_info(const std::string& scene_path, bool spectral, const std::str
               scene.emitters.size(), emitting_triangles);
   if (!scene.lamp_names.empty()) {
     std::string names;
-    for (const std::string& n : scene.lamp_names) names += (names.empty() ? "" : ", ") + n;
-    std::printf("lamp: %s (lamps: %s)\n", scene.lamp.c_str(), names.c_str());
+    for (const std::string& n : scene.lamp_names)
+      names += (names.empty() ? "" : ", ") + printable(n);
+    std::printf("lamp: %s (lamps: %s)\n", printable(scene.lamp).c_str(), names.c_str());
   }
   std::printf("bvh: %zu nodes, %zu leaves, depth %d (Embree SAH, %d-wide, leaves of <= %d)\n",
               data.bvh.nodes.size(), data.bvh.leaves.size(), data.bvh.depth, KASHA_BVH_WIDTH,

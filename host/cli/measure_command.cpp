@@ -83,8 +83,7 @@ static int run_measure(const MeasureArgs& a) {
   check_energy(m, a.clip);
 
   // The name goes into JSON, which needs UTF-8 (an explicit --name is checked on the command line).
-  std::string name = a.name.empty() ? out.stem().string() : a.name;
-  if (!valid_utf8(name)) name = printable(name);
+  const std::string name = a.name.empty() ? json_text(out.stem().string()) : a.name;
   const std::string source =
       !a.bispectral.empty() ? "--bispectral " + a.bispectral : "--sample " + a.sample;
   outputs.write(a.output, [&](const std::string& tmp) {
@@ -97,7 +96,7 @@ static int run_measure(const MeasureArgs& a) {
   std::printf(
       "wrote %s (%s): band ±%.3g nm%s, rank-1 residual %.4f (%.4f where there is signal), max "
       "g+ρ+a %.3f at %g nm%s\n",
-      a.output.c_str(), m.method.c_str(), m.band_nm,
+      printable(a.output).c_str(), m.method.c_str(), m.band_nm,
       m.band_estimated ? (m.method == "fluorimeter" ? " (from the etalon)" : " (one bin)") : "",
       m.rank1_residual, m.rank1_signal_residual, m.max_energy, m.max_energy_nm,
       m.gloss ? (", gloss " + std::to_string(m.gloss->reflectance)).c_str() : "");

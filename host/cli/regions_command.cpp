@@ -3,6 +3,8 @@
 // (the same scene and light with the samples replaced by a perfect white diffuser, as a white
 // standard is measured in the sample's place), also XYZ relative to that white (Y = 100) and
 // CIELAB about it.
+#include <algorithm>
+#include <cstdarg>
 #include <cstdio>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -15,6 +17,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/output_set.h"
+#include "core/printable.h"
 #include "image/exr_io.h"
 #include "study/image_regions.h"
 
@@ -34,6 +37,19 @@ static Image read_image_of(const Scene& scene, const std::string& path) {
   return image;
 }
 
+// printf into a string of any length (material names have none).
+static std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+static std::string format(const char* fmt, ...) {
+  va_list args, again;
+  va_start(args, fmt);
+  va_copy(again, args);
+  std::string out(static_cast<size_t>(std::max(0, std::vsnprintf(nullptr, 0, fmt, args))), '\0');
+  va_end(args);
+  std::vsnprintf(out.data(), out.size() + 1, fmt, again);
+  va_end(again);
+  return out;
+}
+
 static Vec3d scaled(const Vec3d& v, double k) {
   return {k * v[0], k * v[1], k * v[2]};
 }
@@ -50,9 +66,11 @@ static int run_regions(const RegionsArgs& a) {
   std::optional<Image> white;
   if (!a.white.empty()) white = read_image_of(scene, a.white);
   nlohmann::json regions = nlohmann::json::array();
-  std::printf("%5s  %-6s  %-24s %7s  %s\n", "shape", "type", "material", "pixels",
-              white ? "X, Y, Z relative to the white (Y = 100) ± standard error; L*, a*, b*"
-                    : "mean X, Y, Z ± standard error");
+  // The table is printed once the JSON is written: nothing on stdout before an error is known.
+  std::string table =
+      format("%5s  %-6s  %-24s %7s  %s\n", "shape", "type", "material", "pixels",
+             white ? "X, Y, Z relative to the white (Y = 100) ± standard error; L*, a*, b*"
+                   : "mean X, Y, Z ± standard error");
   for (const ShapeRegion& r : shape_regions(scene, scene.camera, a.margin_px)) {
     const ShapeInfo& shape = scene.shapes[r.shape];
     const std::string& material = scene.material_descs[shape.material].name;
@@ -82,15 +100,17 @@ static int run_regions(const RegionsArgs& a) {
       lab = text;
     }
     regions.push_back(region);
-    std::printf("%5d  %-6s  %-24s %7zu  %.6g ± %.2g, %.6g ± %.2g, %.6g ± %.2g%s\n", r.shape,
-                shape.type.c_str(), material.c_str(), r.pixels.size(), xyz.mean[0],
-                xyz.standard_error[0], xyz.mean[1], xyz.standard_error[1], xyz.mean[2],
-                xyz.standard_error[2], lab.c_str());
+    // A material name is a JSON key: valid UTF-8, but it may hold terminal controls.
+    table += format("%5d  %-6s  %-24s %7zu  %.6g ± %.2g, %.6g ± %.2g, %.6g ± %.2g%s\n", r.shape,
+                    printable(shape.type).c_str(), printable(material).c_str(), r.pixels.size(),
+                    xyz.mean[0], xyz.standard_error[0], xyz.mean[1], xyz.standard_error[1],
+                    xyz.mean[2], xyz.standard_error[2], lab.c_str());
   }
   if (!a.json.empty()) {
-    const std::string text = nlohmann::json{{"scene", a.scene},
-                                            {"image", a.image},
-                                            {"white", a.white},
+    // File names are command-line bytes: json_text() keeps the JSON UTF-8.
+    const std::string text = nlohmann::json{{"scene", json_text(a.scene)},
+                                            {"image", json_text(a.image)},
+                                            {"white", json_text(a.white)},
                                             {"margin_px", a.margin_px},
                                             {"regions", regions}}
                                  .dump(1) +
@@ -98,6 +118,7 @@ static int run_regions(const RegionsArgs& a) {
     outputs.write(a.json, [&](const std::string& tmp) { write_text_atomically(tmp, text); });
     outputs.commit();
   }
+  std::fputs(table.c_str(), stdout);
   return 0;
 }
 

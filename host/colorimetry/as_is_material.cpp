@@ -5,6 +5,7 @@
 
 #include "colorimetry/radiance_factor.h"
 #include "core/atomic_file.h"
+#include "core/printable.h"
 
 namespace kasha {
 
@@ -57,13 +58,14 @@ void write_as_is_material(const std::string& path, const AsIsMaterial& a,
                           const std::string& source) {
   nlohmann::json j;
   j["kasha_material"] = 1;
-  j["name"] = a.desc.name;
+  // The lamp's label and the source are command-line bytes: json_text() keeps the JSON UTF-8.
+  j["name"] = json_text(a.desc.name);
   j["passive"] = {{"reflectance", {{"nm", a.table_nm}, {"value", a.table_value}}}};
   if (a.desc.gloss) j["gloss"] = gloss_json(*a.desc.gloss);
   j["diagnostics"] = {
       {"method", "as is: the total radiance factor under one lamp as a passive reflectance"},
-      {"source", source},
-      {"lamp", a.lamp},
+      {"source", json_text(source)},
+      {"lamp", json_text(a.lamp)},
       {"clipped_nm", a.clipped_nm},
       {"unlit_nm", a.unlit_nm},
       {"notes",

@@ -11,11 +11,6 @@ namespace kasha {
 
 namespace {
 
-// File names and command-line labels as JSON strings: JSON needs UTF-8, so other bytes are escaped.
-std::string json_text(const std::string& s) {
-  return valid_utf8(s) ? s : printable(s);
-}
-
 int observer_deg(Observer o) {
   return o == Observer::cie1964_10deg ? 10 : 2;
 }
@@ -43,7 +38,9 @@ nlohmann::json illuminant_json(const Colorimetry& c, const IlluminantColorimetry
   return j;
 }
 
-std::string csv_field(const std::string& s) {
+// A label as a CSV cell: UTF-8 as in the JSON (json_text), quoted where it holds a separator.
+std::string csv_field(const std::string& label) {
+  const std::string s = json_text(label);
   if (s.find_first_of(",\"\n") == std::string::npos) return s;
   std::string out = "\"";
   for (char ch : s) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
@@ -111,18 +108,21 @@ std::string colorimetry_csv(const Colorimetry& c) {
 
 std::string colorimetry_table(const Colorimetry& c, const std::string& material_file) {
   std::ostringstream o;
-  o << "material: " << c.material.name << " (" << material_file << ")\n";
+  // Names and labels are input bytes: printable() keeps terminal controls off the terminal.
+  o << "material: " << printable(c.material.name) << " (" << printable(material_file) << ")\n";
   o << "observer: " << observer_name(c.observer) << "; wavelengths: " << c.grid.describe()
     << "; open geometry, perfect white Y = 100\n";
   if (c.as_is) {
-    o << "as is: the radiance factor under " << c.as_is->lamp << " as a passive reflectance";
+    o << "as is: the radiance factor under " << printable(c.as_is->lamp)
+      << " as a passive reflectance";
     if (!c.as_is->clipped_nm.empty())
       o << ", clipped to 1 at" << numbers(c.as_is->clipped_nm, " %g") << " nm";
     o << "\n";
   }
   // The label column fits the longest illuminant as given (a name, a file, a JSON value).
   size_t width = 10;
-  for (const IlluminantColorimetry& r : c.illuminants) width = std::max(width, r.illuminant.size());
+  for (const IlluminantColorimetry& r : c.illuminants)
+    width = std::max(width, printable(r.illuminant).size());
   char line[256];
   std::snprintf(line, sizeof line, " %8s %8s %8s %7s %7s %7s %7s %6s%s\n", "X", "Y", "Z", "L*",
                 "a*", "b*", "W", "T", c.as_is ? "  ΔE00 as is" : "");
@@ -133,7 +133,7 @@ std::string colorimetry_table(const Colorimetry& c, const std::string& material_
     std::snprintf(line, sizeof line, " %8.3f %8.3f %8.3f %7.2f %7.2f %7.2f %7.2f %6.2f%s", r.xyz[0],
                   r.xyz[1], r.xyz[2], r.lab[0], r.lab[1], r.lab[2], r.whiteness.w, r.whiteness.t,
                   r.whiteness.in_range ? "" : "*");
-    o << std::setw(static_cast<int>(width)) << r.illuminant << line;
+    o << std::setw(static_cast<int>(width)) << printable(r.illuminant) << line;
     if (r.as_is) {
       std::snprintf(line, sizeof line, " %12.2f", r.as_is->delta_e00);
       o << line;

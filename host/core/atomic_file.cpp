@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/printable.h"
 
 namespace kasha {
 
@@ -16,21 +17,23 @@ void write_atomically(const std::string& path,
   namespace fs = std::filesystem;
   fs::path target(path);
   fs::path dir = target.parent_path().empty() ? fs::path(".") : target.parent_path();
-  if (!fs::is_directory(dir))
-    throw Error(path + ": cannot write: directory " + dir.string() + " does not exist");
+  std::error_code ec;  // a name too long or a link loop: this file's error, in words
+  if (!fs::is_directory(dir, ec))
+    throw Error(path + ": cannot write: directory " + dir.string() +
+                (ec && ec != std::errc::no_such_file_or_directory ? ": " + error_words(ec)
+                                                                  : " does not exist"));
   fs::path tmp = dir / ("." + target.filename().string() + ".tmp" + std::to_string(getpid()) +
                         target.extension().string());
   try {
     write(tmp.string());
-    fs::rename(tmp, target);
+    fs::rename(tmp, target, ec);
+    if (ec) throw Error(path + ": cannot write: " + error_words(ec));
   } catch (const Error&) {
-    std::error_code ec;
     fs::remove(tmp, ec);
     throw;
   } catch (const std::exception& e) {
-    std::error_code ec;
     fs::remove(tmp, ec);
-    throw Error(path + ": cannot write: " + e.what());
+    throw Error(path + ": cannot write: " + library_error_text(e));
   }
 }
 

@@ -39,7 +39,8 @@ namespace {
 // means.
 class DuplicateKeyCheck {
  public:
-  explicit DuplicateKeyCheck(const std::string& file) : file_(file) {}
+  // `where` starts the message: the file's name or the option, already printable.
+  explicit DuplicateKeyCheck(const std::string& where) : where_(where) {}
 
   bool operator()(int, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
     using E = nlohmann::json::parse_event_t;
@@ -53,7 +54,7 @@ class DuplicateKeyCheck {
         Frame& f = frames_.back();
         f.key = parsed.get<std::string>();
         if (!f.keys.insert(f.key).second)
-          throw Error(printable(file_) + ": " + printable(pointer()) + ": duplicate key \"" +
+          throw Error(where_ + ": " + printable(pointer()) + ": duplicate key \"" +
                       printable(f.key) + "\" (a key may appear once in an object)");
         break;
       }
@@ -86,35 +87,46 @@ class DuplicateKeyCheck {
     return out;
   }
 
-  std::string file_;
+  std::string where_;
   std::vector<Frame> frames_;
 };
 
 }  // namespace
 
-JsonNode JsonNode::load_file(const std::filesystem::path& file) {
-  const std::string text = read_input_file(file.string(), kMaxTextInputBytes);
-  nlohmann::json document;
+// The document in `text`, every key once; syntax errors and nlohmann's other exceptions become
+// one line starting with `where` (already printable).
+static nlohmann::json parse_document(const std::string& text, const std::string& where) {
   try {
-    document = nlohmann::json::parse(text, DuplicateKeyCheck(file.string()));
+    return nlohmann::json::parse(text, DuplicateKeyCheck(where));
   } catch (const nlohmann::json::parse_error& e) {
     // nlohmann's message reads "[json.exception.parse_error.101] parse error at line L, column C:
     // ..."; its "last read" part may hold input bytes, hence printable().
     std::string what = e.what();
     size_t at = what.find("parse error");
-    throw Error(printable(file.string()) +
+    throw Error(where +
                 ": malformed JSON: " + printable(at == std::string::npos ? what : what.substr(at)));
   } catch (const nlohmann::json::exception& e) {
     // A number beyond double range ("1e400") is an out_of_range error: nlohmann names the number
     // but not its place. Its "[json.exception...]" prefix is cut.
     std::string what = e.what();
     size_t at = what.find("] ");
-    throw Error(printable(file.string()) + ": malformed JSON: " +
+    throw Error(where + ": malformed JSON: " +
                 printable(at == std::string::npos ? what : what.substr(at + 2)));
   }
-  auto root = std::make_shared<const nlohmann::json>(std::move(document));
+}
+
+JsonNode JsonNode::load_file(const std::filesystem::path& file) {
+  const std::string text = read_input_file(file.string(), kMaxTextInputBytes);
+  auto root =
+      std::make_shared<const nlohmann::json>(parse_document(text, printable(file.string())));
   std::filesystem::path base = file.parent_path();
   return JsonNode(root, root.get(), file.string(), base.empty() ? "." : base, "");
+}
+
+JsonNode JsonNode::parse_text(const std::string& text, const std::string& where,
+                              const std::filesystem::path& base_dir) {
+  auto root = std::make_shared<const nlohmann::json>(parse_document(text, printable(where)));
+  return JsonNode(root, root.get(), where, base_dir, "");
 }
 
 JsonNode JsonNode::from_json(nlohmann::json document, const std::string& file) {

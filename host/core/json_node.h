@@ -16,12 +16,18 @@ class JsonNode {
  public:
   // Parses a whole file; a syntax error names the file, line and column.
   static JsonNode load_file(const std::filesystem::path& file);
-  // Wraps an already parsed document (tests, command-line JSON); `file` is used in messages.
+  // Parses JSON text given elsewhere (the command line) as strictly as a file; `where` (the option
+  // and its value, as given) starts each message, escaped; relative paths resolve against
+  // `base_dir` ("" for the working directory).
+  static JsonNode parse_text(const std::string& text, const std::string& where,
+                             const std::filesystem::path& base_dir);
+  // Wraps an already parsed document (tests); `file` is used in messages.
   static JsonNode from_json(nlohmann::json document, const std::string& file);
 
   const std::string& file() const { return file_; }
   std::string path() const { return path_.empty() ? "/" : path_; }
-  // Directory that relative paths in this document are resolved against.
+  // Directory that relative paths in this document are resolved against (empty: the working
+  // directory).
   std::filesystem::path base_dir() const { return base_dir_; }
 
   bool is_object() const { return json_->is_object(); }

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/input_files.h"
+#include "core/printable.h"
 
 namespace kasha {
 
@@ -19,6 +20,16 @@ namespace fs = std::filesystem;
 namespace {
 
 constexpr long kProcMagic = 0x9fa0, kSysfsMagic = 0x62656572;  // <linux/magic.h>
+
+// Whether a failed stat only says the path does not exist (yet): any other errno (a name too long,
+// a link loop, no permission) is the option's error, raised now rather than after the work.
+bool only_missing(int error) {
+  return error == ENOENT || error == ENOTDIR;
+}
+
+[[noreturn]] void fail_stat(const std::string& where, int error) {
+  throw Error(where + ": " + error_words(std::error_code(error, std::generic_category())));
+}
 
 struct Input {
   std::string path, what;
@@ -39,8 +50,8 @@ bool same_file(const std::string& a, const std::string& b) {
   if (::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0)
     return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
   std::error_code ea, eb;
-  fs::path ca = fs::weakly_canonical(fs::absolute(a), ea);
-  fs::path cb = fs::weakly_canonical(fs::absolute(b), eb);
+  fs::path ca = fs::weakly_canonical(fs::absolute(a, ea), ea);
+  fs::path cb = fs::weakly_canonical(fs::absolute(b, eb), eb);
   return !ea && !eb && ca == cb;
 }
 
@@ -53,7 +64,11 @@ std::string folder_of(const std::string& path) {
 // with a probe file, since permission bits say nothing of read-only mounts, quotas or root.
 void check_folder(const std::string& dir, const std::string& where) {
   struct stat st;
-  if (::stat(dir.c_str(), &st) != 0) throw Error(where + ": directory " + dir + " does not exist");
+  if (::stat(dir.c_str(), &st) != 0) {
+    const int error = errno;
+    if (!only_missing(error)) fail_stat(where + ": directory " + dir, error);
+    throw Error(where + ": directory " + dir + " does not exist");
+  }
   if (!S_ISDIR(st.st_mode)) throw Error(where + ": " + dir + " is not a directory");
   struct statfs fsinfo;
   if (::statfs(dir.c_str(), &fsinfo) == 0 && (static_cast<long>(fsinfo.f_type) == kProcMagic ||
@@ -81,6 +96,16 @@ std::string temporary_beside(const std::string& path, int serial) {
 std::string without_trailing_slash(std::string path) {
   while (path.size() > 1 && path.back() == '/') path.pop_back();
   return path;
+}
+
+// The files written into a staging folder; a failure to list them is the output's error.
+std::vector<fs::path> files_in(const std::string& dir, const std::string& where) {
+  std::vector<fs::path> out;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+    out.push_back(it->path());
+  if (ec) throw Error(where + ": cannot list the files written: " + error_words(ec));
+  return out;
 }
 
 std::string replace_all(std::string text, const std::string& from, const std::string& to) {
@@ -135,7 +160,8 @@ void OutputSet::file(const std::string& option, const std::string& path) {
   o.option = option;
   o.path = path;
   struct stat st;
-  if (::lstat(path.c_str(), &st) == 0) {
+  const int found = ::lstat(path.c_str(), &st), error = errno;
+  if (found == 0) {
     if (S_ISLNK(st.st_mode)) {
       std::error_code ec;
       // Renaming over a link replaces the link: refused rather than guessing what was meant.
@@ -143,6 +169,8 @@ void OutputSet::file(const std::string& option, const std::string& path) {
                   "), not a regular file");
     }
     if (!S_ISREG(st.st_mode)) throw Error(o.where() + ": is " + file_kind(st.st_mode));
+  } else if (!only_missing(error)) {
+    fail_stat(o.where(), error);
   }
   check_folder(folder_of(path), o.where());
   impl_->outputs.push_back(o);
@@ -156,11 +184,14 @@ void OutputSet::directory(const std::string& option, const std::string& path) {
   o.path = path;
   o.directory = true;
   struct stat st;
-  if (::stat(path.c_str(), &st) == 0) {
+  const int found = ::stat(path.c_str(), &st), error = errno;
+  if (found == 0) {
     if (!S_ISDIR(st.st_mode))
       throw Error(o.where() + ": is " + file_kind(st.st_mode) + ", not a directory");
     check_folder(path, o.where());
     o.existed = true;
+  } else if (!only_missing(error)) {
+    fail_stat(o.where(), error);
   } else if (::lstat(path.c_str(), &st) == 0) {
     throw Error(o.where() + ": is a symbolic link to a missing directory");
   } else {
@@ -195,7 +226,7 @@ void OutputSet::write(const std::string& path,
   } catch (const std::exception& e) {
     std::error_code ec;
     fs::remove(tmp, ec);
-    throw Error(o.where() + ": cannot write: " + replace_all(e.what(), tmp, path));
+    throw Error(o.where() + ": cannot write: " + replace_all(library_error_text(e), tmp, path));
   }
   o.temporary = tmp;
 }
@@ -210,7 +241,7 @@ std::string OutputSet::staging(const std::string& path) {
                               : temporary_beside(without_trailing_slash(path), impl_->serial++);
   std::error_code ec;
   fs::create_directory(tmp, ec);
-  if (ec) throw Error(o.where() + ": cannot create a folder in it: " + ec.message());
+  if (ec) throw Error(o.where() + ": cannot create a folder in it: " + error_words(ec));
   o.temporary = tmp;
   return tmp;
 }
@@ -220,8 +251,8 @@ void OutputSet::commit() {
   // Everything a folder's files would replace is checked before the first rename.
   for (const Output& o : impl_->outputs) {
     if (!o.directory || !o.existed || o.temporary.empty()) continue;
-    for (const fs::directory_entry& e : fs::directory_iterator(o.temporary)) {
-      const std::string target = (fs::path(o.path) / e.path().filename()).string();
+    for (const fs::path& written : files_in(o.temporary, o.where())) {
+      const std::string target = (fs::path(o.path) / written.filename()).string();
       struct stat st;
       if (::lstat(target.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
         throw Error(o.where() + ": " + target + " is " +
@@ -239,9 +270,8 @@ void OutputSet::commit() {
     if (o.temporary.empty()) continue;
     std::error_code ec;
     if (o.directory && o.existed) {
-      for (const fs::directory_entry& e : fs::directory_iterator(o.temporary)) {
-        const fs::path target = fs::path(o.path) / e.path().filename();
-        fs::rename(e.path(), target, ec);
+      for (const fs::path& written : files_in(o.temporary, o.where())) {
+        fs::rename(written, fs::path(o.path) / written.filename(), ec);
         if (ec) break;
       }
       if (!ec) fs::remove_all(o.temporary, ec);
@@ -249,7 +279,7 @@ void OutputSet::commit() {
       fs::rename(o.temporary, without_trailing_slash(o.path), ec);
     }
     if (ec)
-      throw Error(o.where() + ": cannot move the finished output into place: " + ec.message());
+      throw Error(o.where() + ": cannot move the finished output into place: " + error_words(ec));
     o.temporary.clear();
   }
   impl_->committed = true;

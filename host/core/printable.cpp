@@ -1,6 +1,9 @@
 #include "core/printable.h"
 
+#include <cctype>
 #include <cstdio>
+#include <filesystem>
+#include <nlohmann/json.hpp>
 
 namespace kasha {
 
@@ -71,6 +74,33 @@ std::string as_one_line(const std::string& message) {
     }
   }
   return out;
+}
+
+std::string json_text(std::string_view bytes) {
+  if (valid_utf8(bytes) && bytes.find('\\') == std::string_view::npos) return std::string(bytes);
+  return printable(bytes);
+}
+
+std::string error_words(const std::error_code& ec) {
+  std::string words = ec.message();
+  // strerror's capital ("File name too long") would read as a new sentence after "WHERE: ".
+  if (words.size() > 1 && std::isupper(static_cast<unsigned char>(words[0])) &&
+      !std::isupper(static_cast<unsigned char>(words[1])))
+    words[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(words[0])));
+  return words;
+}
+
+std::string library_error_text(const std::exception& e) {
+  if (const auto* fs = dynamic_cast<const std::filesystem::filesystem_error*>(&e))
+    return printable(fs->path1().empty() ? std::string("a file") : fs->path1().string()) + ": " +
+           error_words(fs->code());
+  std::string what = e.what();
+  if (dynamic_cast<const nlohmann::json::exception*>(&e)) {
+    const size_t at = what.find("] ");
+    if (what.rfind("[json.exception.", 0) == 0 && at != std::string::npos)
+      what = what.substr(at + 2);
+  }
+  return as_one_line(what);
 }
 
 }  // namespace kasha

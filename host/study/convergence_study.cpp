@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/printable.h"
 #include "core/python_script.h"
 #include "film/film.h"
 #include "image/exr_io.h"
@@ -28,8 +29,8 @@ namespace {
 void check_directory(const std::string& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (ec || !fs::is_directory(dir))
-    throw Error("-o " + dir + ": cannot create directory" + (ec ? ": " + ec.message() : ""));
+  if (ec || !fs::is_directory(dir, ec))
+    throw Error("-o " + dir + ": cannot create directory" + (ec ? ": " + error_words(ec) : ""));
   fs::path probe = fs::path(dir) / ".kasha-write-test";
   std::ofstream test(probe);
   if (!test) throw Error("-o " + dir + ": directory is not writable");
@@ -66,7 +67,8 @@ Image study_reference(const std::string& scene_path, const Scene& scene, const S
   fs::path cached = scene_file.parent_path() / (scene_file.stem().string() + ".reference.exr");
   double wanted =
       o.reference_seconds > 0 ? o.reference_seconds : 4 * o.seconds * o.integrators.size();
-  if (fs::exists(cached)) {
+  std::error_code ec;
+  if (fs::exists(cached, ec)) {
     ReferenceInfo info = read_reference_info(cached.string());
     if (info.scene_fingerprint == scene_fingerprint(scene_path) && info.seconds >= 0.99 * wanted) {
       description = cached.string() + " (cached: " + info.integrator + ", " +
@@ -118,8 +120,11 @@ void write_summary(const std::string& dir, const std::string& scene_path, const 
   const std::string md = (fs::path(dir) / "summary.md").string();
   write_atomically(md, [&](const std::string& tmp) {
     write_stream_file(tmp, md, [&](std::ostream& out) {
-      out << "Scene `" << scene_path << "`, " << o.seconds << " s per integrator, " << o.repeats
-          << " run(s) each (mean ± sd), reference: " << r.reference_description << ".\n\n";
+      // File names are input bytes, and converge prints this file: escaped like a message.
+      out << "Scene `" << printable(scene_path) << "`, " << o.seconds << " s per integrator, "
+          << o.repeats
+          << " run(s) each (mean ± sd), reference: " << printable(r.reference_description)
+          << ".\n\n";
       out << "| integrator | final RMSE | final relMSE | RMSE slope | relMSE slope | time to RMSE "
           << num(r.target)
           << " (s) | camera paths/s | photons/s |\n|---|---|---|---|---|---|---|---|\n";

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/printable.h"
 #include "film/film.h"
 #include "image/exr_io.h"
 #include "render/device_scene.h"
@@ -38,8 +39,11 @@ std::optional<Image> reference_for(const std::string& reference, const Scene& sc
                   " is not an analytic furnace: " + f.why_not);
     return furnace_image(scene, f.radiance, spectral);
   }
-  if (!std::filesystem::exists(reference))
-    throw Error("--reference " + reference + ": no such file");
+  std::error_code ec;  // a name too long or a link loop is this option's error too
+  if (!std::filesystem::exists(reference, ec))
+    throw Error("--reference " + reference + ": " +
+                (ec && ec != std::errc::no_such_file_or_directory ? error_words(ec)
+                                                                  : std::string("no such file")));
   Image image = read_exr(reference);
   check_reference_size(image, scene.camera.width, scene.camera.height);
   return image;
