@@ -5,7 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "colorimetry/cie_lab.h"
@@ -111,4 +114,42 @@ TEST(ImageRegions, PreviewAndDeltaECommands) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("kasha: error: delta-e 50,2.6772: expected L*,a*,b*"), std::string::npos)
       << r.err;
+}
+
+namespace {
+
+// One line on stderr starting `kasha: error: ` + `where`, exit 1, nothing on stdout.
+void expect_input_error(const std::string& args, const std::string& where) {
+  SCOPED_TRACE("kasha " + args);
+  auto r = run_kasha(args);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err.rfind("kasha: error: " + where, 0), 0u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.out, "");
+}
+
+}  // namespace
+
+TEST(ImageRegions, EveryCommandThatReadsAnImageRefusesNonFinitePixels) {
+  const std::string scene = two_quads(), d = scratch_dir().string();
+  const Image good = constant_halves({20, 30, 40}, {50, 50, 50});
+  Image nan = good, inf = good;
+  nan.xyz[3 * (2 * 8 + 1) + 1] = std::nanf("");  // pixel (1, 2), inside the left region
+  inf.xyz[3 * (6 * 8 + 5) + 2] = std::numeric_limits<float>::infinity();  // (5, 6), right
+  write_exr(d + "/good.exr", good);
+  write_exr(d + "/nan.exr", nan);
+  write_exr(d + "/inf.exr", inf);
+  const std::string bad_nan = d + "/nan.exr: pixel (1, 2) channel XYZ.Y is nan";
+  const std::string bad_inf = d + "/inf.exr: pixel (5, 6) channel XYZ.Z is inf";
+  expect_input_error("regions " + scene + " " + d + "/nan.exr", bad_nan);
+  expect_input_error(
+      "regions " + scene + " " + d + "/good.exr --white " + d + "/inf.exr --json " + d + "/r.json",
+      bad_inf);
+  expect_input_error("compare " + d + "/nan.exr " + d + "/good.exr", bad_nan);
+  expect_input_error("compare " + d + "/good.exr " + d + "/inf.exr", bad_inf);
+  expect_input_error("preview " + d + "/nan.exr -o " + d + "/p.png", bad_nan);
+  expect_input_error(
+      "render " + scene + " --passes 1 -o " + d + "/o.exr --reference " + d + "/inf.exr", bad_inf);
+  for (const char* written : {"r.json", "p.png", "o.exr"})
+    EXPECT_FALSE(std::filesystem::exists(d + "/" + written)) << written;
 }
