@@ -181,6 +181,19 @@ TEST(Colorimetry, Ciede2000MatchesSharmaTestData) {
   EXPECT_EQ(ciede2000({52, 10, -30}, {52, 10, -30}), 0.0);
 }
 
+// `kasha delta-e` accepts L* in [0, 1e4] and a*, b* in [-1e4, 1e4]: at every corner of that box,
+// and at the neutral axis where the hue is undefined, the difference is a finite number.
+TEST(Colorimetry, Ciede2000IsFiniteOverTheAcceptedRange) {
+  std::vector<Vec3d> corners;
+  for (double L : {0.0, 1e4})
+    for (double a : {-1e4, 0.0, 1e4})
+      for (double b : {-1e4, 0.0, 1e4}) corners.push_back({L, a, b});
+  for (const Vec3d& p : corners)
+    for (const Vec3d& q : corners)
+      EXPECT_TRUE(std::isfinite(ciede2000(p, q)))
+          << p[0] << "," << p[1] << "," << p[2] << " " << q[0] << "," << q[1] << "," << q[2];
+}
+
 // Under the lamp it was taken under, an unclipped "as is" material is the sample (ΔE00 = 0);
 // under another lamp the fluorescence it froze in shows. Clipping is reported, and the material
 // file written for it resamples to the same reflectance.

@@ -111,9 +111,14 @@ TEST(ImageRegions, PreviewAndDeltaECommands) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out, "2.0425\n");  // Sharma, Wu and Dalal (2005), pair 1
   r = run_kasha("delta-e 50,2.6772 50,0,-82.7485");
-  EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.err.find("kasha: error: delta-e 50,2.6772: expected L*,a*,b*"), std::string::npos)
-      << r.err;
+  EXPECT_EQ(r.exit_code, 2);  // a usage error: the command line is wrong
+  EXPECT_EQ(r.err,
+            "kasha: error: lab1: \"50,2.6772\" is not L*,a*,b* (three numbers separated by "
+            "commas)\n");
+  // At the ends of the documented range the difference is still a number.
+  r = run_kasha("delta-e 0,-10000,-10000 10000,10000,10000");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
 }
 
 namespace {
