@@ -284,6 +284,14 @@ TEST(Colorimetry, BadInputsGiveOneLineAndNoOutput) {
   expect_error("'" + material + "' --illuminant D66", "--illuminant D66: not a built-in spectrum");
   expect_error("'" + material + "' --illuminant '{\"line_nm\": 250}'",
                "--illuminant {\"line_nm\": 250}: the illuminant has no light the observer sees");
+  // A line at 700 nm: the observer's z̄ is 0 there, so the white's Z is 0 and CIELAB (Z / Zn) is
+  // undefined; it used to print b* -inf (null in the JSON).
+  expect_error("'" + material + "' --illuminant '{\"line_nm\": 700}'",
+               "--illuminant {\"line_nm\": 700}: the perfect white's Z is 0");
+  // A lamp the observer cannot see makes no "as is" material either, as it makes no row.
+  const std::string zero = write_file("zero.csv", "wavelength_nm,relative_spd\n300,0\n800,0\n");
+  expect_error("'" + material + "' --as-is '" + zero + "'",
+               "--as-is " + zero + ": the illuminant has no light the observer sees");
   expect_error("'" + material + "' --illuminant '{\"gaussian_nm\": 500}'",
                "--illuminant {\"gaussian_nm\": 500}: /: missing required key \"fwhm_nm\"");
   expect_error("'" + material + "' --write-as-is " + out + ".x", "--write-as-is: give the lamp");
