@@ -158,3 +158,32 @@ TEST(ImageRegions, EveryCommandThatReadsAnImageRefusesNonFinitePixels) {
   for (const char* written : {"r.json", "p.png", "o.exr"})
     EXPECT_FALSE(std::filesystem::exists(d + "/" + written)) << written;
 }
+
+// Every pixel of a view filled by a lamp sees an emitter: without them nothing is left, which is
+// said in words rather than as an RMSE of 0; a scene that does not fit is refused before anything
+// is printed.
+TEST(ImageRegions, CompareSaysWhenNoPixelIsLeftAndChecksTheSceneFirst) {
+  const std::string d = scratch_dir().string();
+  const std::string lamp = write_file("lamp.json", R"({"kasha_scene": 1,
+    "camera": {"position": [0, 0, -2], "look_at": [0, 0, 0], "fov_deg": 90, "width": 8, "height": 8},
+    "materials": {"grey": {"passive": {"reflectance": 0.5}}},
+    "shapes": [{"type": "quad", "corner": [-4, -4, 0], "u": [0, 8, 0], "v": [8, 0, 0],
+                "material": "grey", "emission": {"blackbody_K": 5000}}]})");
+  write_exr(d + "/a.exr", constant_halves({1, 1, 1}, {1, 1, 1}));
+  write_exr(d + "/b.exr", constant_halves({1, 1, 1}, {2, 2, 2}));
+  auto r = run_kasha("compare " + d + "/a.exr " + d + "/b.exr --scene " + lamp);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("| all 64 pixels see an emitter: none left without them\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("rmse 0 "), std::string::npos) << r.out;
+
+  Image small = constant_halves({1, 1, 1}, {1, 1, 1});
+  small.width = 4;
+  small.xyz.resize(3 * 4 * 8);
+  write_exr(d + "/small.exr", small);
+  expect_input_error("compare " + d + "/small.exr " + d + "/small.exr --scene " + lamp,
+                     "--scene " + lamp + ": its camera is 8x8");
+  expect_input_error("compare " + d + "/a.exr " + d + "/a.exr --scene " + d + "/none.json",
+                     d + "/none.json: ");
+}
