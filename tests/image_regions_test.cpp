@@ -159,6 +159,34 @@ TEST(ImageRegions, EveryCommandThatReadsAnImageRefusesNonFinitePixels) {
     EXPECT_FALSE(std::filesystem::exists(d + "/" + written)) << written;
 }
 
+// A white that is dark in a region gives no XYZ relative to it there: that region is left out and
+// the table says so; when the white is dark in every region nothing is left, and that is an error.
+TEST(ImageRegions, AWhiteDarkInARegionIsSaidAndDarkEverywhereIsRefused) {
+  const std::string scene = two_quads(), d = scratch_dir().string();
+  write_exr(d + "/image.exr", constant_halves({20, 30, 40}, {50, 50, 50}));
+  write_exr(d + "/black.exr", constant_halves({0, 0, 0}, {0, 0, 0}));
+  expect_input_error("regions " + scene + " " + d + "/image.exr --white " + d +
+                         "/black.exr --json " + d + "/r.json",
+                     "--white " + d + "/black.exr: the white is dark");
+  EXPECT_FALSE(std::filesystem::exists(d + "/r.json"));
+
+  // Dark on the right only (Z = 0 is dark too: CIELAB divides by it).
+  write_exr(d + "/half.exr", constant_halves({190, 200, 218}, {190, 200, 0}));
+  auto r = run_kasha("regions " + scene + " " + d + "/image.exr --white " + d +
+                     "/half.exr --json " + d + "/r.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("left out: shape 1 (the white is dark there"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("inf"), std::string::npos) << r.out;
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(d + "/r.json"));
+  ASSERT_EQ(j["regions"].size(), 1u);
+  EXPECT_EQ(j["regions"][0]["shape"], 0);
+  EXPECT_EQ(j["skipped_shapes"], nlohmann::json::array({1}));
+
+  // No pixel has one shape all round it at this margin: no region at all.
+  expect_input_error("regions " + scene + " " + d + "/image.exr --margin 5", scene + ": no pixel");
+}
+
 // Every pixel of a view filled by a lamp sees an emitter: without them nothing is left, which is
 // said in words rather than as an RMSE of 0; a scene that does not fit is refused before anything
 // is printed.

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cli/command.h"
 #include "cli/command_line_errors.h"
@@ -38,6 +39,14 @@ static Vec3d scaled(const Vec3d& v, double k) {
   return {k * v[0], k * v[1], k * v[2]};
 }
 
+// The white is dark in a region when one of its X, Y, Z is not positive there (a lamp's own face, a
+// corner no light reaches): nothing relative to it, nor CIELAB (which divides by X, Y and Z).
+static bool dark(const Vec3d& white) {
+  return !(white[0] > 0 && white[1] > 0 && white[2] > 0);
+}
+
+// Every row is made before the first is printed, so an error (the white dark everywhere, no region
+// at all) is the only output.
 static int run_regions(const RegionsArgs& a) {
   OutputSet outputs;
   outputs.input(a.scene, "the scene file");
@@ -49,11 +58,17 @@ static int run_regions(const RegionsArgs& a) {
   Image image = read_image_of(scene, a.image);
   std::optional<Image> white;
   if (!a.white.empty()) white = read_image_of(scene, a.white);
+  const std::vector<ShapeRegion> found = shape_regions(scene, scene.camera, a.margin_px);
+  if (found.empty()) {
+    char margin[32];
+    std::snprintf(margin, sizeof margin, "%g", a.margin_px);
+    throw Error(a.scene + ": no pixel sees one shape with --margin " + margin +
+                " pixels around it, so there is no region to measure");
+  }
   nlohmann::json regions = nlohmann::json::array();
-  std::printf("%5s  %-6s  %-24s %7s  %s\n", "shape", "type", "material", "pixels",
-              white ? "X, Y, Z relative to the white (Y = 100) ± standard error; L*, a*, b*"
-                    : "mean X, Y, Z ± standard error");
-  for (const ShapeRegion& r : shape_regions(scene, scene.camera, a.margin_px)) {
+  std::vector<int> skipped;
+  std::string rows;
+  for (const ShapeRegion& r : found) {
     const ShapeInfo& shape = scene.shapes[r.shape];
     const std::string& material = scene.material_descs[shape.material].name;
     RegionXyz xyz = region_xyz(image, r.pixels);
@@ -68,7 +83,10 @@ static int run_regions(const RegionsArgs& a) {
     if (white) {
       // The white's own noise is left out of the relative standard error: give it more samples.
       RegionXyz w = region_xyz(*white, r.pixels);
-      if (!(w.mean[1] > 0)) continue;  // the white is dark there (e.g. a lamp's own face)
+      if (dark(w.mean)) {
+        skipped.push_back(r.shape);
+        continue;
+      }
       const double k = 100 / w.mean[1];
       Vec3d relative = scaled(xyz.mean, k), l = xyz_to_lab(relative, scaled(w.mean, k));
       region["white_XYZ"] = w.mean;
@@ -82,22 +100,38 @@ static int run_regions(const RegionsArgs& a) {
       lab = text;
     }
     regions.push_back(region);
-    std::printf("%5d  %-6s  %-24s %7zu  %.6g ± %.2g, %.6g ± %.2g, %.6g ± %.2g%s\n", r.shape,
-                shape.type.c_str(), material.c_str(), r.pixels.size(), xyz.mean[0],
-                xyz.standard_error[0], xyz.mean[1], xyz.standard_error[1], xyz.mean[2],
-                xyz.standard_error[2], lab.c_str());
+    // The material name goes in whole (it has no length limit); the numbers fit the buffer.
+    char text[64];
+    std::snprintf(text, sizeof text, "%5d  %-6s  ", r.shape, shape.type.c_str());
+    rows += text + material + std::string(material.size() < 24 ? 24 - material.size() : 0, ' ');
+    char numbers[256];
+    std::snprintf(numbers, sizeof numbers, " %7zu  %.6g ± %.2g, %.6g ± %.2g, %.6g ± %.2g%s\n",
+                  r.pixels.size(), xyz.mean[0], xyz.standard_error[0], xyz.mean[1],
+                  xyz.standard_error[1], xyz.mean[2], xyz.standard_error[2], lab.c_str());
+    rows += numbers;
   }
+  if (regions.empty())
+    throw Error("--white " + a.white +
+                ": the white is dark (X, Y or Z not above 0) in every region, so nothing can be "
+                "measured relative to it");
+  std::string left_out;
+  for (int shape : skipped) left_out += (left_out.empty() ? "" : ", ") + std::to_string(shape);
+  if (!left_out.empty())
+    left_out = "left out: shape" + std::string(skipped.size() > 1 ? "s " : " ") + left_out +
+               " (the white is dark there: X, Y or Z not above 0)\n";
   if (!a.json.empty()) {
-    const std::string text = nlohmann::json{{"scene", a.scene},
-                                            {"image", a.image},
-                                            {"white", a.white},
-                                            {"margin_px", a.margin_px},
-                                            {"regions", regions}}
+    const std::string text = nlohmann::json{{"scene", a.scene},   {"image", a.image},
+                                            {"white", a.white},   {"margin_px", a.margin_px},
+                                            {"regions", regions}, {"skipped_shapes", skipped}}
                                  .dump(1) +
                              "\n";
     outputs.write(a.json, [&](const std::string& tmp) { write_text_atomically(tmp, text); });
     outputs.commit();
   }
+  std::printf("%5s  %-6s  %-24s %7s  %s\n%s%s", "shape", "type", "material", "pixels",
+              white ? "X, Y, Z relative to the white (Y = 100) ± standard error; L*, a*, b*"
+                    : "mean X, Y, Z ± standard error",
+              rows.c_str(), left_out.c_str());
   return 0;
 }
 
