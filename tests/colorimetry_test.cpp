@@ -181,6 +181,19 @@ TEST(Colorimetry, Ciede2000MatchesSharmaTestData) {
   EXPECT_EQ(ciede2000({52, 10, -30}, {52, 10, -30}), 0.0);
 }
 
+// `kasha delta-e` accepts L* in [0, 1e4] and a*, b* in [-1e4, 1e4]: at every corner of that box,
+// and at the neutral axis where the hue is undefined, the difference is a finite number.
+TEST(Colorimetry, Ciede2000IsFiniteOverTheAcceptedRange) {
+  std::vector<Vec3d> corners;
+  for (double L : {0.0, 1e4})
+    for (double a : {-1e4, 0.0, 1e4})
+      for (double b : {-1e4, 0.0, 1e4}) corners.push_back({L, a, b});
+  for (const Vec3d& p : corners)
+    for (const Vec3d& q : corners)
+      EXPECT_TRUE(std::isfinite(ciede2000(p, q)))
+          << p[0] << "," << p[1] << "," << p[2] << " " << q[0] << "," << q[1] << "," << q[2];
+}
+
 // Under the lamp it was taken under, an unclipped "as is" material is the sample (ΔE00 = 0);
 // under another lamp the fluorescence it froze in shows. Clipping is reported, and the material
 // file written for it resamples to the same reflectance.
@@ -271,6 +284,14 @@ TEST(Colorimetry, BadInputsGiveOneLineAndNoOutput) {
   expect_error("'" + material + "' --illuminant D66", "--illuminant D66: not a built-in spectrum");
   expect_error("'" + material + "' --illuminant '{\"line_nm\": 250}'",
                "--illuminant {\"line_nm\": 250}: the illuminant has no light the observer sees");
+  // A line at 700 nm: the observer's z̄ is 0 there, so the white's Z is 0 and CIELAB (Z / Zn) is
+  // undefined; it used to print b* -inf (null in the JSON).
+  expect_error("'" + material + "' --illuminant '{\"line_nm\": 700}'",
+               "--illuminant {\"line_nm\": 700}: the perfect white's Z is 0");
+  // A lamp the observer cannot see makes no "as is" material either, as it makes no row.
+  const std::string zero = write_file("zero.csv", "wavelength_nm,relative_spd\n300,0\n800,0\n");
+  expect_error("'" + material + "' --as-is '" + zero + "'",
+               "--as-is " + zero + ": the illuminant has no light the observer sees");
   expect_error("'" + material + "' --illuminant '{\"gaussian_nm\": 500}'",
                "--illuminant {\"gaussian_nm\": 500}: /: missing required key \"fwhm_nm\"");
   expect_error("'" + material + "' --write-as-is " + out + ".x", "--write-as-is: give the lamp");

@@ -5,7 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "colorimetry/cie_lab.h"
@@ -108,9 +111,109 @@ TEST(ImageRegions, PreviewAndDeltaECommands) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out, "2.0425\n");  // Sharma, Wu and Dalal (2005), pair 1
   r = run_kasha("delta-e 50,2.6772 50,0,-82.7485");
-  EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.err.find("kasha: error: delta-e 50,2.6772: expected L*,a*,b*"), std::string::npos)
-      << r.err;
+  EXPECT_EQ(r.exit_code, 2);  // a usage error: the command line is wrong
+  EXPECT_EQ(r.err,
+            "kasha: error: lab1: \"50,2.6772\" is not L*,a*,b* (three numbers separated by "
+            "commas)\n");
+  // At the ends of the documented range the difference is still a number.
+  r = run_kasha("delta-e 0,-10000,-10000 10000,10000,10000");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+}
+
+namespace {
+
+// One line on stderr starting `kasha: error: ` + `where`, exit 1, nothing on stdout.
+void expect_input_error(const std::string& args, const std::string& where) {
+  SCOPED_TRACE("kasha " + args);
+  auto r = run_kasha(args);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err.rfind("kasha: error: " + where, 0), 0u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_EQ(r.out, "");
+}
+
+}  // namespace
+
+TEST(ImageRegions, EveryCommandThatReadsAnImageRefusesNonFinitePixels) {
+  const std::string scene = two_quads(), d = scratch_dir().string();
+  const Image good = constant_halves({20, 30, 40}, {50, 50, 50});
+  Image nan = good, inf = good;
+  nan.xyz[3 * (2 * 8 + 1) + 1] = std::nanf("");  // pixel (1, 2), inside the left region
+  inf.xyz[3 * (6 * 8 + 5) + 2] = std::numeric_limits<float>::infinity();  // (5, 6), right
+  write_exr(d + "/good.exr", good);
+  write_exr(d + "/nan.exr", nan);
+  write_exr(d + "/inf.exr", inf);
+  const std::string bad_nan = d + "/nan.exr: pixel (1, 2) channel XYZ.Y is nan";
+  const std::string bad_inf = d + "/inf.exr: pixel (5, 6) channel XYZ.Z is inf";
+  expect_input_error("regions " + scene + " " + d + "/nan.exr", bad_nan);
+  expect_input_error(
+      "regions " + scene + " " + d + "/good.exr --white " + d + "/inf.exr --json " + d + "/r.json",
+      bad_inf);
+  expect_input_error("compare " + d + "/nan.exr " + d + "/good.exr", bad_nan);
+  expect_input_error("compare " + d + "/good.exr " + d + "/inf.exr", bad_inf);
+  expect_input_error("preview " + d + "/nan.exr -o " + d + "/p.png", bad_nan);
+  expect_input_error(
+      "render " + scene + " --passes 1 -o " + d + "/o.exr --reference " + d + "/inf.exr", bad_inf);
+  for (const char* written : {"r.json", "p.png", "o.exr"})
+    EXPECT_FALSE(std::filesystem::exists(d + "/" + written)) << written;
+}
+
+// A white that is dark in a region gives no XYZ relative to it there: that region is left out and
+// the table says so; when the white is dark in every region nothing is left, and that is an error.
+TEST(ImageRegions, AWhiteDarkInARegionIsSaidAndDarkEverywhereIsRefused) {
+  const std::string scene = two_quads(), d = scratch_dir().string();
+  write_exr(d + "/image.exr", constant_halves({20, 30, 40}, {50, 50, 50}));
+  write_exr(d + "/black.exr", constant_halves({0, 0, 0}, {0, 0, 0}));
+  expect_input_error("regions " + scene + " " + d + "/image.exr --white " + d +
+                         "/black.exr --json " + d + "/r.json",
+                     "--white " + d + "/black.exr: the white is dark");
+  EXPECT_FALSE(std::filesystem::exists(d + "/r.json"));
+
+  // Dark on the right only (Z = 0 is dark too: CIELAB divides by it).
+  write_exr(d + "/half.exr", constant_halves({190, 200, 218}, {190, 200, 0}));
+  auto r = run_kasha("regions " + scene + " " + d + "/image.exr --white " + d +
+                     "/half.exr --json " + d + "/r.json");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("left out: shape 1 (the white is dark there"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("inf"), std::string::npos) << r.out;
+  nlohmann::json j = nlohmann::json::parse(std::ifstream(d + "/r.json"));
+  ASSERT_EQ(j["regions"].size(), 1u);
+  EXPECT_EQ(j["regions"][0]["shape"], 0);
+  EXPECT_EQ(j["skipped_shapes"], nlohmann::json::array({1}));
+
+  // No pixel has one shape all round it at this margin: no region at all.
+  expect_input_error("regions " + scene + " " + d + "/image.exr --margin 5", scene + ": no pixel");
+}
+
+// Every pixel of a view filled by a lamp sees an emitter: without them nothing is left, which is
+// said in words rather than as an RMSE of 0; a scene that does not fit is refused before anything
+// is printed.
+TEST(ImageRegions, CompareSaysWhenNoPixelIsLeftAndChecksTheSceneFirst) {
+  const std::string d = scratch_dir().string();
+  const std::string lamp = write_file("lamp.json", R"({"kasha_scene": 1,
+    "camera": {"position": [0, 0, -2], "look_at": [0, 0, 0], "fov_deg": 90, "width": 8, "height": 8},
+    "materials": {"grey": {"passive": {"reflectance": 0.5}}},
+    "shapes": [{"type": "quad", "corner": [-4, -4, 0], "u": [0, 8, 0], "v": [8, 0, 0],
+                "material": "grey", "emission": {"blackbody_K": 5000}}]})");
+  write_exr(d + "/a.exr", constant_halves({1, 1, 1}, {1, 1, 1}));
+  write_exr(d + "/b.exr", constant_halves({1, 1, 1}, {2, 2, 2}));
+  auto r = run_kasha("compare " + d + "/a.exr " + d + "/b.exr --scene " + lamp);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("| all 64 pixels see an emitter: none left without them\n"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("rmse 0 "), std::string::npos) << r.out;
+
+  Image small = constant_halves({1, 1, 1}, {1, 1, 1});
+  small.width = 4;
+  small.xyz.resize(3 * 4 * 8);
+  write_exr(d + "/small.exr", small);
+  expect_input_error("compare " + d + "/small.exr " + d + "/small.exr --scene " + lamp,
+                     "--scene " + lamp + ": its camera is 8x8");
+  expect_input_error("compare " + d + "/a.exr " + d + "/a.exr --scene " + d + "/none.json",
+                     d + "/none.json: ");
 }
 
 TEST(ImageRegions, NamesAreEscapedInJsonAndOnTheTerminal) {

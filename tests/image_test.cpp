@@ -4,10 +4,13 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfInputFile.h>
+#include <ImfOutputFile.h>
 #include <ImfStringAttribute.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "color/color_space.h"
 #include "film/film.h"
@@ -68,6 +71,53 @@ TEST(Exr, RgbIsLinearSrgbOfXyz) {
   file.readPixels(0, 0);
   for (float c : rgb) EXPECT_NEAR(c, 1.0f, 2e-3f);
   EXPECT_FALSE(file.header().channels().findChannel("S0.555,000000nm"));
+}
+
+// Every command that reads an image reads it here: a NaN or infinite value is refused with its
+// pixel (x from the left, y from the top) and channel, rather than becoming "nan ± 0" downstream.
+TEST(Exr, NonFinitePixelsAreRefusedWithThePixelAndChannel) {
+  Image img;
+  img.width = 3;
+  img.height = 2;
+  img.grid = WavelengthGrid{550, 10, 2};
+  img.xyz.assign(3 * img.pixels(), 0.5f);
+  img.spectral.assign(2 * img.pixels(), 0.25f);
+  const std::string dir = test::scratch_dir().string();
+  Image nan = img;
+  nan.xyz[3 * (1 * 3 + 2) + 1] = std::nanf("");  // pixel (2, 1), Y
+  write_exr(dir + "/nan.exr", nan);
+  EXPECT_EQ(test::error_of([&] { read_exr(dir + "/nan.exr"); }),
+            dir + "/nan.exr: pixel (2, 1) channel XYZ.Y is nan");
+  Image inf = img;
+  inf.spectral[2 * (0 * 3 + 1) + 1] = -std::numeric_limits<float>::infinity();  // (1, 0), 565 nm
+  write_exr(dir + "/inf.exr", inf);
+  EXPECT_EQ(test::error_of([&] { read_exr(dir + "/inf.exr"); }),
+            dir + "/inf.exr: pixel (1, 0) channel S0.565,000000nm is -inf");
+
+  // An RGB-only file names its own channel; finite R, G, B whose XYZ overflows a float too.
+  auto write_rgb = [&](const std::string& path, float r, float g, float b) {
+    Imf::Header header(1, 1);
+    float rgb[3] = {r, g, b};
+    Imf::FrameBuffer fb;
+    const char* names[3] = {"R", "G", "B"};
+    for (int k = 0; k < 3; ++k) {
+      header.channels().insert(names[k], Imf::Channel(Imf::FLOAT));
+      fb.insert(names[k],
+                Imf::Slice(Imf::FLOAT, (char*)&rgb[k], 3 * sizeof(float), 3 * sizeof(float)));
+    }
+    Imf::OutputFile file(path.c_str(), header);
+    file.setFrameBuffer(fb);
+    file.writePixels(1);
+  };
+  write_rgb(dir + "/rgb.exr", 0.5f, std::numeric_limits<float>::infinity(), 0.5f);
+  EXPECT_EQ(test::error_of([&] { read_exr(dir + "/rgb.exr"); }),
+            dir + "/rgb.exr: pixel (0, 0) channel G is inf");
+  const float big = std::numeric_limits<float>::max();
+  write_rgb(dir + "/big.exr", big, big, big);
+  EXPECT_NE(test::error_of([&] {
+              read_exr(dir + "/big.exr");
+            }).find(dir + "/big.exr: pixel (0, 0): R, G, B give an XYZ beyond a float"),
+            std::string::npos);
 }
 
 TEST(Film, AveragesPassesAndDerivesXyzFromBins) {

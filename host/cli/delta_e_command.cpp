@@ -4,37 +4,97 @@
 #include <cstdlib>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "cli/command.h"
 #include "cli/command_line_errors.h"
 #include "colorimetry/ciede2000.h"
 #include "core/error.h"
+#include "core/printable.h"
 
 namespace kasha {
 
-// "L,a,b": three finite numbers separated by commas.
-static Vec3d parse_lab(const std::string& text) {
-  Vec3d lab{0, 0, 0};
-  const char* p = text.c_str();
-  for (int k = 0; k < 3; ++k) {
-    char* end = nullptr;
-    lab[k] = std::strtod(p, &end);
-    if (end == p || !std::isfinite(lab[k]) || *end != (k < 2 ? ',' : '\0'))
-      throw Error("delta-e " + text + ": expected L*,a*,b* (three numbers separated by commas)");
-    p = end + (k < 2 ? 1 : 0);
+namespace {
+
+// Ten times beyond any surface colour, so none is refused, and far below where CIEDE2000's C'⁷
+// overflows (1e308 gave -nan): the result is finite for every accepted pair (docs/commands.md).
+constexpr double kMaxLightness = 1e4, kMaxChroma = 1e4;
+
+// The text split at every comma, empty fields kept ("50,0," is three fields, the last empty).
+std::vector<std::string> fields(const std::string& text) {
+  std::vector<std::string> out(1);
+  for (char ch : text) {
+    if (ch == ',')
+      out.emplace_back();
+    else
+      out.back() += ch;
   }
+  return out;
+}
+
+std::string trimmed(const std::string& s) {
+  const size_t first = s.find_first_not_of(" \t"), last = s.find_last_not_of(" \t");
+  return first == std::string::npos ? "" : s.substr(first, last - first + 1);
+}
+
+// "" if `text` is "L,a,b" (three finite numbers within the range above, stored in lab), else what
+// is wrong with it: a command-line error, so the validator below reports it with exit code 2.
+std::string lab_problem(const std::string& text, Vec3d& lab) {
+  if (text.empty()) return "the value is empty";  // as the other options say it
+  const std::vector<std::string> parts = fields(text);
+  const std::string quoted = "\"" + printable(text) + "\"";
+  if (parts.size() != 3) return quoted + " is not L*,a*,b* (three numbers separated by commas)";
+  const char* names[3] = {"L*", "a*", "b*"};
+  for (int k = 0; k < 3; ++k) {
+    const std::string field = trimmed(parts[k]);
+    if (field.empty()) return std::string(names[k]) + " is empty in " + quoted;
+    char* end = nullptr;
+    const double v = std::strtod(field.c_str(), &end);
+    if (end != field.c_str() + field.size())
+      return std::string(names[k]) + " \"" + printable(field) + "\" is not a number";
+    if (!std::isfinite(v)) return std::string(names[k]) + " " + field + " is not a finite number";
+    const double lo = k == 0 ? 0 : -kMaxChroma, hi = k == 0 ? kMaxLightness : kMaxChroma;
+    if (v < lo || v > hi) {
+      char range[64];
+      std::snprintf(range, sizeof range, "[%g, %g]", lo, hi);
+      return std::string(names[k]) + " " + field + " is not in " + range;
+    }
+    lab[k] = v;
+  }
+  return "";
+}
+
+CLI::Validator lab_colour() {
+  return CLI::Validator(
+      [](std::string& text) {
+        Vec3d lab;
+        return lab_problem(text, lab);
+      },
+      "L*,a*,b*", "LAB");
+}
+
+Vec3d parse_lab(const std::string& text) {
+  Vec3d lab{0, 0, 0};
+  const std::string problem = lab_problem(text, lab);
+  if (!problem.empty()) throw Error(printable(text) + ": " + problem);  // the validator ran first
   return lab;
 }
 
+}  // namespace
+
 static int run_delta_e(const std::string& lab1, const std::string& lab2) {
-  std::printf("%.4f\n", ciede2000(parse_lab(lab1), parse_lab(lab2)));
+  const double d = ciede2000(parse_lab(lab1), parse_lab(lab2));
+  if (!std::isfinite(d)) throw Error("delta-e: the difference is not finite");  // never, in range
+  std::printf("%.4f\n", d);
   return 0;
 }
 
 static Command::Action declare_delta_e(CLI::App& app) {
   auto labs = std::make_shared<std::pair<std::string, std::string>>();
-  app.add_option("lab1", labs->first, "L*,a*,b*")->required();
-  app.add_option("lab2", labs->second, "L*,a*,b*")->required();
+  app.add_option("lab1", labs->first, "L*,a*,b*: L* in [0, 10000], a*, b* in [-10000, 10000]")
+      ->required()
+      ->check(lab_colour());
+  app.add_option("lab2", labs->second, "L*,a*,b*")->required()->check(lab_colour());
   return [labs] { return run_delta_e(labs->first, labs->second); };
 }
 

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cli/command.h"
 #include "cli/command_line_errors.h"
@@ -54,6 +55,14 @@ static Vec3d scaled(const Vec3d& v, double k) {
   return {k * v[0], k * v[1], k * v[2]};
 }
 
+// The white is dark in a region when one of its X, Y, Z is not positive there (a lamp's own face, a
+// corner no light reaches): nothing relative to it, nor CIELAB (which divides by X, Y and Z).
+static bool dark(const Vec3d& white) {
+  return !(white[0] > 0 && white[1] > 0 && white[2] > 0);
+}
+
+// Every row is made before the first is printed, so an error (the white dark everywhere, no region
+// at all) is the only output.
 static int run_regions(const RegionsArgs& a) {
   OutputSet outputs;
   outputs.input(a.scene, "the scene file");
@@ -65,13 +74,18 @@ static int run_regions(const RegionsArgs& a) {
   Image image = read_image_of(scene, a.image);
   std::optional<Image> white;
   if (!a.white.empty()) white = read_image_of(scene, a.white);
+  const std::vector<ShapeRegion> found = shape_regions(scene, scene.camera, a.margin_px);
+  if (found.empty()) {
+    char margin[32];
+    std::snprintf(margin, sizeof margin, "%g", a.margin_px);
+    throw Error(printable(a.scene) + ": no pixel sees one shape with --margin " + margin +
+                " pixels around it, so there is no region to measure");
+  }
   nlohmann::json regions = nlohmann::json::array();
   // The table is printed once the JSON is written: nothing on stdout before an error is known.
-  std::string table =
-      format("%5s  %-6s  %-24s %7s  %s\n", "shape", "type", "material", "pixels",
-             white ? "X, Y, Z relative to the white (Y = 100) ± standard error; L*, a*, b*"
-                   : "mean X, Y, Z ± standard error");
-  for (const ShapeRegion& r : shape_regions(scene, scene.camera, a.margin_px)) {
+  std::vector<int> skipped;
+  std::string rows;
+  for (const ShapeRegion& r : found) {
     const ShapeInfo& shape = scene.shapes[r.shape];
     const std::string& material = scene.material_descs[shape.material].name;
     RegionXyz xyz = region_xyz(image, r.pixels);
@@ -86,7 +100,10 @@ static int run_regions(const RegionsArgs& a) {
     if (white) {
       // The white's own noise is left out of the relative standard error: give it more samples.
       RegionXyz w = region_xyz(*white, r.pixels);
-      if (!(w.mean[1] > 0)) continue;  // the white is dark there (e.g. a lamp's own face)
+      if (dark(w.mean)) {
+        skipped.push_back(r.shape);
+        continue;
+      }
       const double k = 100 / w.mean[1];
       Vec3d relative = scaled(xyz.mean, k), l = xyz_to_lab(relative, scaled(w.mean, k));
       region["white_XYZ"] = w.mean;
@@ -101,24 +118,37 @@ static int run_regions(const RegionsArgs& a) {
     }
     regions.push_back(region);
     // A material name is a JSON key: valid UTF-8, but it may hold terminal controls.
-    table += format("%5d  %-6s  %-24s %7zu  %.6g ± %.2g, %.6g ± %.2g, %.6g ± %.2g%s\n", r.shape,
-                    printable(shape.type).c_str(), printable(material).c_str(), r.pixels.size(),
-                    xyz.mean[0], xyz.standard_error[0], xyz.mean[1], xyz.standard_error[1],
-                    xyz.mean[2], xyz.standard_error[2], lab.c_str());
+    rows += format("%5d  %-6s  %-24s %7zu  %.6g ± %.2g, %.6g ± %.2g, %.6g ± %.2g%s\n", r.shape,
+                   printable(shape.type).c_str(), printable(material).c_str(), r.pixels.size(),
+                   xyz.mean[0], xyz.standard_error[0], xyz.mean[1], xyz.standard_error[1],
+                   xyz.mean[2], xyz.standard_error[2], lab.c_str());
   }
+  if (regions.empty())
+    throw Error("--white " + printable(a.white) +
+                ": the white is dark (X, Y or Z not above 0) in every region, so nothing can be "
+                "measured relative to it");
+  std::string left_out;
+  for (int shape : skipped) left_out += (left_out.empty() ? "" : ", ") + std::to_string(shape);
+  if (!left_out.empty())
+    left_out = "left out: shape" + std::string(skipped.size() > 1 ? "s " : " ") + left_out +
+               " (the white is dark there: X, Y or Z not above 0)\n";
   if (!a.json.empty()) {
     // File names are command-line bytes: json_text() keeps the JSON UTF-8.
     const std::string text = nlohmann::json{{"scene", json_text(a.scene)},
                                             {"image", json_text(a.image)},
                                             {"white", json_text(a.white)},
                                             {"margin_px", a.margin_px},
-                                            {"regions", regions}}
+                                            {"regions", regions},
+                                            {"skipped_shapes", skipped}}
                                  .dump(1) +
                              "\n";
     outputs.write(a.json, [&](const std::string& tmp) { write_text_atomically(tmp, text); });
     outputs.commit();
   }
-  std::fputs(table.c_str(), stdout);
+  std::printf("%5s  %-6s  %-24s %7s  %s\n%s%s", "shape", "type", "material", "pixels",
+              white ? "X, Y, Z relative to the white (Y = 100) ± standard error; L*, a*, b*"
+                    : "mean X, Y, Z ± standard error",
+              rows.c_str(), left_out.c_str());
   return 0;
 }
 

@@ -1,5 +1,7 @@
 #include "colorimetry/sample_colorimetry.h"
 
+#include <cmath>
+
 #include "colorimetry/cie_lab.h"
 #include "colorimetry/ciede2000.h"
 #include "core/error.h"
@@ -14,6 +16,33 @@ Vec3d relative_xyz(const BinnedObserver& observer, const std::vector<double>& le
                 "perfect white (Y = 100) is undefined");
   auto xyz = observer.xyz(leaving, bin_nm);
   return {100 * xyz[0] / white_y, 100 * xyz[1] / white_y, 100 * xyz[2] / white_y};
+}
+
+// CIELAB divides by the white's X, Y and Z (CIE 15 §8.2.1): a lamp with no light under one of the
+// observer's functions (a line at 700 nm has Z = 0) has no CIELAB, rather than b* = −inf.
+static void check_lab_white(const Vec3d& white, const std::string& where) {
+  const char* names[3] = {"X", "Y", "Z"};
+  const char* functions[3] = {"x̄", "ȳ", "z̄"};
+  for (int k = 0; k < 3; ++k)
+    if (!(white[k] > 0))
+      throw Error(where + ": the perfect white's " + names[k] +
+                  " is 0 under this illuminant (no light the observer's " + functions[k] +
+                  " sees), so CIELAB is undefined");
+}
+
+// A last guard: whatever the spectra, no NaN or infinity is reported as a result.
+static void check_finite(const IlluminantColorimetry& r, const std::string& where) {
+  std::vector<double> v = {r.xyz[0], r.xyz[1], r.xyz[2],      r.lab[0],
+                           r.lab[1], r.lab[2], r.whiteness.w, r.whiteness.t};
+  if (r.as_is)
+    for (double x : {r.as_is->xyz[0], r.as_is->xyz[1], r.as_is->xyz[2], r.as_is->lab[0],
+                     r.as_is->lab[1], r.as_is->lab[2], r.as_is->delta_e00})
+      v.push_back(x);
+  for (double x : v)
+    if (!std::isfinite(x))
+      throw Error(where +
+                  ": the colorimetry under this illuminant is not finite (a spectrum too "
+                  "extreme for double precision)");
 }
 
 static std::vector<double> passive_leaving(const std::vector<double>& rho,
@@ -37,9 +66,13 @@ Colorimetry evaluate_colorimetry(const ColorimetryRequest& q) {
   c.observer = q.observer;
   c.material = discretize_material(q.material, c.grid);
   const BinnedObserver observer(c.grid, q.observer);
-  if (q.as_is_lamp)
-    c.as_is = as_is_material(c.material, c.grid.resample(*q.as_is_lamp->spectrum), c.grid,
-                             q.as_is_lamp->label);
+  if (q.as_is_lamp) {
+    // The same check as an illuminant's: a lamp the observer cannot see makes no "as is" material.
+    const std::vector<double> lamp = c.grid.resample(*q.as_is_lamp->spectrum);
+    relative_xyz(observer, lamp, lamp, c.grid.bin_nm,
+                 q.as_is_lamp->where.empty() ? q.as_is_lamp->label : q.as_is_lamp->where);
+    c.as_is = as_is_material(c.material, lamp, c.grid, q.as_is_lamp->label);
+  }
 
   for (const NamedSpectrum& s : q.illuminants) {
     IlluminantColorimetry r;
@@ -50,6 +83,7 @@ Colorimetry evaluate_colorimetry(const ColorimetryRequest& q) {
     r.white = relative_xyz(observer, r.lamp, r.lamp, c.grid.bin_nm, where);
     r.xyz =
         relative_xyz(observer, leaving_radiance(c.material, r.lamp), r.lamp, c.grid.bin_nm, where);
+    check_lab_white(r.white, where);
     r.lab = xyz_to_lab(r.xyz, r.white);
     r.whiteness = cie_whiteness(r.xyz, r.white, q.observer);
     if (c.as_is) {
@@ -60,6 +94,7 @@ Colorimetry evaluate_colorimetry(const ColorimetryRequest& q) {
       a.delta_e00 = ciede2000(r.lab, a.lab);
       r.as_is = a;
     }
+    check_finite(r, where);
     c.illuminants.push_back(r);
   }
   return c;

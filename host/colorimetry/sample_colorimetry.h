@@ -53,8 +53,9 @@ struct Colorimetry {
 
 // One grid for every illuminant: `bin_nm` bins over 380–780 nm, extended down
 // (docs/design.md#the-wavelength-grid) to the shortest wavelength at which some illuminant (or the
-// as-is lamp) emits and the material is excited. Throws kasha::Error for an illuminant the observer
-// cannot see at all.
+// as-is lamp) emits and the material is excited. Throws kasha::Error for an illuminant (or as-is
+// lamp) the observer cannot see at all, for one under which the white's X or Z is 0 (no CIELAB),
+// and for any result that would not be finite.
 Colorimetry evaluate_colorimetry(const ColorimetryRequest& request);
 
 // XYZ of the radiance `leaving` a surface under `lamp` (both per bin), scaled so that a perfect

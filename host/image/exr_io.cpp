@@ -14,7 +14,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <map>
+#include <string>
+#include <vector>
 
 #include "color/color_space.h"
 #include "core/atomic_file.h"
@@ -103,6 +106,26 @@ double channel_wavelength(const std::string& path, const std::string& name) {
   return nm;
 }
 
+// "nan", "inf" or "-inf", as the message names the value.
+std::string non_finite_text(float v) {
+  return std::isnan(v) ? "nan" : v > 0 ? "inf" : "-inf";
+}
+
+// Every command that reads an image reads it here, so a NaN or infinite value is refused once,
+// with its pixel (x from the left, y from the top of the data window) and channel, rather than
+// averaging into "nan ± 0" or "rmse nan" downstream. `values` holds `names.size()` per pixel.
+void check_finite(const std::string& path, int width, const std::vector<float>& values,
+                  const std::vector<std::string>& names) {
+  const size_t per_pixel = names.size();
+  for (size_t i = 0; i < values.size(); ++i)
+    if (!std::isfinite(values[i])) {
+      const size_t p = i / per_pixel;
+      throw Error(printable(path) + ": pixel (" + std::to_string(p % width) + ", " +
+                  std::to_string(p / width) + ") channel " + printable(names[i % per_pixel]) +
+                  " is " + non_finite_text(values[i]));
+    }
+}
+
 // The largest reference kasha reads: far beyond any film it renders, small enough that the
 // buffers fit in memory (the file size does not bound them: EXR compresses).
 constexpr double kMaxExrFloats = 1073741824.0;  // 2^30 floats, 4 GiB
@@ -181,12 +204,26 @@ Image read_exr(const std::string& path) {
     }
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
+    check_finite(path, img.width, three,
+                 has_xyz ? std::vector<std::string>(xyz_names, xyz_names + 3)
+                         : std::vector<std::string>(rgb_names, rgb_names + 3));
+    if (!bins.empty()) {
+      std::vector<std::string> names;
+      for (const auto& [nm, name] : bins) names.push_back(name);
+      check_finite(path, img.width, img.spectral, names);
+    }
     if (has_xyz) {
       img.xyz = std::move(three);
     } else {
       img.xyz.resize(3 * n);
       for (size_t p = 0; p < n; ++p) {
         Vec3d c = linear_srgb_to_xyz({three[3 * p], three[3 * p + 1], three[3 * p + 2]});
+        // Checked in double: finite R, G, B near a float's limit can make an XYZ beyond it.
+        for (int k = 0; k < 3; ++k)
+          if (!(std::abs(c[k]) <= std::numeric_limits<float>::max()))
+            throw Error(printable(path) + ": pixel (" + std::to_string(p % img.width) + ", " +
+                        std::to_string(p / img.width) +
+                        "): R, G, B give an XYZ beyond a float's range");
         for (int k = 0; k < 3; ++k) img.xyz[3 * p + k] = static_cast<float>(c[k]);
       }
     }

@@ -18,7 +18,8 @@ void write_exr(const std::string& path, const Image& image,
 // The string attributes of an EXR's header.
 std::map<std::string, std::string> read_exr_attributes(const std::string& path);
 // Reads what write_exr writes (XYZ from the XYZ layer, or from R,G,B when it is absent; spectral
-// channels when present, on the grid their names give).
+// channels when present, on the grid their names give). Throws kasha::Error naming the pixel and
+// channel of a value that is not finite: no command measures or shows a NaN.
 Image read_exr(const std::string& path);
 
 }  // namespace kasha

@@ -27,8 +27,8 @@ ImageError image_error(const Image& image, const Image& reference,
     se += d * d;
     rel += d * d / (static_cast<double>(reference.xyz[i]) * reference.xyz[i] + 0.01);
   }
-  if (n == 0) return {0, 0};
-  return {std::sqrt(se / n), rel / n};
+  if (n == 0) return {0, 0, 0};
+  return {std::sqrt(se / n), rel / n, n / 3};
 }
 
 }  // namespace kasha
