@@ -294,7 +294,7 @@ TEST(Colorimetry, BadInputsGiveOneLineAndNoOutput) {
                "--as-is " + zero + ": the illuminant has no light the observer sees");
   expect_error("'" + material + "' --illuminant '{\"gaussian_nm\": 500}'",
                "--illuminant {\"gaussian_nm\": 500}: /: missing required key \"fwhm_nm\"");
-  expect_error("'" + material + "' --write-as-is " + out + ".x", "--write-as-is: give the lamp");
+  expect_error("'" + material + "' --write-as-is " + out + ".x", "--write-as-is: needs --as-is");
   expect_error("/nonexistent.json", "/nonexistent.json: cannot open file");
   auto r = run_kasha("colorimetry '" + material + "' --csv '" + material + "'");
   EXPECT_NE(r.err.find(": is the material file "), std::string::npos) << r.err;
