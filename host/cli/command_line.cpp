@@ -6,6 +6,7 @@
 
 #include "cli/command.h"
 #include "cli/command_line_errors.h"
+#include "core/input_files.h"
 #include "core/warning.h"
 #include "mpi/mpi_world.h"
 #include "mpi/render_server.h"
@@ -14,6 +15,7 @@ namespace kasha {
 
 int run_command_line(int argc, char** argv) {
   const MpiWorld& world = MpiWorld::get();
+  forget_input_files();  // a previous command line's inputs (in process) are not this one's
   CLI::App app{"kasha: a spectral renderer for fluorescent materials"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "kasha " KASHA_VERSION);

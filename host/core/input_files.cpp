@@ -25,4 +25,9 @@ std::vector<std::string> input_files_read() {
   return files();
 }
 
+void forget_input_files() {
+  std::lock_guard<std::mutex> guard(lock());
+  files().clear();
+}
+
 }  // namespace kasha

@@ -9,5 +9,7 @@ namespace kasha {
 // Called by readers when they open a file (thread-safe).
 void note_input_file(const std::string& path);
 std::vector<std::string> input_files_read();
+// Forgets them: each command line starts afresh (the fuzz harness runs many in one process).
+void forget_input_files();
 
 }  // namespace kasha
