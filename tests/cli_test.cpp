@@ -96,7 +96,7 @@ TEST(Cli, BadInputsGiveOneLineAndNoOutput) {
   std::string bad_json = test::write_file("bad.json", "{\"kasha_scene\": 1,");
   expect_one_line_error(
       run_kasha("render " + shell_quoted(bad_json) + " --passes 1 -o " + shell_quoted(out)),
-      "bad.json: malformed JSON: parse error at line 1");
+      "bad.json: malformed JSON at line 1");
   expect_one_line_error(run_kasha("render /nonexistent.json --passes 1 -o " + shell_quoted(out)),
                         "/nonexistent.json: cannot open file");
   std::string gain = test::write_file("gain.json", R"({"kasha_scene": 1,

@@ -189,7 +189,7 @@ TEST(Scene, BadScenesGiveOneClearLine) {
       "is not finite or beyond ±1e18");
   check(R"({"kasha_scene": 1, "camera": {"position": [0,0,0], "look_at": [0,0,0]}, )" +
             std::string(kMaterials) + R"(, "shapes": [])",
-        "scene.json: malformed JSON: parse error at line 1, column");
+        "scene.json: malformed JSON at line 1, column");
   check(R"({"kasha_scene": 1, "camera": {"position": [0,0,0], "look_at": [0,0,0]}, )" +
             std::string(kMaterials) + R"(, "shapes": [)" + sphere + "]}",
         "/camera: \"position\" and \"look_at\" are the same point");

@@ -1,6 +1,7 @@
 #include "core/json_node.h"
 
 #include <cmath>
+#include <regex>
 #include <sstream>
 
 #include "core/error.h"
@@ -101,10 +102,17 @@ static nlohmann::json parse_document(const std::string& text, const std::string&
   } catch (const nlohmann::json::parse_error& e) {
     // nlohmann's message reads "[json.exception.parse_error.101] parse error at line L, column C:
     // ..."; its "last read" part may hold input bytes, hence printable().
+    // Worded as kasha words it: "malformed JSON at line L, column C: DETAIL (reading a value)".
     std::string what = e.what();
     size_t at = what.find("parse error");
-    throw Error(where +
-                ": malformed JSON: " + printable(at == std::string::npos ? what : what.substr(at)));
+    if (at != std::string::npos) what = what.substr(at);
+    static const std::regex syntax(
+        R"(^parse error at (line \d+, column \d+): syntax error while parsing (.*?) - (.*)$)");
+    std::smatch m;
+    if (std::regex_match(what, m, syntax))
+      throw Error(where + ": malformed JSON at " + m[1].str() + ": " + printable(m[3].str()) +
+                  " (reading " + (m[2] == "value" ? "a value" : "the " + m[2].str()) + ")");
+    throw Error(where + ": malformed JSON: " + printable(what));
   } catch (const nlohmann::json::exception& e) {
     // A number beyond double range ("1e400") is an out_of_range error: nlohmann names the number
     // but not its place. Its "[json.exception...]" prefix is cut.

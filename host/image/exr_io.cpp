@@ -16,6 +16,7 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <regex>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,18 @@
 #include "core/printable.h"
 
 namespace kasha {
+
+// OpenEXR's message repeats the file ("Cannot read image file "F". Early end of file: …"): the
+// path is ours to give once, and the rest reads as the cause, in lower case.
+static Error exr_failure(const std::string& path, const std::exception& e) {
+  static const std::regex framing(R"(^[A-Z][^"]* image file "[^"]*"\. )");
+  std::string cause = std::regex_replace(std::string(e.what()), framing, "");
+  if (!cause.empty() && cause.back() == '.') cause.pop_back();
+  if (cause.size() > 1 && std::isupper(static_cast<unsigned char>(cause[0])) &&
+      std::islower(static_cast<unsigned char>(cause[1])))
+    cause[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(cause[0])));
+  return Error(printable(path) + ": cannot read EXR: " + printable(cause));
+}
 
 std::string spectral_channel_name(double nm) {
   char text[64];
@@ -85,7 +98,7 @@ std::map<std::string, std::string> read_exr_attributes(const std::string& path) 
         out[it.name()] = s->value();
     return out;
   } catch (const std::exception& e) {
-    throw Error(printable(path) + ": cannot read EXR: " + printable(e.what()));
+    throw exr_failure(path, e);
   }
 }
 
@@ -231,7 +244,7 @@ Image read_exr(const std::string& path) {
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {
-    throw Error(printable(path) + ": cannot read EXR: " + printable(e.what()));
+    throw exr_failure(path, e);
   }
 }
 
