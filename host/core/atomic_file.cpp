@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 
 namespace kasha {
 
@@ -24,6 +25,10 @@ void write_atomically(const std::string& path,
     write(tmp.string());
     fs::rename(tmp, target);
   } catch (const Error&) {
+    std::error_code ec;
+    fs::remove(tmp, ec);
+    throw;
+  } catch (const Interrupted&) {  // reported as such, not as a write that failed
     std::error_code ec;
     fs::remove(tmp, ec);
     throw;
