@@ -357,6 +357,34 @@ TEST(CliErrors, SigtermDuringARenderWritesTheImageAndExits130) {
   EXPECT_EQ(read_exr(out).width, 192);
 }
 
+// The plotter is a child that signals reach and kasha waits for: Ctrl-C (kasha and its group) and
+// SIGINT or SIGTERM to kasha alone during a plot (~1 s; a signal 0.4 s in lands in it, or else
+// before it) exit 130 with the one line, leaving no file and no scratch folder.
+TEST(CliErrors, ASignalDuringAPlotStopsThePlotterAndLeavesNothing) {
+  const fs::path out = test::scratch_dir() / "plot";
+  const std::string args =
+      "colorimetry " + quoted(test::source_path("scenes/materials/postit.json")) + " --plot " +
+      quoted((out / "p.png").string()) + " --json " + quoted((out / "p.json").string());
+  for (const std::string signal : {"INT", "TERM", "Ctrl-C"}) {
+    SCOPED_TRACE(signal);
+    fs::remove_all(out);
+    fs::create_directories(out);
+    test::CommandResult r;
+    if (signal == "Ctrl-C") {
+      r = run_with_signal("", args, "INT", 0.4);
+    } else {  // to kasha alone: started in the background by a shell, which prints its pid
+      r = test::run_kasha_env(
+          "X=1 sh -c '\"$0\" \"$@\" & echo $!; sleep 0.4; kill -" + signal + " $!; wait $!'", args);
+      ASSERT_FALSE(r.out.empty());
+      EXPECT_FALSE(fs::exists(fs::temp_directory_path() /
+                              ("kasha-colorimetry-" + r.out.substr(0, r.out.find('\n')))));
+    }
+    EXPECT_EQ(r.exit_code, 130) << r.err;
+    EXPECT_EQ(r.err, "kasha: interrupted\n");
+    EXPECT_TRUE(empty_dir(out));
+  }
+}
+
 TEST(CliErrors, FileNamesThatAreNotUtf8AreEscapedInJson) {
   // JSON needs UTF-8: such a name used to fail inside nlohmann (type_error.316).
   const std::string material = test::write_file(

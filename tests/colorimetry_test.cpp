@@ -366,6 +366,26 @@ TEST(Colorimetry, NamesThatAreNotUtf8GoIntoTheAsIsMaterialEscaped) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
 }
 
+// The plotter's own last error line is the message (not a path to a log already deleted), and
+// TMPDIR plays no part in a plot.
+TEST(Colorimetry, PlotErrorsSayWhatThePlotterSaidAndTmpdirPlaysNoPart) {
+  const std::string material = source_path("scenes/materials/postit.json");
+  const std::filesystem::path d = scratch_dir() / "plot";
+  std::filesystem::create_directories(d);
+  const std::string txt = (d / "o.txt").string(), png = (d / "o.png").string();
+  auto r = run_kasha("colorimetry '" + material + "' --plot '" + txt + "'");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err.rfind("kasha: error: --plot " + txt + ": plotting failed: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("Format 'txt' is not supported"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_TRUE(std::filesystem::is_empty(d));
+
+  r = run_kasha_env("TMPDIR=" + (d / "missing").string(),
+                    "colorimetry '" + material + "' --plot '" + png + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(png));
+}
+
 namespace {
 
 // A flat 1 × 1 sample facing up at the centre of an inward sphere (r = 0.8) that emits `lamp`

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -264,6 +265,25 @@ TEST(OutputSafety, AWriteThatFailsAtTheFlushIsReported) {
   out << "rows";
   EXPECT_EQ(
       test::error_of([&] { check_flushed(out, "log.csv"); }).rfind("log.csv: write failed", 0), 0u);
+}
+
+// A full disk while the plotter writes (RLIMIT_FSIZE, with SIGXFSZ ignored so the write fails with
+// EFBIG): one line naming --plot and the user's file, with the plotter's reason, and no file left.
+TEST(OutputSafety, AFullDiskDuringAPlotNamesTheUsersFile) {
+  const fs::path d = test::scratch_dir() / "case";
+  fs::create_directories(d);
+  const std::string png = (d / "o.png").string();
+  // ulimit -f 20: 10 or 20 KiB (dash or bash): room for the result, not for the PNG (~40 KiB).
+  test::CommandResult r =
+      test::run_kasha_env("X=1 sh -c 'trap \"\" XFSZ; ulimit -f 20; exec \"$0\" \"$@\"'",
+                          "colorimetry '" + test::source_path("scenes/materials/postit.json") +
+                              "' --plot '" + png + "'");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err.rfind("kasha: error: --plot " + png + ": plotting failed: ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find("File too large"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find(".kasha-"), std::string::npos) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_TRUE(fs::is_empty(d));
 }
 
 namespace {

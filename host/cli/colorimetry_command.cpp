@@ -1,9 +1,7 @@
 // `kasha colorimetry`: a material's total radiance factor, XYZ, CIELAB and CIE whiteness/tint under
 // each illuminant, and ΔE2000 against its "as is" material.
-#include <unistd.h>
 
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,23 +24,10 @@ struct ColorimetryArgs {
   double bin_nm = 10;
 };
 
-namespace fs = std::filesystem;
-
-// The figure is drawn from the JSON result in a scratch directory, then renamed into place.
+// The figure is drawn from the JSON result, given to the plotter on its stdin: no scratch file.
 static void write_plot(const std::string& path, const std::string& who,
                        const nlohmann::json& result) {
-  fs::path scratch = fs::temp_directory_path() / ("kasha-colorimetry-" + std::to_string(getpid()));
-  fs::create_directories(scratch);
-  try {
-    write_text_atomically((scratch / "result.json").string(), result.dump());
-    run_embedded_python("plot_colorimetry.py", scratch.string(),
-                        {(scratch / "result.json").string(), path}, who);
-  } catch (...) {
-    std::error_code ec;
-    fs::remove_all(scratch, ec);
-    throw;
-  }
-  fs::remove_all(scratch);
+  run_embedded_python("plot_colorimetry.py", {"/dev/stdin", path}, who, result.dump());
 }
 
 static int run_colorimetry(const ColorimetryArgs& a) {

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/printable.h"
 
 namespace kasha {
@@ -29,6 +30,9 @@ void write_atomically(const std::string& path,
     fs::rename(tmp, target, ec);
     if (ec) throw Error(path + ": cannot write: " + error_words(ec));
   } catch (const Error&) {
+    fs::remove(tmp, ec);
+    throw;
+  } catch (const Interrupted&) {  // reported as such, not as a write that failed
     fs::remove(tmp, ec);
     throw;
   } catch (const std::exception& e) {

@@ -31,13 +31,18 @@ extern "C" void on_signal_flag(int) {
   if (++g_requests >= 3) exit_interrupted(true);
 }
 
-void install(void (*handler)(int)) {
+extern "C" void on_signal_count(int) {
+  ++g_requests;
+}
+
+void install(void (*handler)(int), int flags = SA_RESTART, struct sigaction* int_before = nullptr,
+             struct sigaction* term_before = nullptr) {
   struct sigaction action = {};
   action.sa_handler = handler;
   sigemptyset(&action.sa_mask);
-  action.sa_flags = SA_RESTART;  // blocking reads and writes carry on; the flag is polled
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
+  action.sa_flags = flags;  // SA_RESTART: blocking reads and writes carry on; the flag is polled
+  sigaction(SIGINT, &action, int_before);
+  sigaction(SIGTERM, &action, term_before);
 }
 }  // namespace
 
@@ -48,6 +53,15 @@ void install_exit_on_interrupt() {
 void install_interrupt_handler() {
   g_requests = 0;
   install(on_signal_flag);
+}
+
+InterruptsDeferred::InterruptsDeferred() {
+  install(on_signal_count, 0, &int_before_, &term_before_);
+}
+
+InterruptsDeferred::~InterruptsDeferred() {
+  sigaction(SIGINT, &int_before_, nullptr);
+  sigaction(SIGTERM, &term_before_, nullptr);
 }
 
 void set_interrupt_message_fd(int fd) {

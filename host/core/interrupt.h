@@ -3,6 +3,7 @@
 // code 130 (nothing is written yet). A command that can stop early (render, converge, reference,
 // bench) installs the deferred handler: a signal then only raises a flag, so the render loop can
 // finish the pass in flight and write the image so far; a third signal ends the process at once.
+#include <csignal>
 #include <exception>
 
 namespace kasha {
@@ -19,6 +20,21 @@ void request_interrupt();
 // Where the handler writes `kasha: interrupted` (default 2): the original stderr while fd 2 is
 // held elsewhere (a kernel build's compiler output).
 void set_interrupt_message_fd(int fd);
+
+// While alive, SIGINT and SIGTERM only raise interrupt_requested(), however many arrive, and
+// interrupt blocking calls (EINTR): for a wait on a subprocess, which is then stopped and waited
+// for, so no signal ends kasha with the child still running and its files left behind. The
+// handlers before are restored after.
+class InterruptsDeferred {
+ public:
+  InterruptsDeferred();
+  ~InterruptsDeferred();
+  InterruptsDeferred(const InterruptsDeferred&) = delete;
+  InterruptsDeferred& operator=(const InterruptsDeferred&) = delete;
+
+ private:
+  struct sigaction int_before_ = {}, term_before_ = {};
+};
 
 // Thrown where an interrupt made an operation fail (a kernel build whose compiler was signalled):
 // the command line reports the interrupt, not the failure.

@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/input_files.h"
+#include "core/interrupt.h"
 #include "core/printable.h"
 
 namespace kasha {
@@ -223,6 +224,9 @@ void OutputSet::write(const std::string& path,
     fs::remove(tmp, ec);
     std::string text = replace_all(e.what(), tmp, path);
     throw Error(text.rfind(path + ":", 0) == 0 ? o.option + " " + text : text);
+  } catch (const Interrupted&) {  // reported as such, not as a write that failed
+    fs::remove(tmp, ec);
+    throw;
   } catch (const std::exception& e) {
     std::error_code ec;
     fs::remove(tmp, ec);

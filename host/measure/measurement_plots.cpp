@@ -50,8 +50,7 @@ void write_measurement_plots(const std::string& dir, const MeasuredMaterial& m,
   write_spectrum(d / "excitation.csv", who, m.excitation);
   write_spectrum(d / "emission.csv", who, m.emission);
 
-  run_embedded_python("plot_measurement.py", d.string(),
-                      {d.string(), std::to_string(m.rank1_residual)}, who);
+  run_embedded_python("plot_measurement.py", {d.string(), std::to_string(m.rank1_residual)}, who);
 }
 
 }  // namespace kasha

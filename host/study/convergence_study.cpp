@@ -259,7 +259,7 @@ StudyResult run_convergence_study(const std::string& scene_path, const StudyOpti
   write_png_preview((fs::path(o.out_dir) / "images.png").string(), row);
 
   if (o.plot) {
-    run_embedded_python("plot_convergence.py", o.out_dir, {o.out_dir}, "converge");
+    run_embedded_python("plot_convergence.py", {o.out_dir}, "converge");
   }
   return result;
 }
