@@ -225,6 +225,7 @@ void OutputSet::write(const std::string& path,
     std::string text = replace_all(e.what(), tmp, path);
     throw Error(text.rfind(path + ":", 0) == 0 ? o.option + " " + text : text);
   } catch (const Interrupted&) {  // reported as such, not as a write that failed
+    std::error_code ec;
     fs::remove(tmp, ec);
     throw;
   } catch (const std::exception& e) {
