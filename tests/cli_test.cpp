@@ -157,10 +157,10 @@ TEST(Cli, NoOpenClDeviceSaysHowToInstallPocl) {
 TEST(Cli, InfoReportsGridFeaturesOptionsAndMemory) {
   auto r = run_kasha("info " + shell_quoted(test::source_path("scenes/cornell_box.json")));
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* s :
-       {"wavelengths: 300–780 nm, 48 bins of 10 nm", "fluorescence yes", "-D KASHA_BINS=48",
-        "-D KASHA_FLUORESCENCE=1", "memory: ", "photon mapping: 224 bytes per photon (position, normal, key",
-        "428 bytes per visible point", "2N + R = 99 values"})
+  for (const char* s : {"wavelengths: 300–780 nm, 48 bins of 10 nm", "fluorescence yes",
+                        "-D KASHA_BINS=48", "-D KASHA_FLUORESCENCE=1",
+                        "memory: ", "photon mapping: 224 bytes per photon (position, normal, key",
+                        "428 bytes per visible point", "2N + R = 99 values"})
     EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
 }
 

@@ -1,7 +1,8 @@
 #pragma once
 // kasha's whole command line, built from the command registry (cli/command.h): parsed, dispatched
-// and every failure turned into its one line and exit code (docs/commands.md#errors-and-exit-codes).
-// main.cpp runs it once per process; the fuzz harness runs it in process, case after case.
+// and every failure turned into its one line and exit code
+// (docs/commands.md#errors-and-exit-codes). main.cpp runs it once per process; the fuzz harness
+// runs it in process, case after case.
 
 namespace kasha {
 

@@ -134,14 +134,12 @@ static int run_regions(const RegionsArgs& a) {
                " (the white is dark there: X, Y or Z not above 0)\n";
   if (!a.json.empty()) {
     // File names are command-line bytes: json_text() keeps the JSON UTF-8.
-    const std::string text = nlohmann::json{{"scene", json_text(a.scene)},
-                                            {"image", json_text(a.image)},
-                                            {"white", json_text(a.white)},
-                                            {"margin_px", a.margin_px},
-                                            {"regions", regions},
-                                            {"skipped_shapes", skipped}}
-                                 .dump(1) +
-                             "\n";
+    const std::string text =
+        nlohmann::json{{"scene", json_text(a.scene)}, {"image", json_text(a.image)},
+                       {"white", json_text(a.white)}, {"margin_px", a.margin_px},
+                       {"regions", regions},          {"skipped_shapes", skipped}}
+            .dump(1) +
+        "\n";
     outputs.write(a.json, [&](const std::string& tmp) { write_text_atomically(tmp, text); });
     outputs.commit();
   }
