@@ -3,7 +3,8 @@
  * next-event estimation to an emitting triangle (by solid angle where it subtends enough; MIS with
  * the branch that could have hit it), then one branch — gloss, passive, fluorescent — chosen in
  * proportion to the energy it would bring to the film under equal-energy light, and Russian
- * roulette after the first bounces (roulette.h). Sample values come from sampler.h.
+ * roulette after the first bounces (roulette.h); a specular dielectric or conductor is one delta
+ * bounce (walk_specular). Sample values come from sampler.h.
  * One work item renders one pixel's samples of a launch, so the film needs no atomics; a pass is
  * split into launches of pixel ranges and sample ranges (backward_integrator.cpp). */
 #include "camera.h"
@@ -29,6 +30,13 @@ inline float trace_camera_path(const SceneView* s, const FilmView* f, float3 org
   walk_start(&w, f, org, dir);
   CameraVertex v;
   while (walk_vertex(&w, s, f, sampler, &v, rows)) {
+#if KASHA_DIELECTRIC || KASHA_CONDUCTOR
+    if (surface_specular(&v.surf)) {
+      walk_specular(&w, &v);
+      if (!walk_on(&w, f, &v)) return 0.0f;
+      continue;
+    }
+#endif
     float3 probs = v.probs;
     walk_next_event(&w, s, f, &v, surface_has_lambert(&v.surf), probs, rows);
     float choice = v.u_choice.x;

@@ -30,6 +30,8 @@ typedef struct {
   float prev_pdf; /* the density with which the last bounce chose dir, for MIS with NEE */
   bool specular;  /* the camera ray, or a mirror bounce: emission is not also sampled by NEE */
   int depth;      /* the vertex the path is at */
+  float eta_scale; /* the product of etap² over the refractions so far: roulette sees the weight
+                    * without radiance's 1/etap² (pbrt-v4's etaScale), which a path undoes on leaving */
 } CameraWalk;
 
 /* A vertex of the walk: the hit, its surface, the branch probabilities (gloss, passive,
@@ -50,6 +52,7 @@ inline void walk_start(CameraWalk* w, const FilmView* f, float3 org, float3 dir)
   w->prev_pdf = 0.0f;
   w->specular = true;
   w->depth = 0;
+  w->eta_scale = 1.0f;
 }
 
 /* The path's next vertex: adds the emission it hits to rows (MIS-weighted against next-event
@@ -67,7 +70,7 @@ inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sa
     pw_add(&w->p, f, emitter_spectrum(s, h->emitter), 0, weight, rows);
   }
   load_surface(s, h->material, &v->surf);
-  v->probs = branch_probabilities(&w->p, f, &v->surf);
+  v->probs = surface_specular(&v->surf) ? (float3)(1.0f, 0.0f, 0.0f) : branch_probabilities(&w->p, f, &v->surf);
   if (v->probs.x + v->probs.y + v->probs.z <= 0.0f) return false;
   sampler_at(sampler, 1 + w->depth * KASHA_CAMERA_PAIRS_PER_VERTEX);
   v->u_choice = sample_2d(sampler);
@@ -109,16 +112,48 @@ inline bool walk_gloss(CameraWalk* w, const SceneView* s, const CameraVertex* v,
   return true;
 }
 
+#if KASHA_DIELECTRIC || KASHA_CONDUCTOR
+/* A specular interface (surface_specular): a smooth dielectric reflects with probability F and
+ * refracts otherwise, so the weight is 1 either way but for radiance's 1/etap² on refraction
+ * (radiance is compressed into the narrower cone of the denser side); a smooth conductor reflects
+ * with weight F(lambda). Either way the next emission hit counts whole (a delta bounce). */
+inline void walk_specular(CameraWalk* w, const CameraVertex* v) {
+  const Surface* surf = &v->surf;
+  float3 ns = v->h.ns;
+  float cos_i = -dot(w->dir, ns);
+  w->specular = true;
+#if KASHA_DIELECTRIC
+  if (surf->kind == KASHA_KIND_DIELECTRIC) {
+    float etap = v->h.front ? surf->eta : 1.0f / surf->eta;
+    if (v->u_choice.x < fresnel_dielectric(cos_i, etap)) {
+      w->dir = reflect_dir(w->dir, ns);
+    } else {
+      w->dir = refract_dir(w->dir, ns, cos_i, etap);
+      pw_scatter_diagonal(&w->p, 0, 1.0f / (etap * etap));
+      w->eta_scale *= etap * etap;
+    }
+    return;
+  }
+#endif
+#if KASHA_CONDUCTOR
+  pw_scatter_conductor(&w->p, surf->eta_c, surf->k_c, cos_i);
+  w->dir = reflect_dir(w->dir, ns);
+#endif
+}
+#endif
+
 /* After the vertex's bounce: Russian roulette from the path's KASHA_CAMERA_ROULETTE_FROM-th vertex
  * on (false: the path ends), then the next ray's origin just off the surface. */
 inline bool walk_on(CameraWalk* w, const FilmView* f, const CameraVertex* v) {
   if (w->depth >= KASHA_CAMERA_ROULETTE_FROM) {
-    float keep = roulette(pw_magnitude(&w->p, f) / w->start, v->u_choice.y);
+    float keep = roulette(pw_magnitude(&w->p, f) * w->eta_scale / w->start, v->u_choice.y);
     if (keep == 0.0f) return false;
     if (keep != 1.0f) pw_scatter_diagonal(&w->p, 0, keep);
   }
   w->prev_x = v->h.x;
-  w->org = v->h.x + v->h.ns * v->h.eps;
+  /* Off the side the new direction leaves by: the far side after a refraction. */
+  float side = dot(w->dir, v->h.ns) >= 0.0f ? v->h.eps : -v->h.eps;
+  w->org = v->h.x + v->h.ns * side;
   ++w->depth;
   return true;
 }

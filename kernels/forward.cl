@@ -2,8 +2,9 @@
  * at each hit with constant energy (photon_transport.h), and every hit with a Lambert part is
  * connected to the pinhole camera and splatted to the film (film_splat.h). Each photon draws its
  * random numbers from a stream of its own index, so the image does not depend on how photons are
- * spread over work items. A tabulated gloss lobe is splatted too; ideal mirrors seen by the camera
- * are out of reach of light tracing: a delta lobe never reflects a photon into a pinhole. */
+ * spread over work items. A tabulated gloss lobe is splatted too; ideal mirrors, glass and metal
+ * seen by the camera are out of reach of light tracing: a delta lobe never sends a photon into a
+ * pinhole, so they show black (the render says so). Photons pass through them as anywhere. */
 #include "film_splat.h"
 #include "film_view.h"
 #include "hit_point.h"
@@ -106,7 +107,7 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
       /* "Absorbed": the power a hit takes away, absorption and roulette (negative when roulette
        * scales a survivor up), so emitted = absorbed + escaped + in flight exactly. */
       float before = photon_total(&p);
-      if (scatter_photon(&p, &surf, &s, x, ns, h.eps, &sampler, depth) == BRANCH_ABSORBED) {
+      if (scatter_photon(&p, &surf, &s, x, ns, h.front, h.eps, &sampler, depth) == BRANCH_ABSORBED) {
         absorbed += before;
         alive = false;
       } else {

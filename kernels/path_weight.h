@@ -8,6 +8,7 @@
 #define KASHA_PATH_WEIGHT_H
 
 #include "film_view.h"
+#include "fresnel.h"
 
 #ifndef KASHA_FULL_MATRIX
 #define KASHA_FULL_MATRIX 0
@@ -126,6 +127,31 @@ inline void pw_scatter_diagonal(PathWeight* p, const __global float* d, float sc
   for (int i = 0; i < KASHA_BINS; ++i) p->w[i] *= scale * PW_FACTOR(d, i);
 #endif
 }
+
+#if KASHA_CONDUCTOR
+/* T ← T·diag(F): a smooth conductor's reflection, F_i its Fresnel reflectance in bin i at the
+ * cosine cos_i (fresnel.h), computed bin by bin so no spectrum is held in private memory. */
+inline void pw_scatter_conductor(PathWeight* p, const __global float* eta, const __global float* k, float cos_i) {
+#if KASHA_FULL_MATRIX
+  for (int i = 0; i < KASHA_BINS; ++i) {
+    float F = fresnel_conductor(cos_i, eta[i], k[i]);
+    for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->T[r][i] *= F;
+  }
+#else
+#if KASHA_FLUORESCENCE
+  if (p->rank1) {
+    float m = 0.0f;
+    for (int i = 0; i < KASHA_BINS; ++i) m = fmax(m, p->b[i] *= fresnel_conductor(cos_i, eta[i], k[i]));
+    if (m > 0.0f)
+      for (int i = 0; i < KASHA_BINS; ++i) p->b[i] /= m;
+    for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->c[r] *= m;
+    return;
+  }
+#endif
+  for (int i = 0; i < KASHA_BINS; ++i) p->w[i] *= fresnel_conductor(cos_i, eta[i], k[i]);
+#endif
+}
+#endif
 
 #if KASHA_FLUORESCENCE
 /* T ← T·ê·aᵀ·scale: a fluorescent bounce. The result is rank-1 whatever T was. */

@@ -63,7 +63,7 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
           }
         }
       }
-      if (scatter_photon(&p, &surf, &s, x, ns, h.eps, &sampler, depth) == BRANCH_ABSORBED) break;
+      if (scatter_photon(&p, &surf, &s, x, ns, h.front, h.eps, &sampler, depth) == BRANCH_ABSORBED) break;
     }
   }
   if (first < last) cut[item] = guard;
@@ -82,6 +82,14 @@ inline float camera_path(const SceneView* s, const FilmView* f, int pixel, Sampl
   CameraVertex v;
   while (walk_vertex(&w, s, f, sampler, &v, rows)) {
     travelled += v.h.t;
+#if KASHA_DIELECTRIC || KASHA_CONDUCTOR
+    /* Through glass and metal to the diffuse surface behind: caustics seen through them. */
+    if (surface_specular(&v.surf)) {
+      walk_specular(&w, &v);
+      if (!walk_on(&w, f, &v)) return 0.0f;
+      continue;
+    }
+#endif
     /* Gloss or the Lambert parts, by their energies under equal-energy light (as backward). */
     float p_gloss = v.probs.x;
     bool lambert = v.probs.y + v.probs.z > 0.0f;

@@ -5,6 +5,7 @@
 #ifndef KASHA_PHOTON_TRANSPORT_H
 #define KASHA_PHOTON_TRANSPORT_H
 
+#include "fresnel.h"
 #include "gloss_lobe.h"
 #include "lights.h"
 #include "roulette.h"
@@ -27,7 +28,7 @@ inline float photon_total(const Photon* p) {
   return s;
 }
 
-enum { BRANCH_ABSORBED = 0, BRANCH_GLOSS = 1, BRANCH_PASSIVE = 2, BRANCH_FLUORESCENT = 3 };
+enum { BRANCH_ABSORBED = 0, BRANCH_GLOSS = 1, BRANCH_PASSIVE = 2, BRANCH_FLUORESCENT = 3, BRANCH_SPECULAR = 4 };
 
 /* Where a photon left its light: the light's normal, its emitter, and the area density p_area
  * with which the point was chosen. */
@@ -66,16 +67,62 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
 #define PHOTON_PAIRS_AT_LIGHT 3
 #define PHOTON_PAIRS_PER_HIT 3
 
-/* Scatters the photon at its depth-th hit x (ns: the normal on the side it arrived from, eps: the
- * hit's offset, HitPoint::eps).
+/* Russian roulette (roulette.h) against the power the photon left its light with, from its
+ * KASHA_PHOTON_ROULETTE_FROM-th hit on; false: it ends. */
+inline bool photon_roulette(Photon* p, float u, int depth) {
+  if (depth >= KASHA_PHOTON_ROULETTE_FROM) {
+    float keep = roulette(photon_total(p) / p->start, u);
+    if (keep == 0.0f) return false;
+    if (keep != 1.0f)
+      for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= keep;
+  }
+  return true;
+}
+
+#if KASHA_DIELECTRIC || KASHA_CONDUCTOR
+/* A photon at a specular interface (surface_specular): a smooth dielectric reflects it with
+ * probability F and refracts it otherwise, its power unchanged — flux, unlike radiance, carries
+ * no 1/etap² — and a smooth conductor reflects it with power F(lambda)·Φ. */
+inline int scatter_specular(Photon* p, const Surface* s, float3 x, float3 ns, bool front, float eps, float2 u_choice,
+                            int depth) {
+  float3 d = p->direction;
+  float cos_i = -dot(d, ns);
+  float side = eps;
+#if KASHA_DIELECTRIC
+  if (s->kind == KASHA_KIND_DIELECTRIC) {
+    float etap = front ? s->eta : 1.0f / s->eta;
+    if (u_choice.x < fresnel_dielectric(cos_i, etap)) {
+      p->direction = reflect_dir(d, ns);
+    } else {
+      p->direction = refract_dir(d, ns, cos_i, etap);
+      side = -eps;
+    }
+  }
+#endif
+#if KASHA_CONDUCTOR
+  if (s->kind == KASHA_KIND_CONDUCTOR) {
+    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= fresnel_conductor(cos_i, s->eta_c[i], s->k_c[i]);
+    p->direction = reflect_dir(d, ns);
+  }
+#endif
+  p->position = x + ns * side;
+  return photon_roulette(p, u_choice.y, depth) ? BRANCH_SPECULAR : BRANCH_ABSORBED;
+}
+#endif
+
+/* Scatters the photon at its depth-th hit x (ns: the normal on the side it arrived from, front:
+ * that side is the front, eps: the hit's offset, HitPoint::eps).
  * Chooses gloss, passive or fluorescent re-emission with probability P_k / ΣP, P_g = g ΣΦ,
  * P_p = Σ ρ_i Φ_i, P_f = Σ a_i Φ_i; the new spectrum (g Φ, ρ∘Φ or ê (a·Φ)) is divided by that
  * probability, so the photon's power becomes ΣP; then Russian roulette (roulette.h) against the
  * power it left its light with. Returns the branch. */
-inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, float3 x, float3 ns, float eps,
-                          Sampler* sampler, int depth) {
+inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, float3 x, float3 ns, bool front,
+                          float eps, Sampler* sampler, int depth) {
   sampler_at(sampler, PHOTON_PAIRS_AT_LIGHT + depth * PHOTON_PAIRS_PER_HIT);
   float2 u_choice = sample_2d(sampler), u_dir = sample_2d(sampler);
+#if KASHA_DIELECTRIC || KASHA_CONDUCTOR
+  if (surface_specular(s)) return scatter_specular(p, s, x, ns, front, eps, u_choice, depth);
+#endif
   float total = photon_total(p);
   float pg = s->g * total, pp = 0.0f, pf = 0.0f;
   if (s->passive) pp = spectrum_dot(KASHA_BINS, p->power, s->rho, 0);
@@ -116,13 +163,7 @@ inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, f
 #endif
   }
   p->position = x + ns * eps;
-  if (depth >= KASHA_PHOTON_ROULETTE_FROM) {
-    float keep = roulette(photon_total(p) / p->start, u_choice.y);
-    if (keep == 0.0f) return BRANCH_ABSORBED;
-    if (keep != 1.0f)
-      for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= keep;
-  }
-  return branch;
+  return photon_roulette(p, u_choice.y, depth) ? branch : BRANCH_ABSORBED;
 }
 
 #endif

@@ -109,6 +109,12 @@ typedef struct {
 } KCamera;
 KASHA_STATIC_SIZE(KCamera, 64);
 
+/* What a material is: the measured model (gloss lobe or mirror, passive and fluorescent Lambert
+ * parts), or an ideal specular interface — a dielectric or a conductor (docs/materials.md). */
+#define KASHA_KIND_MEASURED 0
+#define KASHA_KIND_DIELECTRIC 1
+#define KASHA_KIND_CONDUCTOR 2
+
 /* Per-material data the kernels read; spectra live in one float buffer at the given offsets
  * (N values each, -1 when the part is absent; the buffer starts with N zeros that kernels read
  * in place of an absent part). */
@@ -120,11 +126,14 @@ typedef struct {
   float gloss;    /* g; 0 without a gloss part */
   float cone_rad; /* half-angle of the gloss cone */
   float excitation_sum; /* sum_i a_i, for the branch probabilities */
-  float pad0;
+  int kind;             /* KASHA_KIND_* */
   float albedo_xyz[3]; /* colour under equal-energy light, fluorescence included (debug view) */
-  int flags;
+  float eta;           /* dielectric: index inside (behind the front side) over outside */
+  int eta_spectrum;    /* conductor: eta(lambda) and k(lambda), the complex index over the outside's */
+  int k_spectrum;
+  float pad[2];
 } KMaterial;
-KASHA_STATIC_SIZE(KMaterial, 48);
+KASHA_STATIC_SIZE(KMaterial, 64);
 
 /* Gloss lobes are tabulated in this many equal rings of angle from the mirror direction. */
 #define KASHA_LOBE_CELLS 64

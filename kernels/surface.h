@@ -1,6 +1,7 @@
 /* A hit point's material as the kernels use it: pointers to its spectra in global memory (the
  * scene's zero spectrum for an absent part), so nothing of size N is copied per vertex.
- * Defines: KASHA_BINS, KASHA_FLUORESCENCE, KASHA_GLOSS. */
+ * Defines: KASHA_BINS, KASHA_FLUORESCENCE, KASHA_GLOSS, and KASHA_DIELECTRIC, KASHA_CONDUCTOR
+ * (0 where the scene has no such material: the kernels carry no code for it). */
 #ifndef KASHA_SURFACE_H
 #define KASHA_SURFACE_H
 
@@ -18,6 +19,16 @@ typedef struct {
   bool passive;
   float g;
   bool mirror;
+#if KASHA_DIELECTRIC || KASHA_CONDUCTOR
+  int kind;
+#endif
+#if KASHA_DIELECTRIC
+  float eta;
+#endif
+#if KASHA_CONDUCTOR
+  const __global float* eta_c; /* the conductor's eta(lambda) and k(lambda) */
+  const __global float* k_c;
+#endif
 } Surface;
 
 inline void load_surface(const SceneView* s, int material, Surface* out) {
@@ -33,6 +44,26 @@ inline void load_surface(const SceneView* s, int material, Surface* out) {
 #endif
   out->g = m->gloss;
   out->mirror = m->lobe < 0;
+#if KASHA_DIELECTRIC || KASHA_CONDUCTOR
+  out->kind = m->kind;
+#endif
+#if KASHA_DIELECTRIC
+  out->eta = m->eta;
+#endif
+#if KASHA_CONDUCTOR
+  out->eta_c = s->spectra + max(m->eta_spectrum, 0);
+  out->k_c = s->spectra + max(m->k_spectrum, 0);
+#endif
+}
+
+/* An ideal specular interface (dielectric or conductor): one delta lobe each way, no Lambert
+ * part, nothing for next-event estimation or the photon map. */
+inline bool surface_specular(const Surface* s) {
+#if KASHA_DIELECTRIC || KASHA_CONDUCTOR
+  return s->kind != KASHA_KIND_MEASURED;
+#else
+  return false;
+#endif
 }
 
 inline bool surface_has_lambert(const Surface* s) {

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "material/metals.h"
 #include "spectrum/spectrum_parser.h"
 
 namespace kasha {
@@ -39,6 +40,46 @@ static GlossDesc parse_gloss(const JsonNode& node) {
   return g;
 }
 
+// {"eta": 1.5}: pbrt-v4's default index.
+static DielectricDesc parse_dielectric(const JsonNode& node) {
+  DielectricDesc d;
+  if (auto eta = node.find("eta")) {
+    if (!eta->is_number())
+      eta->fail("a spectral eta (dispersion) is not supported yet: give one number");
+    d.eta = eta->number();
+    if (!(d.eta >= 0.01 && d.eta <= 100))
+      eta->fail("eta must lie in [0.01, 100] (the index behind the surface over the one in front)");
+  }
+  node.finish();
+  return d;
+}
+
+// {"metal": "Au"}, or {"eta": SPECTRUM, "k": SPECTRUM}; {} is copper, as in pbrt-v4.
+static ConductorDesc parse_conductor(const JsonNode& node) {
+  ConductorDesc c;
+  auto metal = node.find("metal");
+  auto eta = node.find("eta"), k = node.find("k");
+  if (metal && (eta || k)) metal->fail("give either \"metal\" or \"eta\" and \"k\", not both");
+  if (eta || k) {
+    if (!eta) node.fail("\"k\" without \"eta\"");
+    if (!k) node.fail("\"eta\" without \"k\"");
+    c.eta = parse_spectrum(*eta);
+    c.k = parse_spectrum(*k);
+  } else {
+    c.metal = metal ? metal->string() : "Cu";
+    MetalIndex index = builtin_metal(c.metal);
+    if (!index.eta) {
+      std::string names;
+      for (const std::string& n : builtin_metal_names()) names += (names.empty() ? "" : ", ") + n;
+      metal->fail("unknown metal \"" + c.metal + "\" (built in: " + names + ")");
+    }
+    c.eta = index.eta;
+    c.k = index.k;
+  }
+  node.finish();
+  return c;
+}
+
 MaterialDesc parse_material(const JsonNode& node, const std::string& name) {
   MaterialDesc m;
   m.name = name;
@@ -60,6 +101,20 @@ MaterialDesc parse_material(const JsonNode& node, const std::string& name) {
     fluo->finish();
   }
   if (auto gloss = node.find("gloss")) m.gloss = parse_gloss(*gloss);
+  auto dielectric = node.find("dielectric"), conductor = node.find("conductor");
+  if (dielectric || conductor) {
+    const JsonNode& own = dielectric ? *dielectric : *conductor;
+    if (dielectric && conductor) own.fail("a material is a dielectric or a conductor, not both");
+    if (m.passive || m.excitation || m.gloss)
+      own.fail("a dielectric or conductor has no \"passive\", \"fluorescence\" or \"gloss\" part");
+    if (dielectric) {
+      m.kind = MaterialKind::dielectric;
+      m.dielectric = parse_dielectric(*dielectric);
+    } else {
+      m.kind = MaterialKind::conductor;
+      m.conductor = parse_conductor(*conductor);
+    }
+  }
   node.find("diagnostics");  // written by `kasha measure`, ignored on load
   node.finish();
   return m;
@@ -83,7 +138,21 @@ Material discretize_material(const MaterialDesc& desc, const WavelengthGrid& gri
   Material m;
   m.name = desc.name;
   m.gloss = desc.gloss;
+  m.kind = desc.kind;
+  m.eta = desc.dielectric.eta;
   const std::string who = "material '" + desc.name + "' (" + desc.where + ")";
+  if (desc.kind == MaterialKind::conductor) {
+    m.eta_c = grid.resample(*desc.conductor.eta);
+    m.k_c = grid.resample(*desc.conductor.k);
+    for (int i = 0; i < grid.bins; ++i) {
+      if (!(m.eta_c[i] >= 1e-3))
+        throw Error(who + ": conductor eta " + std::to_string(m.eta_c[i]) + " at " +
+                    nm_text(grid.center(i)) + " is not above 0.001 (does the spectrum cover " +
+                    grid.describe() + "?)");
+      if (m.eta_c[i] > 1e3 || m.k_c[i] > 1e3)
+        throw Error(who + ": conductor eta or k beyond 1000 at " + nm_text(grid.center(i)));
+    }
+  }
   if (desc.passive) {
     m.rho = grid.resample(*desc.passive);
     for (int i = 0; i < grid.bins; ++i)

@@ -1,7 +1,8 @@
 #pragma once
 // The surface model of docs/design.md#the-surface-model: white gloss lobe + coloured Lambert
-// passive part + Lambert fluorescent part e(λo)·a(λi)/π. MaterialDesc is the continuous description
-// as read; Material is the same on a wavelength grid, checked for energy conservation.
+// passive part + Lambert fluorescent part e(λo)·a(λi)/π; or a smooth dielectric or conductor
+// interface (docs/materials.md). MaterialDesc is the continuous description as read; Material is
+// the same on a wavelength grid, checked for energy conservation.
 #include <optional>
 #include <string>
 #include <vector>
@@ -20,9 +21,27 @@ struct GlossDesc {
   std::vector<double> profile_deg, profile_value;
 };
 
+// What a material is (KASHA_KIND_* in the kernels).
+enum class MaterialKind { measured, dielectric, conductor };
+
+// A smooth dielectric interface: eta is the index on the back side of its surfaces over the
+// index on the front side (1.5: glass in air; below 1: an air bubble in water or glass).
+struct DielectricDesc {
+  double eta = 1.5;
+};
+
+// A smooth conductor: complex index eta + i k over the outside medium's (air).
+struct ConductorDesc {
+  std::string metal;  // a built-in table's name (material/metals.h), or empty for user spectra
+  SpectrumPtr eta, k;
+};
+
 struct MaterialDesc {
   std::string name;
   std::string where;       // "file: /json/path", for messages
+  MaterialKind kind = MaterialKind::measured;
+  DielectricDesc dielectric;
+  ConductorDesc conductor;
   SpectrumPtr passive;     // ρ(λ)
   SpectrumPtr excitation;  // a(λ)
   SpectrumPtr emission;    // e(λ), any scale: normalized on the grid
@@ -33,12 +52,16 @@ struct MaterialDesc {
 
 struct Material {
   std::string name;
+  MaterialKind kind = MaterialKind::measured;
+  double eta = 1;                // a dielectric's
+  std::vector<double> eta_c, k_c;  // a conductor's, per bin
   std::vector<double> rho;    // empty without a passive part
   std::vector<double> a;      // empty without fluorescence
   std::vector<double> e_hat;  // e·Δλ, sums to 1; empty without fluorescence
   std::optional<GlossDesc> gloss;
 
   bool fluorescent() const { return !a.empty(); }
+  bool specular() const { return kind != MaterialKind::measured; }
   double gloss_reflectance() const { return gloss ? gloss->reflectance : 0.0; }
 };
 

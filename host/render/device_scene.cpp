@@ -20,10 +20,18 @@ static int append(std::vector<float>& out, const std::vector<double>& values) {
 
 // The colour of a material's Lambert parts under equal-energy light, fluorescence included
 // (what colorimetry computes with a flat lamp), normalized so a perfect white has Y = 1.
+// A dielectric shows white (it loses nothing), a conductor its reflectance at normal incidence.
 static void albedo_xyz(const Material& m, const WavelengthGrid& grid, const BinnedObserver& obs,
                        float out[3]) {
   const std::vector<double> flat(grid.bins, 1.0);
-  Vec3d xyz = relative_xyz(obs, leaving_radiance(m, flat), flat, grid.bin_nm, "albedo");
+  std::vector<double> leaving = flat;
+  if (m.kind == MaterialKind::measured) leaving = leaving_radiance(m, flat);
+  if (m.kind == MaterialKind::conductor)
+    for (int i = 0; i < grid.bins; ++i) {
+      double n = m.eta_c[i], k = m.k_c[i];
+      leaving[i] = ((n - 1) * (n - 1) + k * k) / ((n + 1) * (n + 1) + k * k);
+    }
+  Vec3d xyz = relative_xyz(obs, leaving, flat, grid.bin_nm, "albedo");
   for (int k = 0; k < 3; ++k) out[k] = static_cast<float>(xyz[k] / 100);
 }
 
@@ -86,6 +94,12 @@ KernelSceneData::KernelSceneData(const Scene& scene)
       lobes.insert(lobes.end(), t.begin(), t.end());
     }
     for (double a : m.a) k.excitation_sum += static_cast<float>(a);
+    k.kind = m.kind == MaterialKind::dielectric  ? KASHA_KIND_DIELECTRIC
+             : m.kind == MaterialKind::conductor ? KASHA_KIND_CONDUCTOR
+                                                 : KASHA_KIND_MEASURED;
+    k.eta = static_cast<float>(m.eta);
+    k.eta_spectrum = append(spectra, m.eta_c);
+    k.k_spectrum = append(spectra, m.k_c);
     albedo_xyz(m, scene.grid, obs, k.albedo_xyz);
     materials.push_back(k);
   }
@@ -128,6 +142,8 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_FILM_ROWS"] = std::to_string(spectral_film ? scene.grid.bins : 3);
   d["KASHA_FLUORESCENCE"] = scene.fluorescent() ? "1" : "0";
   d["KASHA_GLOSS"] = scene.glossy() ? "1" : "0";
+  d["KASHA_DIELECTRIC"] = scene.uses(MaterialKind::dielectric) ? "1" : "0";
+  d["KASHA_CONDUCTOR"] = scene.uses(MaterialKind::conductor) ? "1" : "0";
   return d;
 }
 

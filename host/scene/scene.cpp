@@ -32,6 +32,20 @@ bool Scene::glossy() const {
   return false;
 }
 
+bool Scene::uses(MaterialKind kind) const {
+  for (const ShapeInfo& s : shapes)
+    if (materials[s.material].kind == kind) return true;
+  return false;
+}
+
+bool Scene::has_delta_surfaces() const {
+  for (const ShapeInfo& s : shapes) {
+    const Material& m = materials[s.material];
+    if (m.specular() || (m.gloss && m.gloss->mirror)) return true;
+  }
+  return false;
+}
+
 int Scene::material_index(const std::string& name) const {
   for (size_t i = 0; i < material_descs.size(); ++i)
     if (material_descs[i].name == name) return static_cast<int>(i);

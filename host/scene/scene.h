@@ -48,6 +48,9 @@ struct Scene {
 
   bool fluorescent() const;  // some shape's material has a fluorescent part
   bool glossy() const;       // some shape's material has a gloss lobe
+  bool uses(MaterialKind kind) const;  // some shape's material is of this kind
+  // Some shape's material is a delta lobe: an ideal mirror, a smooth dielectric or conductor.
+  bool has_delta_surfaces() const;
   int material_index(const std::string& name) const;  // -1 when absent
 };
 
