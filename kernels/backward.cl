@@ -32,8 +32,7 @@ inline float trace_camera_path(const SceneView* s, const FilmView* f, float3 org
   while (walk_vertex(&w, s, f, sampler, &v, rows)) {
 #if KASHA_DIELECTRIC || KASHA_CONDUCTOR
     if (surface_specular(&v.surf)) {
-      walk_specular(&w, &v);
-      if (!walk_on(&w, f, &v)) return 0.0f;
+      if (!walk_specular(&w, f, &v) || !walk_on(&w, f, &v)) return 0.0f;
       continue;
     }
 #endif
@@ -49,6 +48,9 @@ inline float trace_camera_path(const SceneView* s, const FilmView* f, float3 org
     } else {
       lambert_bounce(&w, &v, probs.z);
       pw_scatter_fluorescent(&w.p, f, v.surf.ehat, v.surf.a, 1.0f / probs.z);
+#if KASHA_DISPERSION
+      w.bin = -1; /* re-emission spreads the path over the excitation spectrum again */
+#endif
 #endif
     }
     if (!walk_on(&w, f, &v)) return 0.0f;

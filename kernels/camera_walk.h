@@ -32,6 +32,9 @@ typedef struct {
   int depth;      /* the vertex the path is at */
   float eta_scale; /* the product of etap² over the refractions so far: roulette sees the weight
                     * without radiance's 1/etap² (pbrt-v4's etaScale), which a path undoes on leaving */
+#if KASHA_DISPERSION
+  int bin; /* the one bin the path carries after a dispersive interface, -1 before */
+#endif
 } CameraWalk;
 
 /* A vertex of the walk: the hit, its surface, the branch probabilities (gloss, passive,
@@ -53,6 +56,9 @@ inline void walk_start(CameraWalk* w, const FilmView* f, float3 org, float3 dir)
   w->specular = true;
   w->depth = 0;
   w->eta_scale = 1.0f;
+#if KASHA_DISPERSION
+  w->bin = -1;
+#endif
 }
 
 /* The path's next vertex: adds the emission it hits to rows (MIS-weighted against next-event
@@ -116,15 +122,25 @@ inline bool walk_gloss(CameraWalk* w, const SceneView* s, const CameraVertex* v,
 /* A specular interface (surface_specular): a smooth dielectric reflects with probability F and
  * refracts otherwise, so the weight is 1 either way but for radiance's 1/etap² on refraction
  * (radiance is compressed into the narrower cone of the denser side); a smooth conductor reflects
- * with weight F(lambda). Either way the next emission hit counts whole (a delta bounce). */
-inline void walk_specular(CameraWalk* w, const CameraVertex* v) {
+ * with weight F(lambda). Either way the next emission hit counts whole (a delta bounce). A
+ * dispersive dielectric first narrows the path to one bin (pw_choose_bin, on the vertex's unused
+ * direction sample) unless it already is one. False: the path carries nothing. */
+inline bool walk_specular(CameraWalk* w, const FilmView* f, const CameraVertex* v) {
   const Surface* surf = &v->surf;
   float3 ns = v->h.ns;
   float cos_i = -dot(w->dir, ns);
   w->specular = true;
 #if KASHA_DIELECTRIC
   if (surf->kind == KASHA_KIND_DIELECTRIC) {
-    float etap = v->h.front ? surf->eta : 1.0f / surf->eta;
+    float eta = surf->eta;
+#if KASHA_DISPERSION
+    if (surf->dispersive) {
+      if (w->bin < 0) w->bin = pw_choose_bin(&w->p, f, v->u_dir.x);
+      if (w->bin < 0) return false;
+      eta = surf->eta_bins[w->bin];
+    }
+#endif
+    float etap = v->h.front ? eta : 1.0f / eta;
     if (v->u_choice.x < fresnel_dielectric(cos_i, etap)) {
       w->dir = reflect_dir(w->dir, ns);
     } else {
@@ -132,13 +148,14 @@ inline void walk_specular(CameraWalk* w, const CameraVertex* v) {
       pw_scatter_diagonal(&w->p, 0, 1.0f / (etap * etap));
       w->eta_scale *= etap * etap;
     }
-    return;
+    return true;
   }
 #endif
 #if KASHA_CONDUCTOR
   pw_scatter_conductor(&w->p, surf->eta_c, surf->k_c, cos_i);
   w->dir = reflect_dir(w->dir, ns);
 #endif
+  return true;
 }
 #endif
 

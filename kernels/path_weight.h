@@ -80,6 +80,20 @@ inline float pw_energy(const PathWeight* p, const FilmView* f, const __global fl
 #endif
 }
 
+/* Bin i's share of pw_energy(p, f, 0). */
+inline float pw_bin_energy(const PathWeight* p, const FilmView* f, int i) {
+#if KASHA_FULL_MATRIX
+  float s = 0.0f;
+  for (int r = 0; r < KASHA_FILM_ROWS; ++r) s += p->T[r][i];
+  return s;
+#else
+#if KASHA_FLUORESCENCE
+  if (p->rank1) return p->b[i];
+#endif
+  return p->w[i] * f->importance[i];
+#endif
+}
+
 /* How much the path still carries: the film rows' total response to equal-energy radiance,
  * Σ_r (T·1)_r, with the branch importance u standing in for the rows in diagonal mode (and
  * weighing the rows of a spectral film in rank-1 mode, so both modes measure alike). Russian
@@ -127,6 +141,44 @@ inline void pw_scatter_diagonal(PathWeight* p, const __global float* d, float sc
   for (int i = 0; i < KASHA_BINS; ++i) p->w[i] *= scale * PW_FACTOR(d, i);
 #endif
 }
+
+#if KASHA_DISPERSION
+/* At the path's first dispersive interface: one bin j chosen in proportion to the energy each bin
+ * carries to the film under equal-energy light (as pw_energy), u uniform in [0, 1); every other
+ * bin's column of T is dropped and j's divided by its probability, so the path goes on as a
+ * single-bin path (docs/materials.md#dispersion). -1 when the path carries nothing. */
+inline int pw_choose_bin(PathWeight* p, const FilmView* f, float u) {
+  float total = 0.0f;
+  for (int i = 0; i < KASHA_BINS; ++i) total += pw_bin_energy(p, f, i);
+  if (!(total > 0.0f)) return -1;
+  float target = u * total, sum = 0.0f, e = 0.0f;
+  int j = -1;
+  for (int i = 0; i < KASHA_BINS; ++i) {
+    float ei = pw_bin_energy(p, f, i);
+    if (ei <= 0.0f) continue;
+    j = i;
+    e = ei;
+    sum += ei;
+    if (sum > target) break;
+  }
+  float scale = total / e;
+#if KASHA_FULL_MATRIX
+  for (int r = 0; r < KASHA_FILM_ROWS; ++r)
+    for (int i = 0; i < KASHA_BINS; ++i) p->T[r][i] = i == j ? p->T[r][i] * scale : 0.0f;
+#else
+#if KASHA_FLUORESCENCE
+  if (p->rank1) {
+    /* b_j becomes 1 (b stays normalized to a maximum of 1): its value and 1/p_j go to c. */
+    for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->c[r] *= p->b[j] * scale;
+    for (int i = 0; i < KASHA_BINS; ++i) p->b[i] = i == j ? 1.0f : 0.0f;
+    return j;
+  }
+#endif
+  for (int i = 0; i < KASHA_BINS; ++i) p->w[i] = i == j ? p->w[i] * scale : 0.0f;
+#endif
+  return j;
+}
+#endif
 
 #if KASHA_CONDUCTOR
 /* T ← T·diag(F): a smooth conductor's reflection, F_i its Fresnel reflectance in bin i at the

@@ -85,8 +85,7 @@ inline float camera_path(const SceneView* s, const FilmView* f, int pixel, Sampl
 #if KASHA_DIELECTRIC || KASHA_CONDUCTOR
     /* Through glass and metal to the diffuse surface behind: caustics seen through them. */
     if (surface_specular(&v.surf)) {
-      walk_specular(&w, &v);
-      if (!walk_on(&w, f, &v)) return 0.0f;
+      if (!walk_specular(&w, f, &v) || !walk_on(&w, f, &v)) return 0.0f;
       continue;
     }
 #endif

@@ -19,6 +19,9 @@ typedef struct {
   float3 position;
   float3 direction;
   float start; /* the power it left its light with (W), Russian roulette's yardstick */
+#if KASHA_DISPERSION
+  int bin; /* the one bin it carries after a dispersive interface, -1 before */
+#endif
   float power[KASHA_BINS];
 } Photon;
 
@@ -58,6 +61,9 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
   const __global float* le = emitter_spectrum(s, lp.emitter);
   for (int i = 0; i < KASHA_BINS; ++i) p.power[i] = le[i] * scale;
   p.start = photon_total(&p);
+#if KASHA_DISPERSION
+  p.bin = -1;
+#endif
   return p;
 }
 
@@ -79,18 +85,46 @@ inline bool photon_roulette(Photon* p, float u, int depth) {
   return true;
 }
 
+#if KASHA_DISPERSION
+/* At the photon's first dispersive interface: one bin j chosen in proportion to its power, u
+ * uniform in [0, 1); the photon goes on with its whole power in that bin (Φ_j / p_j = ΣΦ).
+ * -1 when it carries nothing. */
+inline int photon_choose_bin(Photon* p, float u) {
+  float total = photon_total(p);
+  if (!(total > 0.0f)) return -1;
+  float target = u * total, sum = 0.0f;
+  int j = -1;
+  for (int i = 0; i < KASHA_BINS; ++i) {
+    if (p->power[i] <= 0.0f) continue;
+    j = i;
+    sum += p->power[i];
+    if (sum > target) break;
+  }
+  for (int i = 0; i < KASHA_BINS; ++i) p->power[i] = i == j ? total : 0.0f;
+  return j;
+}
+#endif
+
 #if KASHA_DIELECTRIC || KASHA_CONDUCTOR
 /* A photon at a specular interface (surface_specular): a smooth dielectric reflects it with
  * probability F and refracts it otherwise, its power unchanged — flux, unlike radiance, carries
  * no 1/etap² — and a smooth conductor reflects it with power F(lambda)·Φ. */
 inline int scatter_specular(Photon* p, const Surface* s, float3 x, float3 ns, bool front, float eps, float2 u_choice,
-                            int depth) {
+                            float2 u_dir, int depth) {
   float3 d = p->direction;
   float cos_i = -dot(d, ns);
   float side = eps;
 #if KASHA_DIELECTRIC
   if (s->kind == KASHA_KIND_DIELECTRIC) {
-    float etap = front ? s->eta : 1.0f / s->eta;
+    float eta = s->eta;
+#if KASHA_DISPERSION
+    if (s->dispersive) {
+      if (p->bin < 0) p->bin = photon_choose_bin(p, u_dir.x);
+      if (p->bin < 0) return BRANCH_ABSORBED;
+      eta = s->eta_bins[p->bin];
+    }
+#endif
+    float etap = front ? eta : 1.0f / eta;
     if (u_choice.x < fresnel_dielectric(cos_i, etap)) {
       p->direction = reflect_dir(d, ns);
     } else {
@@ -121,7 +155,7 @@ inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, f
   sampler_at(sampler, PHOTON_PAIRS_AT_LIGHT + depth * PHOTON_PAIRS_PER_HIT);
   float2 u_choice = sample_2d(sampler), u_dir = sample_2d(sampler);
 #if KASHA_DIELECTRIC || KASHA_CONDUCTOR
-  if (surface_specular(s)) return scatter_specular(p, s, x, ns, front, eps, u_choice, depth);
+  if (surface_specular(s)) return scatter_specular(p, s, x, ns, front, eps, u_choice, u_dir, depth);
 #endif
   float total = photon_total(p);
   float pg = s->g * total, pp = 0.0f, pf = 0.0f;
@@ -158,6 +192,9 @@ inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, f
   } else {
     /* The photon changes colour: its power re-emitted with the emission spectrum. */
     for (int i = 0; i < KASHA_BINS; ++i) p->power[i] = s->ehat[i] * sum;
+#if KASHA_DISPERSION
+    p->bin = -1;
+#endif
     p->direction = sample_cosine_hemisphere(ns, u_dir.x, u_dir.y);
     branch = BRANCH_FLUORESCENT;
 #endif

@@ -129,7 +129,8 @@ typedef struct {
   int kind;             /* KASHA_KIND_* */
   float albedo_xyz[3]; /* colour under equal-energy light, fluorescence included (debug view) */
   float eta;           /* dielectric: index inside (behind the front side) over outside */
-  int eta_spectrum;    /* conductor: eta(lambda) and k(lambda), the complex index over the outside's */
+  int eta_spectrum;    /* conductor: eta(lambda) and k(lambda), the complex index over the outside's;
+                        * a dispersive dielectric: eta(lambda) (-1: eta holds for every bin) */
   int k_spectrum;
   float pad[2];
 } KMaterial;

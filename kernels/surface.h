@@ -1,7 +1,7 @@
 /* A hit point's material as the kernels use it: pointers to its spectra in global memory (the
  * scene's zero spectrum for an absent part), so nothing of size N is copied per vertex.
- * Defines: KASHA_BINS, KASHA_FLUORESCENCE, KASHA_GLOSS, and KASHA_DIELECTRIC, KASHA_CONDUCTOR
- * (0 where the scene has no such material: the kernels carry no code for it). */
+ * Defines: KASHA_BINS, KASHA_FLUORESCENCE, KASHA_GLOSS, and KASHA_DIELECTRIC, KASHA_CONDUCTOR,
+ * KASHA_DISPERSION (0 where the scene has no such material: the kernels carry no code for it). */
 #ifndef KASHA_SURFACE_H
 #define KASHA_SURFACE_H
 
@@ -24,6 +24,10 @@ typedef struct {
 #endif
 #if KASHA_DIELECTRIC
   float eta;
+#endif
+#if KASHA_DISPERSION
+  const __global float* eta_bins; /* a dispersive dielectric's eta per bin */
+  bool dispersive;
 #endif
 #if KASHA_CONDUCTOR
   const __global float* eta_c; /* the conductor's eta(lambda) and k(lambda) */
@@ -49,6 +53,10 @@ inline void load_surface(const SceneView* s, int material, Surface* out) {
 #endif
 #if KASHA_DIELECTRIC
   out->eta = m->eta;
+#endif
+#if KASHA_DISPERSION
+  out->dispersive = m->kind == KASHA_KIND_DIELECTRIC && m->eta_spectrum >= 0;
+  out->eta_bins = s->spectra + max(m->eta_spectrum, 0);
 #endif
 #if KASHA_CONDUCTOR
   out->eta_c = s->spectra + max(m->eta_spectrum, 0);

@@ -1,13 +1,15 @@
 // Every physical integrator in the registry against the reference integrator (backward) on the
 // scenes with structure: the fluorescent Cornell box with the measured Post-it sphere, and the
 // same box with a glossy floor (a tabulated lobe that backward samples and evaluates by next-event
-// estimation, forward splats towards the camera and photon mapping follows from the camera).
+// estimation, forward splats towards the camera and photon mapping follows from the camera), and
+// the glass caustic (a glass sphere focusing the lamp on a fluorescent floor, a gold box).
 // Regions are the pixels whose centre sees each material or the lamp (found with Embree). An
 // unbiased integrator must agree within 4 standard errors of the difference, in every region and
 // in every 6 × 6 block; a consistent one within a few per cent, what its bias leaves at this
 // budget.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "render/integrator_registry.h"
@@ -22,6 +24,10 @@ namespace {
 struct AgreementCase {
   std::string integrator, scene;
   double tolerance;  // relative, per region and row
+  // Unbiased integrators also agree in every 6 × 6 block. Not where the light comes through glass:
+  // backward, the reference, finds a caustic only by rare paths at this budget, so its blocks' error
+  // bars miss what it has not found yet (light tracing's lie up to 14 of them above it there).
+  bool blocks = true;
 };
 
 void PrintTo(const AgreementCase& c, std::ostream* os) {
@@ -35,6 +41,7 @@ std::vector<AgreementCase> all_cases() {
     bool unbiased = IntegratorRegistry::find(integrator).traits.unbiased;
     cases.push_back({integrator, "cornell_box.json", unbiased ? 0.02 : 0.03});
     cases.push_back({integrator, "glossy_cornell_box.json", 0.03});
+    cases.push_back({integrator, "glass_caustic.json", 0.05, false});
   }
   return cases;
 }
@@ -51,7 +58,24 @@ TEST_P(IntegratorAgreement, RegionsMatchTheReferenceIntegrator) {
 
   std::map<std::string, std::vector<size_t>> regions = primary_hit_regions(tested.scene, cam);
   EXPECT_GE(regions.size(), 4u);  // the walls' materials, the lamp, the sphere
+  // Pixels that may see glass or metal (the centre, or a neighbour's centre, does), which light
+  // tracing shows black: left out of its comparison.
+  const bool blind = !IntegratorRegistry::find(c.integrator).traits.sees_camera_mirrors;
+  std::vector<char> delta(static_cast<size_t>(cam.width) * cam.height, 0);
   for (const auto& [name, pixels] : regions) {
+    const int m = tested.scene.material_index(name);
+    if (!blind || m < 0 || !tested.scene.materials[m].specular()) continue;
+    for (size_t p : pixels)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          int x = static_cast<int>(p % cam.width) + dx, y = static_cast<int>(p / cam.width) + dy;
+          if (x >= 0 && y >= 0 && x < cam.width && y < cam.height) delta[y * cam.width + x] = 1;
+        }
+  }
+  for (auto [name, pixels] : regions) {
+    pixels.erase(std::remove_if(pixels.begin(), pixels.end(), [&](size_t p) { return delta[p]; }),
+                 pixels.end());
+    if (pixels.empty()) continue;
     BinStats t = pixel_statistics(tested.image, false, pixels);
     BinStats d = difference_statistics(tested.image, ref.image, false, pixels);
     std::printf("  %-13s %s/%s - 1: X %+.2f %%, Y %+.2f %%, Z %+.2f %%\n", name.c_str(),
@@ -68,14 +92,15 @@ TEST_P(IntegratorAgreement, RegionsMatchTheReferenceIntegrator) {
       }
     }
   }
-  if (!unbiased) return;
+  if (!unbiased || !c.blocks) return;
   // The images within noise: in each 6 × 6 block, the mean difference within 5 standard errors.
   for (int by = 0; by < cam.height / 6; ++by)
     for (int bx = 0; bx < cam.width / 6; ++bx) {
       std::vector<size_t> block;
       for (int y = 6 * by; y < 6 * by + 6; ++y)
         for (int x = 6 * bx; x < 6 * bx + 6; ++x)
-          block.push_back(static_cast<size_t>(y) * cam.width + x);
+          if (!delta[y * cam.width + x]) block.push_back(static_cast<size_t>(y) * cam.width + x);
+      if (block.size() < 2) continue;
       BinStats d = difference_statistics(tested.image, ref.image, false, block);
       for (int k = 0; k < 3; ++k)
         EXPECT_LE(std::abs(d.mean[k]), 5 * d.standard_error[k])

@@ -1,9 +1,11 @@
 #include "material/material.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "core/error.h"
+#include "material/glasses.h"
 #include "material/metals.h"
 #include "spectrum/spectrum_parser.h"
 
@@ -40,15 +42,47 @@ static GlossDesc parse_gloss(const JsonNode& node) {
   return g;
 }
 
-// {"eta": 1.5}: pbrt-v4's default index.
+// A dispersive index: a named glass, Sellmeier or Cauchy coefficients, or any spectrum value.
+static SpectrumPtr parse_index_spectrum(const JsonNode& eta) {
+  if (eta.is_string()) {
+    SpectrumPtr glass = named_glass(eta.string());
+    if (!glass) {
+      std::string names;
+      for (const std::string& n : named_glass_names()) names += (names.empty() ? "" : ", ") + n;
+      eta.fail("unknown glass \"" + eta.string() + "\" (built in: " + names + ")");
+    }
+    return glass;
+  }
+  if (auto s = eta.find("sellmeier")) {
+    std::vector<double> B = s->at("B").numbers(), C = s->at("C_um2").numbers();
+    s->finish();
+    eta.finish();
+    if (B.empty() || B.size() != C.size() || B.size() > 8)
+      s->fail("\"B\" and \"C_um2\" need the same number of terms, 1 to 8");
+    return index_spectrum([B, C](double nm) { return sellmeier_index(B, C, nm); });
+  }
+  if (auto c = eta.find("cauchy")) {
+    double A = c->at("A").number(), B = 0, C = 0;
+    if (auto b = c->find("B_um2")) B = b->number();
+    if (auto cc = c->find("C_um4")) C = cc->number();
+    c->finish();
+    eta.finish();
+    return index_spectrum([A, B, C](double nm) { return cauchy_index(A, B, C, nm); });
+  }
+  return parse_spectrum(eta);
+}
+
+// {"eta": 1.5}: pbrt-v4's default index; a spectral "eta" disperses.
 static DielectricDesc parse_dielectric(const JsonNode& node) {
   DielectricDesc d;
   if (auto eta = node.find("eta")) {
-    if (!eta->is_number())
-      eta->fail("a spectral eta (dispersion) is not supported yet: give one number");
-    d.eta = eta->number();
-    if (!(d.eta >= 0.01 && d.eta <= 100))
-      eta->fail("eta must lie in [0.01, 100] (the index behind the surface over the one in front)");
+    if (eta->is_number()) {
+      d.eta = eta->number();
+      if (!(d.eta >= 0.01 && d.eta <= 100))
+        eta->fail("eta must lie in [0.01, 100] (the index behind the surface over the one in front)");
+    } else {
+      d.eta_spectrum = parse_index_spectrum(*eta);
+    }
   }
   node.finish();
   return d;
@@ -141,6 +175,19 @@ Material discretize_material(const MaterialDesc& desc, const WavelengthGrid& gri
   m.kind = desc.kind;
   m.eta = desc.dielectric.eta;
   const std::string who = "material '" + desc.name + "' (" + desc.where + ")";
+  if (desc.dielectric.eta_spectrum) {
+    m.eta_bins = grid.resample(*desc.dielectric.eta_spectrum);
+    for (int i = 0; i < grid.bins; ++i)
+      if (!(m.eta_bins[i] >= 0.01 && m.eta_bins[i] <= 100))
+        throw Error(who + ": dielectric eta " + std::to_string(m.eta_bins[i]) + " at " +
+                    nm_text(grid.center(i)) + " is outside [0.01, 100] (does the spectrum cover " +
+                    grid.describe() + "?)");
+    m.eta = m.eta_bins[grid.bins / 2];
+    // The same index in every bin is no dispersion: the kernels need no bin choice for it.
+    if (std::all_of(m.eta_bins.begin(), m.eta_bins.end(),
+                    [&](double e) { return std::abs(e - m.eta) <= 1e-9 * m.eta; }))
+      m.eta_bins.clear();
+  }
   if (desc.kind == MaterialKind::conductor) {
     m.eta_c = grid.resample(*desc.conductor.eta);
     m.k_c = grid.resample(*desc.conductor.k);

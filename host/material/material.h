@@ -26,8 +26,10 @@ enum class MaterialKind { measured, dielectric, conductor };
 
 // A smooth dielectric interface: eta is the index on the back side of its surfaces over the
 // index on the front side (1.5: glass in air; below 1: an air bubble in water or glass).
+// With a spectral index (`eta_spectrum`), the dielectric disperses (docs/materials.md#dispersion).
 struct DielectricDesc {
-  double eta = 1.5;
+  double eta = 1.5;          // a constant index
+  SpectrumPtr eta_spectrum;  // or one that varies with wavelength
 };
 
 // A smooth conductor: complex index eta + i k over the outside medium's (air).
@@ -53,7 +55,8 @@ struct MaterialDesc {
 struct Material {
   std::string name;
   MaterialKind kind = MaterialKind::measured;
-  double eta = 1;                // a dielectric's
+  double eta = 1;                // a dielectric's constant index
+  std::vector<double> eta_bins;  // a dispersive dielectric's, per bin (empty: constant)
   std::vector<double> eta_c, k_c;  // a conductor's, per bin
   std::vector<double> rho;    // empty without a passive part
   std::vector<double> a;      // empty without fluorescence
@@ -62,6 +65,7 @@ struct Material {
 
   bool fluorescent() const { return !a.empty(); }
   bool specular() const { return kind != MaterialKind::measured; }
+  bool dispersive() const { return !eta_bins.empty(); }
   double gloss_reflectance() const { return gloss ? gloss->reflectance : 0.0; }
 };
 

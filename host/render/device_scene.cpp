@@ -98,7 +98,7 @@ KernelSceneData::KernelSceneData(const Scene& scene)
              : m.kind == MaterialKind::conductor ? KASHA_KIND_CONDUCTOR
                                                  : KASHA_KIND_MEASURED;
     k.eta = static_cast<float>(m.eta);
-    k.eta_spectrum = append(spectra, m.eta_c);
+    k.eta_spectrum = append(spectra, m.kind == MaterialKind::conductor ? m.eta_c : m.eta_bins);
     k.k_spectrum = append(spectra, m.k_c);
     albedo_xyz(m, scene.grid, obs, k.albedo_xyz);
     materials.push_back(k);
@@ -144,6 +144,7 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_GLOSS"] = scene.glossy() ? "1" : "0";
   d["KASHA_DIELECTRIC"] = scene.uses(MaterialKind::dielectric) ? "1" : "0";
   d["KASHA_CONDUCTOR"] = scene.uses(MaterialKind::conductor) ? "1" : "0";
+  d["KASHA_DISPERSION"] = scene.dispersive() ? "1" : "0";
   return d;
 }
 

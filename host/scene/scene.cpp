@@ -38,6 +38,12 @@ bool Scene::uses(MaterialKind kind) const {
   return false;
 }
 
+bool Scene::dispersive() const {
+  for (const ShapeInfo& s : shapes)
+    if (materials[s.material].dispersive()) return true;
+  return false;
+}
+
 bool Scene::has_delta_surfaces() const {
   for (const ShapeInfo& s : shapes) {
     const Material& m = materials[s.material];
