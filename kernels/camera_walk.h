@@ -11,6 +11,7 @@
 #include "lights.h"
 #include "next_event.h"
 #include "path_weight.h"
+#include "rough_interface.h"
 #include "roulette.h"
 #include "sampler.h"
 #include "scene_view.h"
@@ -155,6 +156,90 @@ inline bool walk_specular(CameraWalk* w, const FilmView* f, const CameraVertex* 
   pw_scatter_conductor(&w->p, surf->eta_c, surf->k_c, cos_i);
   w->dir = reflect_dir(w->dir, ns);
 #endif
+  return true;
+}
+#endif
+
+#if KASHA_ROUGH
+/* A dielectric's index for this path: at a dispersive one, the path's bin (chosen here, on u, if
+ * the path has none yet). Negative: the path carries nothing. */
+inline float walk_eta(CameraWalk* w, const FilmView* f, const Surface* surf, float u) {
+#if KASHA_DISPERSION
+  if (surf->dispersive) {
+    if (w->bin < 0) w->bin = pw_choose_bin(&w->p, f, u);
+    return w->bin < 0 ? -1.0f : surf->eta_bins[w->bin];
+  }
+#endif
+#if KASHA_DIELECTRIC
+  return surf->eta;
+#else
+  return 1.0f;
+#endif
+}
+
+/* Next-event estimation at a rough interface (rough_interface.h): one light point, on either side
+ * of the surface (a rough dielectric transmits), weighed by MIS against sampling the interface. */
+inline void walk_rough_next_event(const CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v,
+                                  float eta, float* rows) {
+  if (s->light_count == 0) return;
+  const Surface* surf = &v->surf;
+  float pdf_light;
+  LightPoint lp = sample_light_from(s, v->h.x, v->u_light, &pdf_light);
+  if (!(pdf_light > 0.0f)) return;
+  float3 to = lp.position - v->h.x;
+  float dist = length(to);
+  if (!(dist > v->h.eps + lp.eps)) return;
+  float3 wi = to / dist;
+  if (-dot(lp.normal, wi) <= 0.0f) return;
+  Frame fr = frame_of(v->h.n);
+  float3 wo_l = to_local(&fr, -w->dir), wi_l = to_local(&fr, wi);
+  float pdf, cos_m = 0.0f, fv;
+  if (surf->kind == KASHA_KIND_DIELECTRIC)
+    fv = rough_dielectric_eval(wo_l, wi_l, eta, surf->alpha, true, &pdf);
+  else
+    fv = rough_conductor_eval(wo_l, wi_l, surf->alpha, &pdf, &cos_m);
+  if (!(fv > 0.0f)) return;
+  float3 toward = wi_l.z > 0.0f ? v->h.n : -v->h.n;
+  if (segment_occluded(s, v->h.x, toward, v->h.eps, wi, dist, lp.eps)) return;
+  float scale = fv * fabs(wi_l.z) / pdf_light * mis_weight(pdf_light, pdf);
+  const __global float* le = emitter_spectrum(s, lp.emitter);
+#if KASHA_CONDUCTOR
+  if (surf->kind == KASHA_KIND_CONDUCTOR) {
+    pw_add_conductor(&w->p, f, le, surf->eta_c, surf->k_c, cos_m, scale, rows);
+    return;
+  }
+#endif
+  pw_add(&w->p, f, le, 0, scale, rows);
+}
+
+/* A rough interface: next-event estimation, then a direction drawn from its visible normals (a
+ * reflection or, for a dielectric, a refraction, chosen by the facet's Fresnel reflectance; a
+ * conductor's F(λ) applied bin by bin). The fourth sample pair of the vertex picks a dispersive
+ * dielectric's bin. False: the path ends. */
+inline bool walk_rough(CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v, Sampler* sampler,
+                       float* rows) {
+  const Surface* surf = &v->surf;
+  float eta = surf->kind == KASHA_KIND_DIELECTRIC ? walk_eta(w, f, surf, sample_2d(sampler).x) : 1.0f;
+  if (eta < 0.0f) return false;
+  walk_rough_next_event(w, s, f, v, eta, rows);
+  Frame fr = frame_of(v->h.n);
+  float3 wo = to_local(&fr, -w->dir);
+  InterfaceSample smp;
+  bool ok = surf->kind == KASHA_KIND_DIELECTRIC
+                ? rough_dielectric_sample(wo, eta, surf->alpha, true, v->u_choice.x, v->u_dir, &smp)
+                : rough_conductor_sample(wo, surf->alpha, v->u_dir, &smp);
+  if (!ok || !(smp.pdf > 0.0f)) return false;
+#if KASHA_CONDUCTOR
+  if (surf->kind == KASHA_KIND_CONDUCTOR) pw_scatter_conductor(&w->p, surf->eta_c, surf->k_c, smp.cos_m);
+#endif
+  pw_scatter_diagonal(&w->p, 0, smp.weight);
+  if (smp.transmitted) {
+    float etap = wo.z > 0.0f ? eta : 1.0f / eta;
+    w->eta_scale *= etap * etap;
+  }
+  w->dir = to_world(&fr, smp.wi);
+  w->specular = false;
+  w->prev_pdf = smp.pdf;
   return true;
 }
 #endif

@@ -6,6 +6,7 @@
 #ifndef KASHA_FILM_VIEW_H
 #define KASHA_FILM_VIEW_H
 
+#include "fresnel.h"
 #include "spectral_product.h"
 
 typedef struct {
@@ -21,6 +22,24 @@ inline void film_rows(const FilmView* f, const float* x, const __global float* y
                       float scale, float* rows) {
   film_rows_add(f->cmf, KASHA_SPECTRAL_FILM, KASHA_BINS, x, y, z, scale, rows);
 }
+
+#if KASHA_CONDUCTOR
+/* rows += scale · C·(x∘y∘F), F a conductor's Fresnel reflectance in each bin at the cosine cos_m
+ * (fresnel.h), computed bin by bin. */
+inline void film_rows_conductor(const FilmView* f, const float* x, const __global float* y, const __global float* eta,
+                                const __global float* k, float cos_m, float scale, float* rows) {
+  for (int i = 0; i < KASHA_BINS; ++i) {
+    float v = scale * (x ? x[i] : 1.0f) * (y ? y[i] : 1.0f) * fresnel_conductor(cos_m, eta[i], k[i]);
+#if KASHA_SPECTRAL_FILM
+    rows[i] += v;
+#else
+    rows[0] += f->cmf[i] * v;
+    rows[1] += f->cmf[KASHA_BINS + i] * v;
+    rows[2] += f->cmf[2 * KASHA_BINS + i] * v;
+#endif
+  }
+}
+#endif
 
 inline void film_rows_clear(float* rows) {
   for (int r = 0; r < KASHA_FILM_ROWS; ++r) rows[r] = 0.0f;

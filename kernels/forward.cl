@@ -41,6 +41,54 @@ inline void splat_rows(SplatTarget* t, int pixel, const float* rows) {
     if (rows[r] != 0.0f) splat_fixed(cell + 2 * r, rows[r], t->film_shift, &t->overflow);
 }
 
+#if KASHA_ROUGH
+/* A photon at a rough interface, connected to the camera on whichever side it is: f(camera,
+ * photon) Φ / Δλ, f evaluated as for radiance towards the camera (rough_interface.h). A
+ * dispersive dielectric is evaluated bin by bin, at each bin's index. */
+inline void splat_rough(const SceneView* s, const FilmView* f, SplatTarget* t, const Surface* surf, float3 x,
+                        float3 n, float eps, const Photon* p, float* rows) {
+  float3 to_camera = normalize(camera_position(&s->camera) - x);
+  int pixel;
+  float k;
+  if (!camera_connection(s, x, dot(to_camera, n) >= 0.0f ? n : -n, eps, &pixel, &k)) return;
+  Frame fr = frame_of(n);
+  float3 wo = to_local(&fr, to_camera), wi = to_local(&fr, -p->direction);
+  float pdf, cos_m = 0.0f;
+  film_rows_clear(rows);
+  float scale = k / s->bin_nm;
+#if KASHA_CONDUCTOR
+  if (surf->kind == KASHA_KIND_CONDUCTOR) {
+    float fv = rough_conductor_eval(wo, wi, surf->alpha, &pdf, &cos_m);
+    if (!(fv > 0.0f)) return;
+    film_rows_conductor(f, p->power, 0, surf->eta_c, surf->k_c, cos_m, fv * scale, rows);
+    splat_rows(t, pixel, rows);
+    return;
+  }
+#endif
+#if KASHA_DIELECTRIC
+#if KASHA_DISPERSION
+  if (surf->dispersive) {
+    for (int i = 0; i < KASHA_BINS; ++i) {
+      if (p->power[i] == 0.0f) continue;
+      float v = p->power[i] * scale * rough_dielectric_eval(wo, wi, surf->eta_bins[i], surf->alpha, true, &pdf);
+#if KASHA_SPECTRAL_FILM
+      rows[i] += v;
+#else
+      for (int r = 0; r < 3; ++r) rows[r] += f->cmf[r * KASHA_BINS + i] * v;
+#endif
+    }
+    splat_rows(t, pixel, rows);
+    return;
+  }
+#endif
+  float fv = rough_dielectric_eval(wo, wi, surf->eta, surf->alpha, true, &pdf);
+  if (!(fv > 0.0f)) return;
+  film_rows(f, p->power, 0, 0, fv * scale, rows);
+  splat_rows(t, pixel, rows);
+#endif
+}
+#endif
+
 __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, int photons_per_item,
                             int max_depth, __global ulong* film, int film_shift,
                             __global float* stats, /* per item: emitted, absorbed, escaped, in flight (W) */
@@ -85,6 +133,9 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
       bool glossy = surf.g > 0.0f && !surf.mirror;
 #else
       bool glossy = false;
+#endif
+#if KASHA_ROUGH
+      if (surface_rough(&surf)) splat_rough(&s, &f, &target, &surf, x, h.n, h.eps, &p, rows);
 #endif
       if ((surface_has_lambert(&surf) || glossy) && camera_connection(&s, x, ns, h.eps, &pixel, &k)) {
         /* Radiance per nm leaving x per unit flux: (ρ_i Φ_i + ê_i (a·Φ)) / (π Δλ). */

@@ -8,6 +8,7 @@
 #include "fresnel.h"
 #include "gloss_lobe.h"
 #include "lights.h"
+#include "rough_interface.h"
 #include "roulette.h"
 #include "sampler.h"
 #include "sampling.h"
@@ -105,6 +106,40 @@ inline int photon_choose_bin(Photon* p, float u) {
 }
 #endif
 
+#if KASHA_ROUGH
+/* A photon at a rough interface (rough_interface.h): a direction drawn from the visible normals
+ * seen from where it came, its power times f cos / pdf (flux: no 1/etap²) and, at a conductor,
+ * F(λ); a dispersive dielectric first narrows it to one bin (u_bin). */
+inline int scatter_rough(Photon* p, const Surface* s, float3 x, float3 n, float eps, float2 u_choice, float2 u_dir,
+                         float u_bin, int depth) {
+  float eta = 1.0f;
+#if KASHA_DIELECTRIC
+  eta = s->eta;
+#endif
+#if KASHA_DISPERSION
+  if (s->dispersive) {
+    if (p->bin < 0) p->bin = photon_choose_bin(p, u_bin);
+    if (p->bin < 0) return BRANCH_ABSORBED;
+    eta = s->eta_bins[p->bin];
+  }
+#endif
+  Frame fr = frame_of(n);
+  float3 wo = to_local(&fr, -p->direction);
+  InterfaceSample smp;
+  bool ok = s->kind == KASHA_KIND_DIELECTRIC ? rough_dielectric_sample(wo, eta, s->alpha, false, u_choice.x, u_dir, &smp)
+                                             : rough_conductor_sample(wo, s->alpha, u_dir, &smp);
+  if (!ok || !(smp.pdf > 0.0f)) return BRANCH_ABSORBED;
+#if KASHA_CONDUCTOR
+  if (s->kind == KASHA_KIND_CONDUCTOR)
+    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= fresnel_conductor(smp.cos_m, s->eta_c[i], s->k_c[i]);
+#endif
+  for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= smp.weight;
+  p->direction = to_world(&fr, smp.wi);
+  p->position = x + n * (smp.wi.z > 0.0f ? eps : -eps);
+  return photon_roulette(p, u_choice.y, depth) ? BRANCH_SPECULAR : BRANCH_ABSORBED;
+}
+#endif
+
 #if KASHA_DIELECTRIC || KASHA_CONDUCTOR
 /* A photon at a specular interface (surface_specular): a smooth dielectric reflects it with
  * probability F and refracts it otherwise, its power unchanged — flux, unlike radiance, carries
@@ -154,6 +189,9 @@ inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, f
                           float eps, Sampler* sampler, int depth) {
   sampler_at(sampler, PHOTON_PAIRS_AT_LIGHT + depth * PHOTON_PAIRS_PER_HIT);
   float2 u_choice = sample_2d(sampler), u_dir = sample_2d(sampler);
+#if KASHA_ROUGH
+  if (surface_rough(s)) return scatter_rough(p, s, x, front ? ns : -ns, eps, u_choice, u_dir, sample_2d(sampler).x, depth);
+#endif
 #if KASHA_DIELECTRIC || KASHA_CONDUCTOR
   if (surface_specular(s)) return scatter_specular(p, s, x, ns, front, eps, u_choice, u_dir, depth);
 #endif

@@ -132,7 +132,7 @@ typedef struct {
   int eta_spectrum;    /* conductor: eta(lambda) and k(lambda), the complex index over the outside's;
                         * a dispersive dielectric: eta(lambda) (-1: eta holds for every bin) */
   int k_spectrum;
-  float pad[2];
+  float alpha[2]; /* a dielectric's or conductor's GGX roughness (alpha_x, alpha_y); 0: smooth */
 } KMaterial;
 KASHA_STATIC_SIZE(KMaterial, 64);
 

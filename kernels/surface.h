@@ -1,10 +1,12 @@
 /* A hit point's material as the kernels use it: pointers to its spectra in global memory (the
  * scene's zero spectrum for an absent part), so nothing of size N is copied per vertex.
  * Defines: KASHA_BINS, KASHA_FLUORESCENCE, KASHA_GLOSS, and KASHA_DIELECTRIC, KASHA_CONDUCTOR,
- * KASHA_DISPERSION (0 where the scene has no such material: the kernels carry no code for it). */
+ * KASHA_DISPERSION, KASHA_ROUGH (0 where the scene has no such material: the kernels carry no
+ * code for it). */
 #ifndef KASHA_SURFACE_H
 #define KASHA_SURFACE_H
 
+#include "microfacet.h"
 #include "scene_view.h"
 
 typedef struct {
@@ -33,6 +35,9 @@ typedef struct {
   const __global float* eta_c; /* the conductor's eta(lambda) and k(lambda) */
   const __global float* k_c;
 #endif
+#if KASHA_ROUGH
+  Ggx alpha; /* a rough dielectric's or conductor's roughness; (0, 0) when smooth */
+#endif
 } Surface;
 
 inline void load_surface(const SceneView* s, int material, Surface* out) {
@@ -58,17 +63,31 @@ inline void load_surface(const SceneView* s, int material, Surface* out) {
   out->dispersive = m->kind == KASHA_KIND_DIELECTRIC && m->eta_spectrum >= 0;
   out->eta_bins = s->spectra + max(m->eta_spectrum, 0);
 #endif
+#if KASHA_ROUGH
+  out->alpha.ax = m->alpha[0];
+  out->alpha.ay = m->alpha[1];
+#endif
 #if KASHA_CONDUCTOR
   out->eta_c = s->spectra + max(m->eta_spectrum, 0);
   out->k_c = s->spectra + max(m->k_spectrum, 0);
 #endif
 }
 
-/* An ideal specular interface (dielectric or conductor): one delta lobe each way, no Lambert
- * part, nothing for next-event estimation or the photon map. */
+/* A dielectric or conductor interface: smooth (one delta lobe each way) or rough
+ * (surface_rough); no Lambert part, nothing for the photon map. */
 inline bool surface_specular(const Surface* s) {
 #if KASHA_DIELECTRIC || KASHA_CONDUCTOR
   return s->kind != KASHA_KIND_MEASURED;
+#else
+  return false;
+#endif
+}
+
+/* A dielectric or conductor with GGX microfacets (rough_interface.h): not a delta lobe, so
+ * next-event estimation and MIS apply to it. */
+inline bool surface_rough(const Surface* s) {
+#if KASHA_ROUGH
+  return s->alpha.ax >= KASHA_SMOOTH_ALPHA || s->alpha.ay >= KASHA_SMOOTH_ALPHA;
 #else
   return false;
 #endif

@@ -149,7 +149,11 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
     "paper": {"file": "paper.json"},
     "wall": {"passive": {"reflectance": {"csv": "reflectance.csv", "column": "red"}},
              "gloss": {"reflectance": 0.05, "cone_deg": 12}},
-    "lamp": {"passive": {"reflectance": 0.2}}
+    "lamp": {"passive": {"reflectance": 0.2}},
+    "glass": {"dielectric": {"eta": {"sellmeier": {"B": [1.04, 0.23, 1.01], "C_um2": [0.006, 0.02, 103.6]}},
+                             "roughness": 0.05}},
+    "metal": {"conductor": {"eta": {"nm": [380, 780], "value": [0.2, 0.3]}, "k": 3, "uroughness": 0.1,
+                            "vroughness": 0.3}}
   },
   "shapes": [
     {"type": "box", "min": [-1, -1, -1], "max": [1, 1, 1.5], "material": "wall", "inward": true},
@@ -157,7 +161,9 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
      "transform": {"scale": 0.3, "translate": [0, -0.4, 0.6]}},
     {"type": "quad", "corner": [-0.3, 0.99, 0.2], "u": [0.6, 0, 0], "v": [0, 0, 0.6],
      "material": "lamp", "emission": {"csv": "lamp.csv", "scale": 0.02}},
-    {"type": "sphere", "center": [0.5, 0.5, 1.0], "radius": 0.2, "material": "paper"}
+    {"type": "sphere", "center": [0.5, 0.5, 1.0], "radius": 0.2, "material": "paper"},
+    {"type": "sphere", "center": [-0.5, -0.6, 0.9], "radius": 0.2, "segments": 12, "material": "glass"},
+    {"type": "box", "min": [0.4, -1, 0.2], "max": [0.7, -0.7, 0.5], "material": "metal"}
   ]})";
 
 struct Seeds {

@@ -72,6 +72,22 @@ static SpectrumPtr parse_index_spectrum(const JsonNode& eta) {
   return parse_spectrum(eta);
 }
 
+// pbrt-v4's roughness parameters, each in [0, 1].
+static Roughness parse_roughness(const JsonNode& node) {
+  double u = 0, v = 0;
+  auto both = node.find("roughness"), ru = node.find("uroughness"), rv = node.find("vroughness");
+  if (both && (ru || rv)) both->fail("give \"roughness\" or \"uroughness\" and \"vroughness\", not both");
+  if (both) u = v = both->number_in(0.0, 1.0);
+  if (ru) u = ru->number_in(0.0, 1.0);
+  if (rv) v = rv->number_in(0.0, 1.0);
+  bool remap = true;
+  if (auto r = node.find("remap_roughness")) remap = r->boolean();
+  Roughness r;
+  r.alpha_x = remap ? std::sqrt(u) : u;
+  r.alpha_y = remap ? std::sqrt(v) : v;
+  return r;
+}
+
 // {"eta": 1.5}: pbrt-v4's default index; a spectral "eta" disperses.
 static DielectricDesc parse_dielectric(const JsonNode& node) {
   DielectricDesc d;
@@ -141,6 +157,7 @@ MaterialDesc parse_material(const JsonNode& node, const std::string& name) {
     if (dielectric && conductor) own.fail("a material is a dielectric or a conductor, not both");
     if (m.passive || m.excitation || m.gloss)
       own.fail("a dielectric or conductor has no \"passive\", \"fluorescence\" or \"gloss\" part");
+    m.roughness = parse_roughness(own);
     if (dielectric) {
       m.kind = MaterialKind::dielectric;
       m.dielectric = parse_dielectric(*dielectric);
@@ -174,6 +191,7 @@ Material discretize_material(const MaterialDesc& desc, const WavelengthGrid& gri
   m.gloss = desc.gloss;
   m.kind = desc.kind;
   m.eta = desc.dielectric.eta;
+  m.roughness = desc.roughness;
   const std::string who = "material '" + desc.name + "' (" + desc.where + ")";
   if (desc.dielectric.eta_spectrum) {
     m.eta_bins = grid.resample(*desc.dielectric.eta_spectrum);

@@ -3,6 +3,7 @@
 // passive part + Lambert fluorescent part e(λo)·a(λi)/π; or a smooth dielectric or conductor
 // interface (docs/materials.md). MaterialDesc is the continuous description as read; Material is
 // the same on a wavelength grid, checked for energy conservation.
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -32,6 +33,14 @@ struct DielectricDesc {
   SpectrumPtr eta_spectrum;  // or one that varies with wavelength
 };
 
+// GGX roughness of a dielectric or conductor (docs/materials.md#rough-surfaces): pbrt-v4's
+// "roughness" (or "uroughness" and "vroughness"), remapped to alpha = sqrt(roughness) unless
+// "remap_roughness" is false. Below alpha 1e-3 the surface is smooth.
+struct Roughness {
+  double alpha_x = 0, alpha_y = 0;
+  bool rough() const { return std::max(alpha_x, alpha_y) >= 1e-3; }
+};
+
 // A smooth conductor: complex index eta + i k over the outside medium's (air).
 struct ConductorDesc {
   std::string metal;  // a built-in table's name (material/metals.h), or empty for user spectra
@@ -44,6 +53,7 @@ struct MaterialDesc {
   MaterialKind kind = MaterialKind::measured;
   DielectricDesc dielectric;
   ConductorDesc conductor;
+  Roughness roughness;  // a dielectric's or conductor's
   SpectrumPtr passive;     // ρ(λ)
   SpectrumPtr excitation;  // a(λ)
   SpectrumPtr emission;    // e(λ), any scale: normalized on the grid
@@ -58,6 +68,7 @@ struct Material {
   double eta = 1;                // a dielectric's constant index
   std::vector<double> eta_bins;  // a dispersive dielectric's, per bin (empty: constant)
   std::vector<double> eta_c, k_c;  // a conductor's, per bin
+  Roughness roughness;
   std::vector<double> rho;    // empty without a passive part
   std::vector<double> a;      // empty without fluorescence
   std::vector<double> e_hat;  // e·Δλ, sums to 1; empty without fluorescence
@@ -66,6 +77,7 @@ struct Material {
   bool fluorescent() const { return !a.empty(); }
   bool specular() const { return kind != MaterialKind::measured; }
   bool dispersive() const { return !eta_bins.empty(); }
+  bool rough() const { return specular() && roughness.rough(); }
   double gloss_reflectance() const { return gloss ? gloss->reflectance : 0.0; }
 };
 

@@ -100,6 +100,10 @@ KernelSceneData::KernelSceneData(const Scene& scene)
     k.eta = static_cast<float>(m.eta);
     k.eta_spectrum = append(spectra, m.kind == MaterialKind::conductor ? m.eta_c : m.eta_bins);
     k.k_spectrum = append(spectra, m.k_c);
+    if (m.rough()) {
+      k.alpha[0] = static_cast<float>(m.roughness.alpha_x);
+      k.alpha[1] = static_cast<float>(m.roughness.alpha_y);
+    }
     albedo_xyz(m, scene.grid, obs, k.albedo_xyz);
     materials.push_back(k);
   }
@@ -145,6 +149,7 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_DIELECTRIC"] = scene.uses(MaterialKind::dielectric) ? "1" : "0";
   d["KASHA_CONDUCTOR"] = scene.uses(MaterialKind::conductor) ? "1" : "0";
   d["KASHA_DISPERSION"] = scene.dispersive() ? "1" : "0";
+  d["KASHA_ROUGH"] = scene.rough() ? "1" : "0";
   return d;
 }
 

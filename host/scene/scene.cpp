@@ -44,10 +44,16 @@ bool Scene::dispersive() const {
   return false;
 }
 
+bool Scene::rough() const {
+  for (const ShapeInfo& s : shapes)
+    if (materials[s.material].rough()) return true;
+  return false;
+}
+
 bool Scene::has_delta_surfaces() const {
   for (const ShapeInfo& s : shapes) {
     const Material& m = materials[s.material];
-    if (m.specular() || (m.gloss && m.gloss->mirror)) return true;
+    if ((m.specular() && !m.rough()) || (m.gloss && m.gloss->mirror)) return true;
   }
   return false;
 }
