@@ -86,5 +86,13 @@ scene=$(resized scenes/glossy_cornell_box.json $SIZE $SIZE); TEMPORARY+=("$scene
 render glossy_cornell_box_512 "scenes/glossy_cornell_box.json (${SIZE}²)" "$scene" \
   --integrator backward --time 60
 
+# Glass and metal (docs/materials.md): caustics through glass onto the fluorescent floor are what
+# photon mapping exists for; light tracing cannot see smooth glass, backward finds the caustics
+# only by rare paths.
+for name in glass_caustic glass_of_water still_life; do
+  scene=$(resized scenes/$name.json $SIZE $SIZE); TEMPORARY+=("$scene")
+  render ${name}_512 "scenes/$name.json (${SIZE}²)" "$scene" --photons 1048576 --time 90
+done
+
 mv "$TIMES.tmp" "$TIMES"
 echo "gallery: wrote $GALLERY/*.png and $TIMES"

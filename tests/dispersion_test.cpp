@@ -259,7 +259,7 @@ TEST(Dispersion, ADispersiveSphereInTheFluorescentFurnaceLeavesItsRadiance) {
   // Backward on a spectral film, every bin within 4 standard errors. Photon mapping on
   // the XYZ film that users see: a path narrowed to a red bin at the glass carries the weight of
   // its rare choice, and photon mapping's pixels share photons, so per-bin error bars on a spectral
-  // film are neither small nor trustworthy for it there; XYZ within 2 % after 24 passes.
+  // film are neither small nor trustworthy for it there; XYZ within 2 % after 16 passes.
   {
     RenderSettings s;
     s.integrator_settings.spp = 16;
@@ -294,7 +294,7 @@ TEST(Dispersion, ADispersiveSphereInTheFluorescentFurnaceLeavesItsRadiance) {
     s.integrator = "photon";
     s.spectral = false;
     s.integrator_settings.photons = 1 << 15;
-    s.passes = 24;
+    s.passes = 16;
     RenderResult r = render_scene(scene, s);
     const Image want = furnace_image(r.scene, truth.radiance, false);
     BinStats got = pixel_statistics(r.image, false), expected = pixel_statistics(want, false);

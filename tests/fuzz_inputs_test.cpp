@@ -152,7 +152,7 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
     "lamp": {"passive": {"reflectance": 0.2}},
     "glass": {"dielectric": {"eta": {"sellmeier": {"B": [1.04, 0.23, 1.01], "C_um2": [0.006, 0.02, 103.6]}},
                              "roughness": 0.05}},
-    "metal": {"conductor": {"eta": {"nm": [380, 780], "value": [0.2, 0.3]}, "k": 3, "uroughness": 0.1,
+    "metal": {"conductor": {"eta": {"nm": [200, 900], "value": [0.2, 0.3]}, "k": 3, "uroughness": 0.1,
                             "vroughness": 0.3}}
   },
   "shapes": [

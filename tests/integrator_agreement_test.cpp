@@ -28,6 +28,7 @@ struct AgreementCase {
   // backward, the reference, finds a caustic only by rare paths at this budget, so its blocks' error
   // bars miss what it has not found yet (light tracing's lie up to 14 of them above it there).
   bool blocks = true;
+  int size = 48;  // the camera's width and height
 };
 
 void PrintTo(const AgreementCase& c, std::ostream* os) {
@@ -41,7 +42,7 @@ std::vector<AgreementCase> all_cases() {
     bool unbiased = IntegratorRegistry::find(integrator).traits.unbiased;
     cases.push_back({integrator, "cornell_box.json", unbiased ? 0.02 : 0.03});
     cases.push_back({integrator, "glossy_cornell_box.json", 0.03});
-    cases.push_back({integrator, "glass_caustic.json", 0.05, false});
+    cases.push_back({integrator, "glass_caustic.json", 0.05, false, 32});
   }
   return cases;
 }
@@ -52,7 +53,7 @@ TEST_P(IntegratorAgreement, RegionsMatchTheReferenceIntegrator) {
   const AgreementCase& c = GetParam();
   const bool unbiased = IntegratorRegistry::find(c.integrator).traits.unbiased;
   ComparedRenders pair =
-      render_against_backward(c.scene, c.integrator, 24, unbiased ? 1 << 19 : 1 << 17);
+      render_against_backward(c.scene, c.integrator, 24, unbiased ? 1 << 19 : 1 << 17, c.size);
   const RenderResult &tested = pair.tested, &ref = pair.backward;
   const Camera& cam = pair.camera;
 
