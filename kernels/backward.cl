@@ -32,13 +32,7 @@ inline float trace_camera_path(const SceneView* s, const FilmView* f, float3 org
   while (walk_vertex(&w, s, f, sampler, &v, rows)) {
 #if KASHA_DIELECTRIC || KASHA_CONDUCTOR
     if (surface_specular(&v.surf)) {
-#if KASHA_ROUGH
-      if (surface_rough(&v.surf)) {
-        if (!walk_rough(&w, s, f, &v, sampler, rows) || !walk_on(&w, f, &v)) return 0.0f;
-        continue;
-      }
-#endif
-      if (!walk_specular(&w, f, &v) || !walk_on(&w, f, &v)) return 0.0f;
+      if (!walk_interface(&w, s, f, &v, sampler, rows)) return 0.0f;
       continue;
     }
 #endif

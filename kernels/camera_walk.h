@@ -260,6 +260,19 @@ inline bool walk_on(CameraWalk* w, const FilmView* f, const CameraVertex* v) {
   return true;
 }
 
+#if KASHA_DIELECTRIC || KASHA_CONDUCTOR
+/* A vertex on glass or metal (surface_specular), the same in backward and photon mapping's camera
+ * pass: a rough interface (next-event estimation and a sampled direction) or a smooth one (a delta
+ * bounce), then on. False: the path ends. */
+inline bool walk_interface(CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v,
+                           Sampler* sampler, float* rows) {
+#if KASHA_ROUGH
+  if (surface_rough(&v->surf)) return walk_rough(w, s, f, v, sampler, rows) && walk_on(w, f, v);
+#endif
+  return walk_specular(w, f, v) && walk_on(w, f, v);
+}
+#endif
+
 /* What the path still carried (relative to its start) if the depth guard cut it, else 0. */
 inline float walk_cut(const CameraWalk* w, const FilmView* f) {
   return w->depth == KASHA_MAX_PATH_DEPTH ? pw_magnitude(&w->p, f) / w->start : 0.0f;

@@ -85,13 +85,7 @@ inline float camera_path(const SceneView* s, const FilmView* f, int pixel, Sampl
 #if KASHA_DIELECTRIC || KASHA_CONDUCTOR
     /* Through glass and metal to the diffuse surface behind: caustics seen through them. */
     if (surface_specular(&v.surf)) {
-#if KASHA_ROUGH
-      if (surface_rough(&v.surf)) {
-        if (!walk_rough(&w, s, f, &v, sampler, rows) || !walk_on(&w, f, &v)) return 0.0f;
-        continue;
-      }
-#endif
-      if (!walk_specular(&w, f, &v) || !walk_on(&w, f, &v)) return 0.0f;
+      if (!walk_interface(&w, s, f, &v, sampler, rows)) return 0.0f;
       continue;
     }
 #endif

@@ -57,13 +57,7 @@ struct Prism {
   }
 };
 
-// Unpolarized Fresnel reflectance at an interface of relative index m, cos_i > 0, no total
-// internal reflection (r_s, r_p from sqrt(m² − sin²θ)).
-double fresnel(double cos_i, double m) {
-  const double root = std::sqrt(m * m - (1 - cos_i * cos_i));
-  const double rs = (cos_i - root) / (cos_i + root), rp = (m * m * cos_i - root) / (m * m * cos_i + root);
-  return 0.5 * (rs * rs + rp * rp);
-}
+double fresnel(double cos_i, double m) { return fresnel_reference(cos_i, m); }
 
 struct Exit {
   Vector3d point, dir;

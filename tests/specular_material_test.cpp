@@ -21,15 +21,7 @@ using namespace kasha::test;
 
 namespace {
 
-// Unpolarized reflectance of a smooth interface of complex relative index m (Born & Wolf's form:
-// r_s, r_p from sqrt(m² − sin²θ)), cos_i > 0.
-double fresnel(double cos_i, std::complex<double> m) {
-  const double sin2 = 1 - cos_i * cos_i;
-  const std::complex<double> root = std::sqrt(m * m - sin2);
-  const std::complex<double> rs = (cos_i - root) / (cos_i + root);
-  const std::complex<double> rp = (m * m * cos_i - root) / (m * m * cos_i + root);
-  return 0.5 * (std::norm(rs) + std::norm(rp));
-}
+double fresnel(double cos_i, std::complex<double> m) { return fresnel_reference(cos_i, m); }
 
 RenderResult render_with(const std::string& scene, const std::string& integrator, int spp) {
   RenderSettings s;

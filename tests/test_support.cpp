@@ -61,3 +61,15 @@ CommandResult run_kasha_env(const std::string& env, const std::string& args,
 }
 
 }  // namespace kasha::test
+
+namespace kasha::test {
+
+double fresnel_reference(double cos_i, std::complex<double> m) {
+  const double sin2 = 1 - cos_i * cos_i;
+  const std::complex<double> root = std::sqrt(m * m - sin2);
+  const std::complex<double> rs = (cos_i - root) / (cos_i + root);
+  const std::complex<double> rp = (m * m * cos_i - root) / (m * m * cos_i + root);
+  return 0.5 * (std::norm(rs) + std::norm(rp));
+}
+
+}  // namespace kasha::test

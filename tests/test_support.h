@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <complex>
 #include <string>
 
 #include "core/error.h"
@@ -14,6 +15,11 @@ std::filesystem::path scratch_dir();
 // Writes `text` to scratch_dir()/name and returns the path.
 std::string write_file(const std::string& name, const std::string& text);
 std::string source_path(const std::string& relative);  // inside the source tree
+
+// Unpolarized Fresnel reflectance of a smooth interface of complex relative index m (far side
+// over near side), cos_i > 0, from Born & Wolf's form (r_s, r_p through sqrt(m² − sin²θ)): the
+// tests' ground truth, written apart from the kernels' fresnel.h.
+double fresnel_reference(double cos_i, std::complex<double> m);
 
 struct CommandResult {
   int exit_code = 0;

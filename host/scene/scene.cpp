@@ -20,42 +20,31 @@ namespace kasha {
 
 // Only materials that some shape uses count: a declared but unused fluorescent or glossy material
 // must not switch on kernels and buffers the scene does not need.
+bool Scene::any_used(const std::function<bool(const Material&)>& has) const {
+  for (const ShapeInfo& s : shapes)
+    if (has(materials[s.material])) return true;
+  return false;
+}
+
 bool Scene::fluorescent() const {
-  for (const ShapeInfo& s : shapes)
-    if (materials[s.material].fluorescent()) return true;
-  return false;
+  return any_used([](const Material& m) { return m.fluorescent(); });
 }
-
 bool Scene::glossy() const {
-  for (const ShapeInfo& s : shapes)
-    if (materials[s.material].gloss) return true;
-  return false;
+  return any_used([](const Material& m) { return m.gloss.has_value(); });
 }
-
 bool Scene::uses(MaterialKind kind) const {
-  for (const ShapeInfo& s : shapes)
-    if (materials[s.material].kind == kind) return true;
-  return false;
+  return any_used([kind](const Material& m) { return m.kind == kind; });
 }
-
 bool Scene::dispersive() const {
-  for (const ShapeInfo& s : shapes)
-    if (materials[s.material].dispersive()) return true;
-  return false;
+  return any_used([](const Material& m) { return m.dispersive(); });
 }
-
 bool Scene::rough() const {
-  for (const ShapeInfo& s : shapes)
-    if (materials[s.material].rough()) return true;
-  return false;
+  return any_used([](const Material& m) { return m.rough(); });
 }
-
 bool Scene::has_delta_surfaces() const {
-  for (const ShapeInfo& s : shapes) {
-    const Material& m = materials[s.material];
-    if ((m.specular() && !m.rough()) || (m.gloss && m.gloss->mirror)) return true;
-  }
-  return false;
+  return any_used([](const Material& m) {
+    return (m.specular() && !m.rough()) || (m.gloss && m.gloss->mirror);
+  });
 }
 
 int Scene::material_index(const std::string& name) const {

@@ -1,6 +1,7 @@
 #pragma once
 // A scene as loaded from its JSON file (docs/formats.md#scenes): camera, materials on the chosen
 // wavelength grid, and every shape turned into triangles.
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,6 +55,8 @@ struct Scene {
   // Some shape's material is a delta lobe: an ideal mirror, a smooth dielectric or conductor.
   bool has_delta_surfaces() const;
   int material_index(const std::string& name) const;  // -1 when absent
+  // Whether the material of some shape has the property (unused materials do not count).
+  bool any_used(const std::function<bool(const Material&)>& has) const;
 };
 
 // `grid`, when given, replaces the scene's own "wavelengths" (the same scene on another grid);
