@@ -42,7 +42,7 @@ std::vector<AgreementCase> all_cases() {
     bool unbiased = IntegratorRegistry::find(integrator).traits.unbiased;
     cases.push_back({integrator, "cornell_box.json", unbiased ? 0.02 : 0.03});
     cases.push_back({integrator, "glossy_cornell_box.json", 0.03});
-    cases.push_back({integrator, "glass_caustic.json", 0.05, false, 32});
+    cases.push_back({integrator, "glass_caustic.json", 0.05, false});
   }
   return cases;
 }
