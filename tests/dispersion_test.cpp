@@ -14,8 +14,8 @@
 
 #include "material/glasses.h"
 #include "render_support.h"
-#include "study/furnace.h"
 #include "scene/scene.h"
+#include "study/furnace.h"
 #include "test_support.h"
 
 using namespace kasha;
@@ -57,7 +57,9 @@ struct Prism {
   }
 };
 
-double fresnel(double cos_i, double m) { return fresnel_reference(cos_i, m); }
+double fresnel(double cos_i, double m) {
+  return fresnel_reference(cos_i, m);
+}
 
 struct Exit {
   Vector3d point, dir;
@@ -123,7 +125,8 @@ TEST(Dispersion, APrismBendsEachBinByItsOwnIndex) {
   const Vector3d up(0, 2, 0), middle = (prism.v[0] + prism.v[1] + prism.v[2]) / 3;
   auto triangle = [&](Vector3d a, Vector3d b, Vector3d c) {
     if ((b - a).cross(c - a).dot(a - middle) < 0) std::swap(b, c);
-    for (const Vector3d& p : {a, b, c}) obj << "v " << p.x() << " " << p.y() << " " << p.z() << "\n";
+    for (const Vector3d& p : {a, b, c})
+      obj << "v " << p.x() << " " << p.y() << " " << p.z() << "\n";
     obj << "f " << vertices + 1 << " " << vertices + 2 << " " << vertices + 3 << "\n";
     vertices += 3;
   };
@@ -143,14 +146,16 @@ TEST(Dispersion, APrismBendsEachBinByItsOwnIndex) {
     o << "[" << x.x() << ", " << x.y() << ", " << x.z() << "]";
     return o.str();
   };
-  const std::string scene = write_file("prism.json", R"({"kasha_scene": 1,
+  const std::string scene =
+      write_file("prism.json", R"({"kasha_scene": 1,
   "wavelengths": {"min_nm": 400, "max_nm": 700, "bin_nm": 10},
   "camera": {"position": [0, 0, 0], "look_at": [0, 0, -1], "fov_deg": 0.4, "width": 160, "height": 4},
   "materials": {"black": {}, "sf11": {"dielectric": {"eta": "SF11"}}},
   "shapes": [
     {"type": "obj", "file": "prism.obj", "material": "sf11"},
-    {"type": "quad", "corner": )" + vec(corner) + R"(, "u": )" + vec(u) + R"(, "v": )" + vec(v) +
-                                                 R"(, "material": "black", "emission": 1}]})");
+    {"type": "quad", "corner": )" + vec(corner) +
+                                   R"(, "u": )" + vec(u) + R"(, "v": )" + vec(v) +
+                                   R"(, "material": "black", "emission": 1}]})");
   // Eight independent passes: the centroid's standard error comes from their spread.
   const int passes = 8;
   RenderSettings s;
@@ -198,7 +203,8 @@ TEST(Dispersion, APrismBendsEachBinByItsOwnIndex) {
       for (int py = 0; py < H; ++py)
         for (int px = 0; px < W; ++px) {
           size_t at = (static_cast<size_t>(py) * W + px) * N + i;
-          double v = (k + 1) * double(running[k][at]) - (k > 0 ? k * double(running[k - 1][at]) : 0.0);
+          double v =
+              (k + 1) * double(running[k][at]) - (k > 0 ? k * double(running[k - 1][at]) : 0.0);
           sum += v;
           weighted += v * px;
         }
@@ -214,7 +220,8 @@ TEST(Dispersion, APrismBendsEachBinByItsOwnIndex) {
     rendered[i] = mean;
     ++lit_bins;
     EXPECT_LT(std::abs(rendered[i] - traced[i]), 4 * error_bar + 0.1)
-        << "bin " << sc.grid.center(i) << " nm: " << rendered[i] << " ± " << error_bar << " vs " << traced[i];
+        << "bin " << sc.grid.center(i) << " nm: " << rendered[i] << " ± " << error_bar << " vs "
+        << traced[i];
   }
   // The test has the power to tell a bin from its neighbour (1.2 columns apart on average): the
   // error bars are smallest in the middle bins, where the film's importance sends most paths.
@@ -222,8 +229,8 @@ TEST(Dispersion, APrismBendsEachBinByItsOwnIndex) {
   EXPECT_LT(worst_error_bar, 1.0);
   EXPECT_EQ(lit_bins, N);
   std::printf("  error bars: mean %.2f, worst %.2f columns\n", mean_error_bar, worst_error_bar);
-  std::printf("  strip column at 405 nm: %.2f (traced %.2f), at 695 nm: %.2f (traced %.2f)\n", rendered[0],
-              traced[0], rendered[N - 1], traced[N - 1]);
+  std::printf("  strip column at 405 nm: %.2f (traced %.2f), at 695 nm: %.2f (traced %.2f)\n",
+              rendered[0], traced[0], rendered[N - 1], traced[N - 1]);
   // Dispersion is there: blue and red land many columns apart (3.6° at this turn, 36 columns).
   EXPECT_GT(std::abs(traced[0] - traced[N - 1]), 20.0);
 }
@@ -247,7 +254,8 @@ TEST(Dispersion, ADispersiveSphereInTheFluorescentFurnaceLeavesItsRadiance) {
   },
   "shapes": [
     {"type": "box", "min": [-1.5, -1, -1], "max": [1, 1.2, 2], "material": "brightened", "inward": true,
-     "emission": {"csv": ")" + source_path("scenes/data/CIE_D65_300_780.csv") + R"(", "scale": 0.01}},
+     "emission": {"csv": ")" + source_path("scenes/data/CIE_D65_300_780.csv") +
+                                                               R"(", "scale": 0.01}},
     {"type": "sphere", "center": [-0.35, 0.35, 0.5], "radius": 0.4, "segments": 24, "material": "bk7"}
   ]})");
   // Backward on a spectral film, every bin within 4 standard errors. Photon mapping on
@@ -293,7 +301,8 @@ TEST(Dispersion, ADispersiveSphereInTheFluorescentFurnaceLeavesItsRadiance) {
     const Image want = furnace_image(r.scene, truth.radiance, false);
     BinStats got = pixel_statistics(r.image, false), expected = pixel_statistics(want, false);
     for (int k = 0; k < 3; ++k)
-      EXPECT_NEAR(got.mean[k], expected.mean[k], 0.02 * expected.mean[k]) << "photon, XYZ row " << k;
+      EXPECT_NEAR(got.mean[k], expected.mean[k], 0.02 * expected.mean[k])
+          << "photon, XYZ row " << k;
     EXPECT_EQ(r.rejected, 0);
   }
 }

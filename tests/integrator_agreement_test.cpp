@@ -25,8 +25,9 @@ struct AgreementCase {
   std::string integrator, scene;
   double tolerance;  // relative, per region and row
   // Unbiased integrators also agree in every 6 × 6 block. Not where light comes through glass:
-  // backward, the reference, finds a caustic only by rare paths at this budget, so its blocks' error
-  // bars miss what it has not found yet (light tracing's lie up to 14 of them above it there).
+  // backward, the reference, finds a caustic only by rare paths at this budget, so its blocks'
+  // error bars miss what it has not found yet (light tracing's lie up to 14 of them above it
+  // there).
   bool blocks = true;
   int size = 48;  // the camera's width and height
 };

@@ -72,20 +72,22 @@ struct RoughCase {
   bool conductor;
 };
 
-constexpr int kZ = 48, kPhi = 32, kQuad = 12;  // cells in cos θ over [−1, 1] and in φ; points per cell side
+constexpr int kZ = 48, kPhi = 32,
+              kQuad = 12;  // cells in cos θ over [−1, 1] and in φ; points per cell side
 
 // Expected counts per cell (and, last, the samples lost) from the density, by midpoint quadrature
 // of the device's own pdf over each cell (equal-area in z, φ).
 std::vector<double> expected_counts(const RoughCase& c, double alpha_scale, size_t samples) {
-  std::vector<float> q = {float(c.wo.x()), float(c.wo.y()), float(c.wo.z()), float(c.eta),
-                          float(c.ax * alpha_scale), float(c.ay * alpha_scale), c.conductor ? 1.0f : 0.0f,
-                          1.0f};
+  std::vector<float> q = {
+      float(c.wo.x()),           float(c.wo.y()),           float(c.wo.z()),           float(c.eta),
+      float(c.ax * alpha_scale), float(c.ay * alpha_scale), c.conductor ? 1.0f : 0.0f, 1.0f};
   std::vector<float> wi;
   for (int a = 0; a < kZ; ++a)
     for (int b = 0; b < kPhi; ++b)
       for (int i = 0; i < kQuad; ++i)
         for (int j = 0; j < kQuad; ++j) {
-          double z = -1 + 2 * (a + (i + 0.5) / kQuad) / kZ, phi = 2 * M_PI * (b + (j + 0.5) / kQuad) / kPhi;
+          double z = -1 + 2 * (a + (i + 0.5) / kQuad) / kZ,
+                 phi = 2 * M_PI * (b + (j + 0.5) / kQuad) / kPhi;
           double r = std::sqrt(std::max(0.0, 1 - z * z));
           wi.insert(wi.end(), {float(r * std::cos(phi)), float(r * std::sin(phi)), float(z)});
         }
@@ -111,15 +113,17 @@ TEST(RoughInterface, SamplingFitsItsDensityOnTheDevice) {
   constexpr size_t kSamples = 400000;
   const std::vector<RoughCase> cases = {
       {"glass from outside, 40°", Vector3d(std::sin(0.7), 0, std::cos(0.7)), 1.5, 0.3, 0.3, false},
-      {"glass from inside, 30°", Vector3d(0.3, std::sin(0.52), -std::cos(0.52)), 1.5, 0.35, 0.35, false},
+      {"glass from inside, 30°", Vector3d(0.3, std::sin(0.52), -std::cos(0.52)), 1.5, 0.35, 0.35,
+       false},
       {"bubble, anisotropic", Vector3d(0.2, -0.5, 0.7), 0.75, 0.2, 0.5, false},
       {"conductor, 60°", Vector3d(std::sin(1.05), 0, std::cos(1.05)), 1, 0.3, 0.3, true},
       {"conductor, anisotropic", Vector3d(0.1, 0.3, 0.9), 1, 0.15, 0.5, true}};
   std::uint32_t seed = 11;
   for (const RoughCase& c : cases) {
     TestKernel kernel(kRoughSource, "rough_test.cl", "sample_rough");
-    std::vector<float> q = {float(c.wo.x()), float(c.wo.y()), float(c.wo.z()), float(c.eta),
-                            float(c.ax),     float(c.ay),     c.conductor ? 1.0f : 0.0f, 1.0f};
+    std::vector<float> q = {
+        float(c.wo.x()), float(c.wo.y()), float(c.wo.z()),           float(c.eta),
+        float(c.ax),     float(c.ay),     c.conductor ? 1.0f : 0.0f, 1.0f};
     kernel.input(0, q);
     std::vector<float> out = kernel.sample(1, uniforms(3 * kSamples, seed++), 2, 7, kSamples);
     std::vector<double> observed(kZ * kPhi + 1, 0.0);
@@ -142,9 +146,11 @@ TEST(RoughInterface, SamplingFitsItsDensityOnTheDevice) {
         ++inconsistent;
       (void)wo;
     }
-    EXPECT_LE(inconsistent, kSamples / 10000) << c.name << ": sampled pdf or weight differs from the evaluation";
+    EXPECT_LE(inconsistent, kSamples / 10000)
+        << c.name << ": sampled pdf or weight differs from the evaluation";
     expect_fits(c.name, observed, expected_counts(c, 1.0, kSamples));
-    expect_rejects(c.name + " against a roughness 15 % higher", observed, expected_counts(c, 1.15, kSamples));
+    expect_rejects(c.name + " against a roughness 15 % higher", observed,
+                   expected_counts(c, 1.15, kSamples));
   }
 }
 
@@ -161,7 +167,9 @@ double ggx_lambda(double alpha, const Vector3d& w) {
   double c2 = w.z() * w.z(), t2 = std::max(0.0, 1 - c2) / c2;
   return (std::sqrt(1 + alpha * alpha * t2) - 1) / 2;
 }
-double fresnel(double cos_i, std::complex<double> m) { return fresnel_reference(cos_i, m); }
+double fresnel(double cos_i, std::complex<double> m) {
+  return fresnel_reference(cos_i, m);
+}
 
 // ∫ over the sphere of wi on a (θ, φ) grid fine enough for alpha ≥ 0.5 (wo in the xz plane, z up).
 template <class F>
@@ -194,7 +202,8 @@ std::string floor_scene(const std::string& name, const std::string& material, do
   return write_file(name, s.str());
 }
 
-void expect_albedo(const std::string& scene, const std::vector<double>& albedo, const std::string& label) {
+void expect_albedo(const std::string& scene, const std::vector<double>& albedo,
+                   const std::string& label) {
   for (const char* integrator : {"backward", "photon"}) {
     RenderSettings s;
     s.integrator = integrator;
@@ -212,8 +221,8 @@ void expect_albedo(const std::string& scene, const std::vector<double>& albedo, 
 
 TEST(RoughInterface, ARoughGoldFloorKeepsItsSingleScatteringAlbedo) {
   const double roughness = 0.25, alpha = 0.5, deg = 50;  // alpha = sqrt(roughness), pbrt's remap
-  const std::string scene = floor_scene("rough_gold.json",
-                                        R"({"conductor": {"metal": "Au", "roughness": 0.25}})", deg);
+  const std::string scene =
+      floor_scene("rough_gold.json", R"({"conductor": {"metal": "Au", "roughness": 0.25}})", deg);
   Scene sc = load_scene(scene);
   const Material& gold = sc.materials[sc.material_index("floor")];
   ASSERT_TRUE(gold.rough());
@@ -229,18 +238,22 @@ TEST(RoughInterface, ARoughGoldFloorKeepsItsSingleScatteringAlbedo) {
       Vector3d wi(st * std::cos(p), st * std::sin(p), ct);
       Vector3d m = (wi + wo).normalized();
       double g = 1 / (1 + ggx_lambda(alpha, wo) + ggx_lambda(alpha, wi));
-      double base = ggx_d(alpha, m) * g / (4 * wo.z() * wi.z()) * wi.z() * st * (0.5 * M_PI / nt) * (M_PI / np) * 2;
-      for (int i = 0; i < sc.grid.bins; ++i) albedo[i] += base * fresnel(wo.dot(m), {gold.eta_c[i], gold.k_c[i]});
+      double base = ggx_d(alpha, m) * g / (4 * wo.z() * wi.z()) * wi.z() * st * (0.5 * M_PI / nt) *
+                    (M_PI / np) * 2;
+      for (int i = 0; i < sc.grid.bins; ++i)
+        albedo[i] += base * fresnel(wo.dot(m), {gold.eta_c[i], gold.k_c[i]});
     }
   }
-  std::printf("  rough gold at %g°: albedo %.4f at 450 nm, %.4f at 650 nm\n", deg, albedo[7], albedo[27]);
+  std::printf("  rough gold at %g°: albedo %.4f at 450 nm, %.4f at 650 nm\n", deg, albedo[7],
+              albedo[27]);
   expect_albedo(scene, albedo, "rough gold");
 }
 
 TEST(RoughInterface, ARoughGlassFloorKeepsItsSingleScatteringAlbedo) {
   const double eta = 1.5, alpha = 0.5, deg = 40;
   const std::string scene = floor_scene(
-      "rough_glass.json", R"({"dielectric": {"eta": 1.5, "roughness": 0.5, "remap_roughness": false}})", deg);
+      "rough_glass.json",
+      R"({"dielectric": {"eta": 1.5, "roughness": 0.5, "remap_roughness": false}})", deg);
   Scene sc = load_scene(scene);
   ASSERT_TRUE(sc.materials[sc.material_index("floor")].rough());
   const Vector3d wo(std::sin(deg * M_PI / 180), 0, std::cos(deg * M_PI / 180));
@@ -259,7 +272,8 @@ TEST(RoughInterface, ARoughGlassFloorKeepsItsSingleScatteringAlbedo) {
                std::abs(wi.dot(m) * wo.dot(m) / (denom * denom * wi.z() * wo.z())) / (eta * eta);
     return f * std::abs(wi.z());
   });
-  std::printf("  rough glass at %g°: albedo %.4f (reflection and radiance's transmission)\n", deg, albedo);
+  std::printf("  rough glass at %g°: albedo %.4f (reflection and radiance's transmission)\n", deg,
+              albedo);
   expect_albedo(scene, std::vector<double>(sc.grid.bins, albedo), "rough glass");
 }
 
@@ -287,7 +301,8 @@ TEST(RoughInterface, LightTracingAgreesWithBackwardOnRoughSurfaces) {
   f.integrator = "forward";
   f.integrator_settings.photons = 1 << 19;
   RenderResult forward = render_scene(scene, f);
-  std::map<std::string, std::vector<size_t>> regions = primary_hit_regions(forward.scene, forward.scene.camera);
+  std::map<std::string, std::vector<size_t>> regions =
+      primary_hit_regions(forward.scene, forward.scene.camera);
   ASSERT_GE(regions["gold"].size(), 100u);
   ASSERT_GE(regions["frost"].size(), 40u);
   for (const auto& [name, pixels] : regions) {
@@ -295,7 +310,8 @@ TEST(RoughInterface, LightTracingAgreesWithBackwardOnRoughSurfaces) {
     BinStats d = difference_statistics(forward.image, backward.image, false, pixels);
     for (int k = 0; k < 3; ++k) {
       std::printf("  %-6s row %d: forward/backward - 1 = %+.2f %% (± %.2f %%)\n", name.c_str(), k,
-                  100 * d.mean[k] / (t.mean[k] - d.mean[k]), 100 * d.standard_error[k] / (t.mean[k] - d.mean[k]));
+                  100 * d.mean[k] / (t.mean[k] - d.mean[k]),
+                  100 * d.standard_error[k] / (t.mean[k] - d.mean[k]));
       EXPECT_LT(std::abs(d.mean[k]), 4 * d.standard_error[k]) << name << " row " << k;
       if (name == "gold") {
         EXPECT_LT(std::abs(d.mean[k]), 0.03 * (t.mean[k] - d.mean[k])) << name << " row " << k;

@@ -21,7 +21,9 @@ using namespace kasha::test;
 
 namespace {
 
-double fresnel(double cos_i, std::complex<double> m) { return fresnel_reference(cos_i, m); }
+double fresnel(double cos_i, std::complex<double> m) {
+  return fresnel_reference(cos_i, m);
+}
 
 RenderResult render_with(const std::string& scene, const std::string& integrator, int spp) {
   RenderSettings s;
@@ -33,7 +35,9 @@ RenderResult render_with(const std::string& scene, const std::string& integrator
 }
 
 // The enclosure's radiance per bin: the first emitter's.
-const std::vector<double>& enclosure(const Scene& scene) { return scene.emitters.front().per_bin; }
+const std::vector<double>& enclosure(const Scene& scene) {
+  return scene.emitters.front().per_bin;
+}
 
 // Every lit bin of every listed pixel within `tolerance` of truth(pixel, bin).
 template <class Truth>
@@ -48,7 +52,8 @@ void expect_pixels(const RenderResult& r, const std::vector<size_t>& pixels, dou
       if (le[i] < 1e-3 * peak) continue;
       double want = truth(p, i), got = r.image.spectral[p * N + i];
       if (std::abs(got - want) > tolerance * want && ++bad <= 5)
-        ADD_FAILURE() << label << ": pixel " << p << " bin " << i << ": " << got << ", want " << want;
+        ADD_FAILURE() << label << ": pixel " << p << " bin " << i << ": " << got << ", want "
+                      << want;
     }
   EXPECT_EQ(bad, 0) << label;
 }
@@ -62,7 +67,9 @@ std::vector<size_t> all_pixels(const Image& img) {
 struct FurnaceCase {
   std::string integrator, scene;
 };
-void PrintTo(const FurnaceCase& c, std::ostream* os) { *os << c.integrator << " in " << c.scene; }
+void PrintTo(const FurnaceCase& c, std::ostream* os) {
+  *os << c.integrator << " in " << c.scene;
+}
 
 class DielectricFurnace : public ::testing::TestWithParam<FurnaceCase> {};
 
@@ -76,8 +83,9 @@ TEST_P(DielectricFurnace, EveryPixelSeesTheEnclosure) {
   const std::string object = c.scene == "furnace_glass.json" ? "glass" : "bubble";
   ASSERT_GE(regions[object].size(), 40u) << "the camera sees the object";
   const std::vector<double>& le = enclosure(r.scene);
-  expect_pixels(r, all_pixels(r.image), 2e-3, [&](size_t, size_t i) { return le[i]; },
-                c.integrator + " " + c.scene);
+  expect_pixels(
+      r, all_pixels(r.image), 2e-3, [&](size_t, size_t i) { return le[i]; },
+      c.integrator + " " + c.scene);
 }
 
 INSTANTIATE_TEST_SUITE_P(Integrators, DielectricFurnace,
@@ -124,7 +132,8 @@ TEST(SpecularMaterial, LightTracingShowsGlassBlackAndSaysSo) {
   ASSERT_EQ(run.exit_code, 0) << run.err;
   size_t first = run.err.find("ideal mirrors, glass and metal");
   ASSERT_NE(first, std::string::npos) << run.err;
-  EXPECT_EQ(run.err.find("ideal mirrors, glass and metal", first + 1), std::string::npos) << run.err;
+  EXPECT_EQ(run.err.find("ideal mirrors, glass and metal", first + 1), std::string::npos)
+      << run.err;
   CommandResult backward = run_kasha("render " + scene + " --passes 1 --spp 1 -o " + out);
   ASSERT_EQ(backward.exit_code, 0) << backward.err;
   EXPECT_EQ(backward.err.find("ideal mirrors"), std::string::npos) << backward.err;
@@ -213,7 +222,8 @@ TEST(SpecularMaterial, BadDielectricsAndConductorsNameTheJsonPath) {
   auto scene_with = [](const std::string& name, const std::string& material) {
     return write_file(name, R"({"kasha_scene": 1,
   "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0]},
-  "materials": {"m": )" + material + R"(},
+  "materials": {"m": )" + material +
+                                R"(},
   "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], "material": "m",
               "emission": 1}]})");
   };
@@ -236,7 +246,8 @@ TEST(SpecularMaterial, BadDielectricsAndConductorsNameTheJsonPath) {
       {R"({"conductor": {"metal": "Pt"}})", "/materials/m/conductor/metal: unknown metal \"Pt\""},
       {R"({"conductor": {"metal": "Au", "roughness": 1.5}})", "/materials/m/conductor/roughness:"},
       {R"({"dielectric": {"roughness": -0.1}})", "/materials/m/dielectric/roughness:"},
-      {R"({"dielectric": {"roughness": 0.1, "uroughness": 0.2}})", "/materials/m/dielectric/roughness: give"},
+      {R"({"dielectric": {"roughness": 0.1, "uroughness": 0.2}})",
+       "/materials/m/dielectric/roughness: give"},
       {R"({"conductor": {"vroughness": "rough"}})", "/materials/m/conductor/vroughness:"},
       {R"({"dielectric": {"remap_roughness": 1}})", "/materials/m/dielectric/remap_roughness:"},
       {R"({"conductor": {"eta": 0.2}})", "/materials/m/conductor: \"eta\" without \"k\""},

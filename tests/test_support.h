@@ -2,8 +2,8 @@
 // Helpers shared by the tests: scratch files, running the kasha binary, expecting kasha::Error.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <complex>
+#include <filesystem>
 #include <string>
 
 #include "core/error.h"

@@ -43,7 +43,8 @@ static int run_colorimetry(const ColorimetryArgs& a) {
   ColorimetryRequest request;
   request.material = load_material_file(a.material, "");
   if (request.material.kind != MaterialKind::measured)
-    throw Error(a.material + ": a dielectric or conductor is an interface, not a surface colour: "
+    throw Error(a.material +
+                ": a dielectric or conductor is an interface, not a surface colour: "
                 "colorimetry takes a measured material");
   request.observer = a.observer == 10 ? Observer::cie1964_10deg : Observer::cie1931_2deg;
   request.bin_nm = a.bin_nm;

@@ -39,9 +39,10 @@ static int run_info(const std::string& scene_path, bool spectral, const std::str
   std::printf("scene: %s\n", printable(scene_path).c_str());
   std::printf("wavelengths: %s\n", scene.grid.describe().c_str());
   auto yes = [](bool b) { return b ? "yes" : "no"; };
-  std::printf("features: fluorescence %s, gloss %s, dielectric %s, conductor %s, dispersion %s, rough %s\n",
-              yes(scene.fluorescent()), yes(scene.glossy()), yes(scene.uses(MaterialKind::dielectric)),
-              yes(scene.uses(MaterialKind::conductor)), yes(scene.dispersive()), yes(scene.rough()));
+  std::printf(
+      "features: fluorescence %s, gloss %s, dielectric %s, conductor %s, dispersion %s, rough %s\n",
+      yes(scene.fluorescent()), yes(scene.glossy()), yes(scene.uses(MaterialKind::dielectric)),
+      yes(scene.uses(MaterialKind::conductor)), yes(scene.dispersive()), yes(scene.rough()));
   std::printf("materials: %zu; shapes: %zu; triangles: %zu; emitters: %zu (%d triangles)\n",
               scene.materials.size(), scene.shapes.size(), scene.triangles.size(),
               scene.emitters.size(), emitting_triangles);

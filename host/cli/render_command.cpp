@@ -10,9 +10,9 @@
 #include "cli/command_line_errors.h"
 #include "cli/render_options.h"
 #include "core/error.h"
-#include "core/warning.h"
 #include "core/interrupt.h"
 #include "core/output_set.h"
+#include "core/warning.h"
 #include "film/film.h"
 #include "image/exr_io.h"
 #include "image/png_preview.h"
@@ -99,7 +99,8 @@ int run_render(const RenderArgs& a) {
     remote = std::make_unique<RemoteRanks>(spec.integrator, render_fingerprint(spec));
   RenderJob job(lanes, scene, spec.integrator, spec.settings, spec.spectral,
                 remote ? remote->lanes() : std::vector<Integrator*>{});
-  if (scene.has_delta_surfaces() && !IntegratorRegistry::find(spec.integrator).traits.sees_camera_mirrors)
+  if (scene.has_delta_surfaces() &&
+      !IntegratorRegistry::find(spec.integrator).traits.sees_camera_mirrors)
     warn(spec.integrator + ": ideal mirrors, glass and metal are out of its reach from a pinhole " +
          "camera and show black (backward and photon see them)");
   std::vector<std::string> names;

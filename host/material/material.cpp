@@ -76,7 +76,8 @@ static SpectrumPtr parse_index_spectrum(const JsonNode& eta) {
 static Roughness parse_roughness(const JsonNode& node) {
   double u = 0, v = 0;
   auto both = node.find("roughness"), ru = node.find("uroughness"), rv = node.find("vroughness");
-  if (both && (ru || rv)) both->fail("give \"roughness\" or \"uroughness\" and \"vroughness\", not both");
+  if (both && (ru || rv))
+    both->fail("give \"roughness\" or \"uroughness\" and \"vroughness\", not both");
   if (both) u = v = both->number_in(0.0, 1.0);
   if (ru) u = ru->number_in(0.0, 1.0);
   if (rv) v = rv->number_in(0.0, 1.0);
@@ -95,7 +96,8 @@ static DielectricDesc parse_dielectric(const JsonNode& node) {
     if (eta->is_number()) {
       d.eta = eta->number();
       if (!(d.eta >= 0.01 && d.eta <= 100))
-        eta->fail("eta must lie in [0.01, 100] (the index behind the surface over the one in front)");
+        eta->fail(
+            "eta must lie in [0.01, 100] (the index behind the surface over the one in front)");
     } else {
       d.eta_spectrum = parse_index_spectrum(*eta);
     }

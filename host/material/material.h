@@ -49,11 +49,11 @@ struct ConductorDesc {
 
 struct MaterialDesc {
   std::string name;
-  std::string where;       // "file: /json/path", for messages
+  std::string where;  // "file: /json/path", for messages
   MaterialKind kind = MaterialKind::measured;
   DielectricDesc dielectric;
   ConductorDesc conductor;
-  Roughness roughness;  // a dielectric's or conductor's
+  Roughness roughness;     // a dielectric's or conductor's
   SpectrumPtr passive;     // ρ(λ)
   SpectrumPtr excitation;  // a(λ)
   SpectrumPtr emission;    // e(λ), any scale: normalized on the grid
@@ -65,8 +65,8 @@ struct MaterialDesc {
 struct Material {
   std::string name;
   MaterialKind kind = MaterialKind::measured;
-  double eta = 1;                // a dielectric's constant index
-  std::vector<double> eta_bins;  // a dispersive dielectric's, per bin (empty: constant)
+  double eta = 1;                  // a dielectric's constant index
+  std::vector<double> eta_bins;    // a dispersive dielectric's, per bin (empty: constant)
   std::vector<double> eta_c, k_c;  // a conductor's, per bin
   Roughness roughness;
   std::vector<double> rho;    // empty without a passive part

@@ -5,7 +5,9 @@
 
 namespace kasha {
 
-std::vector<std::string> builtin_metal_names() { return {"Ag", "Al", "Au", "Cu"}; }
+std::vector<std::string> builtin_metal_names() {
+  return {"Ag", "Al", "Au", "Cu"};
+}
 
 MetalIndex builtin_metal(const std::string& name) {
   bool known = false;

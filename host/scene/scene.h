@@ -47,8 +47,8 @@ struct Scene {
   std::vector<std::string> lamp_names;
   std::string lamp;
 
-  bool fluorescent() const;  // some shape's material has a fluorescent part
-  bool glossy() const;       // some shape's material has a gloss lobe
+  bool fluorescent() const;            // some shape's material has a fluorescent part
+  bool glossy() const;                 // some shape's material has a gloss lobe
   bool uses(MaterialKind kind) const;  // some shape's material is of this kind
   bool dispersive() const;             // some shape's material is a dispersive dielectric
   bool rough() const;                  // some shape's material is a rough dielectric or conductor
