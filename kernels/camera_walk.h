@@ -62,6 +62,19 @@ inline void walk_start(CameraWalk* w, const FilmView* f, float3 org, float3 dir)
 #endif
 }
 
+#if KASHA_INFINITE_LIGHTS
+/* A path that leaves the scene sees the infinite lights, each MIS-weighted against next-event
+ * estimation's choice of that direction unless a specular bounce led there. */
+inline void walk_escaped(const CameraWalk* w, const SceneView* s, const FilmView* f, float* rows) {
+  for (int k = 0; k < s->light_sources; ++k) {
+    const __global KLight* l = &s->lights[k];
+    if (l->type != KASHA_LIGHT_INFINITE) continue;
+    float weight = w->specular ? 1.0f : mis_weight(w->prev_pdf, infinite_light_pdf(l, w->dir));
+    pw_add(&w->p, f, emitter_spectrum(s, l->spectrum), 0, weight, rows);
+  }
+}
+#endif
+
 /* The path's next vertex: adds the emission it hits to rows (MIS-weighted against next-event
  * estimation unless a specular bounce led there), then loads the vertex's surface, branch
  * probabilities and samples into v. False where the path ends: it escaped, no branch carries
@@ -70,7 +83,12 @@ inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sa
                         float* rows) {
   if (w->depth == KASHA_MAX_PATH_DEPTH) return false;
   HitPoint* h = &v->h;
-  if (!intersect_scene(s, w->org, w->dir, h)) return false;
+  if (!intersect_scene(s, w->org, w->dir, h)) {
+#if KASHA_INFINITE_LIGHTS
+    walk_escaped(w, s, f, rows);
+#endif
+    return false;
+  }
   if (h->emitter >= 0 && h->front) {
     float weight = 1.0f;
     if (!w->specular) weight = mis_weight(w->prev_pdf, light_pdf_from(s, h->tri, w->prev_x, h->x, dot(h->n, -w->dir)));
@@ -201,7 +219,11 @@ inline void walk_rough_next_event(const CameraWalk* w, const SceneView* s, const
   if (!(fv > 0.0f)) return;
   float3 toward = wi_l.z > 0.0f ? v->h.n : -v->h.n;
   if (segment_occluded(s, v->h.x, toward, v->h.eps, wi, dist, lp.eps)) return;
+#if KASHA_LIGHT_SOURCES
+  float scale = fv * fabs(wi_l.z) / pdf_light * lp.scale * mis_weight(pdf_light, lp.delta ? 0.0f : pdf);
+#else
   float scale = fv * fabs(wi_l.z) / pdf_light * mis_weight(pdf_light, pdf);
+#endif
   const __global float* le = emitter_spectrum(s, lp.emitter);
 #if KASHA_CONDUCTOR
   if (surf->kind == KASHA_KIND_CONDUCTOR) {

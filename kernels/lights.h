@@ -12,11 +12,25 @@
 #include "sampling.h"
 #include "scene_view.h"
 
+#ifndef KASHA_LIGHT_SOURCES
+#define KASHA_LIGHT_SOURCES 0 /* some light is not a triangle (KLight) */
+#endif
+#ifndef KASHA_SPOT_LIGHTS
+#define KASHA_SPOT_LIGHTS 0
+#endif
+#ifndef KASHA_INFINITE_LIGHTS
+#define KASHA_INFINITE_LIGHTS 0
+#endif
+
 typedef struct {
   float3 position;
   float3 normal; /* front side */
-  int emitter;
+  int emitter;   /* the row of emitter_radiance */
   float eps; /* the point's rounding bound along the normal (hit_point.h's surface_offset) */
+#if KASHA_LIGHT_SOURCES
+  float scale; /* on the spectrum: a point light's 1/d² and a spot's falloff; 1 otherwise */
+  bool delta;  /* no other strategy can find it: a point, a spot, a distant light */
+#endif
 } LightPoint;
 
 /* The emitting triangle whose CDF step holds u (the first with light_cdf > u). */
@@ -61,6 +75,110 @@ inline bool spherical_sampling(float solid_angle) {
   return solid_angle > KASHA_MIN_SPHERICAL_SOLID_ANGLE && solid_angle < KASHA_MAX_SPHERICAL_SOLID_ANGLE;
 }
 
+#if KASHA_LIGHT_SOURCES
+#define KASHA_INV_4PI 0.07957747154594767f
+
+/* A direction uniform on the unit sphere; density 1/(4π). */
+inline float3 sample_uniform_sphere(float2 u) {
+  float z = 1.0f - 2.0f * u.x, r = sqrt(fmax(0.0f, 1.0f - z * z)), c, sn = sincos(2.0f * KASHA_PI * u.y, &c);
+  return (float3)(r * c, r * sn, z);
+}
+
+#if KASHA_SPOT_LIGHTS
+/* A spot's intensity over its full intensity at the angle θ off its axis: pbrt-v4's smoothstep
+ * from the cone's edge (0) to where the falloff begins (1). */
+inline float spot_falloff(const __global KLight* l, float cos_theta) {
+  if (cos_theta >= l->cos_falloff) return 1.0f;
+  if (cos_theta <= l->cos_total) return 0.0f;
+  float t = (cos_theta - l->cos_total) / (l->cos_falloff - l->cos_total);
+  return t * t * (3.0f - 2.0f * t);
+}
+
+/* A direction uniform in the spot's cone (what its photons leave along); density
+ * 1/(2π(1 − cos_total)). */
+inline float3 sample_spot_cone(const __global KLight* l, float2 u) {
+  float cos_t = 1.0f - u.x * (1.0f - l->cos_total), sin_t = sqrt(fmax(0.0f, 1.0f - cos_t * cos_t));
+  float c, sn = sincos(2.0f * KASHA_PI * u.y, &c);
+  float3 axis = load_float3(l->axis), a, b;
+  basis_around(axis, &a, &b);
+  return normalize(sin_t * c * a + sin_t * sn * b + cos_t * axis);
+}
+#endif
+
+#if KASHA_INFINITE_LIGHTS
+/* The solid-angle density with which sample_light_source picks the direction w of the infinite
+ * light l (its pick probability included), for MIS where a path escapes. */
+inline float infinite_light_pdf(const __global KLight* l, float3 w) { return l->pick * KASHA_INV_4PI; }
+#endif
+
+/* A light that is not a triangle, seen from x: the direction to it as a point far along it for a
+ * distant or infinite light (past the scene's bounding sphere, so the shadow ray sees everything
+ * in between), its spectrum's row and the factor on it, and the density: the pick probability of
+ * a delta light (point, spot, distant), times the direction's solid-angle density for an
+ * infinite one. */
+inline LightPoint sample_light_source(const SceneView* s, const __global KLight* l, float3 x, float2 u, float* pdf) {
+  LightPoint p;
+  p.emitter = l->spectrum;
+  p.eps = 0.0f;
+  p.scale = 1.0f;
+  p.delta = true;
+  *pdf = l->pick;
+  float3 wi;
+  if (l->type == KASHA_LIGHT_POINT || l->type == KASHA_LIGHT_SPOT) {
+    p.position = load_float3(l->position);
+    float3 to = p.position - x;
+    float d2 = dot(to, to);
+    wi = to / sqrt(d2);
+    p.scale = 1.0f / d2;
+#if KASHA_SPOT_LIGHTS
+    if (l->type == KASHA_LIGHT_SPOT) p.scale *= spot_falloff(l, -dot(wi, load_float3(l->axis)));
+#endif
+  } else {
+    if (l->type == KASHA_LIGHT_DISTANT) {
+      wi = -load_float3(l->axis);
+    } else {
+      wi = sample_uniform_sphere(u);
+      *pdf = l->pick * KASHA_INV_4PI;
+      p.delta = false;
+    }
+    p.position = x + wi * (2.0f * l->radius + length(x - load_float3(l->position)));
+  }
+  p.normal = -wi;
+  if (!(p.scale > 0.0f) || !isfinite(p.scale)) *pdf = 0.0f;
+  return p;
+}
+
+/* A photon's start at the light l (picked with probability l->pick): where and along what it
+ * leaves, and what its spectrum is scaled by, per unit of the light's spectrum times the bin
+ * width and over the pass's photons: 1/(pick · density), where the density is of the direction
+ * (point, spot: Φ = I/p(ω)) or of the point on a disk as wide as the scene, facing the light's
+ * direction (distant: Φ = E·πr²; infinite: Φ = L·πr²/p(ω)). u places the point, d the direction. */
+inline float emit_from_source(const __global KLight* l, float2 u, float2 d, float3* position, float3* direction) {
+  float3 centre = load_float3(l->position);
+  if (l->type == KASHA_LIGHT_POINT) {
+    *position = centre;
+    *direction = sample_uniform_sphere(d);
+    return 4.0f * KASHA_PI / l->pick;
+  }
+#if KASHA_SPOT_LIGHTS
+  if (l->type == KASHA_LIGHT_SPOT) {
+    *position = centre;
+    *direction = sample_spot_cone(l, d);
+    float cone = 2.0f * KASHA_PI * (1.0f - l->cos_total);
+    return spot_falloff(l, dot(*direction, load_float3(l->axis))) * cone / l->pick;
+  }
+#endif
+  float3 w = l->type == KASHA_LIGHT_DISTANT ? -load_float3(l->axis) : sample_uniform_sphere(d);
+  float disk = KASHA_PI * l->radius * l->radius;
+  float3 a, b;
+  basis_around(w, &a, &b);
+  float r = l->radius * sqrt(u.x), c, sn = sincos(2.0f * KASHA_PI * u.y, &c);
+  *position = centre + l->radius * w + r * (c * a + sn * b);
+  *direction = -w;
+  return l->type == KASHA_LIGHT_DISTANT ? disk / l->pick : disk * 4.0f * KASHA_PI / l->pick;
+}
+#endif
+
 /* A direction from p uniform in the solid angle `omega` of the triangle (Arvo 1995): u.x picks the
  * area u.x·Ω of a sub-triangle a-b-c' (c' on the arc a-c), u.y a point on the arc from b to c'.
  * The angle α at a enters through its cosine and sine alone, and Ω is the solid angle the caller
@@ -91,6 +209,9 @@ inline LightPoint sample_light_from(const SceneView* s, float3 x, float2 u, floa
   int lo = choose_light(s->light_cdf, s->light_count, u.x);
   float below = lo > 0 ? s->light_cdf[lo - 1] : 0.0f, width = s->light_cdf[lo] - below;
   u.x = width > 0.0f ? clamp((u.x - below) / width, 0.0f, 0.99999994f) : 0.5f;
+#if KASHA_LIGHT_SOURCES
+  if (s->light_tri[lo] < 0) return sample_light_source(s, &s->lights[~s->light_tri[lo]], x, u, pdf);
+#endif
   const __global KTriangle* t = &s->tris[s->light_tri[lo]];
   float3 v0 = load_float3(t->v0), v1 = load_float3(t->v1), v2 = load_float3(t->v2);
   float3 cr = cross(v1 - v0, v2 - v0);
@@ -98,6 +219,10 @@ inline LightPoint sample_light_from(const SceneView* s, float3 x, float2 u, floa
   LightPoint p;
   p.normal = normalize(cr);
   p.emitter = t->emitter;
+#if KASHA_LIGHT_SOURCES
+  p.scale = 1.0f;
+  p.delta = false;
+#endif
   float area_pdf = s->emitter_area_pdf[t->emitter]; /* p(triangle) / area */
   float omega = triangle_solid_angle(x, v0, v1, v2);
   *pdf = 0.0f;

@@ -1,5 +1,5 @@
 /* Next-event estimation (docs/design.md#backward-transport): at a camera path's vertex, one point on an emitting
- * triangle (by solid angle where it subtends enough), its light through the surface's parts —
+ * triangle (by solid angle where it subtends enough) or one of the other lights (docs/lights.md), its light through the surface's parts —
  * passive, fluorescent (K applied to the light's spectrum: rank-1 through ê aᵀ), the gloss lobe —
  * each weighed by MIS against the branch that could also have hit the light. Shared by backward
  * and photon mapping's camera pass. */
@@ -34,13 +34,20 @@ inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* 
   const __global float* le = emitter_spectrum(s, lp.emitter);
   float lambert_pdf = cosine_hemisphere_pdf(cos_x);
   float base = cos_x / pdf_light;
+#if KASHA_LIGHT_SOURCES
+  /* A delta light (point, spot, distant) no bounce can hit: its sample takes the whole weight. */
+  base *= lp.scale;
+  float reach = lp.delta ? 0.0f : 1.0f;
+#else
+  const float reach = 1.0f;
+#endif
   if (surf->passive)
-    pw_add(p, f, surf->rho, le, base * KASHA_INV_PI * mis_weight(pdf_light, probs.y * lambert_pdf), rows);
+    pw_add(p, f, surf->rho, le, base * KASHA_INV_PI * mis_weight(pdf_light, reach * probs.y * lambert_pdf), rows);
 #if KASHA_FLUORESCENCE
   if (surf->fluorescent) {
     float absorbed = spectrum_dot(KASHA_BINS, 0, surf->a, le);
-    pw_add(p, f, surf->ehat, 0, absorbed * base * KASHA_INV_PI * mis_weight(pdf_light, probs.z * lambert_pdf),
-           rows);
+    pw_add(p, f, surf->ehat, 0,
+           absorbed * base * KASHA_INV_PI * mis_weight(pdf_light, reach * probs.z * lambert_pdf), rows);
   }
 #endif
 #if KASHA_GLOSS
@@ -48,7 +55,7 @@ inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* 
     float fg = lobe_brdf(surf->m, s->lobes, wo, wi, ns);
     if (fg > 0.0f) {
       float lobe = lobe_pdf(surf->m, s->lobes, dot(wi, reflect_dir(-wo, ns)));
-      pw_add(p, f, le, 0, surf->g * fg * base * mis_weight(pdf_light, probs.x * lobe), rows);
+      pw_add(p, f, le, 0, surf->g * fg * base * mis_weight(pdf_light, reach * probs.x * lobe), rows);
     }
   }
 #endif

@@ -50,6 +50,26 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
   sampler_at(sampler, 0);
   float u0 = sample_2d(sampler).x;
   float2 u = sample_2d(sampler), d = sample_2d(sampler);
+#if KASHA_LIGHT_SOURCES
+  int chosen = s->light_tri[choose_light(s->light_cdf, s->light_count, u0)];
+  if (chosen < 0) {
+    /* A light that is not a triangle: no light point for forward to see (origin's normal 0). */
+    const __global KLight* l = &s->lights[~chosen];
+    Photon p;
+    float scale = emit_from_source(l, u, d, &p.position, &p.direction) * s->bin_nm / photons;
+    origin->normal = (float3)(0.0f, 0.0f, 0.0f);
+    origin->emitter = l->spectrum;
+    origin->area_pdf = 0.0f;
+    origin->eps = 0.0f;
+    const __global float* le = emitter_spectrum(s, l->spectrum);
+    for (int i = 0; i < KASHA_BINS; ++i) p.power[i] = le[i] * scale;
+    p.start = photon_total(&p);
+#if KASHA_DISPERSION
+    p.bin = -1;
+#endif
+    return p;
+  }
+#endif
   LightPoint lp = sample_light(s->tris, s->light_tri, s->light_cdf, s->light_count, u0, u.x, u.y);
   Photon p;
   p.position = lp.position;

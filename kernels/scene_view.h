@@ -1,5 +1,5 @@
 /* The scene as every kernel sees it: camera, BVH, materials and their spectra, emitters and the
- * light-sampling tables. Kernels take KASHA_SCENE_PARAMS first (DeviceScene::bind sets them in
+ * light-sampling tables with the lights that are not triangles. Kernels take KASHA_SCENE_PARAMS first (DeviceScene::bind sets them in
  * this order) and gather them into one SceneView with KASHA_SCENE_VIEW, which every routine takes. */
 #ifndef KASHA_SCENE_VIEW_H
 #define KASHA_SCENE_VIEW_H
@@ -26,6 +26,8 @@ typedef struct {
   const __global float* light_cdf;
   int light_count;
   float bin_nm;
+  const __global KLight* lights; /* the lights that are not triangles (light_tri's ~k) */
+  int light_sources;             /* how many */
   RayCounts* rays; /* private: the work item's own counts */
 } SceneView;
 
@@ -34,13 +36,14 @@ typedef struct {
       __global const KTriangle *tris, __global const KMaterial *materials, __global const float *spectra,   \
       __global const float *lobes, __global const float *emitter_radiance,                                  \
       __global const float *emitter_area_pdf, __global const int *light_tri,                                \
-      __global const float *light_cdf, int light_count, float bin_nm
+      __global const float *light_cdf, int light_count, float bin_nm, __global const KLight *lights,          \
+      int light_sources
 
 #define KASHA_SCENE_VIEW(name)                                                                              \
   RayCounts name##_rays = {0u, 0u};                                                                         \
   SceneView name = {camera,           nodes,     leaves,    tris,        materials, spectra, lobes,         \
                     emitter_radiance, emitter_area_pdf, light_tri, light_cdf, light_count, bin_nm,        \
-                    &name##_rays}
+                    lights,           light_sources,    &name##_rays}
 
 /* An emitter's spectral radiance, N values. */
 inline const __global float* emitter_spectrum(const SceneView* s, int emitter) {

@@ -136,6 +136,39 @@ typedef struct {
 } KMaterial;
 KASHA_STATIC_SIZE(KMaterial, 64);
 
+/* Lights that are not emitting triangles (docs/lights.md): a point, a spot (a point whose
+ * intensity falls off to zero at the edge of a cone), a distant light (parallel light of a given
+ * irradiance) and an infinite light (radiance from every direction, constant or an environment
+ * image). Light sampling picks them from the same CDF as the emitting triangles, in proportion to
+ * their power: their entries of light_tri are ~index into the KLight array. */
+#define KASHA_LIGHT_POINT 0
+#define KASHA_LIGHT_SPOT 1
+#define KASHA_LIGHT_DISTANT 2
+#define KASHA_LIGHT_INFINITE 3
+
+typedef struct {
+  int type;         /* KASHA_LIGHT_* */
+  int spectrum;     /* row of emitter_radiance: intensity (point, spot; W sr⁻¹ nm⁻¹), irradiance
+                     * (distant; W m⁻² nm⁻¹), radiance (infinite; W m⁻² sr⁻¹ nm⁻¹) */
+  float pick;       /* the probability that light sampling picks it */
+  int image;        /* infinite: offset of its image in the spectra buffer, -1: constant */
+  float position[3]; /* point, spot; distant and infinite: the centre of the scene's bounding sphere */
+  float radius;      /* distant, infinite: the radius of the scene's bounding sphere */
+  float axis[3];     /* spot: the cone's axis; distant: the direction the light travels */
+  float cos_total;   /* spot: the cone's edge, where the intensity reaches 0 */
+  float cos_falloff; /* spot: where the falloff begins (full intensity inside) */
+  int width, height; /* infinite: the image's size (its pixels) */
+  int mapping;       /* infinite: KASHA_MAPPING_* */
+  float to_light[9]; /* infinite: the rotation from world to the image's frame, row by row */
+  int distribution;  /* infinite: offset of the image's sampling distribution, -1: uniform sphere */
+  float pad[6];
+} KLight;
+KASHA_STATIC_SIZE(KLight, 128);
+
+/* How an environment image covers the sphere of directions. */
+#define KASHA_MAPPING_LATLONG 0
+#define KASHA_MAPPING_EQUAL_AREA 1
+
 /* Gloss lobes are tabulated in this many equal rings of angle from the mirror direction. */
 #define KASHA_LOBE_CELLS 64
 

@@ -46,6 +46,13 @@ static int run_info(const std::string& scene_path, bool spectral, const std::str
   std::printf("materials: %zu; shapes: %zu; triangles: %zu; emitters: %zu (%d triangles)\n",
               scene.materials.size(), scene.shapes.size(), scene.triangles.size(),
               scene.emitters.size(), emitting_triangles);
+  // The lights that are not shapes, with the share of light sampling each gets (its power's).
+  for (size_t k = 0; k < scene.lights.size(); ++k) {
+    const Light& l = scene.lights[k];
+    std::printf("light %zu: %s, %.4g W, picked %.3g %%\n", k, light_type_name(l.type),
+                data.total_power > 0 ? data.lights[k].pick * data.total_power : 0.0,
+                100.0 * data.lights[k].pick);
+  }
   if (!scene.lamp_names.empty()) {
     std::string names;
     for (const std::string& n : scene.lamp_names)

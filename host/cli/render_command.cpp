@@ -103,6 +103,10 @@ int run_render(const RenderArgs& a) {
       !IntegratorRegistry::find(spec.integrator).traits.sees_camera_mirrors)
     warn(spec.integrator + ": ideal mirrors, glass and metal are out of its reach from a pinhole " +
          "camera and show black (backward and photon see them)");
+  if (scene.has_light(LightType::infinite) &&
+      !IntegratorRegistry::find(spec.integrator).traits.sees_camera_mirrors)
+    warn(spec.integrator + ": an infinite light seen directly by the camera is out of its reach " +
+         "and shows black (backward and photon see it)");
   std::vector<std::string> names;
   for (size_t d = 0; d < devices.size(); ++d) names.push_back(devices[d].info().name);
   std::string where = devices.names();

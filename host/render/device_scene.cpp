@@ -108,6 +108,7 @@ KernelSceneData::KernelSceneData(const Scene& scene)
     materials.push_back(k);
   }
   for (const Emitter& e : scene.emitters) append(emitter_radiance, e.per_bin);
+  for (const Light& l : scene.lights) append(emitter_radiance, l.per_bin);
 
   // Lights, in leaf order so kernels index the triangles they traverse.
   std::vector<double> radiance_sum;
@@ -123,8 +124,39 @@ KernelSceneData::KernelSceneData(const Scene& scene)
     power.push_back(p);
     total_power += p;
   }
+  Eigen::Vector3d centre;
+  double radius;
+  scene.bounding_sphere(centre, radius);
+  for (size_t k = 0; k < scene.lights.size(); ++k) {
+    const Light& l = scene.lights[k];
+    KLight kl{};
+    kl.type = l.type == LightType::point     ? KASHA_LIGHT_POINT
+              : l.type == LightType::spot    ? KASHA_LIGHT_SPOT
+              : l.type == LightType::distant ? KASHA_LIGHT_DISTANT
+                                             : KASHA_LIGHT_INFINITE;
+    kl.spectrum = static_cast<int>(scene.emitters.size() + k);
+    kl.image = kl.distribution = -1;
+    const bool far = l.type == LightType::distant || l.type == LightType::infinite;
+    const Eigen::Vector3d at = far ? centre : l.position;
+    for (int c = 0; c < 3; ++c) {
+      kl.position[c] = static_cast<float>(at[c]);
+      kl.axis[c] = static_cast<float>(l.direction[c]);
+    }
+    kl.radius = static_cast<float>(radius);
+    kl.cos_total = static_cast<float>(l.cos_total());
+    kl.cos_falloff = static_cast<float>(l.cos_falloff());
+    lights.push_back(kl);
+    double p = l.power(scene.grid.bin_nm, radius);
+    if (!(p > 0)) continue;
+    light_tri.push_back(~static_cast<int>(k));
+    power.push_back(p);
+    total_power += p;
+  }
   double cdf = 0;
-  for (double p : power) light_cdf.push_back(static_cast<float>((cdf += p) / total_power));
+  for (size_t j = 0; j < power.size(); ++j) {
+    light_cdf.push_back(static_cast<float>((cdf += power[j]) / total_power));
+    if (light_tri[j] < 0) lights[~light_tri[j]].pick = static_cast<float>(power[j] / total_power);
+  }
   if (!light_cdf.empty()) light_cdf.back() = 1.0f;
   for (double r : radiance_sum)
     emitter_area_pdf.push_back(total_power > 0 ? static_cast<float>(M_PI * r / total_power) : 0.0f);
@@ -133,6 +165,7 @@ KernelSceneData::KernelSceneData(const Scene& scene)
 size_t KernelSceneData::bytes() const {
   return bvh.nodes.size() * sizeof(KBvhNode) + bvh.leaves.size() * sizeof(KBvhLeaf) +
          bvh.triangles.size() * sizeof(KTriangle) + materials.size() * sizeof(KMaterial) +
+         lights.size() * sizeof(KLight) +
          (spectra.size() + lobes.size() + emitter_radiance.size() + light_cdf.size() +
           emitter_area_pdf.size()) *
              sizeof(float) +
@@ -150,6 +183,10 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_CONDUCTOR"] = scene.uses(MaterialKind::conductor) ? "1" : "0";
   d["KASHA_DISPERSION"] = scene.dispersive() ? "1" : "0";
   d["KASHA_ROUGH"] = scene.rough() ? "1" : "0";
+  // Each light kind's code only where the scene has one (docs/lights.md).
+  d["KASHA_LIGHT_SOURCES"] = scene.lights.empty() ? "0" : "1";
+  d["KASHA_SPOT_LIGHTS"] = scene.has_light(LightType::spot) ? "1" : "0";
+  d["KASHA_INFINITE_LIGHTS"] = scene.has_light(LightType::infinite) ? "1" : "0";
   return d;
 }
 
@@ -167,6 +204,8 @@ int DeviceScene::bind(cl::Kernel& k, int a) const {
   k.setArg(a++, light_cdf);
   k.setArg(a++, static_cast<int>(data_.light_tri.size()));
   k.setArg(a++, data_.bin_nm);
+  k.setArg(a++, lights);
+  k.setArg(a++, static_cast<int>(data_.lights.size()));
   return a;
 }
 
@@ -181,6 +220,7 @@ DeviceScene::DeviceScene(ClContext& cl, const Scene& scene) : data_(scene) {
   light_tri = upload(cl, data_.light_tri);
   light_cdf = upload(cl, data_.light_cdf);
   emitter_area_pdf = upload(cl, data_.emitter_area_pdf);
+  lights = upload(cl, data_.lights);
 }
 
 }  // namespace kasha

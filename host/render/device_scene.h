@@ -19,13 +19,15 @@ struct KernelSceneData {
   std::vector<KMaterial> materials;
   std::vector<float> spectra;           // N zeros, then material spectra at KMaterial offsets
   std::vector<float> lobes;             // gloss lobe tables at KMaterial::lobe
-  std::vector<float> emitter_radiance;  // emitters x N
-  // Next-event estimation: emitting triangles (leaf order) with the CDF of their power, and per
-  // emitter the area density p(triangle)/area = pi·Σ Le Δλ / total power.
+  std::vector<float> emitter_radiance;  // emitters x N, then the lights' spectra x N
+  std::vector<KLight> lights;           // the lights that are not triangles
+  // Light sampling: emitting triangles (leaf order), then the other lights (~index into
+  // `lights`), with the CDF of their power, and per emitter the area density
+  // p(triangle)/area = pi·Σ Le Δλ / total power.
   std::vector<int> light_tri;
   std::vector<float> light_cdf;
   std::vector<float> emitter_area_pdf;
-  double total_power = 0;  // W: Σ over emitting triangles of area·pi·Σ Le Δλ
+  double total_power = 0;  // W: Σ over emitting triangles of area·pi·Σ Le Δλ and the lights' power
 
   explicit KernelSceneData(const Scene& scene);
   size_t bytes() const;
@@ -47,7 +49,7 @@ class DeviceScene {
   int bind(cl::Kernel& kernel, int first) const;
 
   cl::Buffer nodes, leaves, triangles, materials, spectra, lobes, emitter_radiance, light_tri,
-      light_cdf, emitter_area_pdf;
+      light_cdf, emitter_area_pdf, lights;
 
  private:
   KernelSceneData data_;

@@ -1,5 +1,6 @@
 #include "scene/scene.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -47,6 +48,20 @@ bool Scene::has_delta_surfaces() const {
   });
 }
 
+bool Scene::has_light(LightType type) const {
+  for (const Light& l : lights)
+    if (l.type == type) return true;
+  return false;
+}
+
+void Scene::bounding_sphere(Eigen::Vector3d& centre, double& radius) const {
+  Eigen::AlignedBox3d box;
+  for (const KTriangle& t : triangles)
+    for (const float* v : {t.v0, t.v1, t.v2}) box.extend(Eigen::Vector3d(v[0], v[1], v[2]));
+  centre = box.center();
+  radius = std::max(box.diagonal().norm() / 2, 1e-6);
+}
+
 int Scene::material_index(const std::string& name) const {
   for (size_t i = 0; i < material_descs.size(); ++i)
     if (material_descs[i].name == name) return static_cast<int>(i);
@@ -89,6 +104,25 @@ static void check_emitters(const Scene& scene) {
       throw Error(msg.str());
     }
     power.push_back(p);
+    total_power += p;
+  }
+  Eigen::Vector3d centre;
+  double r;
+  scene.bounding_sphere(centre, r);
+  for (const Light& l : scene.lights) {
+    for (int i = 0; i < scene.grid.bins; ++i)
+      if (!(l.per_bin[i] <= kMaxSpectrumValue)) {
+        std::ostringstream msg;
+        msg << l.where << ": the light's value of " << l.per_bin[i] << " (with \"scale\") in the bin "
+            << scene.grid.lo(i) << "–" << scene.grid.hi(i) << " nm is beyond 1e30";
+        throw Error(msg.str());
+      }
+    double p = l.power(scene.grid.bin_nm, r);
+    if (!(p <= kMaxEmitterPower)) {
+      std::ostringstream msg;
+      msg << l.where << ": the light's power of " << p << " W is beyond 1e35";
+      throw Error(msg.str());
+    }
     total_power += p;
   }
   for (size_t i = 0; i < scene.emitters.size(); ++i) {
@@ -334,6 +368,11 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
 
   parse_materials(root.at("materials"), scene);
 
+  if (auto lights = root.find("lights")) {
+    if (!lights->is_array()) lights->fail("expected an array of lights");
+    for (size_t i = 0; i < lights->size(); ++i) scene.lights.push_back(parse_light((*lights)[i]));
+  }
+
   JsonNode shapes = root.at("shapes");
   TriangleKeys seen_triangles;
   std::vector<bool> material_used(scene.material_descs.size(), false);
@@ -389,6 +428,7 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
   // The grid covers what the emitters and the materials in use need.
   std::vector<SpectralSupport> emitting, exciting;
   for (const Emitter& e : scene.emitters) emitting.push_back(e.radiance->support());
+  for (const Light& l : scene.lights) emitting.push_back(l.spectrum->support());
   for (size_t m = 0; m < scene.material_descs.size(); ++m)
     if (material_used[m] && scene.material_descs[m].excitation)
       exciting.push_back(scene.material_descs[m].excitation->support());
@@ -397,6 +437,10 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
   for (const MaterialDesc& d : scene.material_descs)
     scene.materials.push_back(discretize_material(d, scene.grid));
   for (Emitter& e : scene.emitters) e.per_bin = scene.grid.resample(*e.radiance);
+  for (Light& l : scene.lights) {
+    l.per_bin = scene.grid.resample(*l.spectrum);
+    for (double& v : l.per_bin) v *= l.scale;
+  }
   check_emitters(scene);
   return scene;
 }

@@ -8,6 +8,7 @@
 
 #include "material/material.h"
 #include "scene/camera.h"
+#include "scene/light.h"
 #include "shared_types.h"
 #include "spectrum/wavelength_grid.h"
 
@@ -42,6 +43,7 @@ struct Scene {
   std::vector<Material> materials;   // on `grid`, same order as material_descs
   std::vector<KTriangle> triangles;  // scene order: prim == index
   std::vector<Emitter> emitters;
+  std::vector<Light> lights;  // the "lights" that are not shapes
   std::vector<ShapeInfo> shapes;
   // Switchable lamps (the scene's "lamps"): their names, and the one that is on.
   std::vector<std::string> lamp_names;
@@ -55,6 +57,10 @@ struct Scene {
   // Some shape's material is a delta lobe: an ideal mirror, a smooth dielectric or conductor.
   bool has_delta_surfaces() const;
   int material_index(const std::string& name) const;  // -1 when absent
+  bool has_light(LightType type) const;
+  // The bounding sphere of the triangles (as the kernels see them), where distant and infinite
+  // lights send their photons from.
+  void bounding_sphere(Eigen::Vector3d& centre, double& radius) const;
   // Whether the material of some shape has the property (unused materials do not count).
   bool any_used(const std::function<bool(const Material&)>& has) const;
 };

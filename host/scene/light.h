@@ -1,0 +1,42 @@
+#pragma once
+// Lights that are not emitting shapes (docs/lights.md): a point, a spot, a distant light and an
+// infinite light, with pbrt-v4's parameters and defaults. Their spectra are physical: a point's
+// and a spot's intensity (W·sr⁻¹·nm⁻¹), a distant light's irradiance on a surface facing it
+// (W·m⁻²·nm⁻¹), an infinite light's radiance (W·m⁻²·sr⁻¹·nm⁻¹).
+#include <Eigen/Dense>
+#include <string>
+#include <vector>
+
+#include "core/json_node.h"
+#include "spectrum/spectrum.h"
+
+namespace kasha {
+
+enum class LightType { point, spot, distant, infinite };
+
+struct Light {
+  LightType type = LightType::point;
+  std::string where;             // file: JSON path of the light
+  SpectrumPtr spectrum;          // before "scale"
+  double scale = 1;              // on the spectrum
+  std::vector<double> per_bin;   // spectrum × scale on the scene grid
+  Eigen::Vector3d position{0, 0, 0};   // point, spot
+  Eigen::Vector3d direction{0, 0, 1};  // spot: the cone's axis; distant: where the light travels
+  double cone_deg = 30;        // spot: the cone's half-angle, where the intensity reaches 0
+  double cone_delta_deg = 5;   // spot: the width of the falloff inside the cone's edge
+
+  double cos_total() const;
+  double cos_falloff() const;
+  // Σ_i value_i·Δλ over the grid: what the light's power is proportional to.
+  double integrated(double bin_nm) const;
+  // The power (W) it sends into the scene; a distant or infinite light's through a disk of radius
+  // `radius` (the scene's bounding sphere), as light sampling weighs it (pbrt-v4's Phi).
+  double power(double bin_nm, double radius) const;
+};
+
+const char* light_type_name(LightType type);
+
+// One entry of the scene's "lights" array.
+Light parse_light(const JsonNode& node);
+
+}  // namespace kasha
