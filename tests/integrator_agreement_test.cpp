@@ -2,7 +2,8 @@
 // scenes with structure: the fluorescent Cornell box with the measured Post-it sphere, and the
 // same box with a glossy floor (a tabulated lobe that backward samples and evaluates by next-event
 // estimation, forward splats towards the camera and photon mapping follows from the camera), and
-// the glass caustic (a glass sphere focusing the lamp on a fluorescent floor, a gold box).
+// the glass caustic (a glass sphere focusing the lamp on a fluorescent floor, a gold box), and the
+// light booth lit by a UV spot (a delta light only next-event estimation and photons reach).
 // Regions are the pixels whose centre sees each material or the lamp (found with Embree). An
 // unbiased integrator must agree within 4 standard errors of the difference, in every region and
 // in every 6 × 6 block; a consistent one within a few per cent, what its bias leaves at this
@@ -44,6 +45,8 @@ std::vector<AgreementCase> all_cases() {
     cases.push_back({integrator, "cornell_box.json", unbiased ? 0.02 : 0.03});
     cases.push_back({integrator, "glossy_cornell_box.json", 0.03});
     cases.push_back({integrator, "glass_caustic.json", 0.05, false});
+    // Lights that are not shapes: a UV spot on fluorescent samples in the light booth.
+    cases.push_back({integrator, "light_booth_uv_spot.json", unbiased ? 0.02 : 0.03, true, 32});
   }
   return cases;
 }
