@@ -69,8 +69,8 @@ inline void walk_escaped(const CameraWalk* w, const SceneView* s, const FilmView
   for (int k = 0; k < s->light_sources; ++k) {
     const __global KLight* l = &s->lights[k];
     if (l->type != KASHA_LIGHT_INFINITE) continue;
-    float weight = w->specular ? 1.0f : mis_weight(w->prev_pdf, infinite_light_pdf(l, w->dir));
-    pw_add(&w->p, f, emitter_spectrum(s, l->spectrum), 0, weight, rows);
+    float weight = w->specular ? 1.0f : mis_weight(w->prev_pdf, infinite_light_pdf(s, l, w->dir));
+    pw_add(&w->p, f, infinite_light_spectrum(s, l, w->dir), 0, weight, rows);
   }
 }
 #endif
@@ -224,7 +224,7 @@ inline void walk_rough_next_event(const CameraWalk* w, const SceneView* s, const
 #else
   float scale = fv * fabs(wi_l.z) / pdf_light * mis_weight(pdf_light, pdf);
 #endif
-  const __global float* le = emitter_spectrum(s, lp.emitter);
+  const __global float* le = light_point_spectrum(s, &lp);
 #if KASHA_CONDUCTOR
   if (surf->kind == KASHA_KIND_CONDUCTOR) {
     pw_add_conductor(&w->p, f, le, surf->eta_c, surf->k_c, cos_m, scale, rows);

@@ -8,6 +8,7 @@
 #define KASHA_LIGHTS_H
 
 #include "bvh_traversal.h"
+#include "environment.h"
 #include "hit_point.h"
 #include "sampling.h"
 #include "scene_view.h"
@@ -31,7 +32,18 @@ typedef struct {
   float scale; /* on the spectrum: a point light's 1/d² and a spot's falloff; 1 otherwise */
   bool delta;  /* no other strategy can find it: a point, a spot, a distant light */
 #endif
+#if KASHA_ENVIRONMENT
+  const __global float* le; /* an environment texel's radiance (the scratch spectrum), else null */
+#endif
 } LightPoint;
+
+/* The spectral radiance (or intensity, irradiance) of the light point. */
+inline const __global float* light_point_spectrum(const SceneView* s, const LightPoint* p) {
+#if KASHA_ENVIRONMENT
+  if (p->le) return p->le;
+#endif
+  return emitter_spectrum(s, p->emitter);
+}
 
 /* The emitting triangle whose CDF step holds u (the first with light_cdf > u). */
 inline int choose_light(const __global float* light_cdf, int light_count, float u) {
@@ -55,6 +67,9 @@ inline LightPoint sample_light(const __global KTriangle* tris, const __global in
   p.normal = normalize(cross(e1, e2));
   p.emitter = t->emitter;
   p.eps = surface_offset(v0, v0 + e1, v0 + e2, 1.0f - b.x - b.y, b.x, b.y, p.normal);
+#if KASHA_ENVIRONMENT
+  p.le = 0;
+#endif
   return p;
 }
 
@@ -108,7 +123,23 @@ inline float3 sample_spot_cone(const __global KLight* l, float2 u) {
 #if KASHA_INFINITE_LIGHTS
 /* The solid-angle density with which sample_light_source picks the direction w of the infinite
  * light l (its pick probability included), for MIS where a path escapes. */
-inline float infinite_light_pdf(const __global KLight* l, float3 w) { return l->pick * KASHA_INV_4PI; }
+inline float infinite_light_pdf(const SceneView* s, const __global KLight* l, float3 w) {
+#if KASHA_ENVIRONMENT
+  if (l->image >= 0) return l->pick * env_pdf(s, l, w);
+#endif
+  return l->pick * KASHA_INV_4PI;
+}
+
+/* The radiance an infinite light sends along -w (arriving from w). */
+inline const __global float* infinite_light_spectrum(const SceneView* s, const __global KLight* l, float3 w) {
+#if KASHA_ENVIRONMENT
+  if (l->image >= 0) {
+    float jacobian;
+    return env_spectrum(s, l, env_texel(l, env_uv(l, w, &jacobian)), s->scratch);
+  }
+#endif
+  return emitter_spectrum(s, l->spectrum);
+}
 #endif
 
 /* A light that is not a triangle, seen from x: the direction to it as a point far along it for a
@@ -122,6 +153,9 @@ inline LightPoint sample_light_source(const SceneView* s, const __global KLight*
   p.eps = 0.0f;
   p.scale = 1.0f;
   p.delta = true;
+#if KASHA_ENVIRONMENT
+  p.le = 0;
+#endif
   *pdf = l->pick;
   float3 wi;
   if (l->type == KASHA_LIGHT_POINT || l->type == KASHA_LIGHT_SPOT) {
@@ -137,9 +171,20 @@ inline LightPoint sample_light_source(const SceneView* s, const __global KLight*
     if (l->type == KASHA_LIGHT_DISTANT) {
       wi = -load_float3(l->axis);
     } else {
-      wi = sample_uniform_sphere(u);
-      *pdf = l->pick * KASHA_INV_4PI;
       p.delta = false;
+#if KASHA_ENVIRONMENT
+      if (l->image >= 0) {
+        int texel;
+        float pdf_dir;
+        wi = env_sample(s, l, u, &texel, &pdf_dir);
+        *pdf = l->pick * pdf_dir;
+        p.le = env_spectrum(s, l, texel, s->scratch);
+      } else
+#endif
+      {
+        wi = sample_uniform_sphere(u);
+        *pdf = l->pick * KASHA_INV_4PI;
+      }
     }
     p.position = x + wi * (2.0f * l->radius + length(x - load_float3(l->position)));
   }
@@ -153,8 +198,10 @@ inline LightPoint sample_light_source(const SceneView* s, const __global KLight*
  * width and over the pass's photons: 1/(pick · density), where the density is of the direction
  * (point, spot: Φ = I/p(ω)) or of the point on a disk as wide as the scene, facing the light's
  * direction (distant: Φ = E·πr²; infinite: Φ = L·πr²/p(ω)). u places the point, d the direction. */
-inline float emit_from_source(const __global KLight* l, float2 u, float2 d, float3* position, float3* direction) {
+inline float emit_from_source(const SceneView* s, const __global KLight* l, float2 u, float2 d, float3* position,
+                              float3* direction, int* texel) {
   float3 centre = load_float3(l->position);
+  *texel = -1;
   if (l->type == KASHA_LIGHT_POINT) {
     *position = centre;
     *direction = sample_uniform_sphere(d);
@@ -168,14 +215,26 @@ inline float emit_from_source(const __global KLight* l, float2 u, float2 d, floa
     return spot_falloff(l, dot(*direction, load_float3(l->axis))) * cone / l->pick;
   }
 #endif
-  float3 w = l->type == KASHA_LIGHT_DISTANT ? -load_float3(l->axis) : sample_uniform_sphere(d);
+  float3 w;
+  float inv_pdf_dir = 4.0f * KASHA_PI;
+  if (l->type == KASHA_LIGHT_DISTANT) {
+    w = -load_float3(l->axis);
+#if KASHA_ENVIRONMENT
+  } else if (l->image >= 0) {
+    float pdf_dir;
+    w = env_sample(s, l, d, texel, &pdf_dir);
+    inv_pdf_dir = pdf_dir > 0.0f ? 1.0f / pdf_dir : 0.0f;
+#endif
+  } else {
+    w = sample_uniform_sphere(d);
+  }
   float disk = KASHA_PI * l->radius * l->radius;
   float3 a, b;
   basis_around(w, &a, &b);
   float r = l->radius * sqrt(u.x), c, sn = sincos(2.0f * KASHA_PI * u.y, &c);
   *position = centre + l->radius * w + r * (c * a + sn * b);
   *direction = -w;
-  return l->type == KASHA_LIGHT_DISTANT ? disk / l->pick : disk * 4.0f * KASHA_PI / l->pick;
+  return l->type == KASHA_LIGHT_DISTANT ? disk / l->pick : disk * inv_pdf_dir / l->pick;
 }
 #endif
 
@@ -222,6 +281,9 @@ inline LightPoint sample_light_from(const SceneView* s, float3 x, float2 u, floa
 #if KASHA_LIGHT_SOURCES
   p.scale = 1.0f;
   p.delta = false;
+#endif
+#if KASHA_ENVIRONMENT
+  p.le = 0;
 #endif
   float area_pdf = s->emitter_area_pdf[t->emitter]; /* p(triangle) / area */
   float omega = triangle_solid_angle(x, v0, v1, v2);

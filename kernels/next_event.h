@@ -31,7 +31,7 @@ inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* 
   float cos_x = dot(ns, wi), cos_l = -dot(lp.normal, wi);
   if (cos_x <= 0.0f || cos_l <= 0.0f) return;
   if (segment_occluded(s, x, ns, eps, wi, dist, lp.eps)) return;
-  const __global float* le = emitter_spectrum(s, lp.emitter);
+  const __global float* le = light_point_spectrum(s, &lp);
   float lambert_pdf = cosine_hemisphere_pdf(cos_x);
   float base = cos_x / pdf_light;
 #if KASHA_LIGHT_SOURCES

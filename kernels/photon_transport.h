@@ -56,13 +56,18 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
     /* A light that is not a triangle: no light point for forward to see (origin's normal 0). */
     const __global KLight* l = &s->lights[~chosen];
     Photon p;
-    float scale = emit_from_source(l, u, d, &p.position, &p.direction) * s->bin_nm / photons;
+    int texel;
+    float scale = emit_from_source(s, l, u, d, &p.position, &p.direction, &texel) * s->bin_nm / photons;
     origin->normal = (float3)(0.0f, 0.0f, 0.0f);
     origin->emitter = l->spectrum;
     origin->area_pdf = 0.0f;
     origin->eps = 0.0f;
     const __global float* le = emitter_spectrum(s, l->spectrum);
     for (int i = 0; i < KASHA_BINS; ++i) p.power[i] = le[i] * scale;
+#if KASHA_ENVIRONMENT
+    if (texel >= 0)
+      for (int i = 0; i < KASHA_BINS; ++i) p.power[i] = env_radiance(s, l, texel, i) * scale;
+#endif
     p.start = photon_total(&p);
 #if KASHA_DISPERSION
     p.bin = -1;

@@ -6,6 +6,10 @@
 
 #include "shared_types.h"
 
+#ifndef KASHA_SCRATCH_FLOATS
+#define KASHA_SCRATCH_FLOATS 0
+#endif
+
 /* The rays a work item traced, counted in private memory and added to the launch's totals once at
  * its end (add_ray_counts, hit_point.h): bench's rays/s, at the cost of an increment per ray. */
 typedef struct {
@@ -28,6 +32,8 @@ typedef struct {
   float bin_nm;
   const __global KLight* lights; /* the lights that are not triangles (light_tri's ~k) */
   int light_sources;             /* how many */
+  __global float* scratch; /* the work item's own KASHA_SCRATCH_FLOATS (spectra computed on the
+                            * way: an environment texel's radiance), global like every spectrum */
   RayCounts* rays; /* private: the work item's own counts */
 } SceneView;
 
@@ -37,13 +43,15 @@ typedef struct {
       __global const float *lobes, __global const float *emitter_radiance,                                  \
       __global const float *emitter_area_pdf, __global const int *light_tri,                                \
       __global const float *light_cdf, int light_count, float bin_nm, __global const KLight *lights,          \
-      int light_sources
+      int light_sources, __global float *scratch
 
 #define KASHA_SCENE_VIEW(name)                                                                              \
   RayCounts name##_rays = {0u, 0u};                                                                         \
   SceneView name = {camera,           nodes,     leaves,    tris,        materials, spectra, lobes,         \
                     emitter_radiance, emitter_area_pdf, light_tri, light_cdf, light_count, bin_nm,        \
-                    lights,           light_sources,    &name##_rays}
+                    lights,           light_sources,                                                   \
+                    scratch + (get_global_id(0) - get_global_offset(0)) * KASHA_SCRATCH_FLOATS,    \
+                    &name##_rays}
 
 /* An emitter's spectral radiance, N values. */
 inline const __global float* emitter_spectrum(const SceneView* s, int emitter) {

@@ -151,7 +151,8 @@ typedef struct {
   int spectrum;     /* row of emitter_radiance: intensity (point, spot; W sr⁻¹ nm⁻¹), irradiance
                      * (distant; W m⁻² nm⁻¹), radiance (infinite; W m⁻² sr⁻¹ nm⁻¹) */
   float pick;       /* the probability that light sampling picks it */
-  int image;        /* infinite: offset of its image in the spectra buffer, -1: constant */
+  int image;        /* infinite: offset of its image in the spectra buffer (4 floats a texel: the
+                     * sigmoid's c0, c1, c2 and a scale, kernels/environment.h), -1: constant */
   float position[3]; /* point, spot; distant and infinite: the centre of the scene's bounding sphere */
   float radius;      /* distant, infinite: the radius of the scene's bounding sphere */
   float axis[3];     /* spot: the cone's axis; distant: the direction the light travels */
@@ -161,7 +162,8 @@ typedef struct {
   int mapping;       /* infinite: KASHA_MAPPING_* */
   float to_light[9]; /* infinite: the rotation from world to the image's frame, row by row */
   int distribution;  /* infinite: offset of the image's sampling distribution, -1: uniform sphere */
-  float pad[6];
+  int lambda;        /* infinite with an image: offset of the bins' centre wavelengths (nm) */
+  float pad[5];
 } KLight;
 KASHA_STATIC_SIZE(KLight, 128);
 

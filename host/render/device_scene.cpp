@@ -7,6 +7,7 @@
 #include "color/cie_observer.h"
 #include "colorimetry/radiance_factor.h"
 #include "colorimetry/sample_colorimetry.h"
+#include "opencl/device_buffer.h"
 #include "opencl/upload.h"
 
 namespace kasha {
@@ -145,6 +146,24 @@ KernelSceneData::KernelSceneData(const Scene& scene)
     kl.radius = static_cast<float>(radius);
     kl.cos_total = static_cast<float>(l.cos_total());
     kl.cos_falloff = static_cast<float>(l.cos_falloff());
+    kl.lambda = -1;
+    if (l.environment) {
+      const EnvironmentImage& env = *l.environment;
+      const EnvironmentData& d = *l.environment_data;
+      kl.width = env.image.width;
+      kl.height = env.image.height;
+      kl.mapping = env.mapping == EnvironmentMapping::equal_area ? KASHA_MAPPING_EQUAL_AREA
+                                                                 : KASHA_MAPPING_LATLONG;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) kl.to_light[3 * r + c] = static_cast<float>(env.to_light(r, c));
+      kl.image = static_cast<int>(spectra.size());
+      spectra.insert(spectra.end(), d.texels.begin(), d.texels.end());
+      kl.distribution = static_cast<int>(spectra.size());
+      spectra.insert(spectra.end(), d.distribution.begin(), d.distribution.end());
+      kl.lambda = static_cast<int>(spectra.size());
+      for (int i = 0; i < scene.grid.bins; ++i)
+        spectra.push_back(static_cast<float>(scene.grid.center(i)));
+    }
     lights.push_back(kl);
     double p = l.power(scene.grid.bin_nm, radius);
     if (!(p > 0)) continue;
@@ -172,6 +191,8 @@ size_t KernelSceneData::bytes() const {
          light_tri.size() * sizeof(int);
 }
 
+int scratch_floats(const Scene& scene) { return scene.has_environment() ? scene.grid.bins : 0; }
+
 KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   KernelDefines d;
   d["KASHA_BINS"] = std::to_string(scene.grid.bins);
@@ -187,10 +208,19 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_LIGHT_SOURCES"] = scene.lights.empty() ? "0" : "1";
   d["KASHA_SPOT_LIGHTS"] = scene.has_light(LightType::spot) ? "1" : "0";
   d["KASHA_INFINITE_LIGHTS"] = scene.has_light(LightType::infinite) ? "1" : "0";
+  d["KASHA_ENVIRONMENT"] = scene.has_environment() ? "1" : "0";
+  // Spectra computed per work item on the way (an environment texel's radiance).
+  d["KASHA_SCRATCH_FLOATS"] = std::to_string(scratch_floats(scene));
   return d;
 }
 
-int DeviceScene::bind(cl::Kernel& k, int a) const {
+int DeviceScene::bind(cl::Kernel& k, int a, size_t items) {
+  // The launch's scratch spectra: grown to the largest launch so far, never shrunk.
+  const size_t need = std::max<size_t>(1, items * scratch_floats_) * sizeof(float);
+  if (need > scratch_bytes_) {
+    scratch_ = device_buffer(cl_, need, "the work items' scratch spectra");
+    scratch_bytes_ = need;
+  }
   k.setArg(a++, data_.camera);
   k.setArg(a++, nodes);
   k.setArg(a++, leaves);
@@ -206,10 +236,12 @@ int DeviceScene::bind(cl::Kernel& k, int a) const {
   k.setArg(a++, data_.bin_nm);
   k.setArg(a++, lights);
   k.setArg(a++, static_cast<int>(data_.lights.size()));
+  k.setArg(a++, scratch_);
   return a;
 }
 
-DeviceScene::DeviceScene(ClContext& cl, const Scene& scene) : data_(scene) {
+DeviceScene::DeviceScene(ClContext& cl, const Scene& scene)
+    : data_(scene), cl_(cl), scratch_floats_(scratch_floats(scene)) {
   nodes = upload(cl, data_.bvh.nodes);
   leaves = upload(cl, data_.bvh.leaves);
   triangles = upload(cl, data_.bvh.triangles);

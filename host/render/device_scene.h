@@ -37,6 +37,10 @@ struct KernelSceneData {
 // CDF. The tabulated profile is averaged over each ring (a uniform cone without a profile).
 std::vector<float> gloss_lobe_table(const GlossDesc& gloss);
 
+// Floats of scratch spectra each work item gets (KASHA_SCRATCH_FLOATS): the bins where an
+// environment image's texel radiance is computed, else 0.
+int scratch_floats(const Scene& scene);
+
 // Definitions every kernel of this scene is built with.
 KernelDefines scene_defines(const Scene& scene, bool spectral_film);
 
@@ -45,14 +49,19 @@ class DeviceScene {
   DeviceScene(ClContext& cl, const Scene& scene);
   const KernelSceneData& data() const { return data_; }
   // Sets the scene's camera, buffers and constants as kernel arguments from `first` on, in the
-  // order of KASHA_SCENE_PARAMS (kernels/scene_view.h); returns the next argument's index.
-  int bind(cl::Kernel& kernel, int first) const;
+  // order of KASHA_SCENE_PARAMS (kernels/scene_view.h), with scratch for `items` work items;
+  // returns the next argument's index.
+  int bind(cl::Kernel& kernel, int first, size_t items);
 
   cl::Buffer nodes, leaves, triangles, materials, spectra, lobes, emitter_radiance, light_tri,
       light_cdf, emitter_area_pdf, lights;
 
  private:
   KernelSceneData data_;
+  ClContext& cl_;
+  int scratch_floats_ = 0;
+  cl::Buffer scratch_;
+  size_t scratch_bytes_ = 0;
 };
 
 }  // namespace kasha

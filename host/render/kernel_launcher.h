@@ -92,13 +92,14 @@ class KernelLauncher {
   void launch_items(cl::Kernel& kernel, bool views, size_t first, size_t count,
                     const Args&... args) {
     const auto start = std::chrono::steady_clock::now();
-    cl_uint a = views ? static_cast<cl_uint>(film_.bind(kernel, scene_.bind(kernel, 0))) : 0;
+    const size_t local = work_group_size(kernel);
+    const size_t global = (count + local - 1) / local * local;
+    cl_uint a =
+        views ? static_cast<cl_uint>(film_.bind(kernel, scene_.bind(kernel, 0, global))) : 0;
     (kernel.setArg(a++, args), ...);
     kernel.setArg(a, static_cast<cl_int>(first + count));
-    const size_t local = work_group_size(kernel);
     cl_.queue().enqueueNDRangeKernel(kernel, first > 0 ? cl::NDRange(first) : cl::NullRange,
-                                     cl::NDRange((count + local - 1) / local * local),
-                                     cl::NDRange(local));
+                                     cl::NDRange(global), cl::NDRange(local));
     cl_.queue().finish();
     device_seconds_ +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

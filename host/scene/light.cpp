@@ -1,8 +1,12 @@
 #include "scene/light.h"
 
 #include <cmath>
+#include <filesystem>
 
+#include "core/error.h"
 #include "scene/limits.h"
+#include "scene/transform.h"
+#include "spectrum/rgb_spectrum.h"
 #include "spectrum/spectrum_parser.h"
 
 namespace kasha {
@@ -34,7 +38,9 @@ double Light::power(double bin_nm, double radius) const {
     case LightType::spot:
       return 2 * M_PI * s * ((1 - cos_falloff()) + (cos_falloff() - cos_total()) / 2);
     case LightType::distant: return M_PI * radius * radius * s;
-    case LightType::infinite: return 4 * M_PI * M_PI * radius * radius * s;
+    case LightType::infinite:
+      return 4 * M_PI * M_PI * radius * radius * s *
+             (environment_data ? environment_data->mean_factor : 1.0);
   }
   return 0;
 }
@@ -82,13 +88,101 @@ Light parse_light(const JsonNode& node) {
   } else if (type == "infinite") {
     l.type = LightType::infinite;
     key = "radiance";
+    if (auto image = node.find("image")) {
+      // Each texel an RGB illuminant; the light's spectrum is their white, D65 at luminance 1.
+      if (node.has("radiance")) node.at("radiance").fail("an infinite light takes \"radiance\" or \"image\", not both");
+      auto env = std::make_shared<EnvironmentImage>();
+      std::filesystem::path file(image->string());
+      if (file.empty()) image->fail("empty file name");
+      if (file.is_relative()) file = node.base_dir() / file;
+      env->file = file.string();
+      try {
+        env->image = read_rgb_image(env->file);
+      } catch (const Error& e) {
+        image->fail(e.what());
+      }
+      if (auto m = node.find("mapping")) {
+        const std::string name = m->string();
+        if (name == "latlong") env->mapping = EnvironmentMapping::latlong;
+        else if (name == "equal_area") env->mapping = EnvironmentMapping::equal_area;
+        else m->fail("unknown mapping \"" + name + "\" (latlong, equal_area)");
+        if (env->mapping == EnvironmentMapping::equal_area && env->image.width != env->image.height)
+          m->fail("an equal-area image must be square, not " + std::to_string(env->image.width) +
+                  "x" + std::to_string(env->image.height));
+      }
+      if (auto t = node.find("transform")) {
+        Eigen::Matrix3d r = parse_transform(*t).linear();
+        if (!((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() < 1e-6) || !(r.determinant() > 0))
+          t->fail("an infinite light's transform must be a rotation");
+        env->to_light = r.transpose();
+      }
+      l.environment = env;
+      l.spectrum = d65_luminance_one();
+      key = nullptr;
+    }
   } else {
     node.at("type").fail("unknown light type \"" + type + "\" (point, spot, distant, infinite)");
   }
-  l.spectrum = parse_spectrum(node.at(key));
+  if (key) l.spectrum = parse_spectrum(node.at(key));
   if (auto s = node.find("scale")) l.scale = s->number_in(0.0, kMaxSpectrumValue);
   node.finish();
   return l;
+}
+
+EnvironmentData environment_data(const EnvironmentImage& env, const std::vector<double>& row,
+                                 const WavelengthGrid& grid) {
+  const int W = env.image.width, H = env.image.height;
+  EnvironmentData d;
+  d.texels.resize(size_t(4) * W * H);
+  std::vector<double> weight(size_t(W) * H);
+  double row_sum = 0, mean = 0;
+  for (int i = 0; i < grid.bins; ++i) row_sum += row[i] * grid.bin_nm;
+  for (int y = 0; y < H; ++y) {
+    // The texel's solid angle: latitude-longitude rows shrink towards the poles.
+    const double omega =
+        env.mapping == EnvironmentMapping::equal_area
+            ? 4 * M_PI / (double(W) * H)
+            : 2 * M_PI / W * (std::cos(M_PI * y / H) - std::cos(M_PI * (y + 1) / H));
+    for (int x = 0; x < W; ++x) {
+      const float* p = env.image.at(x, y);
+      double scale;
+      SigmoidCoefficients c = rgb_unbounded_sigmoid({p[0], p[1], p[2]}, &scale);
+      if (!(scale > 0)) c = {0, 0, 0}, scale = 0;
+      const size_t t = size_t(y) * W + x;
+      for (int q = 0; q < 3; ++q) d.texels[4 * t + q] = static_cast<float>(c[q]);
+      d.texels[4 * t + 3] = static_cast<float>(scale);
+      double integral = 0;
+      if (scale > 0)
+        for (int i = 0; i < grid.bins; ++i)
+          integral += row[i] * scale * sigmoid_spectrum(c, grid.center(i)) * grid.bin_nm;
+      mean += integral * omega / (4 * M_PI);
+      weight[t] = (double(p[0]) + p[1] + p[2]) / 3 * omega;
+    }
+  }
+  d.mean_factor = row_sum > 0 ? mean / row_sum : 0;
+  // The marginal CDF over rows, then each row's CDF over its texels (uniform where all is dark).
+  std::vector<double> row_weight(H, 0);
+  for (int y = 0; y < H; ++y)
+    for (int x = 0; x < W; ++x) row_weight[y] += weight[size_t(y) * W + x];
+  double total = 0;
+  for (double w : row_weight) total += w;
+  d.distribution.push_back(0);
+  double acc = 0;
+  for (int y = 0; y < H; ++y) {
+    acc += total > 0 ? row_weight[y] : 1;
+    d.distribution.push_back(static_cast<float>(acc / (total > 0 ? total : H)));
+  }
+  d.distribution.back() = 1;
+  for (int y = 0; y < H; ++y) {
+    d.distribution.push_back(0);
+    double a = 0;
+    for (int x = 0; x < W; ++x) {
+      a += row_weight[y] > 0 ? weight[size_t(y) * W + x] : 1;
+      d.distribution.push_back(static_cast<float>(a / (row_weight[y] > 0 ? row_weight[y] : W)));
+    }
+    d.distribution.back() = 1;
+  }
+  return d;
 }
 
 }  // namespace kasha

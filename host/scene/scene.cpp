@@ -48,6 +48,12 @@ bool Scene::has_delta_surfaces() const {
   });
 }
 
+bool Scene::has_environment() const {
+  for (const Light& l : lights)
+    if (l.environment) return true;
+  return false;
+}
+
 bool Scene::has_light(LightType type) const {
   for (const Light& l : lights)
     if (l.type == type) return true;
@@ -440,6 +446,9 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
   for (Light& l : scene.lights) {
     l.per_bin = scene.grid.resample(*l.spectrum);
     for (double& v : l.per_bin) v *= l.scale;
+    if (l.environment)
+      l.environment_data = std::make_shared<const EnvironmentData>(
+          environment_data(*l.environment, l.per_bin, scene.grid));
   }
   check_emitters(scene);
   return scene;

@@ -58,6 +58,7 @@ struct Scene {
   bool has_delta_surfaces() const;
   int material_index(const std::string& name) const;  // -1 when absent
   bool has_light(LightType type) const;
+  bool has_environment() const;  // some infinite light has an image
   // The bounding sphere of the triangles (as the kernels see them), where distant and infinite
   // lights send their photons from.
   void bounding_sphere(Eigen::Vector3d& centre, double& radius) const;

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/printable.h"
 #include "spectrum/builtin_spectra.h"
+#include "spectrum/rgb_spectrum.h"
 
 namespace kasha {
 
@@ -77,6 +78,19 @@ SpectrumPtr read_spectrum_csv(const std::string& path, const std::string& column
   return make_tabulated_spectrum(nm, value, path, lines);
 }
 
+// Three linear RGB components in [0, hi].
+static std::array<double, 3> rgb_triple(const JsonNode& node, double hi) {
+  std::vector<double> v = node.numbers();
+  if (v.size() != 3) node.fail("expected three numbers (linear sRGB)");
+  for (double x : v)
+    if (!(x >= 0 && x <= hi)) {
+      std::ostringstream msg;
+      msg << "an RGB component of " << x << " is outside [0, " << hi << "]";
+      node.fail(msg.str());
+    }
+  return {v[0], v[1], v[2]};
+}
+
 SpectrumPtr parse_spectrum(const JsonNode& node) {
   if (node.is_number()) {
     double v = node.number();
@@ -112,10 +126,15 @@ SpectrumPtr parse_spectrum(const JsonNode& node) {
     s = std::make_shared<GaussianSpectrum>(c, node.at("fwhm_nm").number_in(1e-6, 1e5));
   } else if (auto line = node.find("line_nm")) {
     s = std::make_shared<LineSpectrum>(line->number_in(1.0, 1e5));
+  } else if (auto rgb = node.find("rgb")) {
+    // A reflectance's colour, linear sRGB in [0, 1] (spectrum/rgb_spectrum.h).
+    s = std::make_shared<RgbReflectanceSpectrum>(rgb_triple(*rgb, 1.0));
+  } else if (auto rgb = node.find("rgb_illuminant")) {
+    s = std::make_shared<RgbIlluminantSpectrum>(rgb_triple(*rgb, kMaxSpectrumValue));
   } else {
     node.fail(
         "expected one of \"csv\", \"nm\"/\"value\", \"blackbody_K\", \"gaussian_nm\"/\"fwhm_nm\", "
-        "\"line_nm\"");
+        "\"line_nm\", \"rgb\", \"rgb_illuminant\"");
   }
   auto scale = node.find("scale");
   if (scale) {
