@@ -71,11 +71,12 @@ inline float2 env_uv(const __global KLight* l, float3 w, float* to_solid_angle) 
     *to_solid_angle = 0.25f * KASHA_INV_PI;
     return equal_area_sphere_to_square(d);
   }
-  float cos_t = clamp(d.z, -1.0f, 1.0f), sin_t = sqrt(fmax(0.0f, 1.0f - cos_t * cos_t));
+  /* sin θ from x and y: near the poles 1 − cos² θ loses it to rounding. */
+  float cos_t = clamp(d.z, -1.0f, 1.0f), sin_t = length((float2)(d.x, d.y));
   float phi = atan2(d.y, d.x);
   if (phi < 0.0f) phi += 2.0f * KASHA_PI;
   *to_solid_angle = sin_t > 0.0f ? 1.0f / (2.0f * KASHA_PI * KASHA_PI * sin_t) : 0.0f;
-  return (float2)(phi * (0.5f * KASHA_INV_PI), acos(cos_t) * KASHA_INV_PI);
+  return (float2)(phi * (0.5f * KASHA_INV_PI), atan2(sin_t, cos_t) * KASHA_INV_PI);
 }
 
 inline float3 env_direction(const __global KLight* l, float2 uv, float* to_solid_angle) {

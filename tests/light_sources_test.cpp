@@ -2,7 +2,8 @@
 // double: a grey Lambert floor (ρ = 0.5) under one light, seen from above, has the radiance
 // ρ/π·E(x) where E is the irradiance the light gives the point x — I·cos θ/d² for a point, the
 // same times pbrt-v4's smoothstep falloff for a spot, E₀·cos θ for a distant light, π·L for a
-// constant infinite light over the upper hemisphere. The truth is averaged over each pixel (16×16
+// constant infinite light over the upper hemisphere, Σ L cos θ dω over an environment image's
+// texels (latitude-longitude and equal-area). The truth is averaged over each pixel (16×16
 // points), as the film's box filter averages it. Every integrator is held to it: backward and
 // photon mapping (next-event estimation, MIS with BSDF sampling for the infinite light) and
 // forward (photons from the light). The residuals' mean in rings about the image centre must be
@@ -12,9 +13,14 @@
 
 #include <Eigen/Dense>
 #include <cmath>
+#include <filesystem>
+#include <map>
 #include <sstream>
 
 #include "chi2.h"
+#include "color/color_space.h"
+#include "image/exr_io.h"
+#include "spectrum/rgb_spectrum.h"
 #include "kernel_harness.h"
 #include "render_support.h"
 #include "test_support.h"
@@ -24,6 +30,11 @@ using namespace kasha::test;
 using Eigen::Vector3d;
 
 namespace {
+
+double smoothstep(double x, double a, double b) {
+  double t = std::clamp((x - a) / (b - a), 0.0, 1.0);
+  return t * t * (3 - 2 * t);
+}
 
 constexpr double kRho = 0.5;
 constexpr int kSize = 24;
@@ -53,11 +64,11 @@ Vector3d floor_point(const KCamera& c, double x, double y) {
   return o + d * (-o.z() / d.z());
 }
 
-// Irradiance per unit of the light's spectrum at a floor point.
-using Irradiance = std::function<double(const Vector3d&)>;
+// Irradiance per unit of the light's spectrum at a floor point, in bin i of the scene.
+using Irradiance = std::function<double(const Scene&, const Vector3d&, int)>;
 
-// Renders the scene and compares every bin in rings of pixels with ρ/π·E·value.
-void expect_floor(const std::string& scene, const std::string& integrator, double value,
+// Renders the scene and compares every bin in rings of pixels with ρ/π·E.
+void expect_floor(const std::string& scene, const std::string& integrator,
                   const Irradiance& irradiance, int spp, long long photons, int passes) {
   RenderSettings s;
   s.integrator = integrator;
@@ -67,22 +78,24 @@ void expect_floor(const std::string& scene, const std::string& integrator, doubl
   RenderResult r = render_scene(scene, s);
   const KCamera cam = r.scene.camera.to_kernel();
   const size_t N = r.scene.grid.bins;
-  constexpr int kRings = 4;
+  constexpr int kRings = 4, kSub = 16;
   std::vector<double> sum(kRings, 0), sum2(kRings, 0), truth(kRings, 0), count(kRings, 0);
   for (int py = 0; py < kSize; ++py)
     for (int px = 0; px < kSize; ++px) {
-      double want = 0;
-      for (int a = 0; a < 16; ++a)
-        for (int b = 0; b < 16; ++b)
-          want += irradiance(floor_point(cam, px + (a + 0.5) / 16, py + (b + 0.5) / 16)) / 256;
-      want *= kRho / M_PI * value;
+      std::vector<double> want(N, 0.0);
+      for (int a = 0; a < kSub; ++a)
+        for (int b = 0; b < kSub; ++b) {
+          Vector3d x = floor_point(cam, px + (a + 0.5) / kSub, py + (b + 0.5) / kSub);
+          for (size_t i = 0; i < N; ++i)
+            want[i] += irradiance(r.scene, x, int(i)) * kRho / M_PI / (kSub * kSub);
+        }
       double dx = px + 0.5 - kSize / 2.0, dy = py + 0.5 - kSize / 2.0;
       int ring = std::min(kRings - 1, int(std::sqrt(dx * dx + dy * dy) / (kSize / 2.0) * kRings));
       for (size_t i = 0; i < N; ++i) {
-        double d = r.image.spectral[(py * kSize + px) * N + i] - want;
+        double d = r.image.spectral[(py * kSize + px) * N + i] - want[i];
         sum[ring] += d;
         sum2[ring] += d * d;
-        truth[ring] += want;
+        truth[ring] += want[i];
         count[ring] += 1;
       }
     }
@@ -97,41 +110,166 @@ void expect_floor(const std::string& scene, const std::string& integrator, doubl
   EXPECT_EQ(r.rejected, 0);
 }
 
-double smoothstep(double x, double a, double b) {
-  double t = std::clamp((x - a) / (b - a), 0.0, 1.0);
-  return t * t * (3 - 2 * t);
-}
-
 struct LightCase {
   const char* name;
-  const char* light;
-  double value;
+  std::string light;
   Irradiance irradiance;
+  std::function<void()> prepare = [] {};  // writes the files the light reads
 };
 
+// A light's own value in bin i (its spectrum times its scale).
+double light_value(const Scene& scene, int i) { return scene.lights.front().per_bin[i]; }
+
+// ---------------------------------------------------------------------------------------------
+// Environment images, made here: a sky whose colour varies with the zenith angle and the
+// azimuth, with a bright warm sun; in the latitude-longitude mapping (32 × 16) and in the
+// equal-area square (24 × 24), both in the image frame's +z up (the floor's normal).
+
+std::array<double, 3> sky_rgb(const Vector3d& w) {
+  double phi = std::atan2(w.y(), w.x()), up = std::max(w.z(), 0.0);
+  std::array<double, 3> rgb = {0.2 + 0.1 * std::cos(phi), 0.3 + 0.2 * up, 0.6 + 0.3 * up};
+  if (w.z() < 0) rgb = {0.05, 0.04, 0.03};  // the ground below the horizon
+  // The sun: 20 times brighter within 20° of (0.5, 0.3, 0.81).
+  if (w.dot(Vector3d(0.5, 0.3, 0.81).normalized()) > std::cos(20 * M_PI / 180))
+    rgb = {8.0, 6.5, 4.0};
+  return rgb;
+}
+
+// Clarberg's equal-area square → sphere, as pbrt-v4 writes it (the test's own copy).
+Vector3d equal_area_to_sphere(double px, double py) {
+  double u = 2 * px - 1, v = 2 * py - 1, up = std::abs(u), vp = std::abs(v);
+  double sd = 1 - (up + vp), d = std::abs(sd), r = 1 - d;
+  double phi = (r == 0 ? 1 : (vp - up) / r + 1) * M_PI / 4;
+  double z = std::copysign(1 - r * r, sd);
+  double cp = std::copysign(std::cos(phi), u), sp = std::copysign(std::sin(phi), v);
+  double q = r * std::sqrt(std::max(0.0, 2 - r * r));
+  return {cp * q, sp * q, z};
+}
+
+// Its inverse (pbrt-v4's EqualAreaSphereToSquare, with atan in place of its polynomial).
+std::pair<double, double> sphere_to_equal_area(const Vector3d& d) {
+  double x = std::abs(d.x()), y = std::abs(d.y()), z = std::abs(d.z());
+  double r = std::sqrt(std::max(0.0, 1 - z)), a = std::max(x, y), b = std::min(x, y);
+  b = a == 0 ? 0 : b / a;
+  double phi = std::atan(b) * 2 / M_PI;
+  if (x < y) phi = 1 - phi;
+  double v = phi * r, u = r - v;
+  if (d.z() < 0) {
+    std::swap(u, v);
+    u = 1 - u;
+    v = 1 - v;
+  }
+  u = std::copysign(u, d.x());
+  v = std::copysign(v, d.y());
+  return {0.5 * (u + 1), 0.5 * (v + 1)};
+}
+
+Vector3d latlong_to_sphere(double u, double v) {
+  double theta = v * M_PI, phi = u * 2 * M_PI;
+  return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+
+struct Environment {
+  int width, height;
+  bool equal_area;
+  std::string file;
+  Vector3d direction(double u, double v) const {
+    return equal_area ? equal_area_to_sphere(u, v) : latlong_to_sphere(u, v);
+  }
+};
+
+// The environment image's path (under the tests' scratch folder) and how it maps.
+Environment environment(const std::string& name, bool equal_area) {
+  return {equal_area ? 24 : 32, equal_area ? 24 : 16, equal_area,
+          std::string(KASHA_TEST_TMP) + "/environments/" + name + ".exr"};
+}
+
+// Writes the sky at the texel centres as an EXR (linear sRGB through its XYZ layer).
+void write_environment(const Environment& env) {
+  Image img;
+  img.width = env.width;
+  img.height = env.height;
+  for (int y = 0; y < env.height; ++y)
+    for (int x = 0; x < env.width; ++x) {
+      std::array<double, 3> rgb =
+          sky_rgb(env.direction((x + 0.5) / env.width, (y + 0.5) / env.height));
+      Vec3d xyz = linear_srgb_to_xyz({rgb[0], rgb[1], rgb[2]});
+      for (int k = 0; k < 3; ++k) img.xyz.push_back(static_cast<float>(xyz[k]));
+    }
+  std::filesystem::create_directories(std::filesystem::path(env.file).parent_path());
+  write_exr(env.file, img);
+}
+
+// The irradiance of the floor (normal +z) under the image: Σ over texels of L_t cos θ dω, each
+// texel's solid angle integrated over 8 × 8 sub-directions (the truth, in double, from the
+// image the renderer reads back and the RGB → spectrum it uses for texels).
+double environment_irradiance(const Scene& scene, const Environment& env, int bin) {
+  static std::map<std::string, std::vector<double>> cache;
+  auto& e = cache[env.file + std::to_string(scene.grid.bins)];
+  if (e.empty()) {
+    const Light& l = scene.lights.front();
+    const RgbImage& img = l.environment->image;
+    e.assign(scene.grid.bins, 0.0);
+    constexpr int kSub = 8;
+    for (int y = 0; y < env.height; ++y)
+      for (int x = 0; x < env.width; ++x) {
+        const float* p = img.at(x, y);
+        double scale;
+        SigmoidCoefficients c = rgb_unbounded_sigmoid({p[0], p[1], p[2]}, &scale);
+        double projected = 0;  // ∫ max(cos θ, 0) dω over the texel
+        for (int a = 0; a < kSub; ++a)
+          for (int b = 0; b < kSub; ++b) {
+            double u = (x + (a + 0.5) / kSub) / env.width, v = (y + (b + 0.5) / kSub) / env.height;
+            double jac = env.equal_area ? 4 * M_PI : 2 * M_PI * M_PI * std::sin(v * M_PI);
+            projected += std::max(env.direction(u, v).z(), 0.0) * jac /
+                         (double(env.width) * env.height * kSub * kSub);
+          }
+        if (scale > 0)
+          for (int i = 0; i < scene.grid.bins; ++i)
+            e[i] += projected * scale * sigmoid_spectrum(c, scene.grid.center(i)) * l.per_bin[i];
+      }
+  }
+  return e[bin];
+}
+
 const std::vector<LightCase>& light_cases() {
-  static const std::vector<LightCase> cases = {
-      {"point", R"({"type": "point", "position": [0.3, 0.2, 1.2], "intensity": 2})", 2,
-       [](const Vector3d& x) {
-         Vector3d to = Vector3d(0.3, 0.2, 1.2) - x;
-         double d = to.norm();
-         return to.z() / d / (d * d);
-       }},
+  static std::vector<LightCase> cases;
+  if (!cases.empty()) return cases;
+  cases.push_back({"point", R"({"type": "point", "position": [0.3, 0.2, 1.2], "intensity": 2})",
+                   [](const Scene& sc, const Vector3d& x, int i) {
+                     Vector3d to = Vector3d(0.3, 0.2, 1.2) - x;
+                     double d = to.norm();
+                     return light_value(sc, i) * to.z() / d / (d * d);
+                   }});
+  cases.push_back(
       {"spot",
        R"({"type": "spot", "from": [0, 0, 2], "to": [0.2, 0, 0], "intensity": 3, "cone_deg": 30, "cone_delta_deg": 15})",
-       3,
-       [](const Vector3d& x) {
+       [](const Scene& sc, const Vector3d& x, int i) {
          Vector3d p(0, 0, 2), axis = (Vector3d(0.2, 0, 0) - p).normalized(), to = p - x;
          double d = to.norm();
          double c = (-to / d).dot(axis);
-         return to.z() / d / (d * d) *
+         return light_value(sc, i) * to.z() / d / (d * d) *
                 smoothstep(c, std::cos(30 * M_PI / 180), std::cos(15 * M_PI / 180));
-       }},
+       }});
+  cases.push_back(
       {"distant", R"({"type": "distant", "from": [1, 0.5, 2], "to": [0, 0, 0], "irradiance": 1.5})",
-       1.5, [](const Vector3d&) { return Vector3d(1, 0.5, 2).normalized().z(); }},
-      {"infinite", R"({"type": "infinite", "radiance": 0.7})", 0.7,
-       [](const Vector3d&) { return M_PI; }},
-  };
+       [](const Scene& sc, const Vector3d&, int i) {
+         return light_value(sc, i) * Vector3d(1, 0.5, 2).normalized().z();
+       }});
+  cases.push_back({"infinite", R"({"type": "infinite", "radiance": 0.7})",
+                   [](const Scene& sc, const Vector3d&, int i) { return light_value(sc, i) * M_PI; }});
+  for (bool equal_area : {false, true}) {
+    const char* name = equal_area ? "sky_equal_area" : "sky_latlong";
+    Environment env = environment(name, equal_area);
+    cases.push_back({name,
+                     std::string(R"({"type": "infinite", "image": ")") + env.file +
+                         R"(", "mapping": ")" + (equal_area ? "equal_area" : "latlong") +
+                         R"(", "scale": 0.5})",
+                     [env](const Scene& sc, const Vector3d&, int i) {
+                       return environment_irradiance(sc, env, i);
+                     },
+                     [env] { write_environment(env); }});
+  }
   return cases;
 }
 
@@ -139,20 +277,23 @@ class LightSources : public ::testing::TestWithParam<int> {};
 
 TEST_P(LightSources, BackwardMatchesTheAnalyticFloor) {
   const LightCase& c = light_cases()[GetParam()];
-  expect_floor(floor_scene(c.name, c.light), "backward", c.value, c.irradiance, 16, 0, 1);
+  c.prepare();
+  expect_floor(floor_scene(c.name, c.light), "backward", c.irradiance, 16, 0, 1);
 }
 
 TEST_P(LightSources, PhotonMappingMatchesTheAnalyticFloor) {
   const LightCase& c = light_cases()[GetParam()];
-  expect_floor(floor_scene(c.name, c.light), "photon", c.value, c.irradiance, 16, 1 << 14, 1);
+  c.prepare();
+  expect_floor(floor_scene(c.name, c.light), "photon", c.irradiance, 16, 1 << 14, 1);
 }
 
 TEST_P(LightSources, ForwardMatchesTheAnalyticFloor) {
   const LightCase& c = light_cases()[GetParam()];
-  expect_floor(floor_scene(c.name, c.light), "forward", c.value, c.irradiance, 0, 1 << 18, 2);
+  c.prepare();
+  expect_floor(floor_scene(c.name, c.light), "forward", c.irradiance, 0, 1 << 18, 2);
 }
 
-INSTANTIATE_TEST_SUITE_P(Lights, LightSources, ::testing::Range(0, 4),
+INSTANTIATE_TEST_SUITE_P(Lights, LightSources, ::testing::Range(0, 6),
                          [](const ::testing::TestParamInfo<int>& info) {
                            return std::string(light_cases()[info.param].name);
                          });
@@ -220,6 +361,153 @@ TEST(LightSampling, SpotConeAndSphereFitTheirDensities) {
   expect_rejects("spot cone, cosine-weighted", cone, wrong_cone);
   expect_fits("uniform sphere", sphere, expected_sphere);
   expect_rejects("sphere denser towards +z", sphere, wrong_sphere);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// χ² of the environment image's sampling on the device: directions binned by the texel they fall
+// in (the test's own inverse mappings) against each texel's share of the image's power (mean RGB
+// times solid angle, computed here); the density the kernel reports, and the one env_pdf gives
+// the same direction, against that share; and an image of one colour sampled in the equal-area
+// mapping, binned in equal cells of cos θ and φ, must be uniform over the sphere.
+
+namespace {
+
+const char* const kEnvironmentSource = R"(
+#include "environment.h"
+__kernel void env(__global const KLight* l, __global const float* spectra, __global const float* u,
+                  __global float* out) {
+  size_t i = get_global_id(0);
+  SceneView s;
+  s.spectra = spectra;
+  int texel;
+  float pdf;
+  float3 w = env_sample(&s, l, (float2)(u[2 * i], u[2 * i + 1]), &texel, &pdf);
+  vstore3(w, 0, out + 5 * i);
+  out[5 * i + 3] = pdf;
+  out[5 * i + 4] = env_pdf(&s, l, w);
+}
+)";
+
+struct EnvSamples {
+  std::vector<float> out;
+  size_t n;
+};
+
+// Samples the image rgb (width × height, 3 floats a texel) through the kernel.
+EnvSamples sample_environment(const std::vector<float>& rgb, int width, int height,
+                              bool equal_area, size_t n, std::uint32_t seed) {
+  EnvironmentImage env;
+  env.image.width = width;
+  env.image.height = height;
+  env.image.rgb = rgb;
+  env.mapping = equal_area ? EnvironmentMapping::equal_area : EnvironmentMapping::latlong;
+  WavelengthGrid grid = choose_grid(GridRequest{}, {}, {});
+  EnvironmentData d = environment_data(env, std::vector<double>(grid.bins, 1.0), grid);
+  KLight l{};
+  l.type = KASHA_LIGHT_INFINITE;
+  l.width = width;
+  l.height = height;
+  l.mapping = equal_area ? KASHA_MAPPING_EQUAL_AREA : KASHA_MAPPING_LATLONG;
+  for (int k = 0; k < 9; ++k) l.to_light[k] = k % 4 == 0 ? 1.0f : 0.0f;
+  l.image = 0;
+  std::vector<float> spectra = d.texels;
+  l.distribution = static_cast<int>(spectra.size());
+  spectra.insert(spectra.end(), d.distribution.begin(), d.distribution.end());
+  KernelDefines defines = test_kernel_defines();
+  defines["KASHA_ENVIRONMENT"] = "1";
+  TestKernel kernel(kEnvironmentSource, "env_test.cl", "env", defines);
+  kernel.input(0, std::vector<KLight>{l});
+  kernel.input(1, spectra);
+  return {kernel.sample(2, uniforms(2 * n, seed), 3, 5, n), n};
+}
+
+TEST(LightSampling, EnvironmentImagesFitTheirDensities) {
+  for (bool equal_area : {false, true}) {
+    SCOPED_TRACE(equal_area ? "equal-area" : "latitude-longitude");
+    const int W = equal_area ? 12 : 16, H = equal_area ? 12 : 8;
+    const Environment geometry{W, H, equal_area, ""};
+    std::vector<float> rgb;
+    std::uint32_t state = 12345;
+    for (int t = 0; t < W * H; ++t)
+      for (int k = 0; k < 3; ++k) {
+        state = state * 1664525u + 1013904223u;
+        rgb.push_back(0.05f + (state >> 8) * (1.0f / 16777216.0f) * (t % 7 == 0 ? 5.0f : 1.0f));
+      }
+    const size_t n = 300000;
+    EnvSamples s = sample_environment(rgb, W, H, equal_area, n, equal_area ? 5 : 6);
+    // The texel's solid angle and share of power, computed here.
+    std::vector<double> omega(W * H), share(W * H), observed(W * H, 0), wrong(W * H);
+    double total = 0;
+    for (int y = 0; y < H; ++y)
+      for (int x = 0; x < W; ++x) {
+        omega[y * W + x] =
+            equal_area ? 4 * M_PI / (W * H)
+                       : 2 * M_PI / W * (std::cos(M_PI * y / H) - std::cos(M_PI * (y + 1) / H));
+        const float* p = &rgb[3 * (y * W + x)];
+        share[y * W + x] = (p[0] + p[1] + p[2]) / 3.0 * omega[y * W + x];
+        total += share[y * W + x];
+      }
+    size_t bad_pdf = 0;
+    for (size_t i = 0; i < n; ++i) {
+      Vector3d w = at(s.out, 5 * i);
+      // The texel by the test's own inverse mapping.
+      int t = 0;
+      if (!equal_area) {
+        double phi = std::atan2(w.y(), w.x());
+        if (phi < 0) phi += 2 * M_PI;
+        int x = std::min(W - 1, int(phi / (2 * M_PI) * W));
+        int y = std::min(H - 1, int(std::acos(std::clamp(w.z(), -1.0, 1.0)) / M_PI * H));
+        t = y * W + x;
+      } else {
+        auto [u, v] = sphere_to_equal_area(w);
+        t = std::min(H - 1, int(v * H)) * W + std::min(W - 1, int(u * W));
+      }
+      observed[t] += 1;
+      // The density is the texel's share over its solid angle at the texel's centre (latitude-
+      // longitude varies with sin θ inside a texel: compared at the sample's own θ).
+      double jac = 1;
+      if (!equal_area) {
+        double y0 = t / W, sin_t = std::hypot(w.x(), w.y());
+        jac = (std::cos(M_PI * y0 / H) - std::cos(M_PI * (y0 + 1) / H)) / (M_PI / H * sin_t);
+      }
+      double want = share[t] / total / omega[t] * jac;
+      if (std::abs(s.out[5 * i + 3] - want) > 2e-3 * want ||
+          std::abs(s.out[5 * i + 4] - s.out[5 * i + 3]) > 2e-3 * want)
+        ++bad_pdf;
+    }
+    // A sample within float rounding of a texel's edge may bin into the neighbour here.
+    EXPECT_LE(bad_pdf, n / 10000) << "densities off the texel's share";
+    std::vector<double> expected(W * H);
+    for (int t = 0; t < W * H; ++t) {
+      expected[t] = n * share[t] / total;
+      wrong[t] = n * omega[t] / (4 * M_PI);  // uniform over the sphere: ignores the image
+    }
+    expect_fits(equal_area ? "equal-area texels" : "latitude-longitude texels", observed, expected);
+    expect_rejects(equal_area ? "equal-area, uniform sphere" : "latitude-longitude, uniform sphere",
+                   observed, wrong);
+  }
+  // One colour, equal-area: uniform over the sphere, in cells of cos θ × φ.
+  const int W = 8;
+  EnvSamples s = sample_environment(std::vector<float>(3 * W * W, 0.5f), W, W, true, 200000, 9);
+  constexpr int kCos = 10, kPhi = 12;
+  std::vector<double> observed(kCos * kPhi, 0), expected(kCos * kPhi), wrong(kCos * kPhi);
+  for (size_t i = 0; i < s.n; ++i) {
+    Vector3d w = at(s.out, 5 * i);
+    double phi = std::atan2(w.y(), w.x());
+    observed[cell_of(w.z(), -1, 1, kCos) * kPhi +
+             cell_of(phi < 0 ? phi + 2 * M_PI : phi, 0, 2 * M_PI, kPhi)] += 1;
+  }
+  double ws = 0;
+  for (int a = 0; a < kCos; ++a) ws += 1.5 + (-1 + 2 * (a + 0.5) / kCos);
+  for (int a = 0; a < kCos; ++a)
+    for (int b = 0; b < kPhi; ++b) {
+      expected[a * kPhi + b] = double(s.n) / (kCos * kPhi);
+      wrong[a * kPhi + b] = s.n * (1.5 + (-1 + 2 * (a + 0.5) / kCos)) / ws / kPhi;
+    }
+  expect_fits("equal-area square, one colour", observed, expected);
+  expect_rejects("equal-area, denser towards +z", observed, wrong);
 }
 
 }  // namespace
