@@ -1,5 +1,5 @@
-// A fuzz harness over kasha's inputs: mutated scene JSON, material files, spectrum CSVs, OBJ
-// meshes and reference EXRs (from the shipped ones), loaded the way `kasha info` and `render`
+// A fuzz harness over kasha's inputs: mutated scene JSON (lights included), material files,
+// spectrum CSVs, environment PNGs, OBJ meshes and reference EXRs (from the shipped ones), loaded the way `kasha info` and `render`
 // load them. Every case must either load or fail with one kasha::Error line — no other
 // exception, crash or hang; scenes that load are also rendered at 8×8 for one pass by a physical
 // integrator, and the image must be finite. A handful go through the binary, which must exit 0
@@ -35,6 +35,7 @@
 #include "cli/command_line.h"
 #include "core/printable.h"
 #include "image/exr_io.h"
+#include "image/png_preview.h"
 #include "render/device_scene.h"
 #include "render/render_job.h"
 #include "scene/scene.h"
@@ -164,12 +165,38 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
     {"type": "sphere", "center": [0.5, 0.5, 1.0], "radius": 0.2, "material": "paper"},
     {"type": "sphere", "center": [-0.5, -0.6, 0.9], "radius": 0.2, "segments": 12, "material": "glass"},
     {"type": "box", "min": [0.4, -1, 0.2], "max": [0.7, -0.7, 0.5], "material": "metal"}
+  ],
+  "lights": [
+    {"type": "point", "position": [0.2, 0.8, 0.9], "intensity": {"rgb_illuminant": [0.01, 0.02, 0.01]}},
+    {"type": "spot", "from": [-0.5, 0.9, 0.5], "to": [0, -1, 1], "intensity": 0.01, "cone_deg": 25,
+     "cone_delta_deg": 5},
+    {"type": "distant", "from": [0, 1, 0], "to": [0.1, 0, 0.2], "irradiance": {"rgb": [0.2, 0.5, 0.3]}},
+    {"type": "infinite", "image": "sky.png", "mapping": "latlong", "scale": 0.5,
+     "transform": {"rotate": {"axis": [1, 0, 0], "deg": -90}}}
   ]})";
 
 struct Seeds {
   fs::path dir;
-  std::string scene, material, reflectance, lamp, mesh;
+  std::string scene, material, reflectance, lamp, mesh, sky;  // sky: PNG bytes
 };
+
+// A binary mutation of a PNG: flipped bytes, its header's width or height overwritten, or the
+// file cut short.
+std::string mutated_png(std::string b, std::mt19937& rng) {
+  const int kind = static_cast<int>(rng() % 3);
+  if (kind == 0) {
+    const int flips = 1 + static_cast<int>(rng() % 8);
+    for (int k = 0; k < flips; ++k) b[rng() % b.size()] ^= static_cast<char>(1 << (rng() % 8));
+  } else if (kind == 1 && b.size() > 24) {
+    // IHDR's width and height: big-endian at bytes 16 and 20.
+    static const std::vector<uint32_t> values = {0, 1, 0x7fffffff, 0xffffffff, 65536, 1u << 28};
+    const uint32_t v = values[rng() % values.size()];
+    const size_t at = 16 + 4 * (rng() % 2);
+    for (int k = 0; k < 4; ++k) b[at + k] = static_cast<char>(v >> (24 - 8 * k));
+  }
+  if (kind == 2 || rng() % 10 == 0) b.resize(rng() % b.size());
+  return b;
+}
 
 Seeds make_seeds() {
   Seeds s;
@@ -179,6 +206,14 @@ Seeds make_seeds() {
   s.reflectance = read_text(source_path("scenes/data/ColorChecker24_Ohta1997_380_780_5nm.csv"));
   s.lamp = read_text(source_path("scenes/data/CIE_D65_300_780.csv"));
   s.mesh = read_text(source_path("scenes/meshes/torus.obj"));
+  Image sky;  // a small sky, bright above
+  sky.width = 16;
+  sky.height = 8;
+  for (int y = 0; y < sky.height; ++y)
+    for (int x = 0; x < sky.width; ++x)
+      for (float v : {0.3f + 0.1f * (8 - y), 0.4f, 0.9f - 0.05f * x}) sky.xyz.push_back(v);
+  write_png_preview((s.dir / "seed_sky.png").string(), sky, 1.0);
+  s.sky = read_text(s.dir / "seed_sky.png");
   return s;
 }
 
@@ -188,6 +223,7 @@ std::string write_case(const Seeds& s, int which, std::mt19937& rng) {
   write_text(s.dir / "reflectance.csv", which == 2 ? mutated(s.reflectance, rng) : s.reflectance);
   write_text(s.dir / "lamp.csv", which == 3 ? mutated(s.lamp, rng) : s.lamp);
   write_text(s.dir / "mesh.obj", which == 4 ? mutated(s.mesh, rng) : s.mesh);
+  write_text(s.dir / "sky.png", which == 5 ? mutated_png(s.sky, rng) : s.sky);
   const fs::path scene = s.dir / "scene.json";
   write_text(scene, which == 0 ? mutated(s.scene, rng) : s.scene);
   return scene.string();
@@ -211,7 +247,7 @@ TEST(Fuzz, MutatedInputsLoadOrGiveOneLineAndRenderFinite) {
   const std::vector<std::string> integrators = IntegratorRegistry::names(true);
   int loaded = 0, refused = 0, rendered = 0;
   for (int c = 0; c < cases; ++c) {
-    const int which = c % 5;  // scene, material, reflectance CSV, lamp CSV, OBJ
+    const int which = c % 6;  // scene, material, reflectance CSV, lamp CSV, OBJ, PNG
     const std::string path = write_case(seeds, which, rng);
     SCOPED_TRACE("case " + std::to_string(c) + ", input " + std::to_string(which));
     try {
