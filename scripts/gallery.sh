@@ -94,5 +94,14 @@ for name in glass_caustic glass_of_water still_life; do
   render ${name}_512 "scenes/$name.json (${SIZE}²)" "$scene" --photons 1048576 --time 90
 done
 
+# Lights that are not shapes (docs/lights.md): the booth's samples under a point-like UV spot
+# (invisible; only what fluoresces shows it), and a table in the sun and sky of an environment
+# image, whose sun casts a caustic through the glass.
+scene=$(resized scenes/light_booth_uv_spot.json $SIZE $SIZE); TEMPORARY+=("$scene")
+render light_booth_uv_spot_512 "scenes/light_booth_uv_spot.json (${SIZE}²)" "$scene" \
+  --integrator backward --time 60
+scene=$(resized scenes/sunlit_table.json $SIZE $SIZE); TEMPORARY+=("$scene")
+render sunlit_table_512 "scenes/sunlit_table.json (${SIZE}²)" "$scene" --photons 1048576 --time 90
+
 mv "$TIMES.tmp" "$TIMES"
 echo "gallery: wrote $GALLERY/*.png and $TIMES"
