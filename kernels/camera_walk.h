@@ -16,6 +16,7 @@
 #include "sampler.h"
 #include "scene_view.h"
 #include "surface.h"
+#include "texture.h"
 
 /* Dimension pairs of the sampler per path vertex: (branch choice, roulette), the light (triangle
  * and point), the direction, and (the lobe's azimuth, —) drawn only for a lobe; pair 0 is the
@@ -94,7 +95,7 @@ inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sa
     if (!w->specular) weight = mis_weight(w->prev_pdf, light_pdf_from(s, h->tri, w->prev_x, h->x, dot(h->n, -w->dir)));
     pw_add(&w->p, f, emitter_spectrum(s, h->emitter), 0, weight, rows);
   }
-  load_surface(s, h->material, &v->surf);
+  load_surface_at(s, h, &v->surf);
   v->probs = surface_specular(&v->surf) ? (float3)(1.0f, 0.0f, 0.0f) : branch_probabilities(&w->p, f, &v->surf);
   if (v->probs.x + v->probs.y + v->probs.z <= 0.0f) return false;
   sampler_at(sampler, 1 + w->depth * KASHA_CAMERA_PAIRS_PER_VERTEX);

@@ -10,6 +10,7 @@
 #ifndef KASHA_ENVIRONMENT_H
 #define KASHA_ENVIRONMENT_H
 
+#include "rgb_spectrum.h"
 #include "sampling.h"
 #include "scene_view.h"
 
@@ -152,11 +153,7 @@ inline float env_pdf(const SceneView* s, const __global KLight* l, float3 w) {
 /* The radiance of texel t in bin i. */
 inline float env_radiance(const SceneView* s, const __global KLight* l, int t, int i) {
   const __global float* c = s->spectra + l->image + 4 * t;
-  float nm = s->spectra[l->lambda + i];
-  float x = (c[0] * nm + c[1]) * nm + c[2];
-  /* Far out the sigmoid is 0 or 1 (and x² would overflow). */
-  float sigmoid = fabs(x) > 1e18f ? (x > 0.0f ? 1.0f : 0.0f) : 0.5f + x / (2.0f * sqrt(1.0f + x * x));
-  return c[3] * sigmoid * emitter_spectrum(s, l->spectrum)[i];
+  return c[3] * rgb_sigmoid(c, s->spectra[l->lambda + i]) * emitter_spectrum(s, l->spectrum)[i];
 }
 
 /* Texel t's spectrum into out (the work item's scratch spectrum): what the path weight is

@@ -128,7 +128,7 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
       }
       float3 ns = h.ns, x = h.x;
       Surface surf;
-      load_surface(&s, h.material, &surf);
+      load_surface_at(&s, &h, &surf);
 #if KASHA_GLOSS
       bool glossy = surf.g > 0.0f && !surf.mirror;
 #else

@@ -6,6 +6,10 @@
 #include "bvh_traversal.h"
 #include "scene_view.h"
 
+#ifndef KASHA_TEXTURES
+#define KASHA_TEXTURES 0
+#endif
+
 typedef struct {
   float3 x;      /* the hit point */
   float3 n;      /* geometric normal, (v1 − v0) × (v2 − v0) normalized: the front side */
@@ -16,6 +20,9 @@ typedef struct {
   int material;
   int emitter;   /* -1: the triangle does not emit */
   int tri;       /* the triangle, in leaf order */
+#if KASHA_TEXTURES
+  float2 b;      /* the barycentrics of v1 and v2, for texture coordinates */
+#endif
 } HitPoint;
 
 /* γ(n) = n·u / (1 − n·u), u = 2^-24: the relative bound on n float roundings (pbrt-v4). */
@@ -48,6 +55,9 @@ inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint
   h->material = tri->material;
   h->emitter = tri->emitter;
   h->tri = hit;
+#if KASHA_TEXTURES
+  h->b = (float2)(u, v);
+#endif
   return true;
 }
 

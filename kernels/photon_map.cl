@@ -48,7 +48,7 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
       if (!intersect_scene(&s, p.position, p.direction, &h)) break;
       float3 ns = h.ns, x = h.x;
       Surface surf;
-      load_surface(&s, h.material, &surf);
+      load_surface_at(&s, &h, &surf);
       if (depth > 0 && surface_has_lambert(&surf)) {
         if (skip_left > 0) {
           --skip_left;

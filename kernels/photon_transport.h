@@ -15,6 +15,7 @@
 #include "scene_view.h"
 #include "spectral_product.h"
 #include "surface.h"
+#include "texture.h"
 
 typedef struct {
   float3 position;

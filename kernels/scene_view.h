@@ -33,7 +33,10 @@ typedef struct {
   const __global KLight* lights; /* the lights that are not triangles (light_tri's ~k) */
   int light_sources;             /* how many */
   __global float* scratch; /* the work item's own KASHA_SCRATCH_FLOATS (spectra computed on the
-                            * way: an environment texel's radiance), global like every spectrum */
+                            * way: an environment texel's radiance, a textured reflectance), global
+                            * like every spectrum */
+  const __global KTexture* textures;
+  const __global KTexcoords* texcoords; /* per leaf triangle, when textures need them */
   RayCounts* rays; /* private: the work item's own counts */
 } SceneView;
 
@@ -43,7 +46,8 @@ typedef struct {
       __global const float *lobes, __global const float *emitter_radiance,                                  \
       __global const float *emitter_area_pdf, __global const int *light_tri,                                \
       __global const float *light_cdf, int light_count, float bin_nm, __global const KLight *lights,          \
-      int light_sources, __global float *scratch
+      int light_sources, __global float *scratch, __global const KTexture *textures,                     \
+      __global const KTexcoords *texcoords
 
 #define KASHA_SCENE_VIEW(name)                                                                              \
   RayCounts name##_rays = {0u, 0u};                                                                         \
@@ -51,7 +55,7 @@ typedef struct {
                     emitter_radiance, emitter_area_pdf, light_tri, light_cdf, light_count, bin_nm,        \
                     lights,           light_sources,                                                   \
                     scratch + (get_global_id(0) - get_global_offset(0)) * KASHA_SCRATCH_FLOATS,    \
-                    &name##_rays}
+                    textures,         texcoords,        &name##_rays}
 
 /* An emitter's spectral radiance, N values. */
 inline const __global float* emitter_spectrum(const SceneView* s, int emitter) {

@@ -133,8 +133,43 @@ typedef struct {
                         * a dispersive dielectric: eta(lambda) (-1: eta holds for every bin) */
   int k_spectrum;
   float alpha[2]; /* a dielectric's or conductor's GGX roughness (alpha_x, alpha_y); 0: smooth */
+  int reflectance_texture;  /* KTexture multiplying the passive reflectance, -1: none */
+  int fluorescence_texture; /* KTexture scaling the excitation (an ink's concentration), -1: none */
 } KMaterial;
-KASHA_STATIC_SIZE(KMaterial, 64);
+KASHA_STATIC_SIZE(KMaterial, 72);
+
+/* A texture as the kernels look it up (docs/textures.md) at a hit's (u, v): an image of texels,
+ * or a checkerboard of two values. Spectral content (a reflectance) is per bin: an image's texel
+ * holds the RGB sigmoid's coefficients (c0, c1, c2, 0; the spectrum S(c0 λ² + c1 λ + c2)), a
+ * checkerboard two spectra; scalar content (a concentration) is one float per texel, or two
+ * numbers. */
+#define KASHA_TEXTURE_IMAGE 0
+#define KASHA_TEXTURE_CHECKERBOARD 1
+#define KASHA_WRAP_REPEAT 0
+#define KASHA_WRAP_CLAMP 1
+#define KASHA_WRAP_BLACK 2
+
+typedef struct {
+  int type;          /* KASHA_TEXTURE_* */
+  int data;          /* image: offset of its texels in the spectra buffer (4 floats each if
+                      * spectral, 1 if scalar), row 0 at the top */
+  int width, height; /* image */
+  int wrap;          /* KASHA_WRAP_* */
+  int bilinear;      /* image: 1 bilinear, 0 nearest */
+  int lambda;        /* spectral image: offset of the bins' centre wavelengths */
+  int spectral;      /* 1: spectral content, 0: scalar */
+  float uscale, vscale, udelta, vdelta; /* (s, t) = (u·uscale + udelta, v·vscale + vdelta) */
+  int even, odd;     /* spectral checkerboard: offsets of its two spectra */
+  float even_value, odd_value; /* scalar checkerboard */
+} KTexture;
+KASHA_STATIC_SIZE(KTexture, 64);
+
+/* A triangle's texture coordinates, in leaf order like KTriangle: (u, v) at v0, v1, v2. */
+typedef struct {
+  float uv[6];
+  float pad[2];
+} KTexcoords;
+KASHA_STATIC_SIZE(KTexcoords, 32);
 
 /* Lights that are not emitting triangles (docs/lights.md): a point, a spot (a point whose
  * intensity falls off to zero at the edge of a cone), a distant light (parallel light of a given

@@ -17,6 +17,7 @@
 #include <map>
 #include <sstream>
 
+#include "analytic_floor.h"
 #include "chi2.h"
 #include "color/color_space.h"
 #include "image/exr_io.h"
@@ -37,77 +38,16 @@ double smoothstep(double x, double a, double b) {
 }
 
 constexpr double kRho = 0.5;
-constexpr int kSize = 24;
-
-std::string floor_scene(const std::string& name, const std::string& light) {
-  std::ostringstream s;
-  s << R"({"kasha_scene": 1,
-  "wavelengths": {"min_nm": 400, "max_nm": 700, "bin_nm": 50},
-  "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov_deg": 60,
-             "width": )"
-    << kSize << R"(, "height": )" << kSize << R"(},
-  "materials": {"grey": {"passive": {"reflectance": )"
-    << kRho << R"(}}},
-  "lights": [)" << light
-    << R"(],
-  "shapes": [{"type": "quad", "corner": [-2, -2, 0], "u": [4, 0, 0], "v": [0, 4, 0], "material": "grey"}]
-})";
-  return write_file(name + ".json", s.str());
-}
-
-// The floor point a camera ray through (px + sx, py + sy) hits (the film's pixel mapping).
-Vector3d floor_point(const KCamera& c, double x, double y) {
-  Vector3d o(c.position[0], c.position[1], c.position[2]);
-  Vector3d f(c.forward[0], c.forward[1], c.forward[2]), r(c.right[0], c.right[1], c.right[2]),
-      u(c.up[0], c.up[1], c.up[2]);
-  Vector3d d = f + (2 * x / c.width - 1) * r + (1 - 2 * y / c.height) * u;
-  return o + d * (-o.z() / d.z());
-}
+const char* const kGrey = R"({"passive": {"reflectance": 0.5}})";
 
 // Irradiance per unit of the light's spectrum at a floor point, in bin i of the scene.
 using Irradiance = std::function<double(const Scene&, const Vector3d&, int)>;
 
-// Renders the scene and compares every bin in rings of pixels with ρ/π·E.
-void expect_floor(const std::string& scene, const std::string& integrator,
-                  const Irradiance& irradiance, int spp, long long photons, int passes) {
-  RenderSettings s;
-  s.integrator = integrator;
-  s.passes = passes;
-  s.integrator_settings.spp = spp;
-  s.integrator_settings.photons = photons;
-  RenderResult r = render_scene(scene, s);
-  const KCamera cam = r.scene.camera.to_kernel();
-  const size_t N = r.scene.grid.bins;
-  constexpr int kRings = 4, kSub = 16;
-  std::vector<double> sum(kRings, 0), sum2(kRings, 0), truth(kRings, 0), count(kRings, 0);
-  for (int py = 0; py < kSize; ++py)
-    for (int px = 0; px < kSize; ++px) {
-      std::vector<double> want(N, 0.0);
-      for (int a = 0; a < kSub; ++a)
-        for (int b = 0; b < kSub; ++b) {
-          Vector3d x = floor_point(cam, px + (a + 0.5) / kSub, py + (b + 0.5) / kSub);
-          for (size_t i = 0; i < N; ++i)
-            want[i] += irradiance(r.scene, x, int(i)) * kRho / M_PI / (kSub * kSub);
-        }
-      double dx = px + 0.5 - kSize / 2.0, dy = py + 0.5 - kSize / 2.0;
-      int ring = std::min(kRings - 1, int(std::sqrt(dx * dx + dy * dy) / (kSize / 2.0) * kRings));
-      for (size_t i = 0; i < N; ++i) {
-        double d = r.image.spectral[(py * kSize + px) * N + i] - want[i];
-        sum[ring] += d;
-        sum2[ring] += d * d;
-        truth[ring] += want[i];
-        count[ring] += 1;
-      }
-    }
-  for (int k = 0; k < kRings; ++k) {
-    double n = count[k], mean = sum[k] / n, var = sum2[k] / n - mean * mean;
-    double se = std::sqrt(std::max(var, 0.0) / (n - 1)), t = truth[k] / n;
-    std::printf("%s %s ring %d: truth %.5g, residual %+.3g (SE %.2g)\n", scene.c_str(),
-                integrator.c_str(), k, t, mean, se);
-    EXPECT_LT(std::abs(mean), 4 * se + 0.01 * t)
-        << integrator << " ring " << k << ": truth " << t << ", residual " << mean << " ± " << se;
-  }
-  EXPECT_EQ(r.rejected, 0);
+void expect_lit_floor(const std::string& name, const std::string& light, const std::string& integrator,
+                      const Irradiance& irradiance, int spp, long long photons, int passes) {
+  expect_floor(floor_scene(name, kGrey, light), integrator,
+               [&](const Scene& sc, const Vector3d& x, int i) { return kRho / M_PI * irradiance(sc, x, i); },
+               spp, photons, passes);
 }
 
 struct LightCase {
@@ -278,19 +218,19 @@ class LightSources : public ::testing::TestWithParam<int> {};
 TEST_P(LightSources, BackwardMatchesTheAnalyticFloor) {
   const LightCase& c = light_cases()[GetParam()];
   c.prepare();
-  expect_floor(floor_scene(c.name, c.light), "backward", c.irradiance, 16, 0, 1);
+  expect_lit_floor(c.name, c.light, "backward", c.irradiance, 16, 0, 1);
 }
 
 TEST_P(LightSources, PhotonMappingMatchesTheAnalyticFloor) {
   const LightCase& c = light_cases()[GetParam()];
   c.prepare();
-  expect_floor(floor_scene(c.name, c.light), "photon", c.irradiance, 16, 1 << 14, 1);
+  expect_lit_floor(c.name, c.light, "photon", c.irradiance, 16, 1 << 14, 1);
 }
 
 TEST_P(LightSources, ForwardMatchesTheAnalyticFloor) {
   const LightCase& c = light_cases()[GetParam()];
   c.prepare();
-  expect_floor(floor_scene(c.name, c.light), "forward", c.irradiance, 0, 1 << 18, 2);
+  expect_lit_floor(c.name, c.light, "forward", c.irradiance, 0, 1 << 18, 2);
 }
 
 INSTANTIATE_TEST_SUITE_P(Lights, LightSources, ::testing::Range(0, 6),

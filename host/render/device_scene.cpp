@@ -3,12 +3,14 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "color/cie_observer.h"
 #include "colorimetry/radiance_factor.h"
 #include "colorimetry/sample_colorimetry.h"
 #include "opencl/device_buffer.h"
 #include "opencl/upload.h"
+#include "spectrum/rgb_spectrum.h"
 
 namespace kasha {
 
@@ -74,6 +76,77 @@ std::vector<float> gloss_lobe_table(const GlossDesc& gloss) {
   return table;
 }
 
+// The kernels' view of the scene's textures (kernels/texture.h): one KTexture per texture and
+// use (spectral for a reflectance, scalar for a concentration), the texels after the spectra,
+// and each triangle's texture coordinates in leaf order.
+void KernelSceneData::add_textures(const Scene& scene) {
+  std::map<std::pair<int, bool>, int> made;
+  int lambda = -1;
+  auto texture = [&](int index, bool spectral) {
+    auto found = made.find({index, spectral});
+    if (found != made.end()) return found->second;
+    const Texture& t = scene.textures[index];
+    KTexture k{};
+    k.type = t.type == TextureType::image ? KASHA_TEXTURE_IMAGE : KASHA_TEXTURE_CHECKERBOARD;
+    k.spectral = spectral;
+    k.uscale = static_cast<float>(t.uscale);
+    k.vscale = static_cast<float>(t.vscale);
+    k.udelta = static_cast<float>(t.udelta);
+    k.vdelta = static_cast<float>(t.vdelta);
+    k.data = k.even = k.odd = k.lambda = -1;
+    if (t.type == TextureType::image) {
+      k.width = t.image.width;
+      k.height = t.image.height;
+      k.bilinear = t.bilinear;
+      k.wrap = t.wrap == TextureWrap::repeat  ? KASHA_WRAP_REPEAT
+               : t.wrap == TextureWrap::clamp ? KASHA_WRAP_CLAMP
+                                              : KASHA_WRAP_BLACK;
+      k.data = static_cast<int>(spectra.size());
+      const size_t n = t.image.rgb.size() / 3;
+      for (size_t p = 0; p < n; ++p) {
+        const float* c = &t.image.rgb[3 * p];
+        if (spectral) {
+          SigmoidCoefficients q = rgb_sigmoid({c[0], c[1], c[2]});
+          for (double v : q) spectra.push_back(static_cast<float>(v));
+          spectra.push_back(0.0f);
+        } else {
+          spectra.push_back(std::clamp((c[0] + c[1] + c[2]) / 3.0f, 0.0f, 1.0f));
+        }
+      }
+      if (spectral) {
+        if (lambda < 0) {
+          lambda = static_cast<int>(spectra.size());
+          for (int i = 0; i < scene.grid.bins; ++i)
+            spectra.push_back(static_cast<float>(scene.grid.center(i)));
+        }
+        k.lambda = lambda;
+      }
+    } else if (spectral) {
+      k.even = append(spectra, scene.grid.resample(*t.even));
+      k.odd = append(spectra, scene.grid.resample(*t.odd));
+    } else {
+      k.even_value = static_cast<float>(t.even_value);
+      k.odd_value = static_cast<float>(t.odd_value);
+    }
+    textures.push_back(k);
+    return made[{index, spectral}] = static_cast<int>(textures.size() - 1);
+  };
+  for (size_t i = 0; i < materials.size(); ++i) {
+    const MaterialTextures& mt = scene.material_textures[i];
+    if (mt.reflectance >= 0) materials[i].reflectance_texture = texture(mt.reflectance, true);
+    if (mt.fluorescence >= 0) materials[i].fluorescence_texture = texture(mt.fluorescence, false);
+  }
+  for (const KTriangle& t : bvh.triangles) {
+    KTexcoords c{};
+    const TriangleUv& uv = scene.uvs[t.prim];
+    for (int k = 0; k < 3; ++k) {
+      c.uv[2 * k] = static_cast<float>(uv[k].x());
+      c.uv[2 * k + 1] = static_cast<float>(uv[k].y());
+    }
+    texcoords.push_back(c);
+  }
+}
+
 KernelSceneData::KernelSceneData(const Scene& scene)
     : bvh(build_bvh(scene.triangles)),
       camera(scene.camera.to_kernel()),
@@ -106,8 +179,10 @@ KernelSceneData::KernelSceneData(const Scene& scene)
       k.alpha[1] = static_cast<float>(m.roughness.alpha_y);
     }
     albedo_xyz(m, scene.grid, obs, k.albedo_xyz);
+    k.reflectance_texture = k.fluorescence_texture = -1;
     materials.push_back(k);
   }
+  if (scene.textured()) add_textures(scene);
   for (const Emitter& e : scene.emitters) append(emitter_radiance, e.per_bin);
   for (const Light& l : scene.lights) append(emitter_radiance, l.per_bin);
 
@@ -184,14 +259,23 @@ KernelSceneData::KernelSceneData(const Scene& scene)
 size_t KernelSceneData::bytes() const {
   return bvh.nodes.size() * sizeof(KBvhNode) + bvh.leaves.size() * sizeof(KBvhLeaf) +
          bvh.triangles.size() * sizeof(KTriangle) + materials.size() * sizeof(KMaterial) +
-         lights.size() * sizeof(KLight) +
+         lights.size() * sizeof(KLight) + textures.size() * sizeof(KTexture) +
+         texcoords.size() * sizeof(KTexcoords) +
          (spectra.size() + lobes.size() + emitter_radiance.size() + light_cdf.size() +
           emitter_area_pdf.size()) *
              sizeof(float) +
          light_tri.size() * sizeof(int);
 }
 
-int scratch_floats(const Scene& scene) { return scene.has_environment() ? scene.grid.bins : 0; }
+// Scratch spectra per work item: an environment texel's radiance, then a textured reflectance
+// and a textured excitation.
+static int scratch_texture_offset(const Scene& scene) {
+  return scene.has_environment() ? scene.grid.bins : 0;
+}
+
+int scratch_floats(const Scene& scene) {
+  return scratch_texture_offset(scene) + (scene.textured() ? 2 * scene.grid.bins : 0);
+}
 
 KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   KernelDefines d;
@@ -211,6 +295,8 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_ENVIRONMENT"] = scene.has_environment() ? "1" : "0";
   // Spectra computed per work item on the way (an environment texel's radiance).
   d["KASHA_SCRATCH_FLOATS"] = std::to_string(scratch_floats(scene));
+  d["KASHA_TEXTURES"] = scene.textured() ? "1" : "0";
+  d["KASHA_SCRATCH_TEXTURES"] = std::to_string(scratch_texture_offset(scene));
   return d;
 }
 
@@ -237,6 +323,8 @@ int DeviceScene::bind(cl::Kernel& k, int a, size_t items) {
   k.setArg(a++, lights);
   k.setArg(a++, static_cast<int>(data_.lights.size()));
   k.setArg(a++, scratch_);
+  k.setArg(a++, textures);
+  k.setArg(a++, texcoords);
   return a;
 }
 
@@ -253,6 +341,8 @@ DeviceScene::DeviceScene(ClContext& cl, const Scene& scene)
   light_cdf = upload(cl, data_.light_cdf);
   emitter_area_pdf = upload(cl, data_.emitter_area_pdf);
   lights = upload(cl, data_.lights);
+  textures = upload(cl, data_.textures);
+  texcoords = upload(cl, data_.texcoords);
 }
 
 }  // namespace kasha

@@ -21,6 +21,8 @@ struct KernelSceneData {
   std::vector<float> lobes;             // gloss lobe tables at KMaterial::lobe
   std::vector<float> emitter_radiance;  // emitters x N, then the lights' spectra x N
   std::vector<KLight> lights;           // the lights that are not triangles
+  std::vector<KTexture> textures;       // per texture and use (kernels/texture.h)
+  std::vector<KTexcoords> texcoords;    // per leaf triangle, when the scene has textures
   // Light sampling: emitting triangles (leaf order), then the other lights (~index into
   // `lights`), with the CDF of their power, and per emitter the area density
   // p(triangle)/area = pi·Σ Le Δλ / total power.
@@ -31,6 +33,9 @@ struct KernelSceneData {
 
   explicit KernelSceneData(const Scene& scene);
   size_t bytes() const;
+
+ private:
+  void add_textures(const Scene& scene);
 };
 
 // The lobe table of a gloss part: KASHA_LOBE_CELLS ring densities (per solid angle), then their
@@ -54,7 +59,7 @@ class DeviceScene {
   int bind(cl::Kernel& kernel, int first, size_t items);
 
   cl::Buffer nodes, leaves, triangles, materials, spectra, lobes, emitter_radiance, light_tri,
-      light_cdf, emitter_area_pdf, lights;
+      light_cdf, emitter_area_pdf, lights, textures, texcoords;
 
  private:
   KernelSceneData data_;

@@ -48,6 +48,14 @@ bool Scene::has_delta_surfaces() const {
   });
 }
 
+bool Scene::textured() const {
+  for (const ShapeInfo& s : shapes)
+    if (material_textures[s.material].reflectance >= 0 ||
+        material_textures[s.material].fluorescence >= 0)
+      return true;
+  return false;
+}
+
 bool Scene::has_environment() const {
   for (const Light& l : lights)
     if (l.environment) return true;
@@ -208,10 +216,11 @@ class TriangleKeys {
 // float) as one met before: a coincident twin doubles an emitter's power for light sampling
 // while a ray sees one of the two, and rays leaving one copy hit the other. A twin of opposite
 // winding stays: it is how a two-sided lamp is made.
-static void drop_duplicate_triangles(std::vector<Triangle>& tris, TriangleKeys& seen,
-                                     const JsonNode& shape) {
+static void drop_duplicate_triangles(ShapeMesh& mesh, TriangleKeys& seen, const JsonNode& shape) {
+  std::vector<Triangle>& tris = mesh.tris;
   size_t kept = 0;
-  for (const Triangle& t : tris) {
+  for (size_t i = 0; i < tris.size(); ++i) {
+    const Triangle& t = tris[i];
     std::array<std::array<float, 3>, 3> v;
     for (int k = 0; k < 3; ++k)
       for (int c = 0; c < 3; ++c) v[k][c] = static_cast<float>(t[k][c]);
@@ -219,12 +228,16 @@ static void drop_duplicate_triangles(std::vector<Triangle>& tris, TriangleKeys& 
     std::array<float, 9> key;
     for (int k = 0; k < 3; ++k)
       for (int c = 0; c < 3; ++c) key[3 * k + c] = v[(first + k) % 3][c];
-    if (seen.insert(key)) tris[kept++] = t;
+    if (seen.insert(key)) {
+      mesh.uv[kept] = mesh.uv[i];
+      tris[kept++] = t;
+    }
   }
   if (kept < tris.size())
     warn(shape.file() + ": " + shape.path() + ": " + std::to_string(tris.size() - kept) +
          " duplicate triangles (the same vertices as earlier ones) left out");
   tris.resize(kept);
+  mesh.uv.resize(kept);
 }
 
 static GridRequest parse_grid_request(const JsonNode& node) {
@@ -241,8 +254,8 @@ static GridRequest parse_grid_request(const JsonNode& node) {
 }
 
 // Triangles of one shape, in world space, front sides as the shape asks.
-static std::vector<Triangle> shape_triangles(const JsonNode& shape, const std::string& type) {
-  std::vector<Triangle> tris;
+static ShapeMesh shape_triangles(const JsonNode& shape, const std::string& type) {
+  ShapeMesh tris;
   if (type == "obj") {
     std::filesystem::path file = relative_to(shape, shape.at("file").string());
     tris = obj_triangles(file.string());
@@ -312,10 +325,69 @@ static LampChoice choose_lamp(const JsonNode& root, const std::string& requested
 }
 
 // The scene's "materials": each inline, or {"file": ...} relative to the scene's folder.
+// A material entry's "textures": {"reflectance": NAME, "fluorescence": NAME}, each one of the
+// scene's "textures".
+static MaterialTextures parse_material_textures(const JsonNode& m, const Scene& scene) {
+  MaterialTextures mt;
+  auto textures = m.find("textures");
+  if (!textures) return mt;
+  if (!textures->is_object()) textures->fail("expected {\"reflectance\": NAME, \"fluorescence\": NAME}");
+  mt.where = textures->file() + ": " + textures->path();
+  auto lookup = [&](const char* key, int& out) {
+    if (auto n = textures->find(key)) {
+      const std::string name = n->string();
+      for (size_t i = 0; i < scene.textures.size(); ++i)
+        if (scene.textures[i].name == name) out = static_cast<int>(i);
+      if (out < 0) n->fail("no texture named \"" + name + "\" in the scene's \"textures\"");
+    }
+  };
+  lookup("reflectance", mt.reflectance);
+  lookup("fluorescence", mt.fluorescence);
+  textures->finish();
+  return mt;
+}
+
+// What a material's textures apply to must be there: a passive part to print on, a fluorescent
+// part to scale; scaled excitation stays in [0, 1] (a concentration) and printed reflectance
+// within the material's own.
+static void check_material_textures(const Scene& scene) {
+  for (size_t i = 0; i < scene.materials.size(); ++i) {
+    const MaterialTextures& mt = scene.material_textures[i];
+    const Material& m = scene.materials[i];
+    if (mt.reflectance < 0 && mt.fluorescence < 0) continue;
+    if (m.kind != MaterialKind::measured)
+      throw Error(mt.where + ": textures apply to a measured material's Lambert parts, not to a " +
+                  "dielectric or conductor");
+    if (mt.reflectance >= 0 && m.rho.empty())
+      throw Error(mt.where + ": a reflectance texture multiplies the material's passive " +
+                  "reflectance, and \"" + scene.material_descs[i].name + "\" has none");
+    if (mt.fluorescence >= 0 && !m.fluorescent())
+      throw Error(mt.where + ": a fluorescence texture scales the material's excitation, and \"" +
+                  scene.material_descs[i].name + "\" does not fluoresce");
+    if (mt.fluorescence >= 0) {
+      const Texture& t = scene.textures[mt.fluorescence];
+      if (t.type == TextureType::checkerboard &&
+          !(t.even_value >= 0 && t.even_value <= 1 && t.odd_value >= 0 && t.odd_value <= 1))
+        throw Error(t.where + ": a fluorescence texture's \"even\" and \"odd\" are " +
+                    "concentrations: numbers in [0, 1]");
+    }
+    if (mt.reflectance >= 0) {
+      const Texture& t = scene.textures[mt.reflectance];
+      if (t.type == TextureType::checkerboard)
+        for (const SpectrumPtr& v : {t.even, t.odd})
+          for (double x : scene.grid.resample(*v))
+            if (!(x <= 1))
+              throw Error(t.where + ": a reflectance texture's values multiply a reflectance: " +
+                          "at most 1 in every bin");
+    }
+  }
+}
+
 static void parse_materials(const JsonNode& materials, Scene& scene) {
   for (const std::string& name : materials.keys()) {
     JsonNode m = materials.at(name);
     if (!m.is_object()) m.fail("expected a material object or {\"file\": ...}");
+    scene.material_textures.push_back(parse_material_textures(m, scene));
     if (auto file = m.find("file")) {
       std::filesystem::path p = relative_to(m, file->string());
       m.finish();
@@ -340,9 +412,9 @@ static void check_vertices(const std::vector<Triangle>& tris, const JsonNode& sh
 }
 
 // A shape's triangles in kernel layout, after the scene's.
-static void append_triangles(const std::vector<Triangle>& tris, int material, int emitter,
-                             Scene& scene) {
-  for (const Triangle& t : tris) {
+static void append_triangles(const ShapeMesh& mesh, int material, int emitter, Scene& scene) {
+  scene.uvs.insert(scene.uvs.end(), mesh.uv.begin(), mesh.uv.end());
+  for (const Triangle& t : mesh.tris) {
     KTriangle k{};
     for (int c = 0; c < 3; ++c) {
       k.v0[c] = static_cast<float>(t[0][c]);
@@ -372,6 +444,11 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
   const LampChoice lamp_on = choose_lamp(root, lamp, scene);
   bool lamp_used = false;
 
+  if (auto textures = root.find("textures")) {
+    if (!textures->is_object()) textures->fail("expected an object of named textures");
+    for (const std::string& name : textures->keys())
+      scene.textures.push_back(parse_texture(textures->at(name), name));
+  }
   parse_materials(root.at("materials"), scene);
 
   if (auto lights = root.find("lights")) {
@@ -390,9 +467,10 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
     int material = scene.material_index(material_name);
     if (material < 0) shape.at("material").fail("no material named \"" + material_name + "\"");
     material_used[material] = true;
-    std::vector<Triangle> tris = shape_triangles(shape, type);
+    ShapeMesh mesh = shape_triangles(shape, type);
+    const std::vector<Triangle>& tris = mesh.tris;
     check_vertices(tris, shape);
-    drop_duplicate_triangles(tris, seen_triangles, shape);
+    drop_duplicate_triangles(mesh, seen_triangles, shape);
 
     int emitter = -1;
     auto emission = shape.find("emission");
@@ -424,7 +502,7 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
     scene.shapes.push_back(ShapeInfo{type, inward, material, emitter,
                                      static_cast<int>(scene.triangles.size()),
                                      static_cast<int>(tris.size())});
-    append_triangles(tris, material, emitter, scene);
+    append_triangles(mesh, material, emitter, scene);
   }
   root.finish();
   if (scene.triangles.empty()) root.fail("the scene has no shapes");
@@ -451,6 +529,7 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
           environment_data(*l.environment, l.per_bin, scene.grid));
   }
   check_emitters(scene);
+  check_material_textures(scene);
   return scene;
 }
 

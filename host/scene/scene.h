@@ -9,6 +9,8 @@
 #include "material/material.h"
 #include "scene/camera.h"
 #include "scene/light.h"
+#include "scene/shape_mesh.h"
+#include "scene/texture.h"
 #include "shared_types.h"
 #include "spectrum/wavelength_grid.h"
 
@@ -41,7 +43,10 @@ struct Scene {
   WavelengthGrid grid;
   std::vector<MaterialDesc> material_descs;
   std::vector<Material> materials;   // on `grid`, same order as material_descs
+  std::vector<Texture> textures;     // the scene's "textures"
+  std::vector<MaterialTextures> material_textures;  // same order as material_descs
   std::vector<KTriangle> triangles;  // scene order: prim == index
+  std::vector<TriangleUv> uvs;       // the triangles' texture coordinates, scene order
   std::vector<Emitter> emitters;
   std::vector<Light> lights;  // the "lights" that are not shapes
   std::vector<ShapeInfo> shapes;
@@ -59,6 +64,7 @@ struct Scene {
   int material_index(const std::string& name) const;  // -1 when absent
   bool has_light(LightType type) const;
   bool has_environment() const;  // some infinite light has an image
+  bool textured() const;         // some shape's material carries a texture
   // The bounding sphere of the triangles (as the kernels see them), where distant and infinite
   // lights send their photons from.
   void bounding_sphere(Eigen::Vector3d& centre, double& radius) const;

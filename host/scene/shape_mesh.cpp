@@ -15,18 +15,22 @@
 
 namespace kasha {
 
-std::vector<Triangle> quad_triangles(const Eigen::Vector3d& c, const Eigen::Vector3d& u,
-                                     const Eigen::Vector3d& v) {
+ShapeMesh quad_triangles(const Eigen::Vector3d& c, const Eigen::Vector3d& u,
+                         const Eigen::Vector3d& v) {
   // Both triangles face u × v.
-  return {Triangle{c, c + u, c + u + v}, Triangle{c, c + u + v, c + v}};
+  const Eigen::Vector2d a(0, 0), b(1, 0), d(1, 1), e(0, 1);
+  return {{Triangle{c, c + u, c + u + v}, Triangle{c, c + u + v, c + v}},
+          {TriangleUv{a, b, d}, TriangleUv{a, d, e}}};
 }
 
-std::vector<Triangle> box_triangles(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
+ShapeMesh box_triangles(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
   Eigen::Vector3d d = hi - lo;
   Eigen::Vector3d ex(d.x(), 0, 0), ey(0, d.y(), 0), ez(0, 0, d.z());
-  std::vector<Triangle> out;
+  ShapeMesh out;
   auto add = [&](const Eigen::Vector3d& c, const Eigen::Vector3d& u, const Eigen::Vector3d& v) {
-    for (const Triangle& t : quad_triangles(c, u, v)) out.push_back(t);
+    ShapeMesh q = quad_triangles(c, u, v);
+    out.tris.insert(out.tris.end(), q.tris.begin(), q.tris.end());
+    out.uv.insert(out.uv.end(), q.uv.begin(), q.uv.end());
   };
   add(lo, ez, ey);       // -x: ez × ey = -x
   add(lo + ex, ey, ez);  // +x
@@ -37,7 +41,7 @@ std::vector<Triangle> box_triangles(const Eigen::Vector3d& lo, const Eigen::Vect
   return out;
 }
 
-std::vector<Triangle> sphere_triangles(const Eigen::Vector3d& center, double radius, int segments) {
+ShapeMesh sphere_triangles(const Eigen::Vector3d& center, double radius, int segments) {
   int rings = std::max(2, segments / 2);
   auto point = [&](int ring, int seg) {
     double theta = M_PI * ring / rings, phi = 2.0 * M_PI * seg / segments;
@@ -45,15 +49,24 @@ std::vector<Triangle> sphere_triangles(const Eigen::Vector3d& center, double rad
                                                              std::cos(theta),
                                                              std::sin(theta) * std::sin(phi)));
   };
-  std::vector<Triangle> out;
-  out.reserve(2 * static_cast<size_t>(rings) * segments);
+  auto uv = [&](int ring, int seg) {
+    return Eigen::Vector2d(double(seg) / segments, double(ring) / rings);
+  };
+  ShapeMesh out;
+  out.tris.reserve(2 * static_cast<size_t>(rings) * segments);
   for (int r = 0; r < rings; ++r)
     for (int s = 0; s < segments; ++s) {
       Eigen::Vector3d a = point(r, s), b = point(r, s + 1), c = point(r + 1, s),
                       d = point(r + 1, s + 1);
       // Outward winding; the pole rows collapse to one triangle each.
-      if (r > 0) out.push_back({a, b, c});
-      if (r < rings - 1) out.push_back({b, d, c});
+      if (r > 0) {
+        out.tris.push_back({a, b, c});
+        out.uv.push_back({uv(r, s), uv(r, s + 1), uv(r + 1, s)});
+      }
+      if (r < rings - 1) {
+        out.tris.push_back({b, d, c});
+        out.uv.push_back({uv(r, s + 1), uv(r + 1, s + 1), uv(r + 1, s)});
+      }
     }
   return out;
 }
@@ -135,7 +148,7 @@ void check_obj_lines(const std::string& path, const std::string& text) {
 
 }  // namespace
 
-std::vector<Triangle> obj_triangles(const std::string& path) {
+ShapeMesh obj_triangles(const std::string& path) {
   // Read once through the checked route (regular file, size limit); tinyobjloader then parses the
   // same text and opens nothing itself (no .mtl either: kasha takes materials from the scene).
   const std::string text = read_input_file(path, kMaxBinaryInputBytes);
@@ -154,32 +167,44 @@ std::vector<Triangle> obj_triangles(const std::string& path) {
                 ": cannot read OBJ mesh: " + (why.empty() ? "unknown error" : printable(why)));
   }
   const auto& v = reader.GetAttrib().vertices;
-  std::vector<Triangle> out;
+  const auto& vt = reader.GetAttrib().texcoords;
+  ShapeMesh out;
+  const TriangleUv fallback = {Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(1, 1)};
   for (const auto& shape : reader.GetShapes()) {
     const auto& idx = shape.mesh.indices;
     for (size_t f = 0; f + 2 < idx.size(); f += 3) {
       Triangle t;
+      TriangleUv uv = fallback;
+      bool has_uv = true;
       for (int k = 0; k < 3; ++k) {
         int i = idx[f + k].vertex_index;
         if (i < 0 || 3 * static_cast<size_t>(i) + 2 >= v.size())
           throw Error(path + ": face " + std::to_string(f / 3 + 1) + " refers to a missing vertex");
         t[k] = Eigen::Vector3d(v[3 * i], v[3 * i + 1], v[3 * i + 2]);
+        int j = idx[f + k].texcoord_index;
+        if (j < 0 || 2 * static_cast<size_t>(j) + 1 >= vt.size() || !std::isfinite(vt[2 * j]) ||
+            !std::isfinite(vt[2 * j + 1]))
+          has_uv = false;
+        else
+          uv[k] = Eigen::Vector2d(vt[2 * j], vt[2 * j + 1]);
       }
-      out.push_back(t);
+      out.tris.push_back(t);
+      out.uv.push_back(has_uv ? uv : fallback);
     }
   }
-  if (out.empty()) throw Error(path + ": OBJ mesh has no faces");
+  if (out.tris.empty()) throw Error(path + ": OBJ mesh has no faces");
   return out;
 }
 
-void flip_triangles(std::vector<Triangle>& tris) {
-  for (Triangle& t : tris) std::swap(t[1], t[2]);
+void flip_triangles(ShapeMesh& mesh) {
+  for (Triangle& t : mesh.tris) std::swap(t[1], t[2]);
+  for (TriangleUv& t : mesh.uv) std::swap(t[1], t[2]);
 }
 
-void transform_triangles(std::vector<Triangle>& tris, const Eigen::Affine3d& m) {
-  for (Triangle& t : tris)
+void transform_triangles(ShapeMesh& mesh, const Eigen::Affine3d& m) {
+  for (Triangle& t : mesh.tris)
     for (Eigen::Vector3d& p : t) p = m * p;
-  if (m.linear().determinant() < 0) flip_triangles(tris);
+  if (m.linear().determinant() < 0) flip_triangles(mesh);
 }
 
 }  // namespace kasha

@@ -9,17 +9,29 @@
 namespace kasha {
 
 using Triangle = std::array<Eigen::Vector3d, 3>;
+// Texture coordinates (u, v) at a triangle's three vertices (docs/textures.md#texture-coordinates).
+using TriangleUv = std::array<Eigen::Vector2d, 3>;
 
-std::vector<Triangle> quad_triangles(const Eigen::Vector3d& corner, const Eigen::Vector3d& u,
-                                     const Eigen::Vector3d& v);
-std::vector<Triangle> box_triangles(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
-// A UV sphere with `segments` around the axis and segments/2 rings.
-std::vector<Triangle> sphere_triangles(const Eigen::Vector3d& center, double radius, int segments);
-// All faces of an OBJ file, triangulated; throws kasha::Error naming the file on failure.
-std::vector<Triangle> obj_triangles(const std::string& path);
+// A shape's triangles and, triangle by triangle, their texture coordinates.
+struct ShapeMesh {
+  std::vector<Triangle> tris;
+  std::vector<TriangleUv> uv;
+};
+
+// (0, 0) at the corner, u along `u`, v along `v`.
+ShapeMesh quad_triangles(const Eigen::Vector3d& corner, const Eigen::Vector3d& u,
+                         const Eigen::Vector3d& v);
+// Each face a quad, (0, 0) to (1, 1).
+ShapeMesh box_triangles(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi);
+// A UV sphere with `segments` around the axis (+y) and segments/2 rings; u = φ/2π from +x
+// towards +z, v = θ/π from +y.
+ShapeMesh sphere_triangles(const Eigen::Vector3d& center, double radius, int segments);
+// All faces of an OBJ file, triangulated, with their `vt` coordinates (pbrt-v4's (0, 0), (1, 0),
+// (1, 1) for a face without them); throws kasha::Error naming the file on failure.
+ShapeMesh obj_triangles(const std::string& path);
 
 // Applies a transform, keeping each triangle's front side (mirroring transforms swap winding).
-void transform_triangles(std::vector<Triangle>& tris, const Eigen::Affine3d& m);
-void flip_triangles(std::vector<Triangle>& tris);
+void transform_triangles(ShapeMesh& mesh, const Eigen::Affine3d& m);
+void flip_triangles(ShapeMesh& mesh);
 
 }  // namespace kasha
