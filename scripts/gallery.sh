@@ -103,5 +103,11 @@ render light_booth_uv_spot_512 "scenes/light_booth_uv_spot.json (${SIZE}²)" "$s
 scene=$(resized scenes/sunlit_table.json $SIZE $SIZE); TEMPORARY+=("$scene")
 render sunlit_table_512 "scenes/sunlit_table.json (${SIZE}²)" "$scene" --photons 1048576 --time 90
 
+# Textures (docs/textures.md): a colour print with an invisible fluorescent ink star, under a dim
+# D65 and the UV spot.
+scene=$(resized scenes/fluorescent_print.json $SIZE $SIZE); TEMPORARY+=("$scene")
+render fluorescent_print_512 "scenes/fluorescent_print.json (${SIZE}²)" "$scene" \
+  --integrator backward --time 60
+
 mv "$TIMES.tmp" "$TIMES"
 echo "gallery: wrote $GALLERY/*.png and $TIMES"

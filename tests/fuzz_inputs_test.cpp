@@ -147,7 +147,7 @@ std::string mutated(const std::string& text, std::mt19937& rng) {
 const char* const kSeedScene = R"({"kasha_scene": 1,
   "camera": {"position": [0.1, 0.2, -0.6], "look_at": [0, 0, 1], "fov_deg": 70, "width": 8, "height": 8},
   "materials": {
-    "paper": {"file": "paper.json"},
+    "paper": {"file": "paper.json", "textures": {"reflectance": "print", "fluorescence": "ink"}},
     "wall": {"passive": {"reflectance": {"csv": "reflectance.csv", "column": "red"}},
              "gloss": {"reflectance": 0.05, "cone_deg": 12}},
     "lamp": {"passive": {"reflectance": 0.2}},
@@ -166,6 +166,10 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
     {"type": "sphere", "center": [-0.5, -0.6, 0.9], "radius": 0.2, "segments": 12, "material": "glass"},
     {"type": "box", "min": [0.4, -1, 0.2], "max": [0.7, -0.7, 0.5], "material": "metal"}
   ],
+  "textures": {
+    "print": {"type": "image", "file": "sky.png", "filter": "bilinear", "wrap": "repeat", "uscale": 2},
+    "ink": {"type": "checkerboard", "even": 1, "odd": 0.25, "uscale": 4, "vscale": 4}
+  },
   "lights": [
     {"type": "point", "position": [0.2, 0.8, 0.9], "intensity": {"rgb_illuminant": [0.01, 0.02, 0.01]}},
     {"type": "spot", "from": [-0.5, 0.9, 0.5], "to": [0, -1, 1], "intensity": 0.01, "cone_deg": 25,
@@ -1125,7 +1129,7 @@ const char* const kRegionsScene = R"({"kasha_scene": 1,
   "materials": {
     "white": {"passive": {"reflectance": 0.8}},
     "red": {"passive": {"reflectance": {"nm": [400, 550, 700], "value": [0.1, 0.2, 0.9]}}},
-    "paper": {"file": "paper.json"},
+    "paper": {"file": "paper.json", "textures": {"reflectance": "print", "fluorescence": "ink"}},
     "lamp": {"passive": {"reflectance": 0.1}}
   },
   "shapes": [
