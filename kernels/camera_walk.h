@@ -93,6 +93,9 @@ inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sa
   if (h->emitter >= 0 && h->front) {
     float weight = 1.0f;
     if (!w->specular) weight = mis_weight(w->prev_pdf, light_pdf_from(s, h->tri, w->prev_x, h->x, dot(h->n, -w->dir)));
+#if KASHA_EMISSION_TEXTURES
+    weight *= emission_factor(s, h->tri, h->b.x, h->b.y);
+#endif
     pw_add(&w->p, f, emitter_spectrum(s, h->emitter), 0, weight, rows);
   }
   load_surface_at(s, h, &v->surf);
@@ -209,7 +212,8 @@ inline void walk_rough_next_event(const CameraWalk* w, const SceneView* s, const
   float dist = length(to);
   if (!(dist > v->h.eps + lp.eps)) return;
   float3 wi = to / dist;
-  if (-dot(lp.normal, wi) <= 0.0f) return;
+  float cos_l = -dot(lp.normal, wi);
+  if (cos_l <= 0.0f) return;
   Frame fr = frame_of(v->h.n);
   float3 wo_l = to_local(&fr, -w->dir), wi_l = to_local(&fr, wi);
   float pdf, cos_m = 0.0f, fv;
@@ -219,9 +223,11 @@ inline void walk_rough_next_event(const CameraWalk* w, const SceneView* s, const
     fv = rough_conductor_eval(wo_l, wi_l, surf->alpha, &pdf, &cos_m);
   if (!(fv > 0.0f)) return;
   float3 toward = wi_l.z > 0.0f ? v->h.n : -v->h.n;
-  if (segment_occluded(s, v->h.x, toward, v->h.eps, wi, dist, lp.eps)) return;
+  if (segment_occluded(s, v->h.x, toward, v->h.eps, wi, dist, lp.eps / cos_l)) return;
 #if KASHA_LIGHT_SOURCES
   float scale = fv * fabs(wi_l.z) / pdf_light * lp.scale * mis_weight(pdf_light, lp.delta ? 0.0f : pdf);
+#elif KASHA_EMISSION_TEXTURES
+  float scale = fv * fabs(wi_l.z) / pdf_light * lp.scale * mis_weight(pdf_light, pdf);
 #else
   float scale = fv * fabs(wi_l.z) / pdf_light * mis_weight(pdf_light, pdf);
 #endif

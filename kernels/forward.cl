@@ -113,6 +113,9 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
     float k;
     if (camera_connection(&s, p.position, o.normal, o.eps, &pixel, &k)) {
       film_rows_clear(rows);
+#if KASHA_EMISSION_TEXTURES
+      k *= o.scale;
+#endif
       film_rows(&f, 0, emitter_spectrum(&s, o.emitter), 0, k / (o.area_pdf * (float)photons), rows);
       splat_rows(&target, pixel, rows);
     }

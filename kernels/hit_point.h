@@ -62,9 +62,12 @@ inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint
 }
 
 /* Whether anything blocks the segment from x (offset eps off its surface along ns) to dist along
- * wi, short of the far end's own offset far_eps and of the rounding of dist itself. */
+ * wi, short of the far end's own offset far_eps (measured along wi: a surface met at a grazing
+ * angle needs its offset over the cosine) and of the rounding of dist itself. */
 inline bool segment_occluded(const SceneView* s, float3 x, float3 ns, float eps, float3 wi, float dist, float far_eps) {
-  float reach = dist - eps - far_eps - KASHA_GAMMA(8) * dist;
+  /* 10⁻⁴ of the distance short, as pbrt-v4's ShadowEpsilon: a light point found along a ray or
+   * interpolated on a triangle met at a grazing angle is only that good along the ray. */
+  float reach = dist * (1.0f - 1e-4f) - eps - far_eps;
   if (!(reach > 0.0f)) return false;
   ++s->rays->shadow;
   return bvh_occluded(s->nodes, s->leaves, x + ns * eps, wi, 0.0f, reach);

@@ -12,6 +12,7 @@
 #include "hit_point.h"
 #include "sampling.h"
 #include "scene_view.h"
+#include "texture.h"
 
 #ifndef KASHA_LIGHT_SOURCES
 #define KASHA_LIGHT_SOURCES 0 /* some light is not a triangle (KLight) */
@@ -28,9 +29,11 @@ typedef struct {
   float3 normal; /* front side */
   int emitter;   /* the row of emitter_radiance */
   float eps; /* the point's rounding bound along the normal (hit_point.h's surface_offset) */
+#if KASHA_LIGHT_SOURCES || KASHA_EMISSION_TEXTURES
+  float scale; /* on the spectrum: a point light's 1/d², a spot's falloff, an emission texture */
+#endif
 #if KASHA_LIGHT_SOURCES
-  float scale; /* on the spectrum: a point light's 1/d² and a spot's falloff; 1 otherwise */
-  bool delta;  /* no other strategy can find it: a point, a spot, a distant light */
+  bool delta; /* no other strategy can find it: a point, a spot, a distant light */
 #endif
 #if KASHA_ENVIRONMENT
   const __global float* le; /* an environment texel's radiance (the scratch spectrum), else null */
@@ -278,8 +281,10 @@ inline LightPoint sample_light_from(const SceneView* s, float3 x, float2 u, floa
   LightPoint p;
   p.normal = normalize(cr);
   p.emitter = t->emitter;
-#if KASHA_LIGHT_SOURCES
+#if KASHA_LIGHT_SOURCES || KASHA_EMISSION_TEXTURES
   p.scale = 1.0f;
+#endif
+#if KASHA_LIGHT_SOURCES
   p.delta = false;
 #endif
 #if KASHA_ENVIRONMENT
@@ -305,6 +310,12 @@ inline LightPoint sample_light_from(const SceneView* s, float3 x, float2 u, floa
     float d2 = dot(to, to), cos_l = -dot(p.normal, to) / sqrt(d2);
     if (cos_l > 0.0f) *pdf = area_pdf * d2 / cos_l;
   }
+#if KASHA_EMISSION_TEXTURES
+  /* The point's barycentrics (the spherical branch found it along a ray), for its texture. */
+  float3 e1 = v1 - v0, e2 = v2 - v0, q = p.position - v0;
+  float inv = 1.0f / dot(cr, cr);
+  p.scale = emission_factor(s, s->light_tri[lo], dot(cross(q, e2), cr) * inv, dot(cross(e1, q), cr) * inv);
+#endif
   return p;
 }
 

@@ -30,13 +30,18 @@ inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* 
   float3 wi = to / dist;
   float cos_x = dot(ns, wi), cos_l = -dot(lp.normal, wi);
   if (cos_x <= 0.0f || cos_l <= 0.0f) return;
-  if (segment_occluded(s, x, ns, eps, wi, dist, lp.eps)) return;
+  /* The light point's rounding along its normal is lp.eps: along a ray meeting its surface at
+   * cos_l it is lp.eps / cos_l, what the shadow ray must stop short by (at grazing angles the
+   * light's own surface would block it otherwise). */
+  if (segment_occluded(s, x, ns, eps, wi, dist, lp.eps / cos_l)) return;
   const __global float* le = light_point_spectrum(s, &lp);
   float lambert_pdf = cosine_hemisphere_pdf(cos_x);
   float base = cos_x / pdf_light;
+#if KASHA_LIGHT_SOURCES || KASHA_EMISSION_TEXTURES
+  base *= lp.scale;
+#endif
 #if KASHA_LIGHT_SOURCES
   /* A delta light (point, spot, distant) no bounce can hit: its sample takes the whole weight. */
-  base *= lp.scale;
   float reach = lp.delta ? 0.0f : 1.0f;
 #else
   const float reach = 1.0f;

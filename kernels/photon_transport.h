@@ -42,6 +42,9 @@ typedef struct {
   int emitter;
   float area_pdf;
   float eps; /* how far off the light the photon starts (LightPoint::eps) */
+#if KASHA_EMISSION_TEXTURES
+  float scale; /* the emission texture's factor there */
+#endif
 } LightOrigin;
 
 /* A photon leaving a light: a triangle chosen by power, a uniform point, a cosine-weighted
@@ -63,6 +66,9 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
     origin->emitter = l->spectrum;
     origin->area_pdf = 0.0f;
     origin->eps = 0.0f;
+#if KASHA_EMISSION_TEXTURES
+    origin->scale = 1.0f;
+#endif
     const __global float* le = emitter_spectrum(s, l->spectrum);
     for (int i = 0; i < KASHA_BINS; ++i) p.power[i] = le[i] * scale;
 #if KASHA_ENVIRONMENT
@@ -77,6 +83,11 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
   }
 #endif
   LightPoint lp = sample_light(s->tris, s->light_tri, s->light_cdf, s->light_count, u0, u.x, u.y);
+#if KASHA_EMISSION_TEXTURES
+  /* sample_light's point is b1 = √u.x (1 − u.y), b2 = √u.x u.y on the triangle it chose. */
+  float texture_scale = emission_factor(s, s->light_tri[choose_light(s->light_cdf, s->light_count, u0)],
+                                        sqrt(u.x) * (1.0f - u.y), sqrt(u.x) * u.y);
+#endif
   Photon p;
   p.position = lp.position;
   p.direction = sample_cosine_hemisphere(lp.normal, d.x, d.y);
@@ -86,6 +97,10 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
   origin->eps = lp.eps;
   float scale = s->bin_nm * KASHA_PI / (origin->area_pdf * photons);
   const __global float* le = emitter_spectrum(s, lp.emitter);
+#if KASHA_EMISSION_TEXTURES
+  scale *= texture_scale;
+  origin->scale = texture_scale;
+#endif
   for (int i = 0; i < KASHA_BINS; ++i) p.power[i] = le[i] * scale;
   p.start = photon_total(&p);
 #if KASHA_DISPERSION

@@ -164,10 +164,12 @@ typedef struct {
 } KTexture;
 KASHA_STATIC_SIZE(KTexture, 64);
 
-/* A triangle's texture coordinates, in leaf order like KTriangle: (u, v) at v0, v1, v2. */
+/* A triangle's texture coordinates, in leaf order like KTriangle: (u, v) at v0, v1, v2; and the
+ * texture its emission is multiplied by (-1: none). */
 typedef struct {
   float uv[6];
-  float pad[2];
+  int emission_texture;
+  float pad;
 } KTexcoords;
 KASHA_STATIC_SIZE(KTexcoords, 32);
 

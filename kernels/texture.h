@@ -13,16 +13,22 @@
 #include "rgb_spectrum.h"
 #include "surface.h"
 
+#ifndef KASHA_EMISSION_TEXTURES
+#define KASHA_EMISSION_TEXTURES 0 /* some emitter's radiance is multiplied by a texture */
+#endif
 #ifndef KASHA_SCRATCH_TEXTURES
 #define KASHA_SCRATCH_TEXTURES 0 /* where the textured spectra start in the scratch */
 #endif
 
 #if KASHA_TEXTURES
-inline float2 hit_uv(const SceneView* s, const HitPoint* h) {
-  const __global float* t = s->texcoords[h->tri].uv;
-  float b1 = h->b.x, b2 = h->b.y, b0 = 1.0f - b1 - b2;
+/* The texture coordinates at barycentrics (b1, b2) of leaf triangle tri. */
+inline float2 triangle_uv(const SceneView* s, int tri, float b1, float b2) {
+  const __global float* t = s->texcoords[tri].uv;
+  float b0 = 1.0f - b1 - b2;
   return (float2)(b0 * t[0] + b1 * t[2] + b2 * t[4], b0 * t[1] + b1 * t[3] + b2 * t[5]);
 }
+
+inline float2 hit_uv(const SceneView* s, const HitPoint* h) { return triangle_uv(s, h->tri, h->b.x, h->b.y); }
 
 /* The texel (x, y) after wrapping; -1 where a black wrap leaves the image. */
 inline int texel_index(const __global KTexture* t, int x, int y) {
@@ -108,6 +114,15 @@ inline void texture_multiply(const SceneView* s, const __global KTexture* t, flo
     out[i] = y[i] * v;
   }
 }
+
+#if KASHA_EMISSION_TEXTURES
+/* What an emission texture multiplies the emitter's radiance by at barycentrics (b1, b2) of
+ * leaf triangle tri (1 without one). */
+inline float emission_factor(const SceneView* s, int tri, float b1, float b2) {
+  int t = s->texcoords[tri].emission_texture;
+  return t < 0 ? 1.0f : texture_scalar(s, &s->textures[t], triangle_uv(s, tri, b1, b2));
+}
+#endif
 
 /* The hit's surface with its material's textures applied. */
 inline void load_surface_at(const SceneView* s, const HitPoint* h, Surface* surf) {

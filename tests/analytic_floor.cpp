@@ -13,7 +13,8 @@ namespace kasha::test {
 using Eigen::Vector3d;
 
 std::string floor_scene(const std::string& name, const std::string& floor, const std::string& lights,
-                        const std::string& extra) {
+                        const std::string& extra, const std::string& floor_keys,
+                        const std::string& shapes) {
   std::ostringstream s;
   s << R"({"kasha_scene": 1,
   "wavelengths": {"min_nm": 400, "max_nm": 700, "bin_nm": 50},
@@ -24,8 +25,9 @@ std::string floor_scene(const std::string& name, const std::string& floor, const
     << floor << R"(},
   "lights": [)" << lights << "],\n"
     << (extra.empty() ? "" : extra + ",\n")
-    << R"(  "shapes": [{"type": "quad", "corner": [-2, -2, 0], "u": [4, 0, 0], "v": [0, 4, 0], "material": "floor"}]
-})";
+    << R"(  "shapes": [{"type": "quad", "corner": [-2, -2, 0], "u": [4, 0, 0], "v": [0, 4, 0], "material": "floor")"
+    << (floor_keys.empty() ? "" : ", " + floor_keys) << "}" << (shapes.empty() ? "" : ", " + shapes)
+    << "]\n}";
   return write_file(name + ".json", s.str());
 }
 

@@ -239,6 +239,40 @@ INSTANTIATE_TEST_SUITE_P(Lights, LightSources, ::testing::Range(0, 6),
                          });
 
 // ---------------------------------------------------------------------------------------------
+// An area lamp low over the floor and off to its side, so most of the floor sees it at grazing
+// angles: the irradiance of a Lambertian polygon is exact (Lambert's formula: (L/2)·Σ over its
+// edges of the angle each subtends times its normal's component along the floor's normal).
+// Shadow rays to light points met at grazing angles once stopped too late and hit the lamp
+// itself: backward and photon mapping showed 20 % too little light here.
+
+double polygon_irradiance(const Vector3d& x, const std::vector<Vector3d>& polygon, double radiance) {
+  double sum = 0;
+  for (size_t i = 0; i < polygon.size(); ++i) {
+    Vector3d a = (polygon[i] - x).normalized(), b = (polygon[(i + 1) % polygon.size()] - x).normalized();
+    Vector3d g = a.cross(b);
+    if (g.norm() == 0) continue;
+    sum += std::acos(std::clamp(a.dot(b), -1.0, 1.0)) * g.normalized().z();
+  }
+  return radiance / 2 * std::abs(sum);
+}
+
+TEST(AreaLamp, AtGrazingAnglesEveryIntegratorMatchesTheAnalyticFloor) {
+  const std::string scene = floor_scene(
+      "grazing", R"({"passive": {"reflectance": 0.5}}, "black": {})", "", "", "",
+      R"({"type": "quad", "corner": [1.6, -1, 0.4], "u": [0, 2, 0], "v": [1, 0, 0], "material": "black",
+          "emission": 2})");
+  // Beyond the camera's view of the floor (its rays to x = 1.73 cross z = 0.4 at x = 1.5).
+  const std::vector<Vector3d> lamp = {{1.6, -1, 0.4}, {1.6, 1, 0.4}, {2.6, 1, 0.4}, {2.6, -1, 0.4}};
+  auto radiance = [&](const Scene&, const Vector3d& x, int) {
+    return kRho / M_PI * polygon_irradiance(x, lamp, 2.0);
+  };
+  expect_floor(scene, "backward", radiance, 16, 0, 1);
+  expect_floor(scene, "photon", radiance, 16, 1 << 14, 1);
+  // Light tracing reaches the far floor through few, steep photons: more passes.
+  expect_floor(scene, "forward", radiance, 0, 1 << 18, 8);
+}
+
+// ---------------------------------------------------------------------------------------------
 // χ² of the spot cone's photon directions and of the uniform sphere, on the device.
 
 const char* const kSpotSource = R"(

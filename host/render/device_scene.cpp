@@ -80,10 +80,14 @@ std::vector<float> gloss_lobe_table(const GlossDesc& gloss) {
 // use (spectral for a reflectance, scalar for a concentration), the texels after the spectra,
 // and each triangle's texture coordinates in leaf order.
 void KernelSceneData::add_textures(const Scene& scene) {
-  std::map<std::pair<int, bool>, int> made;
+  // What a texture is used as: a reflectance (spectral), a concentration (scalar in [0, 1]) or
+  // an emission factor (scalar ≥ 0).
+  enum Use { reflectance, concentration, emission };
+  std::map<std::pair<int, int>, int> made;
   int lambda = -1;
-  auto texture = [&](int index, bool spectral) {
-    auto found = made.find({index, spectral});
+  auto texture = [&](int index, Use use) {
+    const bool spectral = use == reflectance;
+    auto found = made.find({index, use});
     if (found != made.end()) return found->second;
     const Texture& t = scene.textures[index];
     KTexture k{};
@@ -110,7 +114,8 @@ void KernelSceneData::add_textures(const Scene& scene) {
           for (double v : q) spectra.push_back(static_cast<float>(v));
           spectra.push_back(0.0f);
         } else {
-          spectra.push_back(std::clamp((c[0] + c[1] + c[2]) / 3.0f, 0.0f, 1.0f));
+          const float mean = (c[0] + c[1] + c[2]) / 3.0f;
+          spectra.push_back(use == concentration ? std::clamp(mean, 0.0f, 1.0f) : mean);
         }
       }
       if (spectral) {
@@ -129,15 +134,20 @@ void KernelSceneData::add_textures(const Scene& scene) {
       k.odd_value = static_cast<float>(t.odd_value);
     }
     textures.push_back(k);
-    return made[{index, spectral}] = static_cast<int>(textures.size() - 1);
+    return made[{index, use}] = static_cast<int>(textures.size() - 1);
   };
   for (size_t i = 0; i < materials.size(); ++i) {
     const MaterialTextures& mt = scene.material_textures[i];
-    if (mt.reflectance >= 0) materials[i].reflectance_texture = texture(mt.reflectance, true);
-    if (mt.fluorescence >= 0) materials[i].fluorescence_texture = texture(mt.fluorescence, false);
+    if (mt.reflectance >= 0) materials[i].reflectance_texture = texture(mt.reflectance, reflectance);
+    if (mt.fluorescence >= 0)
+      materials[i].fluorescence_texture = texture(mt.fluorescence, concentration);
   }
+  std::vector<int> emitter_texture;
+  for (const Emitter& e : scene.emitters)
+    emitter_texture.push_back(e.texture >= 0 ? texture(e.texture, emission) : -1);
   for (const KTriangle& t : bvh.triangles) {
     KTexcoords c{};
+    c.emission_texture = t.emitter >= 0 ? emitter_texture[t.emitter] : -1;
     const TriangleUv& uv = scene.uvs[t.prim];
     for (int k = 0; k < 3; ++k) {
       c.uv[2 * k] = static_cast<float>(uv[k].x());
@@ -182,7 +192,7 @@ KernelSceneData::KernelSceneData(const Scene& scene)
     k.reflectance_texture = k.fluorescence_texture = -1;
     materials.push_back(k);
   }
-  if (scene.textured()) add_textures(scene);
+  if (scene.textured() || scene.emission_textured()) add_textures(scene);
   for (const Emitter& e : scene.emitters) append(emitter_radiance, e.per_bin);
   for (const Light& l : scene.lights) append(emitter_radiance, l.per_bin);
 
@@ -194,7 +204,7 @@ KernelSceneData::KernelSceneData(const Scene& scene)
   for (size_t i = 0; i < bvh.triangles.size(); ++i) {
     const KTriangle& t = bvh.triangles[i];
     if (t.emitter < 0) continue;
-    double p = emitted_power(t, radiance_sum[t.emitter]);
+    double p = emitted_power(t, radiance_sum[t.emitter]) * scene.emitters[t.emitter].texture_mean;
     if (!(p > 0)) continue;
     light_tri.push_back(static_cast<int>(i));
     power.push_back(p);
@@ -252,8 +262,12 @@ KernelSceneData::KernelSceneData(const Scene& scene)
     if (light_tri[j] < 0) lights[~light_tri[j]].pick = static_cast<float>(power[j] / total_power);
   }
   if (!light_cdf.empty()) light_cdf.back() = 1.0f;
-  for (double r : radiance_sum)
-    emitter_area_pdf.push_back(total_power > 0 ? static_cast<float>(M_PI * r / total_power) : 0.0f);
+  // An emission texture weighs its emitter's triangles by its mean (their power above).
+  for (size_t e = 0; e < radiance_sum.size(); ++e)
+    emitter_area_pdf.push_back(
+        total_power > 0
+            ? static_cast<float>(M_PI * radiance_sum[e] * scene.emitters[e].texture_mean / total_power)
+            : 0.0f);
 }
 
 size_t KernelSceneData::bytes() const {
@@ -295,7 +309,8 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_ENVIRONMENT"] = scene.has_environment() ? "1" : "0";
   // Spectra computed per work item on the way (an environment texel's radiance).
   d["KASHA_SCRATCH_FLOATS"] = std::to_string(scratch_floats(scene));
-  d["KASHA_TEXTURES"] = scene.textured() ? "1" : "0";
+  d["KASHA_TEXTURES"] = scene.textured() || scene.emission_textured() ? "1" : "0";
+  d["KASHA_EMISSION_TEXTURES"] = scene.emission_textured() ? "1" : "0";
   d["KASHA_SCRATCH_TEXTURES"] = std::to_string(scratch_texture_offset(scene));
   return d;
 }

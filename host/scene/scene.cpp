@@ -56,6 +56,12 @@ bool Scene::textured() const {
   return false;
 }
 
+bool Scene::emission_textured() const {
+  for (const Emitter& e : emitters)
+    if (e.texture >= 0) return true;
+  return false;
+}
+
 bool Scene::has_environment() const {
   for (const Light& l : lights)
     if (l.environment) return true;
@@ -111,7 +117,7 @@ static void check_emitters(const Scene& scene) {
     radiance.push_back(e.integrated_radiance(scene.grid.bin_nm));
     double p = 0.0;
     for (int k = 0; k < e.triangle_count; ++k)
-      p += emitted_power(scene.triangles[e.first_triangle + k], radiance.back());
+      p += emitted_power(scene.triangles[e.first_triangle + k], radiance.back()) * e.texture_mean;
     if (!(p <= kMaxEmitterPower)) {
       std::ostringstream msg;
       msg << e.where << ": the emitted power of " << p << " (π·area·∫L) is beyond 1e35";
@@ -141,7 +147,7 @@ static void check_emitters(const Scene& scene) {
   }
   for (size_t i = 0; i < scene.emitters.size(); ++i) {
     if (!(power[i] > 0)) continue;
-    double density = M_PI * radiance[i] / total_power;
+    double density = M_PI * radiance[i] * scene.emitters[i].texture_mean / total_power;
     if (!(density <= kMaxAreaDensity)) {
       std::ostringstream msg;
       msg << scene.emitters[i].where << ": the emitting area is too small: light sampling's "
@@ -325,6 +331,19 @@ static LampChoice choose_lamp(const JsonNode& root, const std::string& requested
 }
 
 // The scene's "materials": each inline, or {"file": ...} relative to the scene's folder.
+// An emission texture's mean over its image or its squares (light sampling weighs the emitter by
+// it); a checkerboard's values must be numbers ≥ 0 there.
+static double texture_mean(const Texture& t, const JsonNode& where) {
+  if (t.type == TextureType::checkerboard) {
+    if (!(t.even_value >= 0 && t.odd_value >= 0))
+      where.fail("an emission texture's checkerboard needs numbers ≥ 0 for \"even\" and \"odd\"");
+    return (t.even_value + t.odd_value) / 2;
+  }
+  double sum = 0;
+  for (float v : t.image.rgb) sum += v;
+  return t.image.rgb.empty() ? 0 : sum / t.image.rgb.size();
+}
+
 // A material entry's "textures": {"reflectance": NAME, "fluorescence": NAME}, each one of the
 // scene's "textures".
 static MaterialTextures parse_material_textures(const JsonNode& m, const Scene& scene) {
@@ -482,6 +501,8 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
         is_lamp->fail("expected true (a shape that emits the lamp that is on)");
       emits_lamp = lamp_used = true;
     }
+    if (shape.has("emission_texture") && !emission && !emits_lamp)
+      shape.at("emission_texture").fail("an emission texture needs the shape's \"emission\" or \"lamp\"");
     if (emission || emits_lamp) {
       Emitter e;
       if (emission) {
@@ -493,6 +514,13 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
       }
       e.first_triangle = static_cast<int>(scene.triangles.size());
       e.triangle_count = static_cast<int>(tris.size());
+      if (auto tex = shape.find("emission_texture")) {
+        const std::string name = tex->string();
+        for (size_t i = 0; i < scene.textures.size(); ++i)
+          if (scene.textures[i].name == name) e.texture = static_cast<int>(i);
+        if (e.texture < 0) tex->fail("no texture named \"" + name + "\" in the scene's \"textures\"");
+        e.texture_mean = texture_mean(scene.textures[e.texture], *tex);
+      }
       emitter = static_cast<int>(scene.emitters.size());
       scene.emitters.push_back(e);
     }

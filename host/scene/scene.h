@@ -21,6 +21,8 @@ struct Emitter {
   SpectrumPtr radiance;                        // Lambertian spectral radiance, front side only
   std::vector<double> per_bin;                 // on the scene grid
   int first_triangle = 0, triangle_count = 0;  // in scene (primitive) order
+  int texture = -1;         // the scene texture multiplying the radiance (docs/textures.md)
+  double texture_mean = 1;  // its mean over its image or squares: light sampling's weight
 
   // Σ_i L_i·Δλ: the radiance integrated over the grid (W·m⁻²·sr⁻¹).
   double integrated_radiance(double bin_nm) const;
@@ -65,6 +67,7 @@ struct Scene {
   bool has_light(LightType type) const;
   bool has_environment() const;  // some infinite light has an image
   bool textured() const;         // some shape's material carries a texture
+  bool emission_textured() const;  // some emitter's radiance is multiplied by a texture
   // The bounding sphere of the triangles (as the kernels see them), where distant and infinite
   // lights send their photons from.
   void bounding_sphere(Eigen::Vector3d& centre, double& radius) const;
