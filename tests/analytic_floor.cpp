@@ -12,9 +12,9 @@ namespace kasha::test {
 
 using Eigen::Vector3d;
 
-std::string floor_scene(const std::string& name, const std::string& floor, const std::string& lights,
-                        const std::string& extra, const std::string& floor_keys,
-                        const std::string& shapes) {
+std::string floor_scene(const std::string& name, const std::string& floor,
+                        const std::string& lights, const std::string& extra,
+                        const std::string& floor_keys, const std::string& shapes) {
   std::ostringstream s;
   s << R"({"kasha_scene": 1,
   "wavelengths": {"min_nm": 400, "max_nm": 700, "bin_nm": 50},
@@ -23,7 +23,8 @@ std::string floor_scene(const std::string& name, const std::string& floor, const
     << kFloorSize << R"(, "height": )" << kFloorSize << R"(},
   "materials": {"floor": )"
     << floor << R"(},
-  "lights": [)" << lights << "],\n"
+  "lights": [)"
+    << lights << "],\n"
     << (extra.empty() ? "" : extra + ",\n")
     << R"(  "shapes": [{"type": "quad", "corner": [-2, -2, 0], "u": [4, 0, 0], "v": [0, 4, 0], "material": "floor")"
     << (floor_keys.empty() ? "" : ", " + floor_keys) << "}" << (shapes.empty() ? "" : ", " + shapes)

@@ -17,9 +17,9 @@ constexpr int kFloorSize = 24;
 // Writes a scene named `name` (scratch folder) with the floor of material `floor` (a JSON
 // material), `lights` (a JSON array's contents), `extra` top-level entries (e.g. "textures") and
 // `floor_keys` added to the floor shape (e.g. its "emission"), and `shapes` after it.
-std::string floor_scene(const std::string& name, const std::string& floor, const std::string& lights,
-                        const std::string& extra = "", const std::string& floor_keys = "",
-                        const std::string& shapes = "");
+std::string floor_scene(const std::string& name, const std::string& floor,
+                        const std::string& lights, const std::string& extra = "",
+                        const std::string& floor_keys = "", const std::string& shapes = "");
 
 // The floor point the camera ray through the film position (x, y) hits.
 Eigen::Vector3d floor_point(const KCamera& camera, double x, double y);

@@ -1,12 +1,12 @@
 // A fuzz harness over kasha's inputs: mutated scene JSON (lights included), material files,
-// spectrum CSVs, environment PNGs, OBJ meshes and reference EXRs (from the shipped ones), loaded the way `kasha info` and `render`
-// load them. Every case must either load or fail with one kasha::Error line — no other
-// exception, crash or hang; scenes that load are also rendered at 8×8 for one pass by a physical
-// integrator, and the image must be finite. A handful go through the binary, which must exit 0
-// or 1 with at most one `kasha: error:` line. The cases are drawn from a fixed seed;
-// KASHA_FUZZ_CASES sets how many (CI runs more of them in the sanitizer build, scripts/test.sh).
-// Below them, the commands colorimetry, regions, compare, preview and delta-e are fuzzed in
-// process against the whole contract of docs/commands.md#errors-and-exit-codes.
+// spectrum CSVs, environment PNGs, OBJ meshes and reference EXRs (from the shipped ones), loaded
+// the way `kasha info` and `render` load them. Every case must either load or fail with one
+// kasha::Error line — no other exception, crash or hang; scenes that load are also rendered at 8×8
+// for one pass by a physical integrator, and the image must be finite. A handful go through the
+// binary, which must exit 0 or 1 with at most one `kasha: error:` line. The cases are drawn from a
+// fixed seed; KASHA_FUZZ_CASES sets how many (CI runs more of them in the sanitizer build,
+// scripts/test.sh). Below them, the commands colorimetry, regions, compare, preview and delta-e are
+// fuzzed in process against the whole contract of docs/commands.md#errors-and-exit-codes.
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>

@@ -226,7 +226,7 @@ TEST(KernelLightSampler, PointsFollowTheClaimedDensity) {
   kernel.scalar(11, lights_n);
   kernel.scalar(12, 1.0f);  // bin_nm
   kernel.input(13, std::vector<KLight>(1));
-  kernel.scalar(14, 0);  // no lights but triangles
+  kernel.scalar(14, 0);                     // no lights but triangles
   kernel.input(15, std::vector<float>(1));  // scratch
   kernel.input(16, std::vector<KTexture>(1));
   kernel.input(17, std::vector<KTexcoords>(1));

@@ -21,9 +21,9 @@
 #include "chi2.h"
 #include "color/color_space.h"
 #include "image/exr_io.h"
-#include "spectrum/rgb_spectrum.h"
 #include "kernel_harness.h"
 #include "render_support.h"
+#include "spectrum/rgb_spectrum.h"
 #include "test_support.h"
 
 using namespace kasha;
@@ -43,11 +43,13 @@ const char* const kGrey = R"({"passive": {"reflectance": 0.5}})";
 // Irradiance per unit of the light's spectrum at a floor point, in bin i of the scene.
 using Irradiance = std::function<double(const Scene&, const Vector3d&, int)>;
 
-void expect_lit_floor(const std::string& name, const std::string& light, const std::string& integrator,
-                      const Irradiance& irradiance, int spp, long long photons, int passes) {
-  expect_floor(floor_scene(name, kGrey, light), integrator,
-               [&](const Scene& sc, const Vector3d& x, int i) { return kRho / M_PI * irradiance(sc, x, i); },
-               spp, photons, passes);
+void expect_lit_floor(const std::string& name, const std::string& light,
+                      const std::string& integrator, const Irradiance& irradiance, int spp,
+                      long long photons, int passes) {
+  expect_floor(
+      floor_scene(name, kGrey, light), integrator,
+      [&](const Scene& sc, const Vector3d& x, int i) { return kRho / M_PI * irradiance(sc, x, i); },
+      spp, photons, passes);
 }
 
 struct LightCase {
@@ -58,7 +60,9 @@ struct LightCase {
 };
 
 // A light's own value in bin i (its spectrum times its scale).
-double light_value(const Scene& scene, int i) { return scene.lights.front().per_bin[i]; }
+double light_value(const Scene& scene, int i) {
+  return scene.lights.front().per_bin[i];
+}
 
 // ---------------------------------------------------------------------------------------------
 // Environment images, made here: a sky whose colour varies with the zenith angle and the
@@ -196,8 +200,9 @@ const std::vector<LightCase>& light_cases() {
        [](const Scene& sc, const Vector3d&, int i) {
          return light_value(sc, i) * Vector3d(1, 0.5, 2).normalized().z();
        }});
-  cases.push_back({"infinite", R"({"type": "infinite", "radiance": 0.7})",
-                   [](const Scene& sc, const Vector3d&, int i) { return light_value(sc, i) * M_PI; }});
+  cases.push_back(
+      {"infinite", R"({"type": "infinite", "radiance": 0.7})",
+       [](const Scene& sc, const Vector3d&, int i) { return light_value(sc, i) * M_PI; }});
   for (bool equal_area : {false, true}) {
     const char* name = equal_area ? "sky_equal_area" : "sky_latlong";
     Environment env = environment(name, equal_area);
@@ -245,10 +250,12 @@ INSTANTIATE_TEST_SUITE_P(Lights, LightSources, ::testing::Range(0, 6),
 // Shadow rays to light points met at grazing angles once stopped too late and hit the lamp
 // itself: backward and photon mapping showed 20 % too little light here.
 
-double polygon_irradiance(const Vector3d& x, const std::vector<Vector3d>& polygon, double radiance) {
+double polygon_irradiance(const Vector3d& x, const std::vector<Vector3d>& polygon,
+                          double radiance) {
   double sum = 0;
   for (size_t i = 0; i < polygon.size(); ++i) {
-    Vector3d a = (polygon[i] - x).normalized(), b = (polygon[(i + 1) % polygon.size()] - x).normalized();
+    Vector3d a = (polygon[i] - x).normalized(),
+             b = (polygon[(i + 1) % polygon.size()] - x).normalized();
     Vector3d g = a.cross(b);
     if (g.norm() == 0) continue;
     sum += std::acos(std::clamp(a.dot(b), -1.0, 1.0)) * g.normalized().z();
@@ -314,9 +321,11 @@ TEST(LightSampling, SpotConeAndSphereFitTheirDensities) {
   for (size_t i = 0; i < kSamples; ++i) {
     Vector3d d = at(out, 6 * i), z = at(out, 6 * i + 3);
     // The cone in equal steps of cos θ from cos_total to 1; the sphere in z from -1 to 1.
-    cone[cell_of(d.dot(axis), ct, 1, kCos) * kPhi + cell_of(azimuth(d, s, t), 0, 2 * M_PI, kPhi)] += 1;
+    cone[cell_of(d.dot(axis), ct, 1, kCos) * kPhi + cell_of(azimuth(d, s, t), 0, 2 * M_PI, kPhi)] +=
+        1;
     double phi = std::atan2(z.y(), z.x());
-    sphere[cell_of(z.z(), -1, 1, kCos) * kPhi + cell_of(phi < 0 ? phi + 2 * M_PI : phi, 0, 2 * M_PI, kPhi)] += 1;
+    sphere[cell_of(z.z(), -1, 1, kCos) * kPhi +
+           cell_of(phi < 0 ? phi + 2 * M_PI : phi, 0, 2 * M_PI, kPhi)] += 1;
   }
   // Uniform densities share samples equally among cells equal in cos θ and φ; the wrong ones
   // weigh cells by cos θ (a cosine-weighted cone; a sphere denser towards +z).
@@ -327,7 +336,8 @@ TEST(LightSampling, SpotConeAndSphereFitTheirDensities) {
   }
   for (int a = 0; a < kCos; ++a)
     for (int b = 0; b < kPhi; ++b) {
-      expected_cone[a * kPhi + b] = expected_sphere[a * kPhi + b] = double(kSamples) / (kCos * kPhi);
+      expected_cone[a * kPhi + b] = expected_sphere[a * kPhi + b] =
+          double(kSamples) / (kCos * kPhi);
       wrong_cone[a * kPhi + b] = kSamples * (ct + (1 - ct) * (a + 0.5) / kCos) / wc / kPhi;
       wrong_sphere[a * kPhi + b] = kSamples * (1.5 + (-1 + 2 * (a + 0.5) / kCos)) / ws / kPhi;
     }
@@ -370,8 +380,8 @@ struct EnvSamples {
 };
 
 // Samples the image rgb (width × height, 3 floats a texel) through the kernel.
-EnvSamples sample_environment(const std::vector<float>& rgb, int width, int height,
-                              bool equal_area, size_t n, std::uint32_t seed) {
+EnvSamples sample_environment(const std::vector<float>& rgb, int width, int height, bool equal_area,
+                              size_t n, std::uint32_t seed) {
   EnvironmentImage env;
   env.image.width = width;
   env.image.height = height;

@@ -3,6 +3,8 @@
 // into a reflectance spectrum has, under D65 with the CIE 1931 observer on a 1 nm grid, the colour
 // of the sRGB value within ΔE2000 0.5, and the spectrum stays inside [0, 1]; an illuminant RGB
 // has the RGB's XYZ (luminance included) within 1 %.
+#include "spectrum/rgb_spectrum.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,7 +14,6 @@
 #include "colorimetry/cie_lab.h"
 #include "colorimetry/ciede2000.h"
 #include "spectrum/builtin_spectra.h"
-#include "spectrum/rgb_spectrum.h"
 #include "spectrum/spectrum_parser.h"
 #include "test_support.h"
 
@@ -77,8 +78,9 @@ TEST(RgbSpectrum, EverySrgbColourRoundTripsWithinHalfADeltaE) {
             },
             true);
         lowest = std::min(lowest, lo), highest = std::max(highest, hi);
-        const double de = ciede2000(xyz_to_lab(xyz, white),
-                                    xyz_to_lab(linear_srgb_to_xyz({rgb[0], rgb[1], rgb[2]}), white));
+        const double de =
+            ciede2000(xyz_to_lab(xyz, white),
+                      xyz_to_lab(linear_srgb_to_xyz({rgb[0], rgb[1], rgb[2]}), white));
         if (de > worst) worst = de, worst_rgb = {double(r), double(g), double(b)};
         ++count;
       }
@@ -91,8 +93,11 @@ TEST(RgbSpectrum, EverySrgbColourRoundTripsWithinHalfADeltaE) {
 
 TEST(RgbSpectrum, AnIlluminantRgbHasTheRgbsXyz) {
   Colorimeter meter;
-  for (std::array<double, 3> rgb : {std::array<double, 3>{1, 1, 1}, {0.2, 0.5, 0.9}, {3, 0.1, 0.4},
-                                     {0.05, 0.05, 0.02}, {12, 8, 1}}) {
+  for (std::array<double, 3> rgb : {std::array<double, 3>{1, 1, 1},
+                                    {0.2, 0.5, 0.9},
+                                    {3, 0.1, 0.4},
+                                    {0.05, 0.05, 0.02},
+                                    {12, 8, 1}}) {
     RgbIlluminantSpectrum s(rgb);
     const Vec3d got = meter.xyz([&](double nm) { return s.value(nm); }, false);
     const Vec3d want = linear_srgb_to_xyz({rgb[0], rgb[1], rgb[2]});

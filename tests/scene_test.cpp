@@ -402,3 +402,61 @@ TEST(Scene, TransformsAndTheCameraStayInsideTheCoordinateRange) {
       load(with_camera(R"({"position": [0, 0, -5], "look_at": [0, 0, 0], "up": [0, 1e-12, 0]})"));
   EXPECT_GT(s.camera.to_kernel().up[1], 0);
 }
+
+// Lights and textures (docs/lights.md, docs/textures.md): every mistake one line naming its JSON
+// path, nothing rendered.
+TEST(Scene, BadLightsAndTexturesGiveOneClearLine) {
+  auto check = [](const std::string& extra, const std::string& expected,
+                  const std::string& materials = "", const std::string& shape = "") {
+    std::string text = R"({"kasha_scene": 1, )" + std::string(kCamera) + ", " +
+                       (materials.empty() ? std::string(kMaterials) : materials) + ", " + extra +
+                       R"("shapes": [)" + (shape.empty() ? std::string(kSphere) : shape) + "]}";
+    std::string msg = error_of([&] { load(text); });
+    EXPECT_NE(msg.find(expected), std::string::npos) << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+  };
+  check(R"("lights": [{"type": "laser", "intensity": 1}], )",
+        "scene.json: /lights/0/type: unknown light type \"laser\"");
+  check(R"("lights": [{"type": "point", "intensity": 1, "colour": 2}], )",
+        "/lights/0/colour: unknown key");
+  check(R"("lights": [{"type": "point"}], )", "/lights/0: missing required key \"intensity\"");
+  check(R"("lights": [{"type": "spot", "intensity": 1, "cone_deg": 10, "cone_delta_deg": 20}], )",
+        "/lights/0/cone_delta_deg: the falloff is wider than the cone");
+  check(R"("lights": [{"type": "distant", "from": [1, 1, 1], "to": [1, 1, 1], "irradiance": 1}], )",
+        "/lights/0: \"from\" and \"to\" are the same point");
+  check(R"("lights": [{"type": "point", "intensity": -1}], )", "/lights/0/intensity: negative");
+  check(R"("lights": [{"type": "infinite", "image": "missing.exr"}], )", "/lights/0/image:");
+  check(R"("lights": [{"type": "infinite", "radiance": 1, "image": "sky.exr"}], )",
+        "/lights/0/radiance: an infinite light takes \"radiance\" or \"image\", not both");
+  check(R"("textures": {"t": {"type": "image", "file": "missing.png"}}, )", "/textures/t/file:");
+  check(R"("textures": {"t": {"type": "image", "file": "x.gif"}}, )", "/textures/t/file:");
+  check(R"("textures": {"t": {"type": "checkerboard", "even": 1, "odd": 0, "wrap": "mirror"}}, )",
+        "/textures/t/wrap: unknown key");
+  check(R"("textures": {"t": {"type": "noise"}}, )", "/textures/t/type: unknown texture type");
+  check(R"("textures": {"t": {"type": "checkerboard", "even": 1, "odd": 0, "uscale": 0}}, )",
+        "/textures/t/uscale: a scale of 0");
+  check(
+      "", "/materials/grey/textures/reflectance: no texture named \"t\"",
+      R"("materials": {"grey": {"passive": {"reflectance": 0.5}, "textures": {"reflectance": "t"}}})");
+  const std::string checker =
+      R"("textures": {"t": {"type": "checkerboard", "even": 1, "odd": 0.2}}, )";
+  check(
+      checker,
+      "a fluorescence texture scales the material's excitation, and \"grey\" does not fluoresce",
+      R"("materials": {"grey": {"passive": {"reflectance": 0.5}, "textures": {"fluorescence": "t"}}})");
+  check(
+      checker, "a reflectance texture multiplies the material's passive reflectance",
+      R"("materials": {"grey": {"gloss": {"reflectance": 0.5}, "textures": {"reflectance": "t"}}})");
+  check(
+      R"("textures": {"t": {"type": "checkerboard", "even": 2, "odd": 0.2}}, )",
+      "/textures/t: a reflectance texture's values multiply a reflectance: at most 1",
+      R"("materials": {"grey": {"passive": {"reflectance": 0.5}, "textures": {"reflectance": "t"}}})");
+  check(
+      checker, "/shapes/0/emission_texture: an emission texture needs the shape's", "",
+      R"({"type": "sphere", "center": [0,0,0], "radius": 1, "material": "grey", "emission_texture": "t"})");
+  check(
+      checker, "/shapes/0/emission_texture: no texture named \"u\"", "",
+      R"({"type": "sphere", "center": [0,0,0], "radius": 1, "material": "grey", "emission": 1, "emission_texture": "u"})");
+  check("", "/rgb: an RGB component of 1.5 is outside [0, 1]",
+        R"("materials": {"grey": {"passive": {"reflectance": {"rgb": [1.5, 0, 0]}}}})");
+}

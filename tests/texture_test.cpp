@@ -31,7 +31,9 @@ constexpr double kL = 0.7;  // the infinite light's radiance
 const char* const kSky = R"({"type": "infinite", "radiance": 0.7})";
 
 // The floor's texture coordinates at x: (0, 0) at the corner (−2, −2), (1, 1) at (2, 2).
-Eigen::Vector2d floor_uv(const Vector3d& x) { return {(x.x() + 2) / 4, (x.y() + 2) / 4}; }
+Eigen::Vector2d floor_uv(const Vector3d& x) {
+  return {(x.x() + 2) / 4, (x.y() + 2) / 4};
+}
 
 TEST(Texture, ACheckerboardMatchesItsAnalyticValueEverywhere) {
   const std::string textures = R"("textures": {"check": {"type": "checkerboard", "even": 0.9,
@@ -98,12 +100,14 @@ const char* const kFluorescentFloor = R"({"passive": {"reflectance": 0.3},
                      "emission": {"gaussian_nm": 550, "fwhm_nm": 40}}})";
 
 TEST(Texture, AFluorescenceTextureAtOneAndZeroMatchesTheMaterialWithAndWithout) {
-  const std::string light = R"({"type": "infinite", "radiance": {"nm": [350, 480, 700], "value": [1, 1, 0.3]}})";
+  const std::string light =
+      R"({"type": "infinite", "radiance": {"nm": [350, 480, 700], "value": [1, 1, 0.3]}})";
   const std::string textures = R"("textures": {"ink": {"type": "checkerboard", "even": 1, "odd": 0,
       "uscale": 4, "vscale": 4}})";
   std::string textured = kFluorescentFloor;
   textured.insert(textured.size() - 1, R"(, "textures": {"fluorescence": "ink"})");
-  auto grid_scene = [&](const std::string& name, const std::string& floor, const std::string& extra) {
+  auto grid_scene = [&](const std::string& name, const std::string& floor,
+                        const std::string& extra) {
     std::string path = floor_scene(name, floor, light, extra);
     return path;
   };
@@ -159,8 +163,8 @@ TEST(Texture, AFluorescenceTextureAtOneAndZeroMatchesTheMaterialWithAndWithout) 
 TEST(Texture, AnEmissionTextureScalesTheEmittersRadianceWhereverItIsSeenOrSampled) {
   const std::string textures = R"("textures": {"pattern": {"type": "checkerboard", "even": 1.5,
       "odd": 0.25, "uscale": 3, "vscale": 2}})";
-  const std::string scene =
-      floor_scene("glowing", "{}", "", textures, R"("emission": 0.6, "emission_texture": "pattern")");
+  const std::string scene = floor_scene("glowing", "{}", "", textures,
+                                        R"("emission": 0.6, "emission_texture": "pattern")");
   auto radiance = [](const Scene&, const Vector3d& x, int) {
     Eigen::Vector2d uv = floor_uv(x);
     bool odd = (int(std::floor(3 * uv.x())) + int(std::floor(2 * uv.y()))) % 2 != 0;

@@ -138,7 +138,8 @@ void KernelSceneData::add_textures(const Scene& scene) {
   };
   for (size_t i = 0; i < materials.size(); ++i) {
     const MaterialTextures& mt = scene.material_textures[i];
-    if (mt.reflectance >= 0) materials[i].reflectance_texture = texture(mt.reflectance, reflectance);
+    if (mt.reflectance >= 0)
+      materials[i].reflectance_texture = texture(mt.reflectance, reflectance);
     if (mt.fluorescence >= 0)
       materials[i].fluorescence_texture = texture(mt.fluorescence, concentration);
   }
@@ -264,10 +265,10 @@ KernelSceneData::KernelSceneData(const Scene& scene)
   if (!light_cdf.empty()) light_cdf.back() = 1.0f;
   // An emission texture weighs its emitter's triangles by its mean (their power above).
   for (size_t e = 0; e < radiance_sum.size(); ++e)
-    emitter_area_pdf.push_back(
-        total_power > 0
-            ? static_cast<float>(M_PI * radiance_sum[e] * scene.emitters[e].texture_mean / total_power)
-            : 0.0f);
+    emitter_area_pdf.push_back(total_power > 0 ? static_cast<float>(M_PI * radiance_sum[e] *
+                                                                    scene.emitters[e].texture_mean /
+                                                                    total_power)
+                                               : 0.0f);
 }
 
 size_t KernelSceneData::bytes() const {

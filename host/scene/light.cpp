@@ -13,16 +13,24 @@ namespace kasha {
 
 const char* light_type_name(LightType type) {
   switch (type) {
-    case LightType::point: return "point";
-    case LightType::spot: return "spot";
-    case LightType::distant: return "distant";
-    case LightType::infinite: return "infinite";
+    case LightType::point:
+      return "point";
+    case LightType::spot:
+      return "spot";
+    case LightType::distant:
+      return "distant";
+    case LightType::infinite:
+      return "infinite";
   }
   return "?";
 }
 
-double Light::cos_total() const { return std::cos(cone_deg * M_PI / 180.0); }
-double Light::cos_falloff() const { return std::cos((cone_deg - cone_delta_deg) * M_PI / 180.0); }
+double Light::cos_total() const {
+  return std::cos(cone_deg * M_PI / 180.0);
+}
+double Light::cos_falloff() const {
+  return std::cos((cone_deg - cone_delta_deg) * M_PI / 180.0);
+}
 
 double Light::integrated(double bin_nm) const {
   double sum = 0;
@@ -33,11 +41,13 @@ double Light::integrated(double bin_nm) const {
 double Light::power(double bin_nm, double radius) const {
   const double s = integrated(bin_nm);
   switch (type) {
-    case LightType::point: return 4 * M_PI * s;
+    case LightType::point:
+      return 4 * M_PI * s;
     // The full cone's solid angle, its falloff ring counted at half (pbrt-v4's SpotLight::Phi).
     case LightType::spot:
       return 2 * M_PI * s * ((1 - cos_falloff()) + (cos_falloff() - cos_total()) / 2);
-    case LightType::distant: return M_PI * radius * radius * s;
+    case LightType::distant:
+      return M_PI * radius * radius * s;
     case LightType::infinite:
       return 4 * M_PI * M_PI * radius * radius * s *
              (environment_data ? environment_data->mean_factor : 1.0);
@@ -90,7 +100,8 @@ Light parse_light(const JsonNode& node) {
     key = "radiance";
     if (auto image = node.find("image")) {
       // Each texel an RGB illuminant; the light's spectrum is their white, D65 at luminance 1.
-      if (node.has("radiance")) node.at("radiance").fail("an infinite light takes \"radiance\" or \"image\", not both");
+      if (node.has("radiance"))
+        node.at("radiance").fail("an infinite light takes \"radiance\" or \"image\", not both");
       auto env = std::make_shared<EnvironmentImage>();
       std::filesystem::path file(image->string());
       if (file.empty()) image->fail("empty file name");
@@ -103,16 +114,20 @@ Light parse_light(const JsonNode& node) {
       }
       if (auto m = node.find("mapping")) {
         const std::string name = m->string();
-        if (name == "latlong") env->mapping = EnvironmentMapping::latlong;
-        else if (name == "equal_area") env->mapping = EnvironmentMapping::equal_area;
-        else m->fail("unknown mapping \"" + name + "\" (latlong, equal_area)");
+        if (name == "latlong")
+          env->mapping = EnvironmentMapping::latlong;
+        else if (name == "equal_area")
+          env->mapping = EnvironmentMapping::equal_area;
+        else
+          m->fail("unknown mapping \"" + name + "\" (latlong, equal_area)");
         if (env->mapping == EnvironmentMapping::equal_area && env->image.width != env->image.height)
           m->fail("an equal-area image must be square, not " + std::to_string(env->image.width) +
                   "x" + std::to_string(env->image.height));
       }
       if (auto t = node.find("transform")) {
         Eigen::Matrix3d r = parse_transform(*t).linear();
-        if (!((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() < 1e-6) || !(r.determinant() > 0))
+        if (!((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() < 1e-6) ||
+            !(r.determinant() > 0))
           t->fail("an infinite light's transform must be a rotation");
         env->to_light = r.transpose();
       }

@@ -42,15 +42,15 @@ EnvironmentData environment_data(const EnvironmentImage& env, const std::vector<
 
 struct Light {
   LightType type = LightType::point;
-  std::string where;             // file: JSON path of the light
-  SpectrumPtr spectrum;          // before "scale"
-  double scale = 1;              // on the spectrum
-  std::vector<double> per_bin;   // spectrum × scale on the scene grid
+  std::string where;                   // file: JSON path of the light
+  SpectrumPtr spectrum;                // before "scale"
+  double scale = 1;                    // on the spectrum
+  std::vector<double> per_bin;         // spectrum × scale on the scene grid
   Eigen::Vector3d position{0, 0, 0};   // point, spot
   Eigen::Vector3d direction{0, 0, 1};  // spot: the cone's axis; distant: where the light travels
-  double cone_deg = 30;        // spot: the cone's half-angle, where the intensity reaches 0
-  double cone_delta_deg = 5;   // spot: the width of the falloff inside the cone's edge
-  std::shared_ptr<const EnvironmentImage> environment;  // infinite: its image, or none
+  double cone_deg = 30;                // spot: the cone's half-angle, where the intensity reaches 0
+  double cone_delta_deg = 5;           // spot: the width of the falloff inside the cone's edge
+  std::shared_ptr<const EnvironmentImage> environment;      // infinite: its image, or none
   std::shared_ptr<const EnvironmentData> environment_data;  // on the grid, set when the scene loads
 
   double cos_total() const;

@@ -133,8 +133,9 @@ static void check_emitters(const Scene& scene) {
     for (int i = 0; i < scene.grid.bins; ++i)
       if (!(l.per_bin[i] <= kMaxSpectrumValue)) {
         std::ostringstream msg;
-        msg << l.where << ": the light's value of " << l.per_bin[i] << " (with \"scale\") in the bin "
-            << scene.grid.lo(i) << "–" << scene.grid.hi(i) << " nm is beyond 1e30";
+        msg << l.where << ": the light's value of " << l.per_bin[i]
+            << " (with \"scale\") in the bin " << scene.grid.lo(i) << "–" << scene.grid.hi(i)
+            << " nm is beyond 1e30";
         throw Error(msg.str());
       }
     double p = l.power(scene.grid.bin_nm, r);
@@ -350,7 +351,8 @@ static MaterialTextures parse_material_textures(const JsonNode& m, const Scene& 
   MaterialTextures mt;
   auto textures = m.find("textures");
   if (!textures) return mt;
-  if (!textures->is_object()) textures->fail("expected {\"reflectance\": NAME, \"fluorescence\": NAME}");
+  if (!textures->is_object())
+    textures->fail("expected {\"reflectance\": NAME, \"fluorescence\": NAME}");
   mt.where = textures->file() + ": " + textures->path();
   auto lookup = [&](const char* key, int& out) {
     if (auto n = textures->find(key)) {
@@ -502,7 +504,8 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
       emits_lamp = lamp_used = true;
     }
     if (shape.has("emission_texture") && !emission && !emits_lamp)
-      shape.at("emission_texture").fail("an emission texture needs the shape's \"emission\" or \"lamp\"");
+      shape.at("emission_texture")
+          .fail("an emission texture needs the shape's \"emission\" or \"lamp\"");
     if (emission || emits_lamp) {
       Emitter e;
       if (emission) {
@@ -518,7 +521,8 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
         const std::string name = tex->string();
         for (size_t i = 0; i < scene.textures.size(); ++i)
           if (scene.textures[i].name == name) e.texture = static_cast<int>(i);
-        if (e.texture < 0) tex->fail("no texture named \"" + name + "\" in the scene's \"textures\"");
+        if (e.texture < 0)
+          tex->fail("no texture named \"" + name + "\" in the scene's \"textures\"");
         e.texture_mean = texture_mean(scene.textures[e.texture], *tex);
       }
       emitter = static_cast<int>(scene.emitters.size());

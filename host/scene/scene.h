@@ -44,11 +44,11 @@ struct Scene {
   Camera camera;
   WavelengthGrid grid;
   std::vector<MaterialDesc> material_descs;
-  std::vector<Material> materials;   // on `grid`, same order as material_descs
-  std::vector<Texture> textures;     // the scene's "textures"
+  std::vector<Material> materials;                  // on `grid`, same order as material_descs
+  std::vector<Texture> textures;                    // the scene's "textures"
   std::vector<MaterialTextures> material_textures;  // same order as material_descs
-  std::vector<KTriangle> triangles;  // scene order: prim == index
-  std::vector<TriangleUv> uvs;       // the triangles' texture coordinates, scene order
+  std::vector<KTriangle> triangles;                 // scene order: prim == index
+  std::vector<TriangleUv> uvs;  // the triangles' texture coordinates, scene order
   std::vector<Emitter> emitters;
   std::vector<Light> lights;  // the "lights" that are not shapes
   std::vector<ShapeInfo> shapes;
@@ -65,8 +65,8 @@ struct Scene {
   bool has_delta_surfaces() const;
   int material_index(const std::string& name) const;  // -1 when absent
   bool has_light(LightType type) const;
-  bool has_environment() const;  // some infinite light has an image
-  bool textured() const;         // some shape's material carries a texture
+  bool has_environment() const;    // some infinite light has an image
+  bool textured() const;           // some shape's material carries a texture
   bool emission_textured() const;  // some emitter's radiance is multiplied by a texture
   // The bounding sphere of the triangles (as the kernels see them), where distant and infinite
   // lights send their photons from.

@@ -27,16 +27,23 @@ Texture parse_texture(const JsonNode& node, const std::string& name) {
     }
     if (auto filter = node.find("filter")) {
       const std::string v = filter->string();
-      if (v == "bilinear") t.bilinear = true;
-      else if (v == "nearest") t.bilinear = false;
-      else filter->fail("unknown filter \"" + v + "\" (bilinear, nearest)");
+      if (v == "bilinear")
+        t.bilinear = true;
+      else if (v == "nearest")
+        t.bilinear = false;
+      else
+        filter->fail("unknown filter \"" + v + "\" (bilinear, nearest)");
     }
     if (auto wrap = node.find("wrap")) {
       const std::string v = wrap->string();
-      if (v == "repeat") t.wrap = TextureWrap::repeat;
-      else if (v == "clamp") t.wrap = TextureWrap::clamp;
-      else if (v == "black") t.wrap = TextureWrap::black;
-      else wrap->fail("unknown wrap \"" + v + "\" (repeat, clamp, black)");
+      if (v == "repeat")
+        t.wrap = TextureWrap::repeat;
+      else if (v == "clamp")
+        t.wrap = TextureWrap::clamp;
+      else if (v == "black")
+        t.wrap = TextureWrap::black;
+      else
+        wrap->fail("unknown wrap \"" + v + "\" (repeat, clamp, black)");
     }
   } else if (type == "checkerboard") {
     t.type = TextureType::checkerboard;

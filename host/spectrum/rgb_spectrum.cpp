@@ -95,7 +95,9 @@ double integrate(F f, double a, double b) {
 
 }  // namespace
 
-SigmoidCoefficients rgb_sigmoid(const std::array<double, 3>& rgb) { return table().lookup(rgb); }
+SigmoidCoefficients rgb_sigmoid(const std::array<double, 3>& rgb) {
+  return table().lookup(rgb);
+}
 
 SigmoidCoefficients rgb_unbounded_sigmoid(const std::array<double, 3>& rgb, double* scale) {
   const double m = std::max({rgb[0], rgb[1], rgb[2], 0.0});

@@ -27,7 +27,9 @@ std::array<double, 3> xyz_lab(const std::array<double, 3>& xyz) {
   return {116 * fy - 16, 500 * (fx - fy), 200 * (fy - fz)};
 }
 
-double smoothstep(double x) { return x * x * (3 - 2 * x); }
+double smoothstep(double x) {
+  return x * x * (3 - 2 * x);
+}
 
 // The bound on the coefficients (over t in [0, 1]): pbrt-v4's rgb2spec_opt keeps them within
 // 200, which leaves the darkest saturated colours (sRGB code values below ~10 in one channel
@@ -121,7 +123,9 @@ struct Normalized {
 
 }  // namespace
 
-double rgb_table_scale(int k, int res) { return smoothstep(smoothstep(double(k) / (res - 1))); }
+double rgb_table_scale(int k, int res) {
+  return smoothstep(smoothstep(double(k) / (res - 1)));
+}
 
 double rgb_table_ratio(int i, int res) {
   const double s = std::sin(M_PI / 2 * i / (res - 1));

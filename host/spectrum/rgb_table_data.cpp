@@ -7,12 +7,14 @@
 #error "the build defines KASHA_RGB_TABLE_FILE"
 #endif
 
-__asm__(".section .rodata\n"
-        ".balign 16\n"
-        "kasha_rgb_table_begin:\n"
-        ".incbin \"" KASHA_RGB_TABLE_FILE "\"\n"
-        "kasha_rgb_table_end:\n"
-        ".previous\n");
+__asm__(
+    ".section .rodata\n"
+    ".balign 16\n"
+    "kasha_rgb_table_begin:\n"
+    ".incbin \"" KASHA_RGB_TABLE_FILE
+    "\"\n"
+    "kasha_rgb_table_end:\n"
+    ".previous\n");
 
 extern "C" const float kasha_rgb_table_begin[];
 extern "C" const char kasha_rgb_table_end[];
