@@ -3,6 +3,7 @@
 // (spectrum/rgb_spectrum.cpp).
 //   rgb_spectrum_table CMF_1931.csv D65.csv OUT.bin
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -53,7 +54,13 @@ int main(int argc, char** argv) {
     obs.d65.push_back(d65[nm][0]);
   }
   std::vector<float> table = fit_rgb_table(obs);
-  std::ofstream out(argv[3], std::ios::binary);
+  std::filesystem::path path(argv[3]);
+  if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+  std::ofstream out(path, std::ios::binary);
   out.write(reinterpret_cast<const char*>(table.data()), table.size() * sizeof(float));
-  return out ? 0 : 1;
+  if (!out) {
+    std::fprintf(stderr, "rgb_spectrum_table: cannot write %s\n", argv[3]);
+    return 1;
+  }
+  return 0;
 }
