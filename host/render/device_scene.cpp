@@ -76,6 +76,17 @@ std::vector<float> gloss_lobe_table(const GlossDesc& gloss) {
   return table;
 }
 
+// The offset of the bins' centre wavelengths in the spectra buffer, appended the first time an
+// environment image or an RGB texture asks (both evaluate RGB sigmoids bin by bin).
+int KernelSceneData::bin_centres(const Scene& scene) {
+  if (lambda_ < 0) {
+    lambda_ = static_cast<int>(spectra.size());
+    for (int i = 0; i < scene.grid.bins; ++i)
+      spectra.push_back(static_cast<float>(scene.grid.center(i)));
+  }
+  return lambda_;
+}
+
 // The kernels' view of the scene's textures (kernels/texture.h): one KTexture per texture and
 // use (spectral for a reflectance, scalar for a concentration), the texels after the spectra,
 // and each triangle's texture coordinates in leaf order.
@@ -84,7 +95,6 @@ void KernelSceneData::add_textures(const Scene& scene) {
   // an emission factor (scalar ≥ 0).
   enum Use { reflectance, concentration, emission };
   std::map<std::pair<int, int>, int> made;
-  int lambda = -1;
   auto texture = [&](int index, Use use) {
     const bool spectral = use == reflectance;
     auto found = made.find({index, use});
@@ -118,14 +128,7 @@ void KernelSceneData::add_textures(const Scene& scene) {
           spectra.push_back(use == concentration ? std::clamp(mean, 0.0f, 1.0f) : mean);
         }
       }
-      if (spectral) {
-        if (lambda < 0) {
-          lambda = static_cast<int>(spectra.size());
-          for (int i = 0; i < scene.grid.bins; ++i)
-            spectra.push_back(static_cast<float>(scene.grid.center(i)));
-        }
-        k.lambda = lambda;
-      }
+      if (spectral) k.lambda = bin_centres(scene);
     } else if (spectral) {
       k.even = append(spectra, scene.grid.resample(*t.even));
       k.odd = append(spectra, scene.grid.resample(*t.odd));
@@ -246,9 +249,7 @@ KernelSceneData::KernelSceneData(const Scene& scene)
       spectra.insert(spectra.end(), d.texels.begin(), d.texels.end());
       kl.distribution = static_cast<int>(spectra.size());
       spectra.insert(spectra.end(), d.distribution.begin(), d.distribution.end());
-      kl.lambda = static_cast<int>(spectra.size());
-      for (int i = 0; i < scene.grid.bins; ++i)
-        spectra.push_back(static_cast<float>(scene.grid.center(i)));
+      kl.lambda = bin_centres(scene);
     }
     lights.push_back(kl);
     double p = l.power(scene.grid.bin_nm, radius);

@@ -36,6 +36,8 @@ struct KernelSceneData {
 
  private:
   void add_textures(const Scene& scene);
+  int bin_centres(const Scene& scene);
+  int lambda_ = -1;
 };
 
 // The lobe table of a gloss part: KASHA_LOBE_CELLS ring densities (per solid angle), then their
