@@ -22,6 +22,15 @@ inline void lambert_bounce(CameraWalk* w, const CameraVertex* v, float prob) {
   w->prev_pdf = prob * cosine_hemisphere_pdf(dot(w->dir, ns));
 }
 
+/* The Lambert bounce's factor beyond ρ/π: a coat's t(θo) t(θi) / η² (coat.h), else 1. */
+inline float lambert_weight(const CameraWalk* w, const CameraVertex* v) {
+#if KASHA_COATED
+  return surface_lambert_weight(&v->surf, dot(w->dir, v->h.ns));
+#else
+  return 1.0f;
+#endif
+}
+
 /* One camera path (camera_walk.h) on through every branch; adds its estimate to rows. Returns
  * what the path still carried (relative to its start) if the depth guard cut it, else 0. */
 inline float trace_camera_path(const SceneView* s, const FilmView* f, float3 org, float3 dir, Sampler* sampler,
@@ -43,11 +52,11 @@ inline float trace_camera_path(const SceneView* s, const FilmView* f, float3 org
       if (!walk_gloss(&w, s, &v, sampler)) return 0.0f;
     } else if (choice < probs.x + probs.y || probs.z <= 0.0f) {
       lambert_bounce(&w, &v, probs.y);
-      pw_scatter_diagonal(&w.p, v.surf.rho, 1.0f / probs.y);
+      pw_scatter_diagonal(&w.p, v.surf.rho, lambert_weight(&w, &v) / probs.y);
 #if KASHA_FLUORESCENCE
     } else {
       lambert_bounce(&w, &v, probs.z);
-      pw_scatter_fluorescent(&w.p, f, v.surf.ehat, v.surf.a, 1.0f / probs.z);
+      pw_scatter_fluorescent(&w.p, f, v.surf.ehat, v.surf.a, lambert_weight(&w, &v) / probs.z);
 #if KASHA_DISPERSION
       w.bin = -1; /* re-emission spreads the path over the excitation spectrum again */
 #endif

@@ -16,6 +16,7 @@
 #include "sampler.h"
 #include "scene_view.h"
 #include "surface.h"
+#include "surface_at.h"
 #include "texture.h"
 
 /* Dimension pairs of the sampler per path vertex: (branch choice, roulette), the light (triangle

@@ -144,6 +144,10 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
         /* Radiance per nm leaving x per unit flux: (ρ_i Φ_i + ê_i (a·Φ)) / (π Δλ). */
         film_rows_clear(rows);
         float lambert = k * KASHA_INV_PI / bin_nm;
+#if KASHA_COATED
+        /* Under a coat, t(θi) t(θo) / η² (coat.h). */
+        if (surf.coated) lambert *= surface_lambert_weight(&surf, dot(normalize(camera_position(&camera) - x), ns));
+#endif
         film_rows(&f, p.power, surf.rho, 0, lambert, rows);
 #if KASHA_FLUORESCENCE
         if (surf.fluorescent) film_rows(&f, 0, surf.ehat, 0, spectrum_dot(KASHA_BINS, p.power, surf.a, 0) * lambert, rows);

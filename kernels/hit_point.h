@@ -9,6 +9,9 @@
 #ifndef KASHA_TEXTURES
 #define KASHA_TEXTURES 0
 #endif
+#ifndef KASHA_COATED
+#define KASHA_COATED 0
+#endif
 
 typedef struct {
   float3 x;      /* the hit point */
@@ -22,6 +25,9 @@ typedef struct {
   int tri;       /* the triangle, in leaf order */
 #if KASHA_TEXTURES
   float2 b;      /* the barycentrics of v1 and v2, for texture coordinates */
+#endif
+#if KASHA_COATED
+  float cos_in;  /* |cos| of the arriving ray to the normal: a coat's Fresnel reflectance there */
 #endif
 } HitPoint;
 
@@ -57,6 +63,9 @@ inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint
   h->tri = hit;
 #if KASHA_TEXTURES
   h->b = (float2)(u, v);
+#endif
+#if KASHA_COATED
+  h->cos_in = fabs(dot(h->n, dir));
 #endif
   return true;
 }

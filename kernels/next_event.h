@@ -6,6 +6,7 @@
 #ifndef KASHA_NEXT_EVENT_H
 #define KASHA_NEXT_EVENT_H
 
+#include "coat.h"
 #include "film_view.h"
 #include "gloss_lobe.h"
 #include "hit_point.h"
@@ -40,6 +41,12 @@ inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* 
 #if KASHA_LIGHT_SOURCES || KASHA_EMISSION_TEXTURES
   base *= lp.scale;
 #endif
+#if KASHA_COATED
+  /* Through a coat, t(θo) t(θi) / η² (coat.h); its mirror lobe sees no light point. */
+  float lambert_base = base * surface_lambert_weight(surf, cos_x);
+#else
+  const float lambert_base = base;
+#endif
 #if KASHA_LIGHT_SOURCES
   /* A delta light (point, spot, distant) no bounce can hit: its sample takes the whole weight. */
   float reach = lp.delta ? 0.0f : 1.0f;
@@ -47,12 +54,13 @@ inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* 
   const float reach = 1.0f;
 #endif
   if (surf->passive)
-    pw_add(p, f, surf->rho, le, base * KASHA_INV_PI * mis_weight(pdf_light, reach * probs.y * lambert_pdf), rows);
+    pw_add(p, f, surf->rho, le, lambert_base * KASHA_INV_PI * mis_weight(pdf_light, reach * probs.y * lambert_pdf),
+           rows);
 #if KASHA_FLUORESCENCE
   if (surf->fluorescent) {
     float absorbed = spectrum_dot(KASHA_BINS, 0, surf->a, le);
     pw_add(p, f, surf->ehat, 0,
-           absorbed * base * KASHA_INV_PI * mis_weight(pdf_light, reach * probs.z * lambert_pdf), rows);
+           absorbed * lambert_base * KASHA_INV_PI * mis_weight(pdf_light, reach * probs.z * lambert_pdf), rows);
   }
 #endif
 #if KASHA_GLOSS

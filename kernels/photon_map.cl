@@ -59,7 +59,14 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
             rec[0] = x.x, rec[1] = x.y, rec[2] = x.z;
             rec[3] = ns.x, rec[4] = ns.y, rec[5] = ns.z;
             rec[KASHA_PHOTON_INDEX] = as_float(index), rec[KASHA_PHOTON_DEPTH] = as_float(depth);
+#if KASHA_COATED
+            /* Under a coat, the power that reaches the base: t(θi) Φ (coat.h); the visible
+             * point's factor holds the rest. */
+            float through = surf.coated ? coat_transmission(&surf, h.cos_in) : 1.0f;
+            for (int i = 0; i < KASHA_BINS; ++i) rec[KASHA_PHOTON_POWER + i] = p.power[i] * through;
+#else
             for (int i = 0; i < KASHA_BINS; ++i) rec[KASHA_PHOTON_POWER + i] = p.power[i];
+#endif
           }
         }
       }
@@ -102,10 +109,15 @@ inline float camera_path(const SceneView* s, const FilmView* f, int pixel, Sampl
         vp[KASHA_VP_VALID] = 1.0f;
         vp[KASHA_VP_DISTANCE] = travelled;
         VertexFactorLayout layout = {KASHA_BINS, KASHA_FILM_ROWS, KASHA_SPECTRAL_FILM, KASHA_FLUORESCENCE, f->cmf};
+        float k = KASHA_INV_PI / (1.0f - p_gloss);
+#if KASHA_COATED
+        /* Under a coat, t(θo) / η² towards the viewer; the photons carry their own t(θi). */
+        if (v.surf.coated) k *= v.surf.lambert_out;
+#endif
 #if KASHA_FLUORESCENCE
-        vf_build(layout, vp, w.p.w, v.surf.rho, v.surf.ehat, v.surf.a, KASHA_INV_PI / (1.0f - p_gloss));
+        vf_build(layout, vp, w.p.w, v.surf.rho, v.surf.ehat, v.surf.a, k);
 #else
-        vf_build(layout, vp, w.p.w, v.surf.rho, 0, 0, KASHA_INV_PI / (1.0f - p_gloss));
+        vf_build(layout, vp, w.p.w, v.surf.rho, 0, 0, k);
 #endif
       }
       return 0.0f;

@@ -15,6 +15,7 @@
 #include "scene_view.h"
 #include "spectral_product.h"
 #include "surface.h"
+#include "surface_at.h"
 #include "texture.h"
 
 typedef struct {
@@ -242,6 +243,11 @@ inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, f
 #if KASHA_FLUORESCENCE
   if (s->fluorescent) pf = spectrum_dot(KASHA_BINS, p->power, s->a, 0);
 #endif
+#if KASHA_COATED
+  /* Under a coat the Lambert parts take t(θi) τ̄ / η² on the way (coat.h). */
+  pp *= surface_lambert_albedo(s);
+  pf *= surface_lambert_albedo(s);
+#endif
   float sum = pg + pp + pf;
   if (!(sum > 0.0f)) return BRANCH_ABSORBED;
   float xi = u_choice.x * sum;
@@ -278,6 +284,16 @@ inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, f
     branch = BRANCH_FLUORESCENT;
 #endif
   }
+#if KASHA_COATED
+  /* Under a coat f carries t(θi) t(θo) / η² more. The passive branch divided by its probability
+   * (which took the albedo factor L = t(θi) τ̄ / η²); the fluorescent one's ê (a·Φ) / P_f left L
+   * out, so it divides by it here. */
+  if (s->coated && branch != BRANCH_GLOSS) {
+    float k = surface_lambert_weight(s, dot(p->direction, ns));
+    if (branch == BRANCH_FLUORESCENT) k /= surface_lambert_albedo(s);
+    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= k;
+  }
+#endif
   p->position = x + ns * eps;
   return photon_roulette(p, u_choice.y, depth) ? branch : BRANCH_ABSORBED;
 }

@@ -135,8 +135,13 @@ typedef struct {
   float alpha[2]; /* a dielectric's or conductor's GGX roughness (alpha_x, alpha_y); 0: smooth */
   int reflectance_texture;  /* KTexture multiplying the passive reflectance, -1: none */
   int fluorescence_texture; /* KTexture scaling the excitation (an ink's concentration), -1: none */
+  float coat_eta;       /* a smooth dielectric coat over the Lambert parts (kernels/coat.h): its
+                         * index; 0: no coat */
+  float coat_thickness; /* its optical depth along the normal */
+  float coat_internal;  /* R̄: of the base's light, the share the coat sends back down */
+  float coat_albedo;    /* τ̄ / η²: the diffuse part's albedo per unit of outgoing transmission */
 } KMaterial;
-KASHA_STATIC_SIZE(KMaterial, 72);
+KASHA_STATIC_SIZE(KMaterial, 88);
 
 /* A texture as the kernels look it up (docs/textures.md) at a hit's (u, v): an image of texels,
  * or a checkerboard of two values. Spectral content (a reflectance) is per bin: an image's texel

@@ -1,13 +1,17 @@
 /* A hit point's material as the kernels use it: pointers to its spectra in global memory (the
  * scene's zero spectrum for an absent part), so nothing of size N is copied per vertex.
  * Defines: KASHA_BINS, KASHA_FLUORESCENCE, KASHA_GLOSS, and KASHA_DIELECTRIC, KASHA_CONDUCTOR,
- * KASHA_DISPERSION, KASHA_ROUGH (0 where the scene has no such material: the kernels carry no
+ * KASHA_DISPERSION, KASHA_ROUGH, KASHA_COATED (0 where the scene has no such material: the kernels carry no
  * code for it). */
 #ifndef KASHA_SURFACE_H
 #define KASHA_SURFACE_H
 
 #include "microfacet.h"
 #include "scene_view.h"
+
+#ifndef KASHA_COATED
+#define KASHA_COATED 0
+#endif
 
 typedef struct {
   const __global KMaterial* m;
@@ -37,6 +41,11 @@ typedef struct {
 #endif
 #if KASHA_ROUGH
   Ggx alpha; /* a rough dielectric's or conductor's roughness; (0, 0) when smooth */
+#endif
+#if KASHA_COATED
+  bool coated;          /* a coat over the Lambert parts (coat.h; set up there by coat_at) */
+  float lambert_out;    /* t(θ) / η² on the side the surface was met from */
+  float lambert_albedo; /* t(θ) τ̄ / η² */
 #endif
 } Surface;
 
@@ -70,6 +79,10 @@ inline void load_surface(const SceneView* s, int material, Surface* out) {
 #if KASHA_CONDUCTOR
   out->eta_c = s->spectra + max(m->eta_spectrum, 0);
   out->k_c = s->spectra + max(m->k_spectrum, 0);
+#endif
+#if KASHA_COATED
+  out->coated = m->coat_eta > 0.0f;
+  out->lambert_out = out->lambert_albedo = 1.0f;
 #endif
 }
 

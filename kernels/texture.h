@@ -125,7 +125,7 @@ inline float emission_factor(const SceneView* s, int tri, float b1, float b2) {
 #endif
 
 /* The hit's surface with its material's textures applied. */
-inline void load_surface_at(const SceneView* s, const HitPoint* h, Surface* surf) {
+inline void load_textured_surface(const SceneView* s, const HitPoint* h, Surface* surf) {
   load_surface(s, h->material, surf);
   const __global KMaterial* m = surf->m;
   if (m->reflectance_texture < 0 && m->fluorescence_texture < 0) return;
@@ -148,7 +148,7 @@ inline void load_surface_at(const SceneView* s, const HitPoint* h, Surface* surf
 #endif
 }
 #else
-inline void load_surface_at(const SceneView* s, const HitPoint* h, Surface* surf) { load_surface(s, h->material, surf); }
+inline void load_textured_surface(const SceneView* s, const HitPoint* h, Surface* surf) { load_surface(s, h->material, surf); }
 #endif
 
 #endif

@@ -42,6 +42,26 @@ static GlossDesc parse_gloss(const JsonNode& node) {
   return g;
 }
 
+// {"eta": 1.5, "thickness": 0.01}: pbrt-v4's coateddiffuse defaults. Its roughness, albedo and g
+// (a rough coat, a scattering layer) are not built: refused, not ignored.
+static CoatDesc parse_coat(const JsonNode& node) {
+  CoatDesc c;
+  if (auto eta = node.find("eta")) {
+    c.eta = eta->number();
+    if (!(c.eta >= 0.01 && c.eta <= 100)) eta->fail("eta must lie in [0.01, 100]");
+  }
+  if (auto d = node.find("thickness")) c.thickness = d->number_in(0.0, 1e3);
+  for (const char* key : {"roughness", "uroughness", "vroughness"})
+    if (auto r = node.find(key))
+      if (!(r->number_in(0.0, 1.0) == 0))
+        r->fail("a rough coat is not built yet: only a smooth coat (roughness 0)");
+  if (auto a = node.find("albedo"))
+    if (!(a->number_in(0.0, 1.0) == 0))
+      a->fail("a scattering coat (albedo above 0) is not built: the layer only absorbs");
+  node.finish();
+  return c;
+}
+
 // A dispersive index: a named glass, Sellmeier or Cauchy coefficients, or any spectrum value.
 static SpectrumPtr parse_index_spectrum(const JsonNode& eta) {
   if (eta.is_string()) {
@@ -153,6 +173,12 @@ MaterialDesc parse_material(const JsonNode& node, const std::string& name) {
     fluo->finish();
   }
   if (auto gloss = node.find("gloss")) m.gloss = parse_gloss(*gloss);
+  if (auto coat = node.find("coat")) {
+    if (m.gloss) coat->fail("a coated material has no \"gloss\" part: the coat is its gloss");
+    if (node.has("dielectric") || node.has("conductor"))
+      coat->fail("a dielectric or conductor takes no coat");
+    m.coat = parse_coat(*coat);
+  }
   auto dielectric = node.find("dielectric"), conductor = node.find("conductor");
   if (dielectric || conductor) {
     const JsonNode& own = dielectric ? *dielectric : *conductor;
@@ -191,6 +217,7 @@ Material discretize_material(const MaterialDesc& desc, const WavelengthGrid& gri
   Material m;
   m.name = desc.name;
   m.gloss = desc.gloss;
+  m.coat = desc.coat;
   m.kind = desc.kind;
   m.eta = desc.dielectric.eta;
   m.roughness = desc.roughness;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/json_node.h"
+#include "material/coat.h"
 #include "spectrum/spectrum.h"
 #include "spectrum/wavelength_grid.h"
 
@@ -58,6 +59,7 @@ struct MaterialDesc {
   SpectrumPtr excitation;  // a(λ)
   SpectrumPtr emission;    // e(λ), any scale: normalized on the grid
   std::optional<GlossDesc> gloss;
+  std::optional<CoatDesc> coat;  // a dielectric coat over the Lambert parts
 
   bool fluorescent() const { return excitation != nullptr; }
 };
@@ -73,6 +75,7 @@ struct Material {
   std::vector<double> a;      // empty without fluorescence
   std::vector<double> e_hat;  // e·Δλ, sums to 1; empty without fluorescence
   std::optional<GlossDesc> gloss;
+  std::optional<CoatDesc> coat;
 
   bool fluorescent() const { return !a.empty(); }
   bool specular() const { return kind != MaterialKind::measured; }

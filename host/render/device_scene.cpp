@@ -192,6 +192,12 @@ KernelSceneData::KernelSceneData(const Scene& scene)
       k.alpha[0] = static_cast<float>(m.roughness.alpha_x);
       k.alpha[1] = static_cast<float>(m.roughness.alpha_y);
     }
+    if (m.coat) {
+      k.coat_eta = static_cast<float>(m.coat->eta);
+      k.coat_thickness = static_cast<float>(m.coat->thickness);
+      k.coat_internal = static_cast<float>(coat_internal_reflectance(*m.coat));
+      k.coat_albedo = static_cast<float>(coat_mean_transmission(*m.coat) / (m.coat->eta * m.coat->eta));
+    }
     albedo_xyz(m, scene.grid, obs, k.albedo_xyz);
     k.reflectance_texture = k.fluorescence_texture = -1;
     materials.push_back(k);
@@ -284,13 +290,18 @@ size_t KernelSceneData::bytes() const {
 }
 
 // Scratch spectra per work item: an environment texel's radiance, then a textured reflectance
-// and a textured excitation.
+// and a textured excitation, then a coated material's effective reflectance, emission and
+// excitation (kernels/coat.h).
 static int scratch_texture_offset(const Scene& scene) {
   return scene.has_environment() ? scene.grid.bins : 0;
 }
 
-int scratch_floats(const Scene& scene) {
+static int scratch_coat_offset(const Scene& scene) {
   return scratch_texture_offset(scene) + (scene.textured() ? 2 * scene.grid.bins : 0);
+}
+
+int scratch_floats(const Scene& scene) {
+  return scratch_coat_offset(scene) + (scene.coated() ? 3 * scene.grid.bins : 0);
 }
 
 KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
@@ -314,6 +325,8 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_TEXTURES"] = scene.textured() || scene.emission_textured() ? "1" : "0";
   d["KASHA_EMISSION_TEXTURES"] = scene.emission_textured() ? "1" : "0";
   d["KASHA_SCRATCH_TEXTURES"] = std::to_string(scratch_texture_offset(scene));
+  d["KASHA_COATED"] = scene.coated() ? "1" : "0";
+  d["KASHA_SCRATCH_COAT"] = std::to_string(scratch_coat_offset(scene));
   return d;
 }
 

@@ -42,6 +42,9 @@ bool Scene::dispersive() const {
 bool Scene::rough() const {
   return any_used([](const Material& m) { return m.rough(); });
 }
+bool Scene::coated() const {
+  return any_used([](const Material& m) { return m.coat.has_value(); });
+}
 bool Scene::has_delta_surfaces() const {
   return any_used([](const Material& m) {
     return (m.specular() && !m.rough()) || (m.gloss && m.gloss->mirror);

@@ -61,6 +61,7 @@ struct Scene {
   bool uses(MaterialKind kind) const;  // some shape's material is of this kind
   bool dispersive() const;             // some shape's material is a dispersive dielectric
   bool rough() const;                  // some shape's material is a rough dielectric or conductor
+  bool coated() const;                 // some shape's material has a coat
   // Some shape's material is a delta lobe: an ideal mirror, a smooth dielectric or conductor.
   bool has_delta_surfaces() const;
   int material_index(const std::string& name) const;  // -1 when absent
