@@ -254,6 +254,15 @@ TEST(SpecularMaterial, BadDielectricsAndConductorsNameTheJsonPath) {
       {R"({"conductor": {"metal": "Au", "k": 3}})", "not both"},
       {R"({"conductor": {"eta": {"nm": [500, 600], "value": [0.2, 0.3]}, "k": 3}})",
        "conductor eta 0.000000 at"},
+      {R"({"passive": {"reflectance": 0.5}, "coat": {"eta": 0}})", "/materials/m/coat/eta: eta must lie in"},
+      {R"({"passive": {"reflectance": 0.5}, "coat": {"thickness": -1}})", "/materials/m/coat/thickness:"},
+      {R"({"passive": {"reflectance": 0.5}, "coat": {"roughness": 0.2}})",
+       "/materials/m/coat/roughness: a rough coat is not built yet"},
+      {R"({"passive": {"reflectance": 0.5}, "coat": {"albedo": 0.5}})", "/materials/m/coat/albedo:"},
+      {R"({"passive": {"reflectance": 0.5}, "coat": {"eta": 1.5, "thikness": 0.1}})", "/materials/m/coat"},
+      {R"({"gloss": {"reflectance": 0.1}, "coat": {}})", "/materials/m/coat: a coated material has no \"gloss\""},
+      {R"({"dielectric": {}, "coat": {}})", "/materials/m/coat: a dielectric or conductor takes no coat"},
+      {R"({"passive": {"reflectance": 0.5}, "coat": 1.5})", "/materials/m/coat:"},
   };
   int k = 0;
   for (const auto& [material, message] : cases) {
@@ -273,6 +282,16 @@ TEST(SpecularMaterial, KernelsCarryOnlyTheKindsTheSceneUses) {
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   EXPECT_NE(plain.out.find("-D KASHA_DIELECTRIC=0"), std::string::npos) << plain.out;
   EXPECT_NE(plain.out.find("-D KASHA_CONDUCTOR=0"), std::string::npos) << plain.out;
+  EXPECT_NE(plain.out.find("-D KASHA_COATED=0"), std::string::npos) << plain.out;
+  const std::string coated = write_file("coated_info.json", R"({"kasha_scene": 1,
+  "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "fov_deg": 40, "width": 8, "height": 8},
+  "materials": {"m": {"passive": {"reflectance": 0.5}, "coat": {}}},
+  "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], "material": "m",
+              "emission": 1}]})");
+  CommandResult c = run_kasha("info " + coated);
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_NE(c.out.find("-D KASHA_COATED=1"), std::string::npos) << c.out;
+  EXPECT_NE(c.out.find("coated yes"), std::string::npos) << c.out;
 }
 
 }  // namespace
