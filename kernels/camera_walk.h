@@ -99,6 +99,10 @@ inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sa
 #endif
     pw_add(&w->p, f, emitter_spectrum(s, h->emitter), 0, weight, rows);
   }
+#if KASHA_SHADING_NORMALS
+  /* Seen from below the shading normal's hemisphere, the surface scatters nothing (hit_seen). */
+  if (!hit_seen(h, w->dir)) return false;
+#endif
   load_surface_at(s, h, &v->surf);
   v->probs = surface_specular(&v->surf) ? (float3)(1.0f, 0.0f, 0.0f) : branch_probabilities(&w->p, f, &v->surf);
   if (v->probs.x + v->probs.y + v->probs.z <= 0.0f) return false;
@@ -115,7 +119,7 @@ inline void walk_next_event(const CameraWalk* w, const SceneView* s, const FilmV
                             bool lambert, float3 probs, float* rows) {
   const Surface* surf = &v->surf;
   if (s->light_count > 0 && (lambert || (surf->g > 0.0f && !surf->mirror)))
-    next_event(&w->p, s, f, surf, v->h.x, v->h.ns, v->h.eps, -w->dir, probs, v->u_light, rows);
+    next_event(&w->p, s, f, surf, v->h.x, v->h.ns, hit_ng(&v->h), v->h.eps, -w->dir, probs, v->u_light, rows);
 }
 
 /* The gloss branch, chosen with probability probs.x: white, weight g over that (times the lobe's
@@ -215,7 +219,7 @@ inline void walk_rough_next_event(const CameraWalk* w, const SceneView* s, const
   float3 wi = to / dist;
   float cos_l = -dot(lp.normal, wi);
   if (cos_l <= 0.0f) return;
-  Frame fr = frame_of(v->h.n);
+  Frame fr = frame_of(hit_front(&v->h));
   float3 wo_l = to_local(&fr, -w->dir), wi_l = to_local(&fr, wi);
   float pdf, cos_m = 0.0f, fv;
   if (surf->kind == KASHA_KIND_DIELECTRIC)
@@ -223,7 +227,13 @@ inline void walk_rough_next_event(const CameraWalk* w, const SceneView* s, const
   else
     fv = rough_conductor_eval(wo_l, wi_l, surf->alpha, &pdf, &cos_m);
   if (!(fv > 0.0f)) return;
+#if KASHA_SHADING_NORMALS
+  /* Offset by the geometric side the light lies on, and no light through the wrong one. */
+  float3 toward = dot(wi, v->h.n) > 0.0f ? v->h.n : -v->h.n;
+  if ((wi_l.z > 0.0f) != (dot(wi, v->h.n) > 0.0f)) return;
+#else
   float3 toward = wi_l.z > 0.0f ? v->h.n : -v->h.n;
+#endif
   if (segment_occluded(s, v->h.x, toward, v->h.eps, wi, dist, lp.eps / cos_l)) return;
 #if KASHA_LIGHT_SOURCES
   float scale = fv * fabs(wi_l.z) / pdf_light * lp.scale * mis_weight(pdf_light, lp.delta ? 0.0f : pdf);
@@ -252,7 +262,7 @@ inline bool walk_rough(CameraWalk* w, const SceneView* s, const FilmView* f, con
   float eta = surf->kind == KASHA_KIND_DIELECTRIC ? walk_eta(w, f, surf, sample_2d(sampler).x) : 1.0f;
   if (eta < 0.0f) return false;
   walk_rough_next_event(w, s, f, v, eta, rows);
-  Frame fr = frame_of(v->h.n);
+  Frame fr = frame_of(hit_front(&v->h));
   float3 wo = to_local(&fr, -w->dir);
   InterfaceSample smp;
   bool ok = surf->kind == KASHA_KIND_DIELECTRIC
@@ -274,9 +284,11 @@ inline bool walk_rough(CameraWalk* w, const SceneView* s, const FilmView* f, con
 }
 #endif
 
-/* After the vertex's bounce: Russian roulette from the path's KASHA_CAMERA_ROULETTE_FROM-th vertex
+/* After the vertex's bounce: the end of a path that would leak through the surface (hit_no_leak),
+ * Russian roulette from the path's KASHA_CAMERA_ROULETTE_FROM-th vertex
  * on (false: the path ends), then the next ray's origin just off the surface. */
 inline bool walk_on(CameraWalk* w, const FilmView* f, const CameraVertex* v) {
+  if (!hit_no_leak(&v->h, w->dir)) return false;
   if (w->depth >= KASHA_CAMERA_ROULETTE_FROM) {
     float keep = roulette(pw_magnitude(&w->p, f) * w->eta_scale / w->start, v->u_choice.y);
     if (keep == 0.0f) return false;
@@ -284,8 +296,9 @@ inline bool walk_on(CameraWalk* w, const FilmView* f, const CameraVertex* v) {
   }
   w->prev_x = v->h.x;
   /* Off the side the new direction leaves by: the far side after a refraction. */
-  float side = dot(w->dir, v->h.ns) >= 0.0f ? v->h.eps : -v->h.eps;
-  w->org = v->h.x + v->h.ns * side;
+  float3 ng = hit_ng(&v->h);
+  float side = dot(w->dir, ng) >= 0.0f ? v->h.eps : -v->h.eps;
+  w->org = v->h.x + ng * side;
   ++w->depth;
   return true;
 }

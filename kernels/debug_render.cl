@@ -40,7 +40,7 @@ __kernel void render_debug(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
       /* Emitters radiate from their front side only. */
       if (h.emitter >= 0 && h.front) film_rows(&f, 0, emitter_spectrum(&s, h.emitter), 0, 1.0f, rows);
     } else if (view == VIEW_NORMALS) {
-      add_rgb_as_xyz(rows, 0.5f * h.n + 0.5f);
+      add_rgb_as_xyz(rows, 0.5f * hit_front(&h) + 0.5f);
     } else {
       const __global KMaterial* m = &materials[h.material];
       for (int c = 0; c < 3; ++c) rows[c] += m->albedo_xyz[c];

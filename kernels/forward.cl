@@ -129,7 +129,15 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
         alive = false;
         break;
       }
-      float3 ns = h.ns, x = h.x;
+      float3 ns = hit_ng(&h), x = h.x;
+#if KASHA_SHADING_NORMALS
+      /* From below the shading normal's hemisphere: the surface does not scatter it (hit_seen). */
+      if (!hit_seen(&h, p.direction)) {
+        absorbed += photon_total(&p);
+        alive = false;
+        break;
+      }
+#endif
       Surface surf;
       load_surface_at(&s, &h, &surf);
 #if KASHA_GLOSS
@@ -138,15 +146,20 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
       bool glossy = false;
 #endif
 #if KASHA_ROUGH
-      if (surface_rough(&surf)) splat_rough(&s, &f, &target, &surf, x, h.n, h.eps, &p, rows);
+      if (surface_rough(&surf)) splat_rough(&s, &f, &target, &surf, x, hit_front(&h), h.eps, &p, rows);
 #endif
       if ((surface_has_lambert(&surf) || glossy) && camera_connection(&s, x, ns, h.eps, &pixel, &k)) {
         /* Radiance per nm leaving x per unit flux: (ρ_i Φ_i + ê_i (a·Φ)) / (π Δλ). */
         film_rows_clear(rows);
+#if KASHA_SHADING_NORMALS
+        /* Towards a camera below the shading normal's hemisphere the surface sends nothing. */
+        if (!hit_seen(&h, normalize(x - camera_position(&camera)))) k = 0.0f;
+        k *= photon_arrival_correction(&h, p.direction);
+#endif
         float lambert = k * KASHA_INV_PI / bin_nm;
 #if KASHA_COATED
         /* Under a coat, t(θi) t(θo) / η² (coat.h). */
-        if (surf.coated) lambert *= surface_lambert_weight(&surf, dot(normalize(camera_position(&camera) - x), ns));
+        if (surf.coated) lambert *= surface_lambert_weight(&surf, dot(normalize(camera_position(&camera) - x), h.ns));
 #endif
         film_rows(&f, p.power, surf.rho, 0, lambert, rows);
 #if KASHA_FLUORESCENCE
@@ -156,7 +169,7 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
         if (glossy) {
           /* A tabulated lobe can be evaluated towards the camera: white, f_g Φ / Δλ. */
           float3 to_camera = normalize(camera_position(&camera) - x);
-          float fg = surf.g * lobe_brdf(surf.m, lobes, to_camera, -p.direction, ns);
+          float fg = surf.g * lobe_brdf(surf.m, lobes, to_camera, -p.direction, h.ns);
           if (fg > 0.0f) film_rows(&f, p.power, 0, 0, fg * k / bin_nm, rows);
         }
 #endif
@@ -165,7 +178,7 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
       /* "Absorbed": the power a hit takes away, absorption and roulette (negative when roulette
        * scales a survivor up), so emitted = absorbed + escaped + in flight exactly. */
       float before = photon_total(&p);
-      if (scatter_photon(&p, &surf, &s, x, ns, h.front, h.eps, &sampler, depth) == BRANCH_ABSORBED) {
+      if (scatter_photon(&p, &surf, &s, &h, &sampler, depth) == BRANCH_ABSORBED) {
         absorbed += before;
         alive = false;
       } else {

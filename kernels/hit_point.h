@@ -12,11 +12,23 @@
 #ifndef KASHA_COATED
 #define KASHA_COATED 0
 #endif
+#ifndef KASHA_SHADING_NORMALS
+#define KASHA_SHADING_NORMALS 0
+#endif
 
+/* With shading normals (KASHA_SHADING_NORMALS, docs/formats.md#shading-normals), ns is the
+ * interpolated shading normal (turned to the geometric front's hemisphere, then to the ray's side)
+ * and ng the geometric one on the ray's side: surfaces scatter about ns, while offsets, the side a
+ * new ray leaves by and the check against light leaks use ng. Without them ns is the geometric
+ * normal and hit_ng returns it. */
 typedef struct {
   float3 x;      /* the hit point */
   float3 n;      /* geometric normal, (v1 − v0) × (v2 − v0) normalized: the front side */
-  float3 ns;     /* the normal on the side the ray arrived from */
+  float3 ns;     /* the (shading) normal on the side the ray arrived from */
+#if KASHA_SHADING_NORMALS
+  float3 ng;     /* the geometric normal on the side the ray arrived from */
+  float3 nf;     /* the shading normal on the front side */
+#endif
   bool front;    /* the ray arrived on the front side */
   float t;       /* distance along the (unit) direction */
   float eps;     /* how far off the surface new rays start: x's own rounding bound (surface_offset) */
@@ -54,6 +66,20 @@ inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint
   h->n = normalize(cross(v1 - v0, v2 - v0));
   h->front = dot(h->n, dir) < 0.0f;
   h->ns = h->front ? h->n : -h->n;
+#if KASHA_SHADING_NORMALS
+  {
+    const __global float* sn = s->normals[hit].n;
+    float3 n = (1.0f - u - v) * (float3)(sn[0], sn[1], sn[2]) + u * (float3)(sn[3], sn[4], sn[5]) +
+               v * (float3)(sn[6], sn[7], sn[8]);
+    float len = length(n);
+    /* A degenerate interpolation shades flat; a normal against the winding is turned to the front. */
+    n = len > 1e-6f ? n / len : h->n;
+    if (dot(n, h->n) < 0.0f) n = -n;
+    h->nf = n;
+    h->ng = h->ns;
+    h->ns = h->front ? n : -n;
+  }
+#endif
   /* From the barycentrics, so its error depends on the triangle, not on the ray's length. */
   h->x = (1.0f - u - v) * v0 + u * v1 + v * v2;
   h->eps = surface_offset(v0, v1, v2, 1.0f - u - v, u, v, h->n);
@@ -65,9 +91,50 @@ inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint
   h->b = (float2)(u, v);
 #endif
 #if KASHA_COATED
-  h->cos_in = fabs(dot(h->n, dir));
+  h->cos_in = fmax(0.0f, -dot(h->ns, dir));
 #endif
   return true;
+}
+
+/* The geometric normal on the side the ray arrived from (ns itself without shading normals). */
+inline float3 hit_ng(const HitPoint* h) {
+#if KASHA_SHADING_NORMALS
+  return h->ng;
+#else
+  return h->ns;
+#endif
+}
+
+/* The (shading) normal on the front side. */
+inline float3 hit_front(const HitPoint* h) {
+#if KASHA_SHADING_NORMALS
+  return h->nf;
+#else
+  return h->n;
+#endif
+}
+
+/* Whether a direction d leaving the hit lies on the side of the geometric surface that the
+ * shading normal assigns it (a reflection above, a refraction below): otherwise light would leak
+ * through the surface, and the path ends. Always true without shading normals. */
+inline bool hit_no_leak(const HitPoint* h, float3 d) {
+#if KASHA_SHADING_NORMALS
+  return (dot(d, h->ns) > 0.0f) == (dot(d, h->ng) > 0.0f);
+#else
+  return true;
+#endif
+}
+
+/* Whether a ray arriving along d meets the surface from above its shading normal's hemisphere.
+ * A surface scatters only between directions on that side (as pbrt-v4's BxDFs in the shading
+ * frame), so light arriving, or a viewer looking, from below it (at silhouettes of smooth-shaded
+ * meshes) sees nothing scattered; both directions of transport agree on it. */
+inline bool hit_seen(const HitPoint* h, float3 d) {
+#if KASHA_SHADING_NORMALS
+  return dot(d, h->ns) < 0.0f;
+#else
+  return true;
+#endif
 }
 
 /* Whether anything blocks the segment from x (offset eps off its surface along ns) to dist along

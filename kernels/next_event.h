@@ -19,9 +19,10 @@
 /* probs: the branch probabilities (gloss, passive, fluorescent) of the strategies that could also
  * reach the light from x; 0 for a part whose branch never continues to an emitter (photon mapping
  * ends camera paths at their Lambert vertex), which then takes the whole light sample.
- * At x (shading normal ns on the viewer's side, wo towards the viewer): rows += T·(light). */
+ * At x (shading normal ns and geometric normal ng on the viewer's side, wo towards the viewer):
+ * rows += T·(light). */
 inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* f, const Surface* surf, float3 x,
-                       float3 ns, float eps, float3 wo, float3 probs, float2 u_light, float* rows) {
+                       float3 ns, float3 ng, float eps, float3 wo, float3 probs, float2 u_light, float* rows) {
   float pdf_light;
   LightPoint lp = sample_light_from(s, x, u_light, &pdf_light);
   if (!(pdf_light > 0.0f)) return;
@@ -31,10 +32,14 @@ inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* 
   float3 wi = to / dist;
   float cos_x = dot(ns, wi), cos_l = -dot(lp.normal, wi);
   if (cos_x <= 0.0f || cos_l <= 0.0f) return;
+#if KASHA_SHADING_NORMALS
+  /* A light behind the geometric surface does not reach it, whatever the shading normal says. */
+  if (dot(ng, wi) <= 0.0f) return;
+#endif
   /* The light point's rounding along its normal is lp.eps: along a ray meeting its surface at
    * cos_l it is lp.eps / cos_l, what the shadow ray must stop short by (at grazing angles the
    * light's own surface would block it otherwise). */
-  if (segment_occluded(s, x, ns, eps, wi, dist, lp.eps / cos_l)) return;
+  if (segment_occluded(s, x, ng, eps, wi, dist, lp.eps / cos_l)) return;
   const __global float* le = light_point_spectrum(s, &lp);
   float lambert_pdf = cosine_hemisphere_pdf(cos_x);
   float base = cos_x / pdf_light;

@@ -46,7 +46,11 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
       }
       HitPoint h;
       if (!intersect_scene(&s, p.position, p.direction, &h)) break;
-      float3 ns = h.ns, x = h.x;
+      float3 ns = hit_ng(&h), x = h.x;
+#if KASHA_SHADING_NORMALS
+      /* From below the shading normal's hemisphere: the surface does not scatter it (hit_seen). */
+      if (!hit_seen(&h, p.direction)) break;
+#endif
       Surface surf;
       load_surface_at(&s, &h, &surf);
       if (depth > 0 && surface_has_lambert(&surf)) {
@@ -63,6 +67,13 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
             /* Under a coat, the power that reaches the base: t(θi) Φ (coat.h); the visible
              * point's factor holds the rest. */
             float through = surf.coated ? coat_transmission(&surf, h.cos_in) : 1.0f;
+#else
+            float through = 1.0f;
+#endif
+#if KASHA_SHADING_NORMALS
+            through *= photon_arrival_correction(&h, p.direction);
+#endif
+#if KASHA_COATED || KASHA_SHADING_NORMALS
             for (int i = 0; i < KASHA_BINS; ++i) rec[KASHA_PHOTON_POWER + i] = p.power[i] * through;
 #else
             for (int i = 0; i < KASHA_BINS; ++i) rec[KASHA_PHOTON_POWER + i] = p.power[i];
@@ -70,7 +81,7 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photon
           }
         }
       }
-      if (scatter_photon(&p, &surf, &s, x, ns, h.front, h.eps, &sampler, depth) == BRANCH_ABSORBED) break;
+      if (scatter_photon(&p, &surf, &s, &h, &sampler, depth) == BRANCH_ABSORBED) break;
     }
   }
   if (first < last) cut[item] = guard;
@@ -103,7 +114,7 @@ inline float camera_path(const SceneView* s, const FilmView* f, int pixel, Sampl
     if (lambert && v.u_choice.x >= p_gloss) {
       if (vp) {
         /* The visible point, K over 1 − P_gloss. */
-        float3 x = v.h.x, ns = v.h.ns;
+        float3 x = v.h.x, ns = hit_ng(&v.h);
         vp[0] = x.x, vp[1] = x.y, vp[2] = x.z;
         vp[3] = ns.x, vp[4] = ns.y, vp[5] = ns.z;
         vp[KASHA_VP_VALID] = 1.0f;

@@ -227,8 +227,8 @@ inline int scatter_specular(Photon* p, const Surface* s, float3 x, float3 ns, bo
  * P_p = Σ ρ_i Φ_i, P_f = Σ a_i Φ_i; the new spectrum (g Φ, ρ∘Φ or ê (a·Φ)) is divided by that
  * probability, so the photon's power becomes ΣP; then Russian roulette (roulette.h) against the
  * power it left its light with. Returns the branch. */
-inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, float3 x, float3 ns, bool front,
-                          float eps, Sampler* sampler, int depth) {
+inline int scatter_photon_about(Photon* p, const Surface* s, const SceneView* scene, float3 x, float3 ns, bool front,
+                                float eps, Sampler* sampler, int depth) {
   sampler_at(sampler, PHOTON_PAIRS_AT_LIGHT + depth * PHOTON_PAIRS_PER_HIT);
   float2 u_choice = sample_2d(sampler), u_dir = sample_2d(sampler);
 #if KASHA_ROUGH
@@ -296,6 +296,41 @@ inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, f
 #endif
   p->position = x + ns * eps;
   return photon_roulette(p, u_choice.y, depth) ? branch : BRANCH_ABSORBED;
+}
+
+/* Scatters the photon at its depth-th hit h (scatter_photon_about its normal). With shading
+ * normals a new direction that would leak through the geometric surface ends the photon, and its
+ * power takes Veach's correction for flux (adjoint) transport through a shading normal,
+ * |wi·ns| |wo·ng| / (|wi·ng| |wo·ns|) for arrival wi and departure wo, so that light tracing and
+ * photon mapping agree with camera paths; the new ray leaves off the geometric surface. */
+inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, const HitPoint* h, Sampler* sampler,
+                          int depth) {
+#if KASHA_SHADING_NORMALS
+  float3 d_in = p->direction;
+  int branch = scatter_photon_about(p, s, scene, h->x, h->ns, h->front, h->eps, sampler, depth);
+  if (branch == BRANCH_ABSORBED) return branch;
+  float3 d = p->direction;
+  if (!hit_no_leak(h, d)) return BRANCH_ABSORBED;
+  float k = fabs(dot(d_in, h->ns) * dot(d, h->ng)) / fabs(dot(d_in, h->ng) * dot(d, h->ns));
+  if (!(k < INFINITY)) return BRANCH_ABSORBED;
+  for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= k;
+  p->position = h->x + h->ng * (dot(d, h->ng) > 0.0f ? h->eps : -h->eps);
+  return branch;
+#else
+  return scatter_photon_about(p, s, scene, h->x, h->ns, h->front, h->eps, sampler, depth);
+#endif
+}
+
+/* Light arriving along d and followed as flux (a photon stored, or connected to the camera) meets
+ * a Lambert or gloss part through the shading normal: |d·ns| / |d·ng| (the arrival half of
+ * Veach's correction); 1 without shading normals. */
+inline float photon_arrival_correction(const HitPoint* h, float3 d) {
+#if KASHA_SHADING_NORMALS
+  float k = fabs(dot(d, h->ns)) / fabs(dot(d, h->ng));
+  return k < INFINITY ? k : 0.0f;
+#else
+  return 1.0f;
+#endif
 }
 
 #endif

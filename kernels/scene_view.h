@@ -37,6 +37,7 @@ typedef struct {
                             * like every spectrum */
   const __global KTexture* textures;
   const __global KTexcoords* texcoords; /* per leaf triangle, when textures need them */
+  const __global KShadingNormals* normals; /* per leaf triangle, when some shape has them */
   RayCounts* rays; /* private: the work item's own counts */
 } SceneView;
 
@@ -47,7 +48,7 @@ typedef struct {
       __global const float *emitter_area_pdf, __global const int *light_tri,                                \
       __global const float *light_cdf, int light_count, float bin_nm, __global const KLight *lights,          \
       int light_sources, __global float *scratch, __global const KTexture *textures,                     \
-      __global const KTexcoords *texcoords
+      __global const KTexcoords *texcoords, __global const KShadingNormals *normals
 
 #define KASHA_SCENE_VIEW(name)                                                                              \
   RayCounts name##_rays = {0u, 0u};                                                                         \
@@ -55,7 +56,7 @@ typedef struct {
                     emitter_radiance, emitter_area_pdf, light_tri, light_cdf, light_count, bin_nm,        \
                     lights,           light_sources,                                                   \
                     scratch + (get_global_id(0) - get_global_offset(0)) * KASHA_SCRATCH_FLOATS,    \
-                    textures,         texcoords,        &name##_rays}
+                    textures,         texcoords,        normals,          &name##_rays}
 
 /* An emitter's spectral radiance, N values. */
 inline const __global float* emitter_spectrum(const SceneView* s, int emitter) {

@@ -178,6 +178,14 @@ typedef struct {
 } KTexcoords;
 KASHA_STATIC_SIZE(KTexcoords, 32);
 
+/* A triangle's shading normals at v0, v1, v2 (OBJ `vn`), in leaf order like KTriangle; uploaded
+ * only when some shape has them (docs/formats.md#shading-normals). */
+typedef struct {
+  float n[9];
+  float pad[3];
+} KShadingNormals;
+KASHA_STATIC_SIZE(KShadingNormals, 48);
+
 /* Lights that are not emitting triangles (docs/lights.md): a point, a spot (a point whose
  * intensity falls off to zero at the edge of a cone), a distant light (parallel light of a given
  * irradiance) and an infinite light (radiance from every direction, constant or an environment

@@ -230,8 +230,9 @@ TEST(KernelLightSampler, PointsFollowTheClaimedDensity) {
   kernel.input(15, std::vector<float>(1));  // scratch
   kernel.input(16, std::vector<KTexture>(1));
   kernel.input(17, std::vector<KTexcoords>(1));
-  kernel.input(18, std::vector<float>{float(x.x()), float(x.y()), float(x.z())});
-  const std::vector<float> out = kernel.sample(19, uniforms(3 * kSamples, 11), 20, 10, kSamples);
+  kernel.input(18, std::vector<KShadingNormals>(1));
+  kernel.input(19, std::vector<float>{float(x.x()), float(x.y()), float(x.z())});
+  const std::vector<float> out = kernel.sample(20, uniforms(3 * kSamples, 11), 21, 10, kSamples);
 
   // Per light: the selection probability from the CDF the device has, the solid angle, the
   // branch, the cells' shares of its points. The claimed density integrated over a cell: a

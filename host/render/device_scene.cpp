@@ -203,6 +203,13 @@ KernelSceneData::KernelSceneData(const Scene& scene)
     materials.push_back(k);
   }
   if (scene.textured() || scene.emission_textured()) add_textures(scene);
+  if (scene.shading_normals())
+    for (const KTriangle& t : bvh.triangles) {
+      KShadingNormals n{};
+      for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 3; ++c) n.n[3 * k + c] = static_cast<float>(scene.normals[t.prim][k][c]);
+      normals.push_back(n);
+    }
   for (const Emitter& e : scene.emitters) append(emitter_radiance, e.per_bin);
   for (const Light& l : scene.lights) append(emitter_radiance, l.per_bin);
 
@@ -282,7 +289,7 @@ size_t KernelSceneData::bytes() const {
   return bvh.nodes.size() * sizeof(KBvhNode) + bvh.leaves.size() * sizeof(KBvhLeaf) +
          bvh.triangles.size() * sizeof(KTriangle) + materials.size() * sizeof(KMaterial) +
          lights.size() * sizeof(KLight) + textures.size() * sizeof(KTexture) +
-         texcoords.size() * sizeof(KTexcoords) +
+         texcoords.size() * sizeof(KTexcoords) + normals.size() * sizeof(KShadingNormals) +
          (spectra.size() + lobes.size() + emitter_radiance.size() + light_cdf.size() +
           emitter_area_pdf.size()) *
              sizeof(float) +
@@ -326,6 +333,7 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_EMISSION_TEXTURES"] = scene.emission_textured() ? "1" : "0";
   d["KASHA_SCRATCH_TEXTURES"] = std::to_string(scratch_texture_offset(scene));
   d["KASHA_COATED"] = scene.coated() ? "1" : "0";
+  d["KASHA_SHADING_NORMALS"] = scene.shading_normals() ? "1" : "0";
   d["KASHA_SCRATCH_COAT"] = std::to_string(scratch_coat_offset(scene));
   return d;
 }
@@ -355,6 +363,7 @@ int DeviceScene::bind(cl::Kernel& k, int a, size_t items) {
   k.setArg(a++, scratch_);
   k.setArg(a++, textures);
   k.setArg(a++, texcoords);
+  k.setArg(a++, normals);
   return a;
 }
 
@@ -373,6 +382,7 @@ DeviceScene::DeviceScene(ClContext& cl, const Scene& scene)
   lights = upload(cl, data_.lights);
   textures = upload(cl, data_.textures);
   texcoords = upload(cl, data_.texcoords);
+  normals = upload(cl, data_.normals);
 }
 
 }  // namespace kasha

@@ -23,6 +23,7 @@ struct KernelSceneData {
   std::vector<KLight> lights;           // the lights that are not triangles
   std::vector<KTexture> textures;       // per texture and use (kernels/texture.h)
   std::vector<KTexcoords> texcoords;    // per leaf triangle, when the scene has textures
+  std::vector<KShadingNormals> normals;  // per leaf triangle, when some shape has shading normals
   // Light sampling: emitting triangles (leaf order), then the other lights (~index into
   // `lights`), with the CDF of their power, and per emitter the area density
   // p(triangle)/area = pi·Σ Le Δλ / total power.
@@ -61,7 +62,7 @@ class DeviceScene {
   int bind(cl::Kernel& kernel, int first, size_t items);
 
   cl::Buffer nodes, leaves, triangles, materials, spectra, lobes, emitter_radiance, light_tri,
-      light_cdf, emitter_area_pdf, lights, textures, texcoords;
+      light_cdf, emitter_area_pdf, lights, textures, texcoords, normals;
 
  private:
   KernelSceneData data_;

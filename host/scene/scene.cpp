@@ -436,9 +436,23 @@ static void check_vertices(const std::vector<Triangle>& tris, const JsonNode& sh
 }
 
 // A shape's triangles in kernel layout, after the scene's.
+// The geometric normal of a kernel triangle at each vertex: shading normals for a triangle whose
+// shape has none, in a scene where another shape has them.
+static TriangleNormals flat_normals(const KTriangle& k) {
+  Eigen::Vector3d v0(k.v0[0], k.v0[1], k.v0[2]), v1(k.v1[0], k.v1[1], k.v1[2]),
+      v2(k.v2[0], k.v2[1], k.v2[2]);
+  const Eigen::Vector3d g = (v1 - v0).cross(v2 - v0).normalized();
+  return {g, g, g};
+}
+
 static void append_triangles(const ShapeMesh& mesh, int material, int emitter, Scene& scene) {
   scene.uvs.insert(scene.uvs.end(), mesh.uv.begin(), mesh.uv.end());
-  for (const Triangle& t : mesh.tris) {
+  // Shading normals are kept for every triangle once some shape has them.
+  if (!mesh.normals.empty() && scene.normals.empty())
+    for (const KTriangle& k : scene.triangles) scene.normals.push_back(flat_normals(k));
+  const bool normals = !mesh.normals.empty() || !scene.normals.empty();
+  for (size_t i = 0; i < mesh.tris.size(); ++i) {
+    const Triangle& t = mesh.tris[i];
     KTriangle k{};
     for (int c = 0; c < 3; ++c) {
       k.v0[c] = static_cast<float>(t[0][c]);
@@ -448,6 +462,8 @@ static void append_triangles(const ShapeMesh& mesh, int material, int emitter, S
     k.material = material;
     k.emitter = emitter;
     k.prim = static_cast<int>(scene.triangles.size());
+    if (normals)
+      scene.normals.push_back(mesh.normals.empty() ? flat_normals(k) : mesh.normals[i]);
     scene.triangles.push_back(k);
   }
 }

@@ -49,6 +49,8 @@ struct Scene {
   std::vector<MaterialTextures> material_textures;  // same order as material_descs
   std::vector<KTriangle> triangles;                 // scene order: prim == index
   std::vector<TriangleUv> uvs;  // the triangles' texture coordinates, scene order
+  // The triangles' shading normals, scene order; empty unless some shape has them (OBJ `vn`).
+  std::vector<TriangleNormals> normals;
   std::vector<Emitter> emitters;
   std::vector<Light> lights;  // the "lights" that are not shapes
   std::vector<ShapeInfo> shapes;
@@ -62,6 +64,7 @@ struct Scene {
   bool dispersive() const;             // some shape's material is a dispersive dielectric
   bool rough() const;                  // some shape's material is a rough dielectric or conductor
   bool coated() const;                 // some shape's material has a coat
+  bool shading_normals() const { return !normals.empty(); }  // some shape has them
   // Some shape's material is a delta lobe: an ideal mirror, a smooth dielectric or conductor.
   bool has_delta_surfaces() const;
   int material_index(const std::string& name) const;  // -1 when absent

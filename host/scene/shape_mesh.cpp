@@ -20,7 +20,8 @@ ShapeMesh quad_triangles(const Eigen::Vector3d& c, const Eigen::Vector3d& u,
   // Both triangles face u × v.
   const Eigen::Vector2d a(0, 0), b(1, 0), d(1, 1), e(0, 1);
   return {{Triangle{c, c + u, c + u + v}, Triangle{c, c + u + v, c + v}},
-          {TriangleUv{a, b, d}, TriangleUv{a, d, e}}};
+          {TriangleUv{a, b, d}, TriangleUv{a, d, e}},
+          {}};
 }
 
 ShapeMesh box_triangles(const Eigen::Vector3d& lo, const Eigen::Vector3d& hi) {
@@ -168,14 +169,17 @@ ShapeMesh obj_triangles(const std::string& path) {
   }
   const auto& v = reader.GetAttrib().vertices;
   const auto& vt = reader.GetAttrib().texcoords;
+  const auto& vn = reader.GetAttrib().normals;
   ShapeMesh out;
+  bool any_normals = false;
   const TriangleUv fallback = {Eigen::Vector2d(0, 0), Eigen::Vector2d(1, 0), Eigen::Vector2d(1, 1)};
   for (const auto& shape : reader.GetShapes()) {
     const auto& idx = shape.mesh.indices;
     for (size_t f = 0; f + 2 < idx.size(); f += 3) {
       Triangle t;
       TriangleUv uv = fallback;
-      bool has_uv = true;
+      TriangleNormals normals;
+      bool has_uv = true, has_normals = true;
       for (int k = 0; k < 3; ++k) {
         int i = idx[f + k].vertex_index;
         if (i < 0 || 3 * static_cast<size_t>(i) + 2 >= v.size())
@@ -187,23 +191,46 @@ ShapeMesh obj_triangles(const std::string& path) {
           has_uv = false;
         else
           uv[k] = Eigen::Vector2d(vt[2 * j], vt[2 * j + 1]);
+        int n = idx[f + k].normal_index;
+        if (n < 0 || 3 * static_cast<size_t>(n) + 2 >= vn.size()) {
+          has_normals = false;
+        } else {
+          normals[k] = Eigen::Vector3d(vn[3 * n], vn[3 * n + 1], vn[3 * n + 2]);
+          // A zero, infinite or NaN normal says nothing: the face is shaded flat.
+          const double length = normals[k].norm();
+          if (!(length > 0 && std::isfinite(length)))
+            has_normals = false;
+          else
+            normals[k] /= length;
+        }
       }
       out.tris.push_back(t);
       out.uv.push_back(has_uv ? uv : fallback);
+      if (!has_normals) {
+        const Eigen::Vector3d g = (t[1] - t[0]).cross(t[2] - t[0]).normalized();
+        normals = {g, g, g};
+      }
+      any_normals = any_normals || has_normals;
+      out.normals.push_back(normals);
     }
   }
   if (out.tris.empty()) throw Error(path + ": OBJ mesh has no faces");
+  if (!any_normals) out.normals.clear();
   return out;
 }
 
 void flip_triangles(ShapeMesh& mesh) {
   for (Triangle& t : mesh.tris) std::swap(t[1], t[2]);
   for (TriangleUv& t : mesh.uv) std::swap(t[1], t[2]);
+  for (TriangleNormals& t : mesh.normals) std::swap(t[1], t[2]);
 }
 
 void transform_triangles(ShapeMesh& mesh, const Eigen::Affine3d& m) {
   for (Triangle& t : mesh.tris)
     for (Eigen::Vector3d& p : t) p = m * p;
+  const Eigen::Matrix3d normal_matrix = m.linear().inverse().transpose();
+  for (TriangleNormals& t : mesh.normals)
+    for (Eigen::Vector3d& n : t) n = (normal_matrix * n).normalized();
   if (m.linear().determinant() < 0) flip_triangles(mesh);
 }
 
