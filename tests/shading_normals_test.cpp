@@ -3,8 +3,9 @@
 //   light's angle to the shading normal, not the 45° to the geometric one) in every integrator:
 //   camera paths evaluate the surface about the shading normal; light tracing needs Veach's
 //   correction |wi·ns| / |wi·ng| for it (without it, it shows cos 45°).
-// - No light leaks: a light just below the floor's plane, which the tilted shading normal faces,
-//   leaves the floor's top black in every integrator.
+// - No light leaks: a lamp under a floor whose shading normal leans 60° leaves everything above
+//   the floor black in every integrator (a Lambert bounce about the shading normal alone would
+//   carry light through).
 // - A smooth-shaded low-poly sphere on a floor under a lamp: light tracing against backward region
 //   by region within 4 standard errors, photon mapping (the sphere's light on the floor goes
 //   through the photon map with the correction) within 3 %.
@@ -65,12 +66,21 @@ TEST(ShadingNormals, AFloorIsLitAsItsShadingNormalFacesTheLight) {
 }
 
 TEST(ShadingNormals, NoLightLeaksThroughTheSurface) {
-  // The light 10° below the floor's plane; the shading normal leans 60° towards it, so it faces
-  // the light (cos 40°) though the floor's top cannot see it.
+  // A lamp under the floor lights its underside; above it stands a white wall the camera sees.
+  // The shading normal leans 60°, so a Lambert bounce about it (on either side) would send light
+  // through the floor: from the lamp up to the wall, or from the wall down to the lamp. With the
+  // geometric side kept, nothing above the floor is lit.
   const std::string obj = tilted_floor("leaky_floor.obj", 60);
-  const std::string scene = floor_scene("leaky_floor.json", obj, "[0.985, 0, -0.174]");
+  const std::string scene = write_file("leaky_floor.json", R"({"kasha_scene": 1,
+  "camera": {"position": [1.5, 0, 2], "look_at": [-1.5, 0, 0.4], "fov_deg": 40, "width": 16, "height": 16},
+  "materials": {"black": {}, "white": {"passive": {"reflectance": 0.9}}},
+  "shapes": [{"type": "obj", "file": ")" + obj + R"(", "material": "white"},
+             {"type": "quad", "corner": [-1.5, -2, 0], "u": [0, 4, 0], "v": [0, 0, 1.5], "material": "white"},
+             {"type": "quad", "corner": [-0.5, -0.5, -0.3], "u": [1, 0, 0], "v": [0, 1, 0], "material": "black",
+              "emission": 10}]})");
   for (const char* integrator : {"backward", "photon", "forward"}) {
     RenderResult r = render(scene, integrator);
+    ASSERT_TRUE(r.scene.shading_normals());
     double most = 0;
     for (float v : r.image.xyz) most = std::max(most, std::abs(static_cast<double>(v)));
     for (float v : r.image.spectral) most = std::max(most, std::abs(static_cast<double>(v)));
