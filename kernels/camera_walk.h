@@ -123,10 +123,24 @@ inline void walk_next_event(const CameraWalk* w, const SceneView* s, const FilmV
 }
 
 /* The gloss branch, chosen with probability probs.x: white, weight g over that (times the lobe's
- * cosine ratio); the mirror direction, or one drawn from the lobe. False: the lobe's direction
+ * cosine ratio); the mirror direction, or one drawn from the lobe (a rough coat's: coat.h). False: the lobe's direction
  * lies below the horizon, absorbed. */
 inline bool walk_gloss(CameraWalk* w, const SceneView* s, const CameraVertex* v, Sampler* sampler) {
   const Surface* surf = &v->surf;
+#if KASHA_COATED
+  if (surface_coat_lobe(surf)) {
+    /* A rough coat's GGX lobe: weight F G / G1 over the branch's probability. */
+    Frame fr = frame_of(v->h.ns);
+    float3 wi;
+    float weight, pdf;
+    if (!coat_lobe_sample(surf, to_local(&fr, -w->dir), v->u_dir, &wi, &weight, &pdf)) return false;
+    w->dir = to_world(&fr, wi);
+    w->specular = false;
+    w->prev_pdf = v->probs.x * pdf;
+    pw_scatter_diagonal(&w->p, 0, weight / v->probs.x);
+    return true;
+  }
+#endif
   float3 ns = v->h.ns, mirror = reflect_dir(w->dir, ns);
   float weight = surf->g;
   if (surf->mirror) {

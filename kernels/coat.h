@@ -14,6 +14,7 @@
 #define KASHA_COAT_H
 
 #include "fresnel.h"
+#include "rough_interface.h"
 #include "scene_view.h"
 #include "surface.h"
 
@@ -22,8 +23,19 @@
 #endif
 
 #if KASHA_COATED
+/* A rough coat's table (E(μ) at 0, t(μ) at KASHA_COAT_TABLE) at μ, linear between its nodes. */
+inline float coat_table_at(const Surface* s, int which, float mu) {
+  float x = clamp(mu, 0.0f, 1.0f) * (float)(KASHA_COAT_TABLE - 1);
+  int k = min((int)x, KASHA_COAT_TABLE - 2);
+  const __global float* t = s->coat_table + which * KASHA_COAT_TABLE;
+  return t[k] + (x - (float)k) * (t[k + 1] - t[k]);
+}
+
+inline bool coat_rough(const Surface* s) { return s->m->coat_table >= 0; }
+
 /* t(θ) at cos θ on the outside. */
 inline float coat_transmission(const Surface* s, float cos_theta) {
+  if (coat_rough(s)) return coat_table_at(s, 1, cos_theta);
   float eta = s->m->coat_eta;
   cos_theta = clamp(cos_theta, 0.0f, 1.0f);
   float sin2_t = (1.0f - cos_theta * cos_theta) / (eta * eta);
@@ -39,8 +51,9 @@ inline float coat_transmission(const Surface* s, float cos_theta) {
 inline void coat_at(const SceneView* sv, Surface* s, float cos_o) {
   const __global KMaterial* m = s->m;
   float R = m->coat_internal;
-  s->g = fresnel_dielectric(cos_o, m->coat_eta);
-  s->mirror = true;
+  /* A smooth coat's mirror reflection, or a rough one's GGX lobe (coat_lobe_*): its albedo. */
+  s->mirror = !coat_rough(s);
+  s->g = s->mirror ? fresnel_dielectric(cos_o, m->coat_eta) : coat_table_at(s, 0, cos_o);
   float t = coat_transmission(s, cos_o);
   s->lambert_out = t / (m->coat_eta * m->coat_eta);
   s->lambert_albedo = t * m->coat_albedo;
@@ -71,6 +84,30 @@ inline void coat_at(const SceneView* sv, Surface* s, float cos_o) {
 #endif
   if (s->passive) s->rho = rho;
 }
+
+/* A rough coat's reflection lobe (pbrt-v4's rough DielectricBxDF, reflection only) in a local
+ * frame about the normal on the viewer's side: f(wo, wi) and the density of sampling wi from wo. */
+inline float coat_lobe_eval(const Surface* s, float3 wo, float3 wi, float* pdf) {
+  Ggx a = {s->m->coat_alpha, s->m->coat_alpha};
+  float cos_m;
+  float f = rough_conductor_eval(wo, wi, a, pdf, &cos_m);
+  return f > 0.0f ? f * fresnel_dielectric(cos_m, s->m->coat_eta) : 0.0f;
+}
+
+/* A direction from the lobe: a visible normal, the mirror direction about it; *weight is
+ * f cos θi / pdf = F G / G1. False: it left below the surface. */
+inline bool coat_lobe_sample(const Surface* s, float3 wo, float2 u, float3* wi, float* weight, float* pdf) {
+  Ggx a = {s->m->coat_alpha, s->m->coat_alpha};
+  InterfaceSample smp;
+  if (!rough_conductor_sample(wo, a, u, &smp) || !(smp.pdf > 0.0f)) return false;
+  *wi = smp.wi;
+  *pdf = smp.pdf;
+  *weight = smp.weight * fresnel_dielectric(smp.cos_m, s->m->coat_eta);
+  return true;
+}
+
+/* Whether the surface's gloss part is a rough coat's lobe (not the measured model's table). */
+inline bool surface_coat_lobe(const Surface* s) { return s->coated && !s->mirror; }
 #endif
 
 /* The Lambert parts' factor for a bounce that leaves (or arrives) at cos_new on the far side of

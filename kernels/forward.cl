@@ -145,10 +145,16 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
 #else
       bool glossy = false;
 #endif
+#if KASHA_COATED
+      bool coat_lobe = surface_coat_lobe(&surf);
+      glossy = glossy && !coat_lobe;
+#else
+      const bool coat_lobe = false;
+#endif
 #if KASHA_ROUGH
       if (surface_rough(&surf)) splat_rough(&s, &f, &target, &surf, x, hit_front(&h), h.eps, &p, rows);
 #endif
-      if ((surface_has_lambert(&surf) || glossy) && camera_connection(&s, x, ns, h.eps, &pixel, &k)) {
+      if ((surface_has_lambert(&surf) || glossy || coat_lobe) && camera_connection(&s, x, ns, h.eps, &pixel, &k)) {
         /* Radiance per nm leaving x per unit flux: (ρ_i Φ_i + ê_i (a·Φ)) / (π Δλ). */
         film_rows_clear(rows);
 #if KASHA_SHADING_NORMALS
@@ -171,6 +177,16 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
           float3 to_camera = normalize(camera_position(&camera) - x);
           float fg = surf.g * lobe_brdf(surf.m, lobes, to_camera, -p.direction, h.ns);
           if (fg > 0.0f) film_rows(&f, p.power, 0, 0, fg * k / bin_nm, rows);
+        }
+#endif
+#if KASHA_COATED
+        if (coat_lobe) {
+          /* A rough coat's GGX lobe towards the camera (coat.h), white: f Φ / Δλ. */
+          Frame fr = frame_of(h.ns);
+          float pdf;
+          float fc = coat_lobe_eval(&surf, to_local(&fr, normalize(camera_position(&camera) - x)),
+                                    to_local(&fr, -p.direction), &pdf);
+          if (fc > 0.0f) film_rows(&f, p.power, 0, 0, fc * k / bin_nm, rows);
         }
 #endif
         splat_rows(&target, pixel, rows);

@@ -68,6 +68,16 @@ inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* 
            absorbed * lambert_base * KASHA_INV_PI * mis_weight(pdf_light, reach * probs.z * lambert_pdf), rows);
   }
 #endif
+#if KASHA_COATED
+  if (surface_coat_lobe(surf)) {
+    /* A rough coat's GGX lobe (coat.h), about the normal on the viewer's side. */
+    Frame fr = frame_of(ns);
+    float pdf;
+    float fc = coat_lobe_eval(surf, to_local(&fr, wo), to_local(&fr, wi), &pdf);
+    if (fc > 0.0f) pw_add(p, f, le, 0, fc * base * mis_weight(pdf_light, reach * probs.x * pdf), rows);
+    return;
+  }
+#endif
 #if KASHA_GLOSS
   if (surf->g > 0.0f && !surf->mirror) {
     float fg = lobe_brdf(surf->m, s->lobes, wo, wi, ns);

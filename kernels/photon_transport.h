@@ -256,7 +256,20 @@ inline int scatter_photon_about(Photon* p, const Surface* s, const SceneView* sc
   if (xi < pg) {
     float3 mirror = reflect_dir(d_in, ns);
     float k = sum / total;
+#if KASHA_COATED
+    if (surface_coat_lobe(s)) {
+      /* A rough coat's GGX lobe (coat.h): F G / G1 over the branch's probability pg / sum. */
+      Frame fr = frame_of(ns);
+      float3 wi;
+      float weight, pdf;
+      if (!coat_lobe_sample(s, to_local(&fr, -d_in), u_dir, &wi, &weight, &pdf)) return BRANCH_ABSORBED;
+      k = sum / pg * weight;
+      mirror = to_world(&fr, wi);
+    }
+    if (s->mirror || surface_coat_lobe(s)) {
+#else
     if (s->mirror) {
+#endif
       p->direction = mirror;
     } else {
       float pdf;

@@ -140,8 +140,14 @@ typedef struct {
   float coat_thickness; /* its optical depth along the normal */
   float coat_internal;  /* R̄: of the base's light, the share the coat sends back down */
   float coat_albedo;    /* τ̄ / η²: the diffuse part's albedo per unit of outgoing transmission */
+  float coat_alpha;     /* a rough coat's GGX roughness; 0: smooth */
+  int coat_table;       /* a rough coat's E(μ) then t(μ), KASHA_COAT_TABLE values each at
+                         * μ = k / (KASHA_COAT_TABLE − 1); -1: smooth */
 } KMaterial;
-KASHA_STATIC_SIZE(KMaterial, 88);
+KASHA_STATIC_SIZE(KMaterial, 96);
+
+/* Entries of a rough coat's tables (host/material/coat.h's kCoatTableSize). */
+#define KASHA_COAT_TABLE 64
 
 /* A texture as the kernels look it up (docs/textures.md) at a hit's (u, v): an image of texels,
  * or a checkerboard of two values. Spectral content (a reflectance) is per bin: an image's texel

@@ -44,6 +44,7 @@ typedef struct {
 #endif
 #if KASHA_COATED
   bool coated;          /* a coat over the Lambert parts (coat.h; set up there by coat_at) */
+  const __global float* coat_table; /* a rough coat's E(μ) and t(μ) */
   float lambert_out;    /* t(θ) / η² on the side the surface was met from */
   float lambert_albedo; /* t(θ) τ̄ / η² */
 #endif
@@ -82,6 +83,7 @@ inline void load_surface(const SceneView* s, int material, Surface* out) {
 #endif
 #if KASHA_COATED
   out->coated = m->coat_eta > 0.0f;
+  out->coat_table = s->spectra + max(m->coat_table, 0);
   out->lambert_out = out->lambert_albedo = 1.0f;
 #endif
 }

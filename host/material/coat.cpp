@@ -1,7 +1,9 @@
 #include "material/coat.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace kasha {
 
@@ -58,6 +60,91 @@ double coat_internal_reflectance(const CoatDesc& coat) {
 
 double coat_mean_transmission(const CoatDesc& coat) {
   return cosine_mean([&](double mu) { return coat_transmission(coat, mu); });
+}
+
+// Isotropic GGX in a frame whose z is the interface's normal (pbrt-v4's TrowbridgeReitz), in
+// double, for the tables below.
+namespace {
+
+struct Ggx {
+  double alpha;
+  double lambda(const Eigen::Vector3d& w) const {
+    const double c2 = w.z() * w.z(), t2 = std::max(0.0, 1 - c2) / c2;
+    return (std::sqrt(1 + alpha * alpha * t2) - 1) / 2;
+  }
+  double g1(const Eigen::Vector3d& w) const { return 1 / (1 + lambda(w)); }
+  double g(const Eigen::Vector3d& wo, const Eigen::Vector3d& wi) const {
+    return 1 / (1 + lambda(wo) + lambda(wi));
+  }
+  // A normal visible from w (Heitz 2018), u in [0, 1)².
+  Eigen::Vector3d sample_visible(const Eigen::Vector3d& w, double u0, double u1) const {
+    const Eigen::Vector3d wh = Eigen::Vector3d(alpha * w.x(), alpha * w.y(), w.z()).normalized();
+    const Eigen::Vector3d t1 = wh.z() < 0.99999 ? Eigen::Vector3d(0, 0, 1).cross(wh).normalized()
+                                                : Eigen::Vector3d(1, 0, 0);
+    const Eigen::Vector3d t2 = wh.cross(t1);
+    const double r = std::sqrt(u0), phi = 2 * M_PI * u1;
+    double px = r * std::cos(phi), py = r * std::sin(phi);
+    const double h = std::sqrt(std::max(0.0, 1 - px * px));
+    py = (1 - (1 + wh.z()) / 2) * h + (1 + wh.z()) / 2 * py;
+    const double pz = std::sqrt(std::max(0.0, 1 - px * px - py * py));
+    const Eigen::Vector3d nh = px * t1 + py * t2 + pz * wh;
+    return Eigen::Vector3d(alpha * nh.x(), alpha * nh.y(), std::max(1e-9, nh.z())).normalized();
+  }
+};
+
+// The reflection lobe's albedo and the transmittance (flux: no 1/η²) of a rough interface of
+// relative index eta for light from the side at cos θ = mu: the mean of F·G/G1 over reflected
+// and of (1 − F)·G/G1 over refracted visible-normal samples on a stratified grid.
+void lobe_albedos(const Ggx& a, double eta, double mu, double& reflect, double& transmit) {
+  const int n = 128;
+  const Eigen::Vector3d wo(std::sqrt(std::max(0.0, 1 - mu * mu)), 0, mu);
+  double r = 0, t = 0;
+  const double g1 = a.g1(wo);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const Eigen::Vector3d m = a.sample_visible(wo, (i + 0.5) / n, (j + 0.5) / n);
+      const double c = wo.dot(m), F = fresnel_dielectric(c, eta);
+      const Eigen::Vector3d wr = -wo + 2 * c * m;
+      if (wr.z() > 0) r += F * a.g(wo, wr) / g1;
+      const double s2 = (1 - c * c) / (eta * eta);
+      if (s2 < 1) {
+        const Eigen::Vector3d wt = (-wo / eta + (c / eta - std::sqrt(1 - s2)) * m).normalized();
+        if (wt.z() < 0) t += (1 - F) * a.g(wo, wt) / g1;
+      }
+    }
+  reflect = r / (n * n);
+  transmit = t / (n * n);
+}
+
+}  // namespace
+
+CoatTables rough_coat_tables(const CoatDesc& coat) {
+  const Ggx a{coat.alpha};
+  const int K = kCoatTableSize;
+  CoatTables out;
+  out.reflect.resize(K);
+  out.transmit.resize(K);
+  std::vector<double> inside(K);
+  for (int k = 0; k < K; ++k) {
+    const double mu = std::max(1e-3, static_cast<double>(k) / (K - 1));
+    double r, t, ri, ti;
+    lobe_albedos(a, coat.eta, mu, r, t);
+    lobe_albedos(a, 1 / coat.eta, mu, ri, ti);
+    const double s2 = (1 - mu * mu) / (coat.eta * coat.eta);
+    const double mu_t = s2 < 1 ? std::sqrt(1 - s2) : 0.0;
+    out.reflect[k] = r;
+    out.transmit[k] = mu_t > 0 ? t * layer(coat.thickness, mu_t) : 0.0;
+    inside[k] = ri;
+  }
+  // Linear in μ between the nodes, integrated with the layer's exp(−2d/μ) on a fine grid.
+  auto at = [&](const std::vector<double>& v, double mu) {
+    const double x = mu * (K - 1);
+    const int k = std::min(K - 2, static_cast<int>(x));
+    return v[k] + (x - k) * (v[k + 1] - v[k]);
+  };
+  out.internal = cosine_mean([&](double mu) { return at(inside, mu) * layer(2 * coat.thickness, mu); });
+  out.mean = cosine_mean([&](double mu) { return at(out.transmit, mu); });
+  return out;
 }
 
 }  // namespace kasha

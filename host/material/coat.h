@@ -4,12 +4,15 @@
 // depth `thickness` along the normal. A Lambert base makes the light under the coat diffuse after
 // its first bounce, so the bounces between coat and base sum to a geometric series in two numbers
 // per coat: the internal reflectance R̄ and the mean transmittance τ̄ below.
+#include <vector>
 
 namespace kasha {
 
 struct CoatDesc {
   double eta = 1.5;         // the coat's index over the outside's (pbrt-v4's default)
   double thickness = 0.01;  // optical depth along the normal (pbrt-v4's default)
+  double alpha = 0;         // GGX roughness of its interface (isotropic); below 1e-3: smooth
+  bool rough() const { return alpha >= 1e-3; }
 };
 
 // Fresnel reflectance of a smooth dielectric interface for unpolarized light, cos_i on the side
@@ -29,5 +32,18 @@ double coat_internal_reflectance(const CoatDesc& coat);
 // τ̄ = ∫ t(θ) cos θ dω / π over the outside hemisphere: with 1/η² the diffuse part's albedo per
 // unit of its outgoing transmission.
 double coat_mean_transmission(const CoatDesc& coat);
+
+// A rough coat (GGX, single scattering as pbrt-v4's rough DielectricBxDF) in the same form: with
+// E(μ) the albedo of its reflection lobe and T(μ) its transmittance (both for light from
+// outside at cos θ = μ), t(μ) = T(μ)·exp(−thickness / μt) with μt the smooth refraction's cosine;
+// R̄ from the lobe's albedo from inside. Tabulated at μ = k / (kCoatTableSize − 1).
+constexpr int kCoatTableSize = 64;
+struct CoatTables {
+  std::vector<double> reflect;   // E(μ)
+  std::vector<double> transmit;  // t(μ)
+  double internal = 0;           // R̄
+  double mean = 0;               // τ̄ = ∫ t(μ) 2μ dμ
+};
+CoatTables rough_coat_tables(const CoatDesc& coat);
 
 }  // namespace kasha

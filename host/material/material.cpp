@@ -42,26 +42,6 @@ static GlossDesc parse_gloss(const JsonNode& node) {
   return g;
 }
 
-// {"eta": 1.5, "thickness": 0.01}: pbrt-v4's coateddiffuse defaults. Its roughness, albedo and g
-// (a rough coat, a scattering layer) are not built: refused, not ignored.
-static CoatDesc parse_coat(const JsonNode& node) {
-  CoatDesc c;
-  if (auto eta = node.find("eta")) {
-    c.eta = eta->number();
-    if (!(c.eta >= 0.01 && c.eta <= 100)) eta->fail("eta must lie in [0.01, 100]");
-  }
-  if (auto d = node.find("thickness")) c.thickness = d->number_in(0.0, 1e3);
-  for (const char* key : {"roughness", "uroughness", "vroughness"})
-    if (auto r = node.find(key))
-      if (!(r->number_in(0.0, 1.0) == 0))
-        r->fail("a rough coat is not built yet: only a smooth coat (roughness 0)");
-  if (auto a = node.find("albedo"))
-    if (!(a->number_in(0.0, 1.0) == 0))
-      a->fail("a scattering coat (albedo above 0) is not built: the layer only absorbs");
-  node.finish();
-  return c;
-}
-
 // A dispersive index: a named glass, Sellmeier or Cauchy coefficients, or any spectrum value.
 static SpectrumPtr parse_index_spectrum(const JsonNode& eta) {
   if (eta.is_string()) {
@@ -107,6 +87,26 @@ static Roughness parse_roughness(const JsonNode& node) {
   r.alpha_x = remap ? std::sqrt(u) : u;
   r.alpha_y = remap ? std::sqrt(v) : v;
   return r;
+}
+
+// {"eta": 1.5, "thickness": 0.01, "roughness": 0}: pbrt-v4's coateddiffuse defaults and keys. Its
+// albedo and g (a scattering layer) and anisotropic roughness are not built: refused, not ignored.
+static CoatDesc parse_coat(const JsonNode& node) {
+  CoatDesc c;
+  if (auto eta = node.find("eta")) {
+    c.eta = eta->number();
+    if (!(c.eta >= 0.01 && c.eta <= 100)) eta->fail("eta must lie in [0.01, 100]");
+  }
+  if (auto d = node.find("thickness")) c.thickness = d->number_in(0.0, 1e3);
+  const Roughness r = parse_roughness(node);
+  if (r.alpha_x != r.alpha_y)
+    node.fail("an anisotropic coat is not built: give \"roughness\" (or equal \"uroughness\" and \"vroughness\")");
+  c.alpha = r.alpha_x;
+  if (auto a = node.find("albedo"))
+    if (!(a->number_in(0.0, 1.0) == 0))
+      a->fail("a scattering coat (albedo above 0) is not built: the layer only absorbs");
+  node.finish();
+  return c;
 }
 
 // {"eta": 1.5}: pbrt-v4's default index; a spectral "eta" disperses.

@@ -192,11 +192,23 @@ KernelSceneData::KernelSceneData(const Scene& scene)
       k.alpha[0] = static_cast<float>(m.roughness.alpha_x);
       k.alpha[1] = static_cast<float>(m.roughness.alpha_y);
     }
+    k.coat_table = -1;
     if (m.coat) {
-      k.coat_eta = static_cast<float>(m.coat->eta);
-      k.coat_thickness = static_cast<float>(m.coat->thickness);
-      k.coat_internal = static_cast<float>(coat_internal_reflectance(*m.coat));
-      k.coat_albedo = static_cast<float>(coat_mean_transmission(*m.coat) / (m.coat->eta * m.coat->eta));
+      const CoatDesc& c = *m.coat;
+      k.coat_eta = static_cast<float>(c.eta);
+      k.coat_thickness = static_cast<float>(c.thickness);
+      if (c.rough()) {
+        static_assert(kCoatTableSize == KASHA_COAT_TABLE, "coat table sizes differ");
+        const CoatTables t = rough_coat_tables(c);
+        k.coat_alpha = static_cast<float>(c.alpha);
+        k.coat_table = append(spectra, t.reflect);
+        append(spectra, t.transmit);
+        k.coat_internal = static_cast<float>(t.internal);
+        k.coat_albedo = static_cast<float>(t.mean / (c.eta * c.eta));
+      } else {
+        k.coat_internal = static_cast<float>(coat_internal_reflectance(c));
+        k.coat_albedo = static_cast<float>(coat_mean_transmission(c) / (c.eta * c.eta));
+      }
     }
     albedo_xyz(m, scene.grid, obs, k.albedo_xyz);
     k.reflectance_texture = k.fluorescence_texture = -1;
