@@ -150,7 +150,8 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
     "paper": {"file": "paper.json", "textures": {"reflectance": "print", "fluorescence": "ink"}},
     "wall": {"passive": {"reflectance": {"csv": "reflectance.csv", "column": "red"}},
              "gloss": {"reflectance": 0.05, "cone_deg": 12}},
-    "lamp": {"passive": {"reflectance": 0.2}},
+    "lamp": {"passive": {"reflectance": 0.2}, "coat": {"eta": 1.4, "thickness": 0.02, "roughness": 0.1}},
+    "lacquer": {"passive": {"reflectance": 0.6}, "coat": {}},
     "glass": {"dielectric": {"eta": {"sellmeier": {"B": [1.04, 0.23, 1.01], "C_um2": [0.006, 0.02, 103.6]}},
                              "roughness": 0.05}},
     "metal": {"conductor": {"eta": {"nm": [200, 900], "value": [0.2, 0.3]}, "k": 3, "uroughness": 0.1,
@@ -164,7 +165,8 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
      "material": "lamp", "emission": {"csv": "lamp.csv", "scale": 0.02}},
     {"type": "sphere", "center": [0.5, 0.5, 1.0], "radius": 0.2, "material": "paper"},
     {"type": "sphere", "center": [-0.5, -0.6, 0.9], "radius": 0.2, "segments": 12, "material": "glass"},
-    {"type": "box", "min": [0.4, -1, 0.2], "max": [0.7, -0.7, 0.5], "material": "metal"}
+    {"type": "box", "min": [0.4, -1, 0.2], "max": [0.7, -0.7, 0.5], "material": "metal"},
+    {"type": "box", "min": [-0.8, -1, 1.1], "max": [-0.5, -0.8, 1.4], "material": "lacquer"}
   ],
   "textures": {
     "print": {"type": "image", "file": "sky.png", "filter": "bilinear", "wrap": "repeat", "uscale": 2},
@@ -202,6 +204,26 @@ std::string mutated_png(std::string b, std::mt19937& rng) {
   return b;
 }
 
+// The torus with shading normals: three `vn` (one unnormalized, one zero) named by its faces'
+// vertices in turn, so mutations meet `vn` lines and i//n references too.
+std::string with_normals(const std::string& obj) {
+  std::istringstream in(obj);
+  std::ostringstream out;
+  out << "vn 0 0 1\nvn 0 2 2\nvn 0 0 0\n";
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("f ", 0) != 0) {
+      out << line << "\n";
+      continue;
+    }
+    std::istringstream words(line.substr(2));
+    out << "f";
+    for (std::string w; words >> w;) out << " " << w << "//" << (std::stol(w) % 3 + 1);
+    out << "\n";
+  }
+  return out.str();
+}
+
 Seeds make_seeds() {
   Seeds s;
   s.dir = scratch_dir();
@@ -209,7 +231,7 @@ Seeds make_seeds() {
   s.material = read_text(source_path("scenes/materials/brightened_paper.json"));
   s.reflectance = read_text(source_path("scenes/data/ColorChecker24_Ohta1997_380_780_5nm.csv"));
   s.lamp = read_text(source_path("scenes/data/CIE_D65_300_780.csv"));
-  s.mesh = read_text(source_path("scenes/meshes/torus.obj"));
+  s.mesh = with_normals(read_text(source_path("scenes/meshes/torus.obj")));
   Image sky;  // a small sky, bright above
   sky.width = 16;
   sky.height = 8;
