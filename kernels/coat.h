@@ -5,7 +5,8 @@
  *     f(wo, wi) = F(θo) δ(mirror)  +  t(θo) t(θi) / η² · (diag(ρ') + ê' a'ᵀ) / π,
  * where the base's bin matrix B = diag(ρ) + ê aᵀ becomes B (I − R̄ B)⁻¹ (R̄: the coat's internal
  * reflectance, host/material/coat.h), again diagonal plus rank 1 by Sherman–Morrison:
- *     ρ' = ρ / (1 − R̄ρ),   ê' ∝ ê / (1 − R̄ρ),   a' = a / (1 − R̄ρ) / (1 − R̄ Σ a ê / (1 − R̄ρ)).
+ *     ρ' = ρ / (1 − R̄ρ),   ê' = ê / (1 − R̄ρ) / s,   a' = s · a / (1 − R̄ρ) / (1 − R̄ Σ a ê / (1 − R̄ρ)),
+ * with s = Σ ê / (1 − R̄ρ), so that ê' sums to 1 as every emission spectrum does.
  * The surface then looks like a measured one: its mirror lobe is the coat's F(θo), its Lambert
  * parts are ρ', ê', a' with the extra factors t(θo) t(θi) / η², so every integrator uses its
  * existing code with two scalars (coat_at; surface_lambert_weight).

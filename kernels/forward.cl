@@ -45,12 +45,21 @@ inline void splat_rows(SplatTarget* t, int pixel, const float* rows) {
 /* A photon at a rough interface, connected to the camera on whichever side it is: f(camera,
  * photon) Φ / Δλ, f evaluated as for radiance towards the camera (rough_interface.h). A
  * dispersive dielectric is evaluated bin by bin, at each bin's index. */
-inline void splat_rough(const SceneView* s, const FilmView* f, SplatTarget* t, const Surface* surf, float3 x,
-                        float3 n, float eps, const Photon* p, float* rows) {
+inline void splat_rough(const SceneView* s, const FilmView* f, SplatTarget* t, const Surface* surf,
+                        const HitPoint* h, const Photon* p, float* rows) {
+  float3 x = h->x, n = hit_front(h);
   float3 to_camera = normalize(camera_position(&s->camera) - x);
   int pixel;
   float k;
-  if (!camera_connection(s, x, dot(to_camera, n) >= 0.0f ? n : -n, eps, &pixel, &k)) return;
+#if KASHA_SHADING_NORMALS
+  /* The camera on the geometric side the shading normal puts it on (no leak), the connection off
+   * the geometric surface, and the arrival half of the adjoint correction (photon_transport.h). */
+  if ((dot(to_camera, n) > 0.0f) != (dot(to_camera, h->n) > 0.0f)) return;
+  if (!camera_connection(s, x, dot(to_camera, h->n) >= 0.0f ? h->n : -h->n, h->eps, &pixel, &k)) return;
+  k *= photon_arrival_correction(h, p->direction);
+#else
+  if (!camera_connection(s, x, dot(to_camera, n) >= 0.0f ? n : -n, h->eps, &pixel, &k)) return;
+#endif
   Frame fr = frame_of(n);
   float3 wo = to_local(&fr, to_camera), wi = to_local(&fr, -p->direction);
   float pdf, cos_m = 0.0f;
@@ -152,7 +161,7 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
       const bool coat_lobe = false;
 #endif
 #if KASHA_ROUGH
-      if (surface_rough(&surf)) splat_rough(&s, &f, &target, &surf, x, hit_front(&h), h.eps, &p, rows);
+      if (surface_rough(&surf)) splat_rough(&s, &f, &target, &surf, &h, &p, rows);
 #endif
       if ((surface_has_lambert(&surf) || glossy || coat_lobe) && camera_connection(&s, x, ns, h.eps, &pixel, &k)) {
         /* Radiance per nm leaving x per unit flux: (ρ_i Φ_i + ê_i (a·Φ)) / (π Δλ). */

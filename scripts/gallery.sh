@@ -109,5 +109,11 @@ scene=$(resized scenes/fluorescent_print.json $SIZE $SIZE); TEMPORARY+=("$scene"
 render fluorescent_print_512 "scenes/fluorescent_print.json (${SIZE}²)" "$scene" \
   --integrator backward --time 60
 
+# Coated surfaces and shading normals (docs/materials.md#coated-surfaces,
+# docs/formats.md#shading-normals): the measured Post-it under a clear lacquer on a smooth-shaded
+# vase, a glazed brightened paper on a coarse sphere with smooth normals, a lacquered table.
+scene=$(resized scenes/lacquered_vase.json $SIZE $SIZE); TEMPORARY+=("$scene")
+render lacquered_vase_512 "scenes/lacquered_vase.json (${SIZE}²)" "$scene" --photons 1048576 --time 90
+
 mv "$TIMES.tmp" "$TIMES"
 echo "gallery: wrote $GALLERY/*.png and $TIMES"

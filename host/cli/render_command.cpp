@@ -102,7 +102,7 @@ int run_render(const RenderArgs& a) {
   if (scene.has_delta_surfaces() &&
       !IntegratorRegistry::find(spec.integrator).traits.sees_camera_mirrors)
     warn(spec.integrator + ": ideal mirrors, glass and metal are out of its reach from a pinhole " +
-         "camera and show black (backward and photon see them)");
+         "camera and show black, as does a smooth coat's reflection (backward and photon see them)");
   if (scene.has_light(LightType::infinite) &&
       !IntegratorRegistry::find(spec.integrator).traits.sees_camera_mirrors)
     warn(spec.integrator + ": an infinite light seen directly by the camera is out of its reach " +

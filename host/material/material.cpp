@@ -152,6 +152,12 @@ static ConductorDesc parse_conductor(const JsonNode& node) {
   return c;
 }
 
+void apply_coat(MaterialDesc& m, const JsonNode& coat) {
+  if (m.kind != MaterialKind::measured) coat.fail("a dielectric or conductor takes no coat");
+  if (m.gloss) coat.fail("a coated material has no \"gloss\" part: the coat is its gloss");
+  m.coat = parse_coat(coat);
+}
+
 MaterialDesc parse_material(const JsonNode& node, const std::string& name) {
   MaterialDesc m;
   m.name = name;
@@ -174,10 +180,9 @@ MaterialDesc parse_material(const JsonNode& node, const std::string& name) {
   }
   if (auto gloss = node.find("gloss")) m.gloss = parse_gloss(*gloss);
   if (auto coat = node.find("coat")) {
-    if (m.gloss) coat->fail("a coated material has no \"gloss\" part: the coat is its gloss");
     if (node.has("dielectric") || node.has("conductor"))
       coat->fail("a dielectric or conductor takes no coat");
-    m.coat = parse_coat(*coat);
+    apply_coat(m, *coat);
   }
   auto dielectric = node.find("dielectric"), conductor = node.find("conductor");
   if (dielectric || conductor) {

@@ -86,6 +86,9 @@ struct Material {
 
 // A material object (inline in a scene, or the root of a material file).
 MaterialDesc parse_material(const JsonNode& node, const std::string& name);
+// Puts a coat ({"eta", "thickness", "roughness"}: docs/materials.md#coated-surfaces) over the
+// material's Lambert parts; a gloss part or a dielectric or conductor is refused.
+void apply_coat(MaterialDesc& material, const JsonNode& coat);
 // A material file written by `kasha measure` or by hand: {"kasha_material": 1, ...}.
 MaterialDesc load_material_file(const std::string& path, const std::string& name);
 // Resamples to the grid, normalizes the emission and checks g + ρ + a <= 1 in every bin; the

@@ -47,7 +47,8 @@ bool Scene::coated() const {
 }
 bool Scene::has_delta_surfaces() const {
   return any_used([](const Material& m) {
-    return (m.specular() && !m.rough()) || (m.gloss && m.gloss->mirror);
+    return (m.specular() && !m.rough()) || (m.gloss && m.gloss->mirror) ||
+           (m.coat && !m.coat->rough());
   });
 }
 
@@ -414,8 +415,10 @@ static void parse_materials(const JsonNode& materials, Scene& scene) {
     scene.material_textures.push_back(parse_material_textures(m, scene));
     if (auto file = m.find("file")) {
       std::filesystem::path p = relative_to(m, file->string());
+      auto coat = m.find("coat");  // a measured material under a lacquer
       m.finish();
       scene.material_descs.push_back(load_material_file(p.string(), name));
+      if (coat) apply_coat(scene.material_descs.back(), *coat);
     } else {
       scene.material_descs.push_back(parse_material(m, name));
     }
