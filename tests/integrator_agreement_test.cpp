@@ -4,7 +4,8 @@
 // estimation, forward splats towards the camera and photon mapping follows from the camera), and
 // the glass caustic (a glass sphere focusing the lamp on a fluorescent floor, a gold box), and the
 // light booth lit by a UV spot (a delta light only next-event estimation and photons reach), and
-// a table in the sun and sky of an environment image, and a textured fluorescent print.
+// a table in the sun and sky of an environment image, and a textured fluorescent print, and
+// measured materials under smooth and rough coats on smooth-shaded meshes.
 // Regions are the pixels whose centre sees each material or the lamp (found with Embree). An
 // unbiased integrator must agree within 4 standard errors of the difference, in every region and
 // in every 6 × 6 block; a consistent one within a few per cent, what its bias leaves at this
@@ -58,6 +59,12 @@ std::vector<AgreementCase> all_cases() {
     cases.push_back({integrator, "sunlit_table.json", 0.08, false, 32});
     // A colour print and a fluorescent ink pattern (textures) under D65 and a UV spot.
     cases.push_back({integrator, "fluorescent_print.json", unbiased ? 0.02 : 0.03, true, 32, 2});
+    // Coats, smooth and rough, over measured fluorescent materials, on smooth-shaded meshes. The
+    // lamp's small highlight in the glazed sphere's smooth coat is found or missed by a few of
+    // photon mapping's camera samples (8 a pass): that region's mean scatters by about 6 % either
+    // way at this budget (seeds 5 and the default: +5.4 %, −6.4 %), while its pixels away from
+    // the silhouette agree within 0.1 % (`kasha regions`, 24 passes).
+    cases.push_back({integrator, "lacquered_vase.json", unbiased ? 0.03 : 0.08, true, 32});
   }
   return cases;
 }
@@ -81,7 +88,9 @@ TEST_P(IntegratorAgreement, RegionsMatchTheReferenceIntegrator) {
   for (const auto& [name, pixels] : regions) {
     const int m = tested.scene.material_index(name);
     const Material* mat = m >= 0 ? &tested.scene.materials[m] : nullptr;
-    if (!blind || !mat || !mat->specular() || mat->rough()) continue;
+    // A smooth coat's mirror reflection is as far out of light tracing's reach as a mirror.
+    const bool smooth_coat = mat && mat->coat && !mat->coat->rough();
+    if (!blind || !mat || ((!mat->specular() || mat->rough()) && !smooth_coat)) continue;
     for (size_t p : pixels)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
