@@ -39,6 +39,7 @@
 #include "render/device_scene.h"
 #include "render/render_job.h"
 #include "scene/scene.h"
+#include "mesh_writers.h"
 #include "test_support.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -166,7 +167,9 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
     {"type": "sphere", "center": [0.5, 0.5, 1.0], "radius": 0.2, "material": "paper"},
     {"type": "sphere", "center": [-0.5, -0.6, 0.9], "radius": 0.2, "segments": 12, "material": "glass"},
     {"type": "box", "min": [0.4, -1, 0.2], "max": [0.7, -0.7, 0.5], "material": "metal"},
-    {"type": "box", "min": [-0.8, -1, 1.1], "max": [-0.5, -0.8, 1.4], "material": "lacquer"}
+    {"type": "box", "min": [-0.8, -1, 1.1], "max": [-0.5, -0.8, 1.4], "material": "lacquer"},
+    {"type": "mesh", "file": "mesh.ply", "material": "lacquer", "transform": {"scale": 0.2, "translate": [0.2, -0.9, 0.3]}},
+    {"type": "mesh", "file": "mesh.glb", "material": "wall", "transform": {"scale": 0.2, "translate": [-0.4, -0.9, 0.3]}}
   ],
   "textures": {
     "print": {"type": "image", "file": "sky.png", "filter": "bilinear", "wrap": "repeat", "uscale": 2},
@@ -184,6 +187,7 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
 struct Seeds {
   fs::path dir;
   std::string scene, material, reflectance, lamp, mesh, sky;  // sky: PNG bytes
+  std::string ply, glb;  // binary: a PLY and a GLB mesh (read by Assimp)
 };
 
 // A binary mutation of a PNG: flipped bytes, its header's width or height overwritten, or the
@@ -232,6 +236,8 @@ Seeds make_seeds() {
   s.reflectance = read_text(source_path("scenes/data/ColorChecker24_Ohta1997_380_780_5nm.csv"));
   s.lamp = read_text(source_path("scenes/data/CIE_D65_300_780.csv"));
   s.mesh = with_normals(read_text(source_path("scenes/meshes/torus.obj")));
+  s.ply = mesh_ply(tent_mesh(), true);
+  s.glb = mesh_glb(tent_mesh());
   Image sky;  // a small sky, bright above
   sky.width = 16;
   sky.height = 8;
@@ -250,6 +256,8 @@ std::string write_case(const Seeds& s, int which, std::mt19937& rng) {
   write_text(s.dir / "lamp.csv", which == 3 ? mutated(s.lamp, rng) : s.lamp);
   write_text(s.dir / "mesh.obj", which == 4 ? mutated(s.mesh, rng) : s.mesh);
   write_text(s.dir / "sky.png", which == 5 ? mutated_png(s.sky, rng) : s.sky);
+  write_text(s.dir / "mesh.ply", which == 6 ? mutated(s.ply, rng) : s.ply);
+  write_text(s.dir / "mesh.glb", which == 7 ? mutated(s.glb, rng) : s.glb);
   const fs::path scene = s.dir / "scene.json";
   write_text(scene, which == 0 ? mutated(s.scene, rng) : s.scene);
   return scene.string();
@@ -273,7 +281,7 @@ TEST(Fuzz, MutatedInputsLoadOrGiveOneLineAndRenderFinite) {
   const std::vector<std::string> integrators = IntegratorRegistry::names(true);
   int loaded = 0, refused = 0, rendered = 0;
   for (int c = 0; c < cases; ++c) {
-    const int which = c % 6;  // scene, material, reflectance CSV, lamp CSV, OBJ, PNG
+    const int which = c % 8;  // scene, material, reflectance CSV, lamp CSV, OBJ, PNG, PLY, GLB
     const std::string path = write_case(seeds, which, rng);
     SCOPED_TRACE("case " + std::to_string(c) + ", input " + std::to_string(which));
     try {

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/warning.h"
 #include "scene/limits.h"
+#include "scene/mesh_file.h"
 #include "scene/shape_mesh.h"
 #include "scene/transform.h"
 #include "spectrum/spectrum_parser.h"
@@ -270,6 +271,9 @@ static ShapeMesh shape_triangles(const JsonNode& shape, const std::string& type)
   if (type == "obj") {
     std::filesystem::path file = relative_to(shape, shape.at("file").string());
     tris = obj_triangles(file.string());
+  } else if (type == "mesh") {
+    std::filesystem::path file = relative_to(shape, shape.at("file").string());
+    tris = mesh_file_triangles(file.string());
   } else if (type == "quad") {
     Eigen::Vector3d u = vec(shape.at("u")), v = vec(shape.at("v"));
     if (u.cross(v).norm() == 0) shape.fail("quad edges \"u\" and \"v\" are parallel or zero");
@@ -286,11 +290,11 @@ static ShapeMesh shape_triangles(const JsonNode& shape, const std::string& type)
     if (auto s = shape.find("segments")) segments = s->integer_in(3, 4096);
     tris = sphere_triangles(vec(shape.at("center")), r, segments);
   } else {
-    shape.at("type").fail("unknown shape type \"" + type + "\" (obj, quad, box, sphere)");
+    shape.at("type").fail("unknown shape type \"" + type + "\" (obj, mesh, quad, box, sphere)");
   }
   if (auto t = shape.find("transform")) transform_triangles(tris, parse_transform(*t));
   if (auto inward = shape.find("inward")) {
-    if (type == "quad" || type == "obj")
+    if (type == "quad" || type == "obj" || type == "mesh")
       inward->fail("\"inward\" applies to closed shapes (box, sphere)");
     if (inward->boolean()) flip_triangles(tris);
   }
