@@ -22,6 +22,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <vector>
 
@@ -268,11 +269,37 @@ static const bool kMeshReader = read_mesh_if_asked();
 // take kasha with it. The child (this program again, read_mesh_if_asked) imports, sends the
 // triangles back through a pipe and exits; a child that dies, hangs or sends something incomplete
 // is one line naming the file.
+static ShapeMesh read_in_child(const std::string& path);
+
 ShapeMesh mesh_file_triangles(const std::string& path) {
   const std::string ext = lower_extension(path);
   if (ext != ".ply" && ext != ".gltf" && ext != ".glb" && ext != ".obj")
     throw Error(printable(path) + ": not a mesh format kasha reads (.ply, .gltf, .glb, .obj)");
   check_input_file(path, kMaxBinaryInputBytes);
+  // A small self-contained file read before gives the same triangles: kept (a scene loaded again,
+  // the fuzz harness's unchanged seeds), so it is not read by a new process each time. A .gltf
+  // is not: its buffers are other files.
+  static std::mutex cache_lock;
+  static std::map<std::string, ShapeMesh> cache;  // by extension and content
+  std::string key;
+  std::error_code size_error;
+  if (ext != ".gltf" && std::filesystem::file_size(path, size_error) <= (1u << 20) && !size_error) {
+    key = ext + '\0' + read_input_file(path, 1u << 20);
+    std::lock_guard<std::mutex> hold(cache_lock);
+    auto it = cache.find(key);
+    if (it != cache.end()) return it->second;
+  }
+  ShapeMesh mesh = read_in_child(path);
+  if (!key.empty()) {
+    std::lock_guard<std::mutex> hold(cache_lock);
+    if (cache.size() >= 16) cache.clear();
+    cache.emplace(key, mesh);
+  }
+  return mesh;
+}
+
+// One import in a reader process (mesh_file_triangles).
+static ShapeMesh read_in_child(const std::string& path) {
   int fd[2];
   if (pipe2(fd, O_CLOEXEC) != 0)
     throw Error(printable(path) + ": cannot start the mesh reader: " + std::strerror(errno));
