@@ -308,6 +308,9 @@ static ShapeMesh read_in_child(const std::string& path) {
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
   posix_spawn_file_actions_adddup2(&actions, fd[1], STDOUT_FILENO);
+  // What a crashing reader prints (a sanitizer's report, Assimp's own) is not kasha's message:
+  // the crash is reported in one line below.
+  posix_spawn_file_actions_addopen(&actions, STDERR_FILENO, "/dev/null", O_WRONLY, 0);
   std::vector<std::string> env_strings;
   for (char** e = environ; *e; ++e)
     if (std::strncmp(*e, "KASHA_MESH_READER=", 18) != 0) env_strings.push_back(*e);
