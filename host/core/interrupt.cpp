@@ -1,5 +1,6 @@
 #include "core/interrupt.h"
 
+#include <pthread.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -62,6 +63,18 @@ InterruptsDeferred::InterruptsDeferred() {
 InterruptsDeferred::~InterruptsDeferred() {
   sigaction(SIGINT, &int_before_, nullptr);
   sigaction(SIGTERM, &term_before_, nullptr);
+}
+
+SignalsBlockedInNewThreads::SignalsBlockedInNewThreads() {
+  sigset_t block;
+  sigemptyset(&block);
+  sigaddset(&block, SIGINT);
+  sigaddset(&block, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &block, &before_);
+}
+
+SignalsBlockedInNewThreads::~SignalsBlockedInNewThreads() {
+  pthread_sigmask(SIG_SETMASK, &before_, nullptr);  // a signal that came meanwhile arrives now
 }
 
 void set_interrupt_message_fd(int fd) {

@@ -36,6 +36,22 @@ class InterruptsDeferred {
   struct sigaction int_before_ = {}, term_before_ = {};
 };
 
+// While alive, the calling thread blocks SIGINT and SIGTERM, and so does every thread it starts and
+// every process those start (a mask is inherited). Around the OpenCL set-up: PoCL's worker threads
+// compile a kernel's variants at its first launches and run the linker as a child; a Ctrl-C or
+// mpirun's SIGTERM sent to the group killed that linker and PoCL aborted the whole process. The
+// signals still reach kasha's handler through the threads that do not block them.
+class SignalsBlockedInNewThreads {
+ public:
+  SignalsBlockedInNewThreads();
+  ~SignalsBlockedInNewThreads();
+  SignalsBlockedInNewThreads(const SignalsBlockedInNewThreads&) = delete;
+  SignalsBlockedInNewThreads& operator=(const SignalsBlockedInNewThreads&) = delete;
+
+ private:
+  sigset_t before_;
+};
+
 // Thrown where an interrupt made an operation fail (a kernel build whose compiler was signalled):
 // the command line reports the interrupt, not the failure.
 class Interrupted : public std::exception {

@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 
 namespace kasha {
 
@@ -24,6 +25,7 @@ static const char* kInstallAdvice =
 
 std::vector<DeviceInfo> list_devices() {
   configure_kernel_cache();
+  SignalsBlockedInNewThreads compiler_threads_deaf;  // PoCL starts its worker threads here
   std::vector<cl::Platform> platforms;
   try {
     cl::Platform::get(&platforms);
@@ -66,6 +68,7 @@ ClContext::ClContext(int device_index) {
     throw Error("--device " + std::to_string(device_index) + ": no such OpenCL device (" +
                 std::to_string(devices.size()) + " found; `kasha devices` lists them)");
   info_ = devices[device_index];
+  SignalsBlockedInNewThreads compiler_threads_deaf;  // and a driver may start more for a context
   try {
     context_ = cl::Context(info_.device);
     queue_ = cl::CommandQueue(context_, info_.device);
