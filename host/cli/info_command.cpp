@@ -6,6 +6,7 @@
 
 #include "cli/command.h"
 #include "cli/command_line_errors.h"
+#include "cli/render_options.h"
 #include "core/printable.h"
 #include "integrators/photon/photon_records.h"
 #include "opencl/device.h"
@@ -30,8 +31,9 @@ std::string bytes_text(double b) {
 
 }  // namespace
 
-static int run_info(const std::string& scene_path, bool spectral, const std::string& lamp) {
-  Scene scene = load_scene(scene_path, std::nullopt, lamp);
+static int run_info(const std::string& scene_path, bool spectral, const std::string& lamp,
+                    const std::vector<MaterialOverride>& materials) {
+  Scene scene = load_scene(scene_path, std::nullopt, lamp, materials);
   KernelSceneData data(scene);
   int emitting_triangles = 0;
   for (const Emitter& e : scene.emitters) emitting_triangles += e.triangle_count;
@@ -100,13 +102,15 @@ static int run_info(const std::string& scene_path, bool spectral, const std::str
 static Command::Action declare_info(CLI::App& app) {
   struct Args {
     std::string scene, lamp;
+    std::vector<MaterialOverride> materials;
     bool spectral = false;
   };
   auto a = std::make_shared<Args>();
-  app.add_option("scene", a->scene, "scene JSON file")->required();
+  app.add_option("scene", a->scene, "scene: kasha JSON or pbrt-v4 (.pbrt)")->required();
   app.add_flag("--spectral", a->spectral, "report for a spectral film");
   app.add_option("--lamp", a->lamp, "switch on this one of the scene's \"lamps\"");
-  return [a] { return run_info(a->scene, a->spectral, a->lamp); };
+  cli::add_material_option(app, a->materials);
+  return [a] { return run_info(a->scene, a->spectral, a->lamp, a->materials); };
 }
 
 KASHA_REGISTER_COMMAND(info, "info",

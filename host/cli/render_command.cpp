@@ -85,7 +85,7 @@ int run_render(const RenderArgs& a) {
   outputs.file("-o", a.output);
   outputs.file("--png", a.png);
   outputs.file("--log", a.log);
-  Scene scene = load_scene(spec.scene, std::nullopt, spec.lamp);
+  Scene scene = load_scene(spec.scene, std::nullopt, spec.lamp, spec.materials);
   outputs.inputs_read("the scene's material or data file");
   ConvergenceLog log(reference_for(a.reference, scene, spec.spectral));
   RenderOptions options;
@@ -137,7 +137,7 @@ int run_render(const RenderArgs& a) {
 Command::Action declare(CLI::App& app) {
   auto a = std::make_shared<RenderArgs>();
   RenderSpec& r = a->spec;
-  app.add_option("scene", r.scene, "scene JSON file")->required();
+  app.add_option("scene", r.scene, "scene: kasha JSON or pbrt-v4 (.pbrt)")->required();
   app.add_option("-o,--output", a->output, "output EXR")->required();
   std::string integrator_help = "the integrator (default " + std::string(kDefaultIntegrator) + "):";
   for (const IntegratorInfo& info : IntegratorRegistry::all())
@@ -152,6 +152,7 @@ Command::Action declare(CLI::App& app) {
   cli::add_setting_options(app, r.settings);
   cli::add_device_option(app, r.device);
   app.add_option("--lamp", r.lamp, "switch on this one of the scene's \"lamps\"");
+  cli::add_material_option(app, r.materials);
   app.add_option("--png", a->png, "also write a tone-mapped sRGB PNG preview");
   app.add_flag("--spectral", r.spectral, "add one channel per wavelength bin to the EXR");
   app.add_option("--reference", a->reference,

@@ -1,6 +1,7 @@
 #include "cli/render_options.h"
 
 #include "cli/command_line_errors.h"
+#include "core/printable.h"
 
 namespace kasha::cli {
 
@@ -50,6 +51,30 @@ std::vector<std::string> integrator_options_given(const CLI::App& app) {
   for (const RenderSetting& s : render_settings())
     if (!s.common && app.count(s.name) > 0) given.push_back(s.name);
   return given;
+}
+
+CLI::Option* add_material_option(CLI::App& app, std::vector<MaterialOverride>& materials) {
+  return app
+      .add_option_function<std::vector<std::string>>(
+          "--material",
+          [&materials](const std::vector<std::string>& values) {
+            materials.clear();
+            for (const std::string& v : values) {
+              const size_t eq = v.find('=');
+              materials.push_back({v.substr(0, eq), v.substr(eq + 1)});
+            }
+          },
+          "NAME=FILE: render the scene's material NAME (or a pbrt-v4 object NAME) with the "
+          "material file FILE (repeatable)")
+      ->check(CLI::Validator(
+          [](std::string& v) -> std::string {
+            const size_t eq = v.find('=');
+            if (eq == std::string::npos || eq == 0 || eq + 1 == v.size())
+              return "expected NAME=FILE, got \"" + printable(v) + "\"";
+            return "";
+          },
+          "NAME=FILE"))
+      ->allow_extra_args(false);
 }
 
 CLI::Option* add_device_option(CLI::App& app, std::string& device) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "render/render_settings.h"
+#include "scene/pbrt/pbrt_import.h"
 
 namespace kasha::cli {
 
@@ -20,6 +21,10 @@ void add_setting_options(CLI::App& app, IntegratorSettings& settings,
 // The integrator-specific settings given on `app`'s command line (the chosen integrator must
 // take each of them).
 std::vector<std::string> integrator_options_given(const CLI::App& app);
+
+// `--material NAME=FILE`, repeatable: a material of the scene (or a pbrt-v4 object's) replaced by a
+// material file for this run.
+CLI::Option* add_material_option(CLI::App& app, std::vector<MaterialOverride>& materials);
 
 // `--device LIST`.
 CLI::Option* add_device_option(CLI::App& app, std::string& device);

@@ -8,6 +8,7 @@
 #include "render/integrator_registry.h"
 #include "render/pass_control.h"
 #include "render/render_settings.h"
+#include "scene/pbrt/pbrt_import.h"
 
 namespace kasha {
 
@@ -17,6 +18,7 @@ struct RenderSpec {
   StopCondition stop;
   std::string device = "0";  // an index, a list or all (opencl/device_list.h)
   IntegratorSettings settings;
+  std::vector<MaterialOverride> materials;  // --material NAME=FILE
 };
 
 // What the image depends on, as text: the scene's path, its lamp, the integrator, the film and

@@ -37,6 +37,7 @@ Camera parse_camera(const JsonNode& node) {
   if (auto fov = node.find("fov_deg")) c.fov_deg = fov->number_in(1e-3, 179.0);
   if (auto w = node.find("width")) c.width = w->integer_in(1, 16384);
   if (auto h = node.find("height")) c.height = h->integer_in(1, 16384);
+  if (auto m = node.find("mirror")) c.mirror = m->boolean();
   node.finish();
   Eigen::Vector3d forward = vec(c.look_at) - vec(c.position);
   if (forward.norm() == 0) node.fail("\"position\" and \"look_at\" are the same point");
@@ -51,6 +52,7 @@ KCamera Camera::to_kernel() const {
   Eigen::Vector3d forward = (vec(look_at) - vec(position)).normalized();
   Eigen::Vector3d right = forward.cross(vec(up)).normalized();
   Eigen::Vector3d true_up = right.cross(forward);
+  if (mirror) right = -right;
   double t = std::tan(fov_deg * M_PI / 360.0);
   // The shorter side spans the field of view.
   double sx = width >= height ? t * width / height : t;

@@ -11,6 +11,8 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
+#include "core/printable.h"
 #include "core/warning.h"
 #include "scene/limits.h"
 #include "scene/mesh_file.h"
@@ -242,6 +244,7 @@ static void drop_duplicate_triangles(ShapeMesh& mesh, TriangleKeys& seen, const 
       for (int c = 0; c < 3; ++c) key[3 * k + c] = v[(first + k) % 3][c];
     if (seen.insert(key)) {
       mesh.uv[kept] = mesh.uv[i];
+      if (!mesh.normals.empty()) mesh.normals[kept] = mesh.normals[i];
       tris[kept++] = t;
     }
   }
@@ -250,6 +253,7 @@ static void drop_duplicate_triangles(ShapeMesh& mesh, TriangleKeys& seen, const 
          " duplicate triangles (the same vertices as earlier ones) left out");
   tris.resize(kept);
   mesh.uv.resize(kept);
+  if (!mesh.normals.empty()) mesh.normals.resize(kept);
 }
 
 static GridRequest parse_grid_request(const JsonNode& node) {
@@ -263,6 +267,58 @@ static GridRequest parse_grid_request(const JsonNode& node) {
   if (!(lo < hi)) node.fail("min_nm must be below max_nm");
   if ((hi - lo) / r.bin_nm > 4096) node.fail("more than 4096 bins");
   return r;
+}
+
+// {"type": "triangles"}: vertices given inline (pbrt-v4's trianglemesh), flat arrays of
+// "positions" (x y z …), "indices" (three a triangle), and optional "normals" and "uvs" per vertex.
+static ShapeMesh indexed_triangles(const JsonNode& shape) {
+  const JsonNode pos = shape.at("positions");
+  const std::vector<double> p = pos.numbers();
+  if (p.empty() || p.size() % 3 != 0) pos.fail("expected x, y, z for each vertex");
+  const size_t vertices = p.size() / 3;
+  const JsonNode idx = shape.at("indices");
+  const std::vector<double> index = idx.numbers();
+  if (index.empty() || index.size() % 3 != 0) idx.fail("expected three indices a triangle");
+  for (size_t i = 0; i < index.size(); ++i)
+    if (!(index[i] >= 0 && index[i] < double(vertices) && index[i] == std::floor(index[i])))
+      idx[i].fail("names no vertex (" + std::to_string(vertices) + " vertices)");
+  std::vector<double> n, uv;
+  if (auto normals = shape.find("normals")) {
+    n = normals->numbers();
+    if (n.size() != p.size()) normals->fail("expected one normal for each vertex");
+  }
+  if (auto uvs = shape.find("uvs")) {
+    uv = uvs->numbers();
+    if (uv.size() != 2 * vertices) uvs->fail("expected u, v for each vertex");
+  }
+  ShapeMesh mesh;
+  const auto at = [&](size_t t, int k) { return static_cast<size_t>(index[3 * t + k]); };
+  for (size_t t = 0; t < index.size() / 3; ++t) {
+    Triangle tri;
+    TriangleUv tuv;
+    TriangleNormals tn;
+    bool shaded = !n.empty();
+    for (int k = 0; k < 3; ++k) {
+      const size_t v = at(t, k);
+      tri[k] = {p[3 * v], p[3 * v + 1], p[3 * v + 2]};
+      // pbrt-v4's (0, 0), (1, 0), (1, 1) without "uvs".
+      tuv[k] = uv.empty() ? Eigen::Vector2d(k > 0, k > 1) : Eigen::Vector2d(uv[2 * v], uv[2 * v + 1]);
+      if (shaded) {
+        const Eigen::Vector3d nv(n[3 * v], n[3 * v + 1], n[3 * v + 2]);
+        shaded = nv.norm() > 0 && nv.allFinite();
+        tn[k] = shaded ? nv.normalized() : nv;
+      }
+    }
+    if (!n.empty() && !shaded) {  // a zero normal: flat, as in an OBJ file
+      const Eigen::Vector3d g = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+      const Eigen::Vector3d flat = g.norm() > 0 ? g.normalized() : Eigen::Vector3d(0, 0, 1);
+      tn = {flat, flat, flat};
+    }
+    mesh.tris.push_back(tri);
+    mesh.uv.push_back(tuv);
+    if (!n.empty()) mesh.normals.push_back(tn);
+  }
+  return mesh;
 }
 
 // Triangles of one shape, in world space, front sides as the shape asks.
@@ -289,15 +345,20 @@ static ShapeMesh shape_triangles(const JsonNode& shape, const std::string& type)
     int segments = 64;
     if (auto s = shape.find("segments")) segments = s->integer_in(3, 4096);
     tris = sphere_triangles(vec(shape.at("center")), r, segments);
+  } else if (type == "triangles") {
+    tris = indexed_triangles(shape);
   } else {
-    shape.at("type").fail("unknown shape type \"" + type + "\" (obj, mesh, quad, box, sphere)");
+    shape.at("type").fail("unknown shape type \"" + type +
+                          "\" (obj, mesh, triangles, quad, box, sphere)");
   }
   if (auto t = shape.find("transform")) transform_triangles(tris, parse_transform(*t));
   if (auto inward = shape.find("inward")) {
-    if (type == "quad" || type == "obj" || type == "mesh")
+    if (type != "box" && type != "sphere")
       inward->fail("\"inward\" applies to closed shapes (box, sphere)");
     if (inward->boolean()) flip_triangles(tris);
   }
+  if (auto reverse = shape.find("reverse_orientation"))
+    if (reverse->boolean()) flip_triangles(tris);
   return tris;
 }
 
@@ -475,9 +536,28 @@ static void append_triangles(const ShapeMesh& mesh, int material, int emitter, S
   }
 }
 
+// The scene's JSON: the file itself, or a pbrt-v4 scene read into that form; --material's
+// replacements applied.
+static JsonNode read_scene_document(const std::string& path,
+                                    const std::vector<MaterialOverride>& materials) {
+  if (is_pbrt_scene(path)) return JsonNode::from_json(import_pbrt_scene(path, materials), path);
+  JsonNode checked = JsonNode::load_file(path);  // strict: a key twice, bad syntax
+  if (materials.empty()) return checked;
+  nlohmann::json document = nlohmann::json::parse(read_input_file(path, kMaxTextInputBytes));
+  for (const MaterialOverride& m : materials) {
+    if (!document.is_object() || !document.contains("materials") ||
+        !document["materials"].is_object() || !document["materials"].contains(m.name))
+      throw Error("--material " + printable(m.name) + "=" + printable(m.file) + ": " +
+                  printable(path) + " has no material named \"" + printable(m.name) + "\"");
+    document["materials"][m.name] = {
+        {"file", std::filesystem::absolute(m.file).lexically_normal().string()}};
+  }
+  return JsonNode::from_json(std::move(document), path);
+}
+
 Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid,
-                 const std::string& lamp) {
-  JsonNode root = JsonNode::load_file(path);
+                 const std::string& lamp, const std::vector<MaterialOverride>& materials) {
+  JsonNode root = read_scene_document(path, materials);
   if (!root.is_object()) root.fail("expected a scene object");
   Scene scene;
   scene.file = path;

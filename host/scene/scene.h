@@ -9,6 +9,7 @@
 #include "material/material.h"
 #include "scene/camera.h"
 #include "scene/light.h"
+#include "scene/pbrt/pbrt_import.h"
 #include "scene/shape_mesh.h"
 #include "scene/texture.h"
 #include "shared_types.h"
@@ -81,7 +82,10 @@ struct Scene {
 
 // `grid`, when given, replaces the scene's own "wavelengths" (the same scene on another grid);
 // `lamp`, when not empty, switches on that lamp of the scene's "lamps" instead of its "lamp".
+// A `.pbrt` path is a pbrt-v4 scene (docs/pbrt-import.md); `materials` replace named materials
+// (--material NAME=FILE).
 Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid = std::nullopt,
-                 const std::string& lamp = "");
+                 const std::string& lamp = "",
+                 const std::vector<MaterialOverride>& materials = {});
 
 }  // namespace kasha

@@ -1,0 +1,663 @@
+#include "scene/pbrt/pbrt_import.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <set>
+
+#include "core/error.h"
+#include "core/input_file.h"
+#include "core/printable.h"
+#include "scene/pbrt/pbrt_materials.h"
+#include "scene/pbrt/pbrt_parameters.h"
+#include "scene/pbrt/pbrt_shapes.h"
+#include "scene/pbrt/pbrt_spectra.h"
+#include "scene/pbrt/pbrt_tokenizer.h"
+
+namespace kasha {
+
+bool is_pbrt_scene(const std::string& path) {
+  const std::string ext = std::filesystem::path(path).extension().string();
+  return ext == ".pbrt" || ext == ".PBRT";
+}
+
+namespace {
+
+using Matrix = Eigen::Matrix4d;
+
+// Include and Import nest at most this deep: a file that includes itself ends here.
+constexpr int kMaxIncludeDepth = 32;
+
+std::string in_quotes(const std::string& s) {
+  return "\"" + printable(s) + "\"";
+}
+
+nlohmann::json row_major(const Matrix& m) {
+  std::vector<double> out;
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out.push_back(m(r, c));
+  return out;
+}
+
+nlohmann::json triple(const Eigen::Vector3d& v) {
+  return {v[0], v[1], v[2]};
+}
+
+Eigen::Vector3d point(const Matrix& m, const Eigen::Vector3d& p) {
+  const Eigen::Vector4d h = m * Eigen::Vector4d(p[0], p[1], p[2], 1);
+  return h.head<3>() / h[3];
+}
+
+Eigen::Vector3d direction(const Matrix& m, const Eigen::Vector3d& d) {
+  return m.topLeftCorner<3, 3>() * d;
+}
+
+struct AreaLight {
+  std::string type;
+  PbrtParameters params;
+  PbrtLocation where;
+};
+
+// What AttributeBegin saves and AttributeEnd restores (pbrt-v4's GraphicsState).
+struct GraphicsState {
+  Matrix ctm = Matrix::Identity();
+  bool reverse_orientation = false;
+  std::string material;  // kasha material name; empty: pbrt-v4's default diffuse
+  std::shared_ptr<const AreaLight> area_light;
+  std::string inside_medium, outside_medium;
+  std::map<std::string, PbrtParameters> attributes;  // Attribute "shape" | "light" | …
+};
+
+struct SavedState {
+  GraphicsState state;
+  bool transform_only;  // TransformBegin: only the CTM comes back
+  PbrtLocation where;
+};
+
+struct DefinedShape {
+  nlohmann::json shape;  // with its material, without its transform
+  Matrix ctm;            // object to instance space
+};
+
+struct ObjectDefinition {
+  std::vector<DefinedShape> shapes;
+  PbrtLocation where;
+};
+
+class Importer {
+ public:
+  Importer(const std::string& path, const std::vector<MaterialOverride>& overrides)
+      : main_file_(path), base_dir_(std::filesystem::path(path).parent_path()) {
+    for (const MaterialOverride& o : overrides) overrides_[o.name] = o.file;
+  }
+
+  nlohmann::json run() {
+    parse_file(main_file_, main_file_, PbrtLocation{}, 0);
+    if (!stack_.empty())
+      pbrt_fail(stack_.back().where, "AttributeBegin without its AttributeEnd");
+    if (object_) pbrt_fail(object_where_, "ObjectBegin without its ObjectEnd");
+    if (!camera_seen_) make_camera(Matrix::Identity(), "perspective", PbrtParameters{}, {});
+    if (shapes_.empty())
+      throw Error(printable(main_file_) + ": the scene has no shape that kasha renders");
+    for (const auto& [name, where] : named_material_uses_)
+      if (!materials_.contains(name) && !interfaces_.count(name))
+        pbrt_fail(where, "NamedMaterial " + in_quotes(name) + ": no material of that name");
+    for (const auto& [name, file] : overrides_) {
+      const bool material = materials_.contains(name) && named_materials_.count(name);
+      if (material) materials_[name] = {{"file", absolute(file)}};
+      if (!material && !overridden_objects_.count(name))
+        throw Error("--material " + printable(name) + "=" + printable(file) + ": " +
+                    printable(main_file_) + " has no material or object named " + in_quotes(name));
+    }
+    if (uses_default_material_) materials_[kDefaultMaterial] = {{"passive", {{"reflectance", 0.5}}}};
+    nlohmann::json scene = {{"kasha_scene", 1},
+                            {"camera", camera_},
+                            {"materials", materials_},
+                            {"shapes", shapes_}};
+    if (!lights_.empty()) scene["lights"] = lights_;
+    if (!textures_.kasha.empty()) scene["textures"] = textures_.kasha;
+    return scene;
+  }
+
+ private:
+  static constexpr const char* kDefaultMaterial = "pbrt-v4 default (diffuse 0.5)";
+
+  static std::string absolute(const std::string& file) {
+    return std::filesystem::absolute(file).lexically_normal().string();
+  }
+
+  void parse_file(const std::string& path, const std::string& shown, const PbrtLocation& from,
+                  int depth) {
+    if (depth > kMaxIncludeDepth)
+      pbrt_fail(from, "Include nested deeper than " + std::to_string(kMaxIncludeDepth) +
+                          " files (a file that includes itself?)");
+    std::string text;
+    try {
+      text = read_input_file(path, kMaxBinaryInputBytes);
+    } catch (const Error& e) {
+      if (depth == 0) throw;
+      pbrt_fail(from, e.what());
+    }
+    PbrtTokenizer tokens(std::move(text), shown);
+    for (;;) {
+      PbrtToken t = tokens.next();
+      if (t.kind == PbrtToken::kEnd) return;
+      if (t.kind != PbrtToken::kWord)
+        pbrt_fail(t.where, "expected a directive, found " + in_quotes(t.text));
+      directive(t, tokens, depth);
+    }
+  }
+
+  // One argument of a directive.
+  std::string string_arg(PbrtTokenizer& tokens, const PbrtToken& d) {
+    PbrtToken t = tokens.next();
+    if (t.kind != PbrtToken::kString)
+      pbrt_fail(d.where, d.text + " expects a quoted string");
+    return t.text;
+  }
+
+  std::vector<double> number_args(PbrtTokenizer& tokens, const PbrtToken& d, size_t n) {
+    std::vector<double> v;
+    PbrtToken t = tokens.next();
+    const bool bracketed = t.kind == PbrtToken::kOpen;
+    if (bracketed) t = tokens.next();
+    for (;;) {
+      if (t.kind == PbrtToken::kWord && v.size() < n) {
+        char* end = nullptr;
+        const double x = std::strtod(t.text.c_str(), &end);
+        if (*end != '\0' || !std::isfinite(x))
+          pbrt_fail(t.where, d.text + ": " + in_quotes(t.text) + " is not a finite number");
+        v.push_back(x);
+        if (v.size() == n && !bracketed) break;
+        t = tokens.next();
+        continue;
+      }
+      if (bracketed && t.kind == PbrtToken::kClose && v.size() == n) break;
+      pbrt_fail(d.where, d.text + " expects " + std::to_string(n) + " numbers");
+    }
+    return v;
+  }
+
+  void apply(const Matrix& m, const PbrtToken& d) {
+    if (end_time_only_) {
+      warn_once(d.where, "motion", "ActiveTransform EndTime: kasha renders the start of the "
+                                   "shutter, so transforms for the end time are ignored");
+      return;
+    }
+    state_.ctm = state_.ctm * m;
+  }
+
+  void warn_once(const PbrtLocation& where, const std::string& key, const std::string& what) {
+    if (warned_.insert(key).second) pbrt_warn(where, what);
+  }
+
+  void directive(const PbrtToken& d, PbrtTokenizer& tokens, int depth) {
+    const std::string& name = d.text;
+    if (name == "AttributeBegin" || name == "TransformBegin") {
+      stack_.push_back({state_, name == "TransformBegin", d.where});
+    } else if (name == "AttributeEnd" || name == "TransformEnd") {
+      if (stack_.empty() || stack_.back().transform_only != (name == "TransformEnd"))
+        pbrt_fail(d.where, name + " without its " +
+                               (name == "AttributeEnd" ? "AttributeBegin" : "TransformBegin"));
+      if (stack_.back().transform_only)
+        state_.ctm = stack_.back().state.ctm;
+      else
+        state_ = stack_.back().state;
+      stack_.pop_back();
+    } else if (name == "Attribute") {
+      const std::string target = string_arg(tokens, d);
+      if (target != "shape" && target != "light" && target != "material" &&
+          target != "medium" && target != "texture")
+        pbrt_fail(d.where, "Attribute: unknown target " + in_quotes(target));
+      PbrtParameters params = PbrtParameters::read(tokens);
+      params.add_defaults(state_.attributes[target]);
+      state_.attributes[target] = params;
+    } else if (name == "Identity") {
+      if (!end_time_only_) state_.ctm = Matrix::Identity();
+    } else if (name == "Translate") {
+      const auto v = number_args(tokens, d, 3);
+      Matrix m = Matrix::Identity();
+      m.topRightCorner<3, 1>() = Eigen::Vector3d(v[0], v[1], v[2]);
+      apply(m, d);
+    } else if (name == "Scale") {
+      const auto v = number_args(tokens, d, 3);
+      apply(Eigen::Vector4d(v[0], v[1], v[2], 1).asDiagonal().toDenseMatrix(), d);
+    } else if (name == "Rotate") {
+      const auto v = number_args(tokens, d, 4);
+      const Eigen::Vector3d axis(v[1], v[2], v[3]);
+      if (axis.norm() == 0) pbrt_fail(d.where, "Rotate about a zero axis");
+      Matrix m = Matrix::Identity();
+      m.topLeftCorner<3, 3>() =
+          Eigen::AngleAxisd(v[0] * M_PI / 180.0, axis.normalized()).toRotationMatrix();
+      apply(m, d);
+    } else if (name == "LookAt") {
+      const auto v = number_args(tokens, d, 9);
+      apply(look_at(d, {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, {v[6], v[7], v[8]}), d);
+    } else if (name == "Transform" || name == "ConcatTransform") {
+      const auto v = number_args(tokens, d, 16);
+      Matrix m;
+      for (int i = 0; i < 16; ++i) m(i % 4, i / 4) = v[i];  // pbrt's files are column-major
+      if (name == "Transform") {
+        if (!end_time_only_) state_.ctm = m;
+      } else {
+        apply(m, d);
+      }
+    } else if (name == "CoordinateSystem") {
+      named_frames_[string_arg(tokens, d)] = state_.ctm;
+    } else if (name == "CoordSysTransform") {
+      const std::string frame = string_arg(tokens, d);
+      auto f = named_frames_.find(frame);
+      if (f == named_frames_.end())
+        pbrt_warn(d.where, "CoordSysTransform: no coordinate system named " + in_quotes(frame) +
+                               " (ignored, as pbrt-v4 does)");
+      else
+        state_.ctm = f->second;
+    } else if (name == "ReverseOrientation") {
+      state_.reverse_orientation = !state_.reverse_orientation;
+    } else if (name == "TransformTimes") {
+      number_args(tokens, d, 2);
+      warn_once(d.where, "motion", "motion blur is not built in kasha: the scene is rendered "
+                                   "at the start of the shutter");
+    } else if (name == "ActiveTransform") {
+      PbrtToken which = tokens.next();
+      if (which.text == "StartTime" || which.text == "All")
+        end_time_only_ = false;
+      else if (which.text == "EndTime")
+        end_time_only_ = true;
+      else
+        pbrt_fail(d.where, "ActiveTransform takes StartTime, EndTime or All");
+    } else if (name == "Option") {
+      PbrtParameters::read(tokens).warn_unused("Option");
+    } else if (name == "ColorSpace") {
+      const std::string space = string_arg(tokens, d);
+      if (space != "srgb")
+        pbrt_fail(d.where, "ColorSpace " + in_quotes(space) + " is not built in kasha (srgb)");
+    } else if (name == "Camera") {
+      const std::string type = string_arg(tokens, d);
+      make_camera(state_.ctm, type, PbrtParameters::read(tokens), d.where);
+      named_frames_["camera"] = state_.ctm.inverse();
+    } else if (name == "Film") {
+      const std::string type = string_arg(tokens, d);  // before the parameters that follow it
+      film(type, PbrtParameters::read(tokens), d.where);
+    } else if (name == "Sampler" || name == "Integrator" || name == "PixelFilter" ||
+               name == "Accelerator") {
+      const std::string type = string_arg(tokens, d);
+      PbrtParameters::read(tokens);
+      pbrt_warn(d.where, name + " " + in_quotes(type) + " is ignored: kasha's --integrator, --spp, " +
+                             "--passes and box pixel filter decide (docs/pbrt-import.md)");
+    } else if (name == "MakeNamedMedium") {
+      const std::string medium = string_arg(tokens, d);
+      PbrtParameters::read(tokens);
+      pbrt_warn(d.where, "MakeNamedMedium " + in_quotes(medium) +
+                             ": participating media are not built in kasha");
+    } else if (name == "MediumInterface") {
+      state_.inside_medium = string_arg(tokens, d);
+      PbrtToken t = tokens.next();
+      if (t.kind == PbrtToken::kString)
+        state_.outside_medium = t.text;
+      else {
+        state_.outside_medium = state_.inside_medium;
+        tokens.put_back(std::move(t));
+      }
+    } else if (name == "WorldBegin") {
+      if (!camera_seen_) make_camera(Matrix::Identity(), "perspective", PbrtParameters{}, d.where);
+      state_.ctm = Matrix::Identity();
+      named_frames_["world"] = state_.ctm;
+    } else if (name == "WorldEnd") {
+      pbrt_warn(d.where, "WorldEnd is pbrt-v3's: ignored");
+    } else if (name == "Texture") {
+      const std::string tex = string_arg(tokens, d), kind = string_arg(tokens, d),
+                        cls = string_arg(tokens, d);
+      PbrtParameters params = PbrtParameters::read(tokens);
+      params.add_defaults(state_.attributes["texture"]);
+      pbrt_define_texture(tex, kind, cls, params, d.where, textures_, base_dir_);
+    } else if (name == "Material") {
+      const std::string type = string_arg(tokens, d);
+      PbrtParameters params = PbrtParameters::read(tokens);
+      params.add_defaults(state_.attributes["material"]);
+      const std::string key = "pbrt material at " + d.where.str();
+      define_material(key, type, params, d.where);
+      state_.material = key;
+    } else if (name == "MakeNamedMaterial") {
+      const std::string material = string_arg(tokens, d);
+      PbrtParameters params = PbrtParameters::read(tokens);
+      params.add_defaults(state_.attributes["material"]);
+      const std::string type = params.get_string("type", "");
+      if (type.empty()) pbrt_fail(d.where, "MakeNamedMaterial " + in_quotes(material) +
+                                               " has no \"string type\"");
+      if (named_materials_.count(material))
+        pbrt_fail(d.where, "MakeNamedMaterial " + in_quotes(material) + " defined twice");
+      named_materials_.insert(material);
+      define_material(material, type, params, d.where);
+    } else if (name == "NamedMaterial") {
+      state_.material = string_arg(tokens, d);
+      named_material_uses_.emplace(state_.material, d.where);
+    } else if (name == "LightSource") {
+      const std::string type = string_arg(tokens, d);
+      PbrtParameters params = PbrtParameters::read(tokens);
+      params.add_defaults(state_.attributes["light"]);
+      light(type, params, d.where);
+    } else if (name == "AreaLightSource") {
+      auto area = std::make_shared<AreaLight>();
+      area->type = string_arg(tokens, d);
+      area->params = PbrtParameters::read(tokens);
+      area->params.add_defaults(state_.attributes["light"]);
+      area->where = d.where;
+      if (area->type != "diffuse")
+        pbrt_fail(d.where, "AreaLightSource " + in_quotes(area->type) +
+                               " is not built in kasha (diffuse)");
+      state_.area_light = area;
+    } else if (name == "Shape") {
+      const std::string type = string_arg(tokens, d);
+      PbrtParameters params = PbrtParameters::read(tokens);
+      params.add_defaults(state_.attributes["shape"]);
+      shape(type, params, d.where);
+    } else if (name == "ObjectBegin") {
+      if (object_) pbrt_fail(d.where, "ObjectBegin inside another object");
+      const std::string object = string_arg(tokens, d);
+      if (objects_.count(object)) pbrt_fail(d.where, "ObjectBegin " + in_quotes(object) + " twice");
+      stack_.push_back({state_, false, d.where});
+      object_ = &objects_[object];
+      object_->where = d.where;
+      object_name_ = object;
+      object_where_ = d.where;
+    } else if (name == "ObjectEnd") {
+      if (!object_) pbrt_fail(d.where, "ObjectEnd without its ObjectBegin");
+      object_ = nullptr;
+      if (stack_.empty() || stack_.back().transform_only)
+        pbrt_fail(d.where, "ObjectEnd without its ObjectBegin");
+      state_ = stack_.back().state;
+      stack_.pop_back();
+    } else if (name == "ObjectInstance") {
+      const std::string object = string_arg(tokens, d);
+      if (object_) pbrt_fail(d.where, "ObjectInstance inside an object definition");
+      auto o = objects_.find(object);
+      if (o == objects_.end()) pbrt_fail(d.where, "ObjectInstance: no object named " + in_quotes(object));
+      std::string material;
+      if (overrides_.count(object)) {
+        material = "pbrt object " + object;
+        materials_[material] = {{"file", absolute(overrides_[object])}};
+        overridden_objects_.insert(object);
+      }
+      for (const DefinedShape& s : o->second.shapes) {
+        nlohmann::json shape = s.shape;
+        if (!material.empty()) shape["material"] = material;
+        place(shape, state_.ctm * s.ctm, d.where);
+      }
+    } else if (name == "Include" || name == "Import") {
+      const std::string file = string_arg(tokens, d);
+      std::filesystem::path path(file);
+      if (path.is_relative()) path = base_dir_ / path;
+      parse_file(path.string(), file, d.where, depth + 1);
+    } else {
+      pbrt_fail(d.where, "unknown directive " + in_quotes(name));
+    }
+  }
+
+  Matrix look_at(const PbrtToken& d, const Eigen::Vector3d& pos, const Eigen::Vector3d& look,
+                 const Eigen::Vector3d& up) {
+    // pbrt-v4's LookAt: the camera-from-world matrix of a left-handed frame.
+    const Eigen::Vector3d dir = look - pos;
+    if (dir.norm() == 0) pbrt_fail(d.where, "LookAt: the eye and the target are the same point");
+    const Eigen::Vector3d right = up.normalized().cross(dir.normalized());
+    if (up.norm() == 0 || right.norm() < 1e-9)
+      pbrt_fail(d.where, "LookAt: \"up\" is zero or parallel to the view direction");
+    const Eigen::Vector3d r = right.normalized(), z = dir.normalized(), u = z.cross(r);
+    Matrix world_from_camera = Matrix::Identity();
+    world_from_camera.block<3, 1>(0, 0) = r;
+    world_from_camera.block<3, 1>(0, 1) = u;
+    world_from_camera.block<3, 1>(0, 2) = z;
+    world_from_camera.block<3, 1>(0, 3) = pos;
+    return world_from_camera.inverse();
+  }
+
+  void make_camera(const Matrix& camera_from_world, const std::string& type,
+                   const PbrtParameters& params, const PbrtLocation& where) {
+    if (camera_seen_) pbrt_fail(where, "a second Camera");
+    camera_seen_ = true;
+    if (type != "perspective")
+      pbrt_fail(where, "Camera " + in_quotes(type) + " is not built in kasha (perspective)");
+    if (std::abs(camera_from_world.determinant()) < 1e-300)
+      pbrt_fail(where, "the camera's transform is singular");
+    const Matrix world_from_camera = camera_from_world.inverse();
+    const Eigen::Vector3d pos = point(world_from_camera, {0, 0, 0});
+    const Eigen::Vector3d forward = direction(world_from_camera, {0, 0, 1}).normalized();
+    const Eigen::Vector3d up = direction(world_from_camera, {0, 1, 0}).normalized();
+    const Eigen::Vector3d right = direction(world_from_camera, {1, 0, 0});
+    if (std::abs(forward.dot(up)) > 1e-6)
+      pbrt_warn(where, "the camera's transform shears its axes: kasha uses its view direction "
+                       "and up");
+    camera_["position"] = triple(pos);
+    camera_["look_at"] = triple(pos + forward);
+    camera_["up"] = triple(up);
+    // kasha's image right is forward × up; pbrt-v4's is the camera's +x, the other way in its
+    // left-handed frame (unless the scene mirrors it, as `Scale -1 1 1` does).
+    camera_["mirror"] = right.dot(forward.cross(up)) < 0;
+    camera_["fov_deg"] = params.get_float("fov", 90);
+    if (params.get_float("lensradius", 0) > 0)
+      pbrt_warn(where, "depth of field (\"lensradius\") is not built in kasha: a pinhole renders");
+    params.get_float("focaldistance", 1e6);
+    if (params.find("screenwindow", "float"))
+      pbrt_warn(where, "\"screenwindow\" is not built in kasha: the default window renders");
+    if (params.find("frameaspectratio", "float"))
+      pbrt_warn(where, "\"frameaspectratio\" is not built in kasha: the film's aspect renders");
+    params.get_float("shutteropen", 0);
+    params.get_float("shutterclose", 1);
+    params.warn_unused("Camera \"perspective\"");
+    if (!state_.outside_medium.empty())
+      pbrt_fail(where, "the camera is inside medium " + in_quotes(state_.outside_medium) +
+                           ": participating media are not built in kasha");
+    if (!camera_.contains("width")) {
+      camera_["width"] = 1280;  // pbrt-v4's film defaults, unless a Film came first
+      camera_["height"] = 720;
+    }
+  }
+
+  void film(const std::string& type, const PbrtParameters& params, const PbrtLocation& where) {
+    if (type != "rgb" && type != "spectral" && type != "gbuffer")
+      pbrt_fail(where, "Film " + in_quotes(type) + " is not built in kasha");
+    const int w = params.get_int("xresolution", 1280), h = params.get_int("yresolution", 720);
+    if (w < 1 || w > 16384 || h < 1 || h > 16384)
+      pbrt_fail(where, "a film of " + std::to_string(w) + " × " + std::to_string(h) +
+                           " pixels (kasha renders 1–16384 a side)");
+    camera_["width"] = w;
+    camera_["height"] = h;
+    params.get_string("filename", "");  // kasha writes where -o says
+    if (params.find("cropwindow", "float") || params.find("pixelbounds", "integer"))
+      pbrt_warn(where, "a crop window is not built in kasha: the whole frame renders");
+    const double iso = params.get_float("iso", 100);
+    const std::string sensor = params.get_string("sensor", "cie1931");
+    const double white = params.get_float("whitebalance", 0);
+    if (iso != 100 || sensor != "cie1931" || white != 0)
+      pbrt_warn(where, "the film's sensor settings (iso, sensor, whitebalance) are not built in "
+                       "kasha: it records XYZ as pbrt-v4's default cie1931 sensor at ISO 100");
+    for (const char* ignored : {"maxcomponentvalue", "diagonal"}) params.get_float(ignored, 0);
+    params.get_bool("savefp16", true);
+    params.get_bool("writefp16", true);
+    params.warn_unused("Film " + in_quotes(type));
+  }
+
+  void define_material(const std::string& key, const std::string& type,
+                       const PbrtParameters& params, const PbrtLocation& where) {
+    nlohmann::json m = pbrt_material(type, params, where, textures_, base_dir_);
+    if (m.is_null())
+      interfaces_.insert(key);
+    else
+      materials_[key] = m;
+  }
+
+  void light(const std::string& type, const PbrtParameters& params, const PbrtLocation& where) {
+    if (object_) pbrt_fail(where, "LightSource inside an object definition");
+    const double scale = params.get_float("scale", 1);
+    if (!(scale >= 0)) pbrt_fail(where, "a light's \"scale\" must not be negative");
+    const Matrix& m = state_.ctm;
+    nlohmann::json l;
+    if (type == "point" || type == "spot") {
+      const PbrtParameter* I = params.find("I", "rgb spectrum blackbody float");
+      double power_scale = 1;
+      const double power = params.get_float("power", -1);
+      const Eigen::Vector3d from = vec(params.get_triple("from"), {0, 0, 0});
+      l = {{"type", type}};
+      if (type == "point") {
+        if (power > 0) power_scale = power / (4 * M_PI);
+        l["position"] = triple(point(m, from));
+      } else {
+        const Eigen::Vector3d to = vec(params.get_triple("to"), {0, 0, 1});
+        const double cone = params.get_float("coneangle", 30),
+                     delta = params.get_float("conedeltaangle", 5);
+        if (power > 0) {
+          const double c_end = std::cos(cone * M_PI / 180),
+                       c_start = std::cos((cone - delta) * M_PI / 180);
+          power_scale = power / (2 * M_PI * ((1 - c_start) + (c_start - c_end) / 2));
+        }
+        l["from"] = triple(point(m, from));
+        l["to"] = triple(point(m, to));
+        l["cone_deg"] = cone;
+        l["cone_delta_deg"] = delta;
+      }
+      l["intensity"] = pbrt_light_spectrum(I, scale * power_scale, base_dir_);
+    } else if (type == "distant") {
+      const PbrtParameter* L = params.find("L", "rgb spectrum blackbody float");
+      const Eigen::Vector3d from = vec(params.get_triple("from"), {0, 0, 0}),
+                            to = vec(params.get_triple("to"), {0, 0, 1});
+      const double illuminance = params.get_float("illuminance", -1);
+      l = {{"type", "distant"},
+           {"from", triple(point(m, from))},
+           {"to", triple(point(m, to))},
+           {"irradiance",
+            pbrt_light_spectrum(L, scale * (illuminance > 0 ? illuminance : 1), base_dir_)}};
+    } else if (type == "infinite") {
+      const PbrtParameter* L = params.find("L", "rgb spectrum blackbody float");
+      const std::string file = params.get_string("filename", "");
+      if (params.find("portal", "point3"))
+        pbrt_warn(where, "portals are not built in kasha: the light is sampled without them");
+      const double illuminance = params.get_float("illuminance", -1);
+      if (illuminance > 0)
+        pbrt_fail(where, "an infinite light's \"illuminance\" is not built in kasha: give "
+                         "\"scale\"");
+      if (L && !file.empty())
+        pbrt_fail(where, "an infinite light takes \"L\" or \"filename\", not both");
+      l = {{"type", "infinite"}};
+      if (!file.empty()) {
+        // pbrt-v4's environment maps are square, equal-area, and divided by D65's photometric
+        // integral as its RGB-illuminant lights are.
+        l["image"] = file;
+        l["mapping"] = "equal_area";
+        l["scale"] = scale / pbrt_d65_photometric();
+        Matrix rot = m;
+        rot.topRightCorner<3, 1>().setZero();
+        const Eigen::Matrix3d r = rot.topLeftCorner<3, 3>();
+        if (!(r * r.transpose()).isApprox(Eigen::Matrix3d::Identity(), 1e-6) || r.determinant() < 0)
+          pbrt_fail(where, "an environment image's transform must be a rotation in kasha");
+        if (!r.isApprox(Eigen::Matrix3d::Identity(), 1e-12))
+          l["transform"] = {{"matrix", row_major(rot)}};
+      } else {
+        l["radiance"] = pbrt_light_spectrum(L, scale, base_dir_);
+      }
+    } else if (type == "goniometric" || type == "projection") {
+      pbrt_fail(where, "LightSource " + in_quotes(type) + " is not built in kasha (point, spot, "
+                       "distant, infinite)");
+    } else {
+      pbrt_fail(where, "unknown light type " + in_quotes(type));
+    }
+    params.warn_unused("LightSource " + in_quotes(type));
+    lights_.push_back(l);
+  }
+
+  static Eigen::Vector3d vec(const std::optional<std::array<double, 3>>& a,
+                             const Eigen::Vector3d& fallback) {
+    return a ? Eigen::Vector3d((*a)[0], (*a)[1], (*a)[2]) : fallback;
+  }
+
+  void shape(const std::string& type, const PbrtParameters& params, const PbrtLocation& where) {
+    nlohmann::json s = pbrt_shape(type, params, where);
+    if (s.is_null()) return;
+    std::string material = state_.material;
+    if (material.empty()) {
+      material = kDefaultMaterial;
+      uses_default_material_ = true;
+    }
+    if (interfaces_.count(material)) {
+      warn_once(where, "interface", "shapes with material \"interface\" (media boundaries) are "
+                                    "left out: media are not built in kasha");
+      return;
+    }
+    if (!state_.inside_medium.empty() || !state_.outside_medium.empty())
+      pbrt_fail(where, "a shape with a medium (MediumInterface " +
+                           in_quotes(state_.inside_medium) + " " + in_quotes(state_.outside_medium) +
+                           "): participating media are not built in kasha");
+    s["material"] = material;
+    // A mesh's own normals decide its front in pbrt-v4 (pbrt_shapes.cpp turned the winding to
+    // them), whatever ReverseOrientation says; every other shape is turned.
+    const bool normals_decide = (type == "trianglemesh" || type == "loopsubdiv") && s.contains("normals");
+    if (state_.reverse_orientation && !normals_decide)
+      s["reverse_orientation"] = !s.value("reverse_orientation", false);
+    if (object_) {
+      if (state_.area_light)
+        pbrt_fail(where, "an area light inside an object definition (pbrt-v4 refuses it too)");
+      object_->shapes.push_back({s, state_.ctm});
+      return;
+    }
+    if (state_.area_light) {
+      const AreaLight& a = *state_.area_light;
+      const PbrtParameter* L = a.params.find("L", "rgb spectrum blackbody float");
+      const double scale = a.params.get_float("scale", 1);
+      if (a.params.get_float("power", -1) > 0)
+        pbrt_fail(a.where, "an area light's \"power\" is not built in kasha: give \"scale\"");
+      if (a.params.find("filename", "string"))
+        pbrt_fail(a.where, "an area light's image (\"filename\") is not built in kasha");
+      const bool two_sided = a.params.get_bool("twosided", false);
+      a.params.warn_unused("AreaLightSource \"diffuse\"");
+      s["emission"] = pbrt_light_spectrum(L, scale, base_dir_);
+      if (two_sided) {
+        // kasha's lamps emit from the front: a two-sided one is two copies, wound both ways.
+        nlohmann::json back = s;
+        back["reverse_orientation"] = !s.value("reverse_orientation", false);
+        place(back, state_.ctm, where);
+      }
+    }
+    place(s, state_.ctm, where);
+  }
+
+  void place(nlohmann::json s, const Matrix& ctm, const PbrtLocation& where) {
+    if (!(std::abs(ctm.topLeftCorner<3, 3>().determinant()) > 1e-300) ||
+        ctm.row(3) != Eigen::RowVector4d(0, 0, 0, 1) || !ctm.allFinite())
+      pbrt_fail(where, "the shape's transform is singular or projective");
+    if (!ctm.isIdentity(0)) s["transform"] = {{"matrix", row_major(ctm)}};
+    shapes_.push_back(std::move(s));
+  }
+
+  std::string main_file_;
+  std::filesystem::path base_dir_;
+  std::map<std::string, std::string> overrides_;
+  std::set<std::string> overridden_objects_;
+  GraphicsState state_;
+  std::vector<SavedState> stack_;
+  std::map<std::string, Matrix> named_frames_;
+  bool end_time_only_ = false;
+  bool camera_seen_ = false;
+  nlohmann::json camera_ = nlohmann::json::object();
+  nlohmann::json materials_ = nlohmann::json::object();
+  std::set<std::string> named_materials_, interfaces_;
+  std::multimap<std::string, PbrtLocation> named_material_uses_;
+  bool uses_default_material_ = false;
+  PbrtTextures textures_;
+  nlohmann::json lights_ = nlohmann::json::array();
+  nlohmann::json shapes_ = nlohmann::json::array();
+  std::map<std::string, ObjectDefinition> objects_;
+  ObjectDefinition* object_ = nullptr;
+  std::string object_name_;
+  PbrtLocation object_where_;
+  std::set<std::string> warned_;
+};
+
+}  // namespace
+
+nlohmann::json import_pbrt_scene(const std::string& path,
+                                 const std::vector<MaterialOverride>& overrides) {
+  return Importer(path, overrides).run();
+}
+
+}  // namespace kasha

@@ -1,0 +1,38 @@
+#pragma once
+// pbrt-v4's `Texture`, `Material` and `MakeNamedMaterial` as kasha textures and materials
+// (docs/pbrt-import.md#materials): diffuse, coateddiffuse, dielectric, conductor, and kasha's own
+// measured materials; imagemap, checkerboard, scale and constant textures.
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "scene/pbrt/pbrt_parameters.h"
+
+namespace kasha {
+
+// A pbrt texture as kasha can apply it: a constant, or a kasha texture (an image or a
+// checkerboard, by its name in the scene's "textures") times a constant factor.
+struct PbrtTexture {
+  std::string kasha_name;    // empty for a constant
+  nlohmann::json constant;   // the constant (a spectrum value or a number) when kasha_name is empty
+  double factor = 1;         // multiplies the kasha texture
+};
+
+struct PbrtTextures {
+  std::map<std::string, PbrtTexture> spectrum, scalar;  // pbrt's "spectrum" and "float" textures
+  nlohmann::json kasha = nlohmann::json::object();      // the scene's "textures"
+};
+
+// Defines texture `name` (`kind` "spectrum" or "float", class `cls`) from its parameters.
+void pbrt_define_texture(const std::string& name, const std::string& kind, const std::string& cls,
+                         const PbrtParameters& params, const PbrtLocation& where,
+                         PbrtTextures& textures, const std::filesystem::path& base_dir);
+
+// The kasha material for pbrt material `type` with `params`; null for a shape that is no surface
+// (`interface`, "none": a medium's boundary, left out by the caller with a warning).
+nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& params,
+                             const PbrtLocation& where, const PbrtTextures& textures,
+                             const std::filesystem::path& base_dir);
+
+}  // namespace kasha

@@ -1,0 +1,132 @@
+#include "scene/pbrt/pbrt_spectra.h"
+
+#include <cmath>
+#include <map>
+
+#include "color/cie_observer.h"
+#include "core/json_node.h"
+#include "core/printable.h"
+#include "spectrum/builtin_spectra.h"
+#include "spectrum/spectrum_parser.h"
+
+namespace kasha {
+
+namespace {
+
+// pbrt-v4's named spectra that kasha has under another name: CIE illuminants and glasses. Its
+// metals are taken by the conductor (pbrt_materials.cpp), which knows both η and k.
+const std::map<std::string, std::string>& named_spectra() {
+  static const std::map<std::string, std::string> names = {
+      {"stdillum-A", "A"},     {"stdillum-D50", "D50"},   {"stdillum-D65", "D65"},
+      {"stdillum-F2", "F2"},   {"stdillum-F7", "F7"},     {"stdillum-F11", "F11"},
+      {"glass-BK7", "BK7"},    {"glass-F11", "SF11"},
+  };
+  return names;
+}
+
+}  // namespace
+
+nlohmann::json pbrt_spectrum(const PbrtParameter& p, PbrtSpectrumUse use,
+                             const std::filesystem::path& base_dir) {
+  const std::string what = "\"" + printable(p.declaration()) + "\"";
+  if (p.type == "float") {
+    if (p.numbers.size() != 1) pbrt_fail(p.where, what + " takes one value");
+    if (p.numbers[0] < 0) pbrt_fail(p.where, what + " is negative");
+    return p.numbers[0];
+  }
+  if (p.type == "rgb") {
+    if (p.numbers.size() != 3) pbrt_fail(p.where, what + " takes one RGB triple");
+    for (double v : p.numbers)
+      if (v < 0) pbrt_fail(p.where, what + " has a negative component");
+    if (use == PbrtSpectrumUse::kIlluminant) return {{"rgb_illuminant", p.numbers}};
+    if (use == PbrtSpectrumUse::kUnbounded)
+      pbrt_fail(p.where, what + ": an RGB value for a quantity without bounds (an index of "
+                                "refraction) is not taken by kasha: give a spectrum");
+    for (double v : p.numbers)
+      if (v > 1) pbrt_fail(p.where, what + " has a component above 1 (a reflectance)");
+    return {{"rgb", p.numbers}};
+  }
+  if (p.type == "blackbody") {
+    if (p.numbers.size() != 1 || !(p.numbers[0] > 0))
+      pbrt_fail(p.where, what + " takes one positive temperature in K");
+    if (use != PbrtSpectrumUse::kIlluminant)
+      pbrt_fail(p.where, what + ": a blackbody is an emitter's spectrum");
+    return {{"blackbody_K", p.numbers[0]}};
+  }
+  if (p.type != "spectrum") pbrt_fail(p.where, what + " is not a spectrum");
+  if (!p.numbers.empty()) {
+    std::vector<double> nm, value;
+    for (size_t i = 0; i + 1 < p.numbers.size(); i += 2) {
+      nm.push_back(p.numbers[i]);
+      value.push_back(p.numbers[i + 1]);
+    }
+    if (nm.size() < 2) pbrt_fail(p.where, what + " needs at least two wavelength-value pairs");
+    for (size_t i = 1; i < nm.size(); ++i)
+      if (!(nm[i] > nm[i - 1])) pbrt_fail(p.where, what + ": wavelengths must increase");
+    for (double v : value)
+      if (v < 0) pbrt_fail(p.where, what + " has a negative value");
+    return {{"nm", nm}, {"value", value}};
+  }
+  if (p.strings.size() != 1) pbrt_fail(p.where, what + " takes one name or file");
+  const std::string& name = p.strings[0];
+  auto known = named_spectra().find(name);
+  if (known != named_spectra().end()) return known->second;
+  if (name.rfind("metal-", 0) == 0 || name.rfind("glass-", 0) == 0 ||
+      name.rfind("stdillum-", 0) == 0 || name.rfind("illum-", 0) == 0 ||
+      name.rfind("canon_", 0) == 0 || name.rfind("nikon_", 0) == 0 ||
+      name.rfind("sony_", 0) == 0)
+    pbrt_fail(p.where, what + ": the named spectrum \"" + printable(name) +
+                           "\" is not among kasha's (stdillum-A, -D50, -D65, -F2, -F7, -F11, "
+                           "glass-BK7, glass-F11, and metal-Ag/Al/Au/Cu for a conductor)");
+  // A file of wavelength-value pairs, relative to the scene's folder (as the scene's JSON
+  // resolves it).
+  (void)base_dir;
+  return {{"csv", name}};
+}
+
+double pbrt_photometric(const nlohmann::json& spectrum, const std::filesystem::path& base_dir) {
+  nlohmann::json s = spectrum;
+  // pbrt-v4 normalises an RGB illuminant by its illuminant alone; the RGB's own luminance stays.
+  if (s.is_object() && s.contains("rgb_illuminant")) return pbrt_d65_photometric();
+  const SpectrumPtr parsed =
+      parse_spectrum(JsonNode::parse_text(s.dump(), "a pbrt-v4 spectrum", base_dir));
+  const SpectrumPtr& ybar = cie_cmf(Observer::cie1931_2deg)[1];
+  double sum = 0;
+  for (int nm = 360; nm <= 830; ++nm) sum += ybar->value(nm) * parsed->value(nm);
+  return sum;
+}
+
+double pbrt_d65_photometric() {
+  const SpectrumPtr white = parse_spectrum(
+      JsonNode::parse_text(R"({"rgb_illuminant": [1, 1, 1]})", "D65", ""));
+  const SpectrumPtr& ybar = cie_cmf(Observer::cie1931_2deg)[1];
+  double sum = 0;
+  for (int nm = 360; nm <= 830; ++nm) sum += ybar->value(nm) * white->value(nm);
+  return sum;
+}
+
+nlohmann::json pbrt_light_spectrum(const PbrtParameter* p, double scale,
+                                   const std::filesystem::path& base_dir) {
+  nlohmann::json s = p ? pbrt_spectrum(*p, PbrtSpectrumUse::kIlluminant, base_dir)
+                       : nlohmann::json{{"rgb_illuminant", {1, 1, 1}}};
+  const double y = pbrt_photometric(s, base_dir);
+  if (!(y > 0)) {
+    if (p) pbrt_fail(p->where, "\"" + printable(p->declaration()) + "\" emits no visible light");
+    return 0;
+  }
+  if (s.is_string()) {
+    // A built-in illuminant by name takes no scale: tabulated every nanometre of its support.
+    const SpectrumPtr named = builtin_spectrum(s.get<std::string>());
+    const SpectralSupport support = named->support();
+    std::vector<double> nm, value;
+    for (double l = std::ceil(support.lo_nm); l <= support.hi_nm; l += 1) {
+      nm.push_back(l);
+      value.push_back(named->value(l));
+    }
+    s = {{"nm", nm}, {"value", value}};
+  }
+  s["scale"] = scale / y;
+  return s;
+}
+
+}  // namespace kasha
