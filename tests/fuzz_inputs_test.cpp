@@ -321,6 +321,126 @@ TEST(Fuzz, MutatedInputsLoadOrGiveOneLineAndRenderFinite) {
   EXPECT_GT(refused, 0);
 }
 
+namespace {
+
+// A pbrt-v4 scene with most of what the importer reads (host/scene/pbrt/), an included file, a
+// PLY mesh, a PNG texture and a kasha material file beside it.
+const char* kSeedPbrt = R"(# the fuzz seed
+LookAt 0 1 3  0 0.5 0  0 1 0
+Camera "perspective" "float fov" [45]
+Film "rgb" "integer xresolution" [8] "integer yresolution" [8] "string filename" "x.exr"
+Sampler "halton" "integer pixelsamples" 4
+WorldBegin
+Attribute "shape" "float radius" 0.25
+Texture "checks" "spectrum" "checkerboard" "float uscale" 4 "rgb tex1" [0.8 0.7 0.6] "rgb tex2" [0.1 0.2 0.3]
+Texture "sky" "spectrum" "imagemap" "string filename" "sky.png" "string wrap" "clamp" "float scale" 0.9
+MakeNamedMaterial "floor" "string type" "diffuse" "texture reflectance" "checks"
+MakeNamedMaterial "print" "string type" "diffuse" "texture reflectance" "sky"
+MakeNamedMaterial "lacquer" "string type" "coateddiffuse" "rgb reflectance" [0.5 0.2 0.1] "float roughness" 0.1
+MakeNamedMaterial "glass" "string type" "dielectric" "spectrum eta" "glass-BK7"
+MakeNamedMaterial "gold" "string type" "conductor" "spectrum eta" "metal-Au-eta" "spectrum k" "metal-Au-k" "float uroughness" 0.1 "float vroughness" 0.1
+MakeNamedMaterial "paper" "string type" "kasha" "string file" "paper.json"
+LightSource "point" "point3 from" [0 2 0] "blackbody I" 4000 "float scale" 2
+LightSource "spot" "point3 from" [1 2 1] "point3 to" [0 0 0] "rgb I" [0.5 0.6 0.7] "float coneangle" 25
+LightSource "distant" "point3 from" [0 1 0] "point3 to" [0.2 0 0.1] "spectrum L" [400 1 700 2] "float scale" 0.3
+LightSource "infinite" "rgb L" [0.1 0.2 0.3]
+AttributeBegin
+  AreaLightSource "diffuse" "spectrum L" "stdillum-D65" "float scale" 4 "bool twosided" true
+  Translate 0 2 0
+  Rotate 90 1 0 0
+  Shape "disk" "float radius" 0.3
+AttributeEnd
+NamedMaterial "floor"
+Shape "trianglemesh" "point3 P" [-2 0 -2  2 0 -2  2 0 2  -2 0 2] "integer indices" [0 2 1  0 3 2]
+    "point2 uv" [0 0 1 0 1 1 0 1] "normal N" [0 1 0  0 1 0  0 1 0  0 1 0]
+Include "part.pbrt"
+ObjectBegin "thing"
+  NamedMaterial "paper"
+  Shape "bilinearmesh" "point3 P" [0 0 0  0.4 0 0  0 0.4 0  0.4 0.4 0]
+ObjectEnd
+AttributeBegin
+  Transform [1 0 0 0  0 1 0 0  0 0 1 0  -0.8 0.1 0.5 1]
+  ObjectInstance "thing"
+AttributeEnd
+)";
+
+const char* kSeedPbrtPart = R"(AttributeBegin
+  NamedMaterial "glass"
+  Translate 0.5 0.25 0
+  Shape "sphere"
+AttributeEnd
+AttributeBegin
+  NamedMaterial "gold"
+  ConcatTransform [0.3 0 0 0  0 0.3 0 0  0 0 0.3 0  -0.5 0.2 -0.5 1]
+  ReverseOrientation
+  Shape "plymesh" "string filename" "mesh.ply"
+AttributeEnd
+AttributeBegin
+  NamedMaterial "lacquer"
+  Translate 0 0.2 -0.8
+  Shape "cylinder" "float zmin" 0 "float zmax" 0.3 "float phimax" 270
+AttributeEnd
+)";
+
+}  // namespace
+
+// Mutated pbrt-v4 scenes (the main file or its included one): each loads or is refused with one
+// line, the files it reads stay as they were, and one in four that loads renders finite pixels.
+TEST(Fuzz, MutatedPbrtScenesLoadOrGiveOneLine) {
+  const Seeds seeds = make_seeds();
+  const int cases = fuzz_cases(400) / 2;
+  std::mt19937 rng(20261203);
+  static ClContext cl(0);
+  write_text(seeds.dir / "paper.json", seeds.material);
+  write_text(seeds.dir / "mesh.ply", seeds.ply);
+  write_text(seeds.dir / "sky.png", seeds.sky);
+  const fs::path main = seeds.dir / "scene.pbrt", part = seeds.dir / "part.pbrt";
+  write_text(main, kSeedPbrt);
+  write_text(part, kSeedPbrtPart);
+  ASSERT_NO_THROW(load_scene(main.string())) << "the seed itself must load";
+  const std::vector<std::string> integrators = IntegratorRegistry::names(true);
+  int loaded = 0, refused = 0, rendered = 0;
+  for (int c = 0; c < cases; ++c) {
+    const std::string text = c % 3 == 2 ? mutated(kSeedPbrtPart, rng) : mutated(kSeedPbrt, rng);
+    const fs::path& target = c % 3 == 2 ? part : main;
+    write_text(main, c % 3 == 2 ? std::string(kSeedPbrt) : text);
+    write_text(part, c % 3 == 2 ? text : std::string(kSeedPbrtPart));
+    SCOPED_TRACE("case " + std::to_string(c) + ": " + target.filename().string());
+    try {
+      Scene scene = load_scene(main.string());
+      ++loaded;
+      if (c % 4 == 0 && scene.camera.width * scene.camera.height <= 64) {
+        IntegratorSettings settings;
+        settings.spp = 1;
+        settings.photons = 2048;
+        settings.seed = static_cast<unsigned>(c);
+        const std::string& integrator = integrators[(c / 4) % integrators.size()];
+        try {
+          DeviceScene device_scene(cl, scene);
+          RenderJob job(cl, scene, device_scene, integrator, settings, false);
+          job.pass(0);
+          for (float v : job.film().image().xyz)
+            ASSERT_TRUE(std::isfinite(v)) << integrator << " wrote a non-finite pixel";
+          ++rendered;
+        } catch (const Error& e) {
+          EXPECT_TRUE(one_line(e.what())) << e.what();
+        }
+      }
+    } catch (const Error& e) {
+      ++refused;
+      EXPECT_TRUE(one_line(e.what())) << e.what();
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "not a kasha::Error: " << e.what() << "\n" << text;
+    }
+    EXPECT_EQ(read_text(target), text) << "an input file changed";
+    EXPECT_EQ(read_text(seeds.dir / "mesh.ply"), seeds.ply) << "an input file changed";
+  }
+  std::printf("  %d pbrt cases: %d loaded (%d rendered), %d refused with one line\n", cases, loaded,
+              rendered, refused);
+  EXPECT_GT(loaded, 0);
+  EXPECT_GT(refused, 0);
+}
+
 TEST(Fuzz, MutatedReferenceExrsReadOrGiveOneLine) {
   const fs::path dir = scratch_dir();
   Image img;

@@ -5,7 +5,8 @@
 // the glass caustic (a glass sphere focusing the lamp on a fluorescent floor, a gold box), and the
 // light booth lit by a UV spot (a delta light only next-event estimation and photons reach), and
 // a table in the sun and sky of an environment image, and a textured fluorescent print, and
-// measured materials under smooth and rough coats on smooth-shaded meshes.
+// measured materials under smooth and rough coats on smooth-shaded meshes, and four pbrt-v4 scene
+// files.
 // Regions are the pixels whose centre sees each material or the lamp (found with Embree). An
 // unbiased integrator must agree within 4 standard errors of the difference, in every region and
 // in every 6 × 6 block; a consistent one within a few per cent, what its bias leaves at this
@@ -65,6 +66,13 @@ std::vector<AgreementCase> all_cases() {
     // way at this budget (seeds 5 and the default: +5.4 %, −6.4 %), while its pixels away from
     // the silhouette agree within 0.1 % (`kasha regions`, 24 passes).
     cases.push_back({integrator, "lacquered_vase.json", unbiased ? 0.03 : 0.08, true, 32});
+    // pbrt-v4 scene files (docs/pbrt-import.md): RGB walls and a coated sphere; rough metals
+    // under a spot and a point light; dispersive and rough glass under a disk lamp and a sky;
+    // an image and a checkerboard texture and a PLY torus under a sun and a sky.
+    cases.push_back({integrator, "pbrt/cornell_box.pbrt", unbiased ? 0.02 : 0.03, true, 32});
+    cases.push_back({integrator, "pbrt/rough_metals.pbrt", unbiased ? 0.03 : 0.05, true, 32});
+    cases.push_back({integrator, "pbrt/glass.pbrt", 0.05, false, 32, 3});
+    cases.push_back({integrator, "pbrt/textured.pbrt", unbiased ? 0.02 : 0.03, true, 32, 2});
   }
   return cases;
 }
@@ -137,7 +145,9 @@ TEST_P(IntegratorAgreement, RegionsMatchTheReferenceIntegrator) {
 INSTANTIATE_TEST_SUITE_P(Registry, IntegratorAgreement, ::testing::ValuesIn(all_cases()),
                          [](const auto& info) {
                            const AgreementCase& c = info.param;
-                           return c.integrator + "_" + c.scene.substr(0, c.scene.size() - 5);
+                           std::string name = c.integrator + "_" + c.scene.substr(0, c.scene.size() - 5);
+                           std::replace(name.begin(), name.end(), '/', '_');
+                           return name;
                          });
 
 }  // namespace
