@@ -115,5 +115,15 @@ render fluorescent_print_512 "scenes/fluorescent_print.json (${SIZE}²)" "$scene
 scene=$(resized scenes/lacquered_vase.json $SIZE $SIZE); TEMPORARY+=("$scene")
 render lacquered_vase_512 "scenes/lacquered_vase.json (${SIZE}²)" "$scene" --photons 1048576 --time 90
 
+# A pbrt-v4 scene file (docs/pbrt-import.md): the pbrt Cornell box with its lacquered sphere
+# replaced by the measured Post-it from the command line (--material), at 512 × 512 (a copy
+# with the Film's resolution changed).
+copy=scenes/pbrt/.gallery_cornell_box_${SIZE}.pbrt; TEMPORARY+=("$copy")
+sed "s/\"integer xresolution\" \[128\] \"integer yresolution\" \[128\]/\"integer xresolution\" [$SIZE] \"integer yresolution\" [$SIZE]/" \
+  scenes/pbrt/cornell_box.pbrt > "$copy"
+grep -q "xresolution\" \[$SIZE\]" "$copy" || { echo "gallery: could not resize $copy" >&2; exit 1; }
+render pbrt_cornell_box_postit_512 "scenes/pbrt/cornell_box.pbrt (${SIZE}²)" "$copy" \
+  --material lacquer=scenes/materials/postit.json --photons 1048576 --time 90
+
 mv "$TIMES.tmp" "$TIMES"
 echo "gallery: wrote $GALLERY/*.png and $TIMES"

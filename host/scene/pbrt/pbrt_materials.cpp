@@ -273,7 +273,7 @@ nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& para
     roughness(params, c);
     m["conductor"] = c;
   } else if (type == "kasha") {
-    // A material file kasha measured or wrote (docs/pbrt-import.md#measured-materials).
+    // A material file kasha measured or wrote (docs/pbrt-import.md#measured-materials-in-pbrt-scenes).
     const std::string file = params.get_string("file", "");
     if (file.empty()) pbrt_fail(where, "Material \"kasha\" needs \"string file\"");
     m["file"] = file;

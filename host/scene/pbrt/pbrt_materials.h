@@ -1,6 +1,6 @@
 #pragma once
 // pbrt-v4's `Texture`, `Material` and `MakeNamedMaterial` as kasha textures and materials
-// (docs/pbrt-import.md#materials): diffuse, coateddiffuse, dielectric, conductor, and kasha's own
+// (docs/pbrt-import.md#materials-and-textures): diffuse, coateddiffuse, dielectric, conductor, and kasha's own
 // measured materials; imagemap, checkerboard, scale and constant textures.
 #include <filesystem>
 #include <map>
