@@ -401,3 +401,46 @@ ObjectInstance "card"
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("expected NAME=FILE"), std::string::npos) << r.err;
 }
+
+// Lights that are not shapes, as pbrt-v4 places and scales them: positions through the current
+// transform, `power` as pbrt-v4's k_e (4π for a point light), an environment image square and
+// equal-area with its rotation, a uniform sky's spectrum divided by its photometric integral.
+TEST(PbrtImport, LightSourcesArePlacedAndScaledAsInPbrtV4) {
+  const nlohmann::json s = import_text("l.pbrt", scene(std::string(R"(
+AttributeBegin
+  Translate 1 2 3
+  LightSource "point" "point3 from" [0 1 0] "spectrum I" [400 1 700 1] "float power" 10
+  LightSource "spot" "point3 from" [0 0 0] "point3 to" [0 -1 0] "float coneangle" 20 "float conedeltaangle" 4
+AttributeEnd
+LightSource "distant" "point3 from" [0 1 0] "point3 to" [0 0 0] "rgb L" [1 1 1] "float illuminance" 3
+AttributeBegin
+  Rotate -90 1 0 0
+  LightSource "infinite" "string filename" "sky.exr" "float scale" 2
+AttributeEnd
+LightSource "infinite" "spectrum L" [400 2 700 2]
+)") + kQuad));
+  const nlohmann::json& l = s.at("lights");
+  ASSERT_EQ(l.size(), 5u);
+  const SpectrumPtr& ybar = cie_cmf(Observer::cie1931_2deg)[1];
+  double y = 0;  // ∫ȳ of the constant 1 over 400–700 nm, in pbrt-v4's 1 nm steps
+  for (int nm = 400; nm <= 700; ++nm) y += ybar->value(nm);
+  EXPECT_EQ(l[0].at("type"), "point");
+  EXPECT_EQ(l[0].at("position"), nlohmann::json({1, 3, 3}));
+  EXPECT_NEAR(l[0].at("intensity").at("scale").get<double>(), 10 / (4 * M_PI) / y, 1e-12 / y);
+  EXPECT_EQ(l[1].at("from"), nlohmann::json({1, 2, 3}));
+  EXPECT_EQ(l[1].at("to"), nlohmann::json({1, 1, 3}));
+  EXPECT_EQ(l[1].at("cone_deg"), 20);
+  EXPECT_EQ(l[1].at("cone_delta_deg"), 4);
+  EXPECT_EQ(l[1].at("intensity").at("rgb_illuminant"), nlohmann::json({1, 1, 1}));  // D65
+  EXPECT_EQ(l[2].at("type"), "distant");
+  EXPECT_EQ(l[2].at("irradiance").at("rgb_illuminant"), nlohmann::json({1, 1, 1}));
+  const double d65 = l[1].at("intensity").at("scale").get<double>();  // 1 / ∫ȳ D65
+  EXPECT_NEAR(l[2].at("irradiance").at("scale").get<double>(), 3 * d65, 1e-15);
+  EXPECT_EQ(l[3].at("image"), "sky.exr");
+  EXPECT_EQ(l[3].at("mapping"), "equal_area");
+  EXPECT_NEAR(l[3].at("scale").get<double>(), 2 * d65, 1e-15);
+  // Rx(−90°): y → −z, z → y.
+  expect_matrix(l[3].at("transform").at("matrix").get<std::vector<double>>(),
+                {1, 0, 0, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 1}, "environment rotation");
+  EXPECT_NEAR(l[4].at("radiance").at("scale").get<double>(), 1 / (2 * y), 1e-12 / y);
+}

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <csignal>
+#include <initializer_list>
 
 namespace kasha {
 
@@ -36,14 +37,39 @@ extern "C" void on_signal_count(int) {
   ++g_requests;
 }
 
+// The handler kasha last installed, and its flags: what reassert_handler() puts back.
+std::atomic<void (*)(int)> g_handler{nullptr};
+std::atomic<int> g_flags{0};
+
 void install(void (*handler)(int), int flags = SA_RESTART, struct sigaction* int_before = nullptr,
              struct sigaction* term_before = nullptr) {
   struct sigaction action = {};
   action.sa_handler = handler;
   sigemptyset(&action.sa_mask);
   action.sa_flags = flags;  // SA_RESTART: blocking reads and writes carry on; the flag is polled
+  g_handler = handler;
+  g_flags = flags;
   sigaction(SIGINT, &action, int_before);
   sigaction(SIGTERM, &action, term_before);
+}
+
+// PoCL's LLVM installs its own handlers over kasha's the first time it compiles lazily (a
+// kernel's variant at its first launch, in a worker thread). They are one-shot (SA_RESETHAND):
+// the signal that runs one resets the action to the default, so a second signal in the moment
+// before LLVM puts kasha's back (Ctrl-C and `timeout` signal both the process and its group)
+// killed kasha without a word or an image. kasha takes its handlers back whenever it polls.
+void reassert_handler() {
+  void (*handler)(int) = g_handler;
+  if (!handler) return;
+  for (int sig : {SIGINT, SIGTERM}) {
+    struct sigaction current = {};
+    if (sigaction(sig, nullptr, &current) != 0 || current.sa_handler == handler) continue;
+    struct sigaction action = {};
+    action.sa_handler = handler;
+    sigemptyset(&action.sa_mask);
+    action.sa_flags = g_flags;
+    sigaction(sig, &action, nullptr);
+  }
 }
 }  // namespace
 
@@ -61,6 +87,10 @@ InterruptsDeferred::InterruptsDeferred() {
 }
 
 InterruptsDeferred::~InterruptsDeferred() {
+  g_handler = int_before_.sa_handler == SIG_DFL || int_before_.sa_handler == SIG_IGN
+                  ? nullptr
+                  : int_before_.sa_handler;
+  g_flags = int_before_.sa_flags;
   sigaction(SIGINT, &int_before_, nullptr);
   sigaction(SIGTERM, &term_before_, nullptr);
 }
@@ -87,6 +117,7 @@ void request_interrupt() {
 }
 
 bool interrupt_requested() {
+  reassert_handler();
   return g_requests > 0;
 }
 

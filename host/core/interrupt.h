@@ -14,6 +14,8 @@ constexpr int kInterruptExitCode = 130;
 void install_exit_on_interrupt();
 // For the commands that poll interrupt_requested().
 void install_interrupt_handler();
+// Whether a signal asked to stop. Each poll also puts kasha's handlers back where PoCL's LLVM
+// replaced them with its one-shot ones (interrupt.cpp, reassert_handler).
 bool interrupt_requested();
 // Raises the flag as a signal would: an MPI rank told by rank 0 that the job was interrupted.
 void request_interrupt();
