@@ -17,6 +17,7 @@
 #include "render_support.h"
 #include "scene/pbrt/pbrt_import.h"
 #include "scene/pbrt/pbrt_parameters.h"
+#include "scene/pbrt/pbrt_subdivision.h"
 #include "scene/pbrt/pbrt_tokenizer.h"
 #include "scene/scene.h"
 #include "test_support.h"
@@ -443,4 +444,39 @@ LightSource "infinite" "spectrum L" [400 2 700 2]
   expect_matrix(l[3].at("transform").at("matrix").get<std::vector<double>>(),
                 {1, 0, 0, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 1}, "environment rotation");
   EXPECT_NEAR(l[4].at("radiance").at("scale").get<double>(), 1 / (2 * y), 1e-12 / y);
+}
+
+// Loop subdivision (pbrt-v4's loopsubdiv) on the unit octahedron, worked by hand: every vertex has
+// valence 4, so β = 3/32 and the limit weight γ = 1/(4 + 3/(8β)) = 1/8; an original vertex v's
+// limit point is (1 − 4γ)v + γ·Σ(neighbours) = v/2 (its neighbours sum to 0), and after one level
+// (v → 5/8 v, an edge's new vertex 3/8 of its ends) again v/2: the limit surface does not depend on
+// the level. A flat open mesh stays flat and keeps its boundary's corners' weights (3/5, 1/5).
+TEST(PbrtImport, LoopSubdivisionMatchesTheLimitWorkedByHand) {
+  const std::vector<double> p = {1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1, 0, 0, 0, 1, 0, 0, -1};
+  const std::vector<double> idx = {0, 2, 4, 2, 1, 4, 1, 3, 4, 3, 0, 4,
+                                   2, 0, 5, 1, 2, 5, 3, 1, 5, 0, 3, 5};
+  for (int levels : {0, 1, 2}) {
+    const SubdividedMesh m = loop_subdivide(p, idx, levels);
+    ASSERT_EQ(m.indices.size(), 24u * (1u << (2 * levels))) << levels;
+    for (int v = 0; v < 6; ++v) {  // the original vertices keep their indices
+      const Eigen::Vector3d x(m.positions[3 * v], m.positions[3 * v + 1], m.positions[3 * v + 2]);
+      const Eigen::Vector3d want = 0.5 * Eigen::Vector3d(p[3 * v], p[3 * v + 1], p[3 * v + 2]);
+      EXPECT_LT((x - want).norm(), 1e-12) << "level " << levels << " vertex " << v;
+      const Eigen::Vector3d n(m.normals[3 * v], m.normals[3 * v + 1], m.normals[3 * v + 2]);
+      EXPECT_GT(n.normalized().dot(want.normalized()), 1 - 1e-12) << "outward, along v";
+    }
+  }
+  // Two triangles of a unit square in z = 0: flat, and the corner (0, 0) — two boundary
+  // neighbours (1, 0) and (0, 1) — goes to 3/5·(0, 0) + 1/5·((1, 0) + (0, 1)) = (0.2, 0.2).
+  const SubdividedMesh sq = loop_subdivide({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, {0, 1, 2, 0, 2, 3}, 0);
+  EXPECT_NEAR(sq.positions[0], 0.2, 1e-12);
+  EXPECT_NEAR(sq.positions[1], 0.2, 1e-12);
+  const SubdividedMesh flat = loop_subdivide({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, {0, 1, 2, 0, 2, 3}, 3);
+  for (size_t i = 2; i < flat.positions.size(); i += 3) EXPECT_EQ(flat.positions[i], 0);
+  // Through the importer: a subdivided octahedron renders as "triangles" with normals.
+  const nlohmann::json s = import_text("sub.pbrt", scene(R"(Shape "loopsubdiv" "integer levels" 2
+    "point3 P" [1 0 0 -1 0 0 0 1 0 0 -1 0 0 0 1 0 0 -1]
+    "integer indices" [0 2 4 2 1 4 1 3 4 3 0 4 2 0 5 1 2 5 3 1 5 0 3 5])"));
+  EXPECT_EQ(s.at("shapes")[0].at("indices").size(), 3u * 8 * 16);
+  EXPECT_TRUE(s.at("shapes")[0].contains("normals"));
 }

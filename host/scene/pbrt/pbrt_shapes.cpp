@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "core/printable.h"
+#include "scene/pbrt/pbrt_subdivision.h"
 
 namespace kasha {
 
@@ -80,7 +81,7 @@ nlohmann::json pbrt_shape(const std::string& type, const PbrtParameters& params,
       pbrt_warn(a->where, "alpha cut-outs are not built in kasha: the shape is rendered whole");
   nlohmann::json shape;
   if (type == "trianglemesh" || type == "bilinearmesh" || type == "loopsubdiv") {
-    const std::vector<double> p = params.get_numbers("P", "point3");
+    std::vector<double> p = params.get_numbers("P", "point3");
     std::vector<double> indices = params.get_numbers("indices", "integer");
     const int corners = type == "bilinearmesh" ? 4 : 3;
     if (p.empty()) pbrt_fail(where, "Shape " + in_quotes(type) + " has no \"P\"");
@@ -105,8 +106,20 @@ nlohmann::json pbrt_shape(const std::string& type, const PbrtParameters& params,
       pbrt_warn(where, "tangents \"S\" are not used by kasha (its tangent frames follow the normal)");
     params.get_numbers("faceIndices", "integer");  // per-face ids for pbrt's ptex textures
     if (type == "loopsubdiv") {
-      params.get_int("levels", 3);
-      pbrt_warn(where, "loopsubdiv: kasha renders the control mesh, without subdivision");
+      // pbrt-v4 subdivides and keeps positions and normals only.
+      const int levels = params.get_int("levels", 3);
+      if (levels < 0 || levels > 10)
+        pbrt_fail(where, "loopsubdiv: \"levels\" must lie in [0, 10]");
+      if (double(indices.size() / 3) * std::pow(4.0, levels) > double(kMaxSubdividedTriangles))
+        pbrt_fail(where, "loopsubdiv: " + std::to_string(levels) + " levels make more than " +
+                             std::to_string(kMaxSubdividedTriangles) + " triangles");
+      if (!n.empty() || !uv.empty())
+        pbrt_warn(where, "loopsubdiv: \"N\" and \"uv\" are not used (pbrt-v4 does not either)");
+      const SubdividedMesh sub = loop_subdivide(p, indices, levels);
+      p = sub.positions;
+      indices = sub.indices;
+      n = sub.normals;  // the faces' winding, so the turn below keeps it
+      uv.clear();
     }
     if (type == "bilinearmesh") {
       // Two triangles per patch (v00 v10 v01 v11): exact for flat patches, which is what

@@ -1,6 +1,7 @@
 #pragma once
 // pbrt-v4's `Shape` directive as a kasha shape in the shape's object space
-// (docs/pbrt-import.md#shapes): triangle and bilinear meshes as "triangles", PLY files as "mesh",
+// (docs/pbrt-import.md#shapes): triangle, bilinear and Loop-subdivided meshes as "triangles", PLY
+// files as "mesh",
 // spheres, disks and cylinders tessellated with pbrt-v4's (u, v) and exact shading normals.
 #include <nlohmann/json.hpp>
 #include <string>
@@ -12,6 +13,8 @@ namespace kasha {
 // Segments around a tessellated sphere, cylinder or disk (and half as many rings along a
 // sphere): 256 keeps a unit sphere within 8·10⁻⁵ of its surface, and its normals are exact.
 constexpr int kPbrtSegments = 256;
+// A `loopsubdiv` may make at most this many triangles (four per triangle a level).
+constexpr long kMaxSubdividedTriangles = 1L << 25;
 
 // The kasha shape (without "material", "transform" or emission), or null for a shape kasha leaves
 // out with a warning (curves).
