@@ -1,0 +1,70 @@
+// kasha's images of the four pbrt-v4 test scenes (scenes/pbrt/) against pbrt-v4's own renders of
+// the same files (tests/data/pbrt-v4/, how they were made: tests/data/SOURCES.md): in every region
+// of at least 100 pixels that sees one material, the mean X, Y and Z agree within 1 % — the issue's
+// bound for an imported scene. Backward at 32 passes, about 5 s a scene; pbrt-v4 at 1024 samples
+// per pixel. Left out, with their measured differences (docs/materials.md, docs/pbrt-import.md):
+// rough coats (kasha 3–5 % darker under a lamp or the sun) and the anisotropic aluminium, whose
+// brushing direction follows kasha's tangent frame, not the sphere's ∂p/∂u (+4 %).
+#include <gtest/gtest.h>
+
+#include "image/exr_io.h"
+#include "render_support.h"
+#include "test_support.h"
+
+using namespace kasha;
+using namespace kasha::test;
+
+namespace {
+
+struct ReferenceCase {
+  std::string scene;
+  std::vector<std::string> left_out;  // material names, or their ":LINE" ending
+};
+
+void PrintTo(const ReferenceCase& c, std::ostream* os) {
+  *os << c.scene;
+}
+
+bool left_out(const std::string& material, const std::vector<std::string>& list) {
+  for (const std::string& m : list)
+    if (material == m || (material.size() > m.size() &&
+                          material.compare(material.size() - m.size(), m.size(), m) == 0))
+      return true;
+  return false;
+}
+
+class PbrtReference : public ::testing::TestWithParam<ReferenceCase> {};
+
+}  // namespace
+
+TEST_P(PbrtReference, RegionMeansMatchPbrtV4WithinOnePercent) {
+  const ReferenceCase& c = GetParam();
+  RenderSettings s;
+  s.spectral = false;
+  s.passes = 32;
+  const RenderResult kasha = render_scene(source_path("scenes/pbrt/" + c.scene + ".pbrt"), s);
+  const Image pbrt = read_exr(source_path("tests/data/pbrt-v4/" + c.scene + ".exr"));
+  ASSERT_EQ(pbrt.width, kasha.image.width);
+  ASSERT_EQ(pbrt.height, kasha.image.height);
+  int compared = 0;
+  for (const auto& [material, pixels] : primary_hit_regions(kasha.scene, kasha.scene.camera)) {
+    if (pixels.size() < 100 || left_out(material, c.left_out)) continue;
+    const BinStats k = pixel_statistics(kasha.image, false, pixels);
+    const BinStats p = pixel_statistics(pbrt, false, pixels);
+    std::printf("  %-60s kasha/pbrt-v4 - 1: X %+.2f %%, Y %+.2f %%, Z %+.2f %%\n",
+                material.substr(material.rfind('/') + 1).c_str(), 100 * (k.mean[0] / p.mean[0] - 1),
+                100 * (k.mean[1] / p.mean[1] - 1), 100 * (k.mean[2] / p.mean[2] - 1));
+    for (int row = 0; row < 3; ++row)
+      EXPECT_NEAR(k.mean[row], p.mean[row], 0.01 * p.mean[row]) << material << " row " << row;
+    ++compared;
+  }
+  EXPECT_GE(compared, 2);  // the textured scene: its floor and card
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, PbrtReference,
+    ::testing::Values(ReferenceCase{"cornell_box", {"lacquer"}},
+                      ReferenceCase{"rough_metals", {"rough_metals.pbrt:28"}},
+                      ReferenceCase{"glass", {}},
+                      ReferenceCase{"textured", {"textured.pbrt:36"}}),
+    [](const auto& info) { return info.param.scene; });
