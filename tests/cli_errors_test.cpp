@@ -55,13 +55,11 @@ struct Case {
   std::string where;  // expected after "kasha: error: " (a prefix of the rest of the line)
 };
 
-// Runs `args` with `signal` sent after `after_s` seconds (fractions allowed) through timeout(1),
-// which signals the process group too, as a terminal does for Ctrl-C.
+// Runs `args` with `signal` sent after `after_s` seconds (fractions allowed) to kasha's process
+// group, as a terminal does for Ctrl-C (test_support.h).
 test::CommandResult run_with_signal(const std::string& env, const std::string& args,
                                     const char* signal, double after_s) {
-  std::ostringstream prefix;
-  prefix << env << " timeout --preserve-status -s " << signal << " " << after_s;
-  return test::run_kasha_env(prefix.str(), args);
+  return test::run_kasha_signalled(env, args, signal, after_s);
 }
 
 // Runs each case with {out} (an empty folder that must stay empty) and `vars` expanded in its

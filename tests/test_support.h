@@ -31,6 +31,10 @@ CommandResult run_kasha(const std::string& args);
 // sent after that many seconds, as Ctrl-C would.
 CommandResult run_kasha_env(const std::string& env, const std::string& args,
                             int interrupt_after_s = 0);
+// Runs kasha in a process group of its own and sends `signal` ("INT", "TERM") to the group once
+// after `after_s` seconds, as a terminal does for Ctrl-C; `env` as above (may be empty).
+CommandResult run_kasha_signalled(const std::string& env, const std::string& args,
+                                  const std::string& signal, double after_s);
 
 // Runs f and returns the kasha::Error message it throws (fails the test if it throws nothing).
 template <typename F>
