@@ -131,7 +131,9 @@ def cosine_dir(n, up):  # up=+1 or -1
     u0=rng.random(n); u1=rng.random(n); r=np.sqrt(u0); phi=2*np.pi*u1
     return np.stack([r*np.cos(phi), r*np.sin(phi), up*np.sqrt(np.maximum(0,1-u0))],1)
 def power(a,b): return a*a/np.maximum(a*a+b*b,1e-300)
-def pbrt_f(th_o, th_i, n=2000000, depth_max=10):
+def pbrt_f(th_o, th_i, n=2000000, depth_max=10, consistent_mis=False):
+    # consistent_mis: the second strategy's weight takes the density the first has of the same
+    # direction (sampling -wn from wi through the interface), so that the weights sum to one.
     wo=np.tile([np.sin(np.radians(th_o)),0,np.cos(np.radians(th_o))],(n,1))
     wi=np.tile([-np.sin(np.radians(th_i)),0,np.cos(np.radians(th_i))],(n,1))
     f=np.zeros(n)
@@ -150,6 +152,8 @@ def pbrt_f(th_o, th_i, n=2000000, depth_max=10):
         beta=beta*rho
         # NEE along the BSDF sample: exit f(-wn -> wi)? pbrt: exitInterface.f(-w, wi) with w = new dir (up)
         fexit, pexit = bt_f_pdf(-wn, wi, True)
+        if consistent_mis:
+            _, pexit = bt_f_pdf(wi, -wn, False)
         bs_pdf=np.abs(wn[:,2])/np.pi
         wt=power(bs_pdf, pexit)
         f+=beta*fexit*wt
@@ -160,28 +164,4 @@ def pbrt_f(th_o, th_i, n=2000000, depth_max=10):
         if not beta.any(): break
     return f.mean()
 print("pbrt walk f at 45/45:", pbrt_f(45,45))
-# The same walk with the MIS weight of the second strategy using the density strategy 1 has of
-# the same direction (sampling -wn from wi through the interface), so that the weights sum to 1.
-def pbrt_f_fixed(th_o, th_i, n=2000000, depth_max=10):
-    wo=np.tile([np.sin(np.radians(th_o)),0,np.cos(np.radians(th_o))],(n,1))
-    wi=np.tile([-np.sin(np.radians(th_i)),0,np.cos(np.radians(th_i))],(n,1))
-    f=np.zeros(n)
-    wos_w, wos_wt, _, ok1 = sample_transmission(wo, True, n)
-    wis_w, wis_wt, wis_pdf, ok2 = sample_transmission(wi, False, n)
-    alive=ok1&ok2&(wos_wt>0)&(wis_wt>0)
-    beta=np.where(alive, wos_wt, 0)
-    for depth in range(depth_max):
-        diff_pdf=np.abs(wis_w[:,2])/np.pi
-        wt=power(wis_pdf, diff_pdf)
-        f+=beta*(rho/np.pi)*np.abs(wis_w[:,2])*wt*wis_wt/np.maximum(np.abs(wis_w[:,2]),1e-300)
-        wn=cosine_dir(n, +1.0)
-        beta=beta*rho
-        fexit, _ = bt_f_pdf(-wn, wi, True)
-        _, p1 = bt_f_pdf(wi, -wn, False)   # density of strategy 1 at this direction
-        bs_pdf=np.abs(wn[:,2])/np.pi
-        wt=power(bs_pdf, p1)
-        f+=beta*fexit*wt
-        wr, rw, okr = sample_reflection(-wn, n)
-        beta=np.where(okr, beta*rw, 0)
-    return f.mean()
-print("walk with consistent MIS f at 45/45:", pbrt_f_fixed(45,45))
+print("walk with consistent MIS f at 45/45:", pbrt_f(45, 45, consistent_mis=True))

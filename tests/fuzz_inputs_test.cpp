@@ -270,6 +270,28 @@ bool one_line(const std::string& message) {
   return !message.empty() && valid_utf8(message);
 }
 
+// One pass of `integrator` on a scene that loaded, at one sample per pixel: every pixel finite,
+// or a kasha::Error of one line (no emitter with power left, say). 1 when it rendered.
+int render_one_pass(ClContext& cl, const Scene& scene, const std::string& integrator, int c) {
+  IntegratorSettings settings;
+  settings.spp = 1;
+  settings.photons = 2048;
+  settings.seed = static_cast<unsigned>(c);
+  try {
+    DeviceScene device_scene(cl, scene);
+    RenderJob job(cl, scene, device_scene, integrator, settings, false);
+    job.pass(0);
+    for (float v : job.film().image().xyz) {
+      EXPECT_TRUE(std::isfinite(v)) << integrator << " wrote a non-finite pixel";
+      if (!std::isfinite(v)) return 0;
+    }
+    return 1;
+  } catch (const Error& e) {
+    EXPECT_TRUE(one_line(e.what())) << e.what();
+    return 0;
+  }
+}
+
 }  // namespace
 
 TEST(Fuzz, MutatedInputsLoadOrGiveOneLineAndRenderFinite) {
@@ -292,22 +314,7 @@ TEST(Fuzz, MutatedInputsLoadOrGiveOneLineAndRenderFinite) {
           scene.grid.min_nm != reference.grid.min_nm ||
           scene.camera.width * scene.camera.height > 64)
         continue;
-      IntegratorSettings settings;
-      settings.spp = 1;
-      settings.photons = 2048;
-      settings.seed = static_cast<unsigned>(c);
-      const std::string& integrator = integrators[(c / 4) % integrators.size()];
-      try {
-        DeviceScene device_scene(cl, scene);
-        RenderJob job(cl, scene, device_scene, integrator, settings, false);
-        job.pass(0);
-        Image image = job.film().image();
-        for (float v : image.xyz)
-          ASSERT_TRUE(std::isfinite(v)) << integrator << " wrote a non-finite pixel";
-        ++rendered;
-      } catch (const Error& e) {
-        EXPECT_TRUE(one_line(e.what())) << e.what();  // e.g. no emitter with power left
-      }
+      rendered += render_one_pass(cl, scene, integrators[(c / 4) % integrators.size()], c);
     } catch (const Error& e) {
       ++refused;
       EXPECT_TRUE(one_line(e.what())) << e.what();
@@ -410,21 +417,7 @@ TEST(Fuzz, MutatedPbrtScenesLoadOrGiveOneLine) {
       Scene scene = load_scene(main.string());
       ++loaded;
       if (c % 4 == 0 && scene.camera.width * scene.camera.height <= 64) {
-        IntegratorSettings settings;
-        settings.spp = 1;
-        settings.photons = 2048;
-        settings.seed = static_cast<unsigned>(c);
-        const std::string& integrator = integrators[(c / 4) % integrators.size()];
-        try {
-          DeviceScene device_scene(cl, scene);
-          RenderJob job(cl, scene, device_scene, integrator, settings, false);
-          job.pass(0);
-          for (float v : job.film().image().xyz)
-            ASSERT_TRUE(std::isfinite(v)) << integrator << " wrote a non-finite pixel";
-          ++rendered;
-        } catch (const Error& e) {
-          EXPECT_TRUE(one_line(e.what())) << e.what();
-        }
+        rendered += render_one_pass(cl, scene, integrators[(c / 4) % integrators.size()], c);
       }
     } catch (const Error& e) {
       ++refused;
