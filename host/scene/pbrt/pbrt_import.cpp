@@ -30,10 +30,6 @@ using Matrix = Eigen::Matrix4d;
 // Include and Import nest at most this deep: a file that includes itself ends here.
 constexpr int kMaxIncludeDepth = 32;
 
-std::string in_quotes(const std::string& s) {
-  return "\"" + printable(s) + "\"";
-}
-
 nlohmann::json row_major(const Matrix& m) {
   std::vector<double> out;
   for (int r = 0; r < 4; ++r)
@@ -97,7 +93,7 @@ class Importer {
     parse_file(main_file_, main_file_, PbrtLocation{}, 0);
     if (!stack_.empty())
       pbrt_fail(stack_.back().where, "AttributeBegin without its AttributeEnd");
-    if (object_) pbrt_fail(object_where_, "ObjectBegin without its ObjectEnd");
+    if (object_) pbrt_fail(object_->where, "ObjectBegin without its ObjectEnd");
     if (!camera_seen_) make_camera(Matrix::Identity(), "perspective", PbrtParameters{}, {});
     if (shapes_.empty())
       throw Error(printable(main_file_) + ": the scene has no shape that kasha renders");
@@ -361,8 +357,6 @@ class Importer {
       stack_.push_back({state_, false, d.where});
       object_ = &objects_[object];
       object_->where = d.where;
-      object_name_ = object;
-      object_where_ = d.where;
     } else if (name == "ObjectEnd") {
       if (!object_) pbrt_fail(d.where, "ObjectEnd without its ObjectBegin");
       object_ = nullptr;
@@ -648,8 +642,6 @@ class Importer {
   nlohmann::json shapes_ = nlohmann::json::array();
   std::map<std::string, ObjectDefinition> objects_;
   ObjectDefinition* object_ = nullptr;
-  std::string object_name_;
-  PbrtLocation object_where_;
   std::set<std::string> warned_;
 };
 

@@ -7,10 +7,6 @@ namespace kasha {
 
 namespace {
 
-std::string in_quotes(const std::string& s) {
-  return "\"" + printable(s) + "\"";
-}
-
 const PbrtTexture& texture_named(const PbrtParameter& p, const std::map<std::string, PbrtTexture>& in,
                                  const char* kind) {
   if (p.strings.size() != 1) pbrt_fail(p.where, in_quotes(p.declaration()) + " names one texture");

@@ -14,6 +14,10 @@ void pbrt_fail(const PbrtLocation& where, const std::string& why) {
   throw Error(where.str() + ": " + why);
 }
 
+std::string in_quotes(const std::string& s) {
+  return "\"" + printable(s) + "\"";
+}
+
 void pbrt_warn(const PbrtLocation& where, const std::string& why) {
   warn(where.str() + ": " + why);
 }

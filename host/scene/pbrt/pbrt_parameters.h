@@ -53,6 +53,9 @@ class PbrtParameters {
   std::vector<PbrtParameter> params_;
 };
 
+// A name from the file in quotes, printable (control bytes escaped), for messages.
+std::string in_quotes(const std::string& s);
+
 // "FILE:LINE: why" as a kasha::Error.
 [[noreturn]] void pbrt_fail(const PbrtLocation& where, const std::string& why);
 void pbrt_warn(const PbrtLocation& where, const std::string& why);

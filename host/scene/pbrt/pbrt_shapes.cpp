@@ -11,10 +11,6 @@ namespace kasha {
 
 namespace {
 
-std::string in_quotes(const std::string& s) {
-  return "\"" + printable(s) + "\"";
-}
-
 // A grid of (u, v) samples, `nu` × `nv` cells, as indexed triangles: each cell two triangles
 // wound so that their normal is ∂p/∂u × ∂p/∂v (pbrt-v4's orientation of its quadrics).
 struct GridMesh {

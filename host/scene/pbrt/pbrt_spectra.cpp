@@ -84,25 +84,27 @@ nlohmann::json pbrt_spectrum(const PbrtParameter& p, PbrtSpectrumUse use,
   return {{"csv", name}};
 }
 
-double pbrt_photometric(const nlohmann::json& spectrum, const std::filesystem::path& base_dir) {
-  nlohmann::json s = spectrum;
-  // pbrt-v4 normalises an RGB illuminant by its illuminant alone; the RGB's own luminance stays.
-  if (s.is_object() && s.contains("rgb_illuminant")) return pbrt_d65_photometric();
-  const SpectrumPtr parsed =
-      parse_spectrum(JsonNode::parse_text(s.dump(), "a pbrt-v4 spectrum", base_dir));
+namespace {
+// ∫ ȳ s in pbrt-v4's 1 nm steps over 360–830 nm.
+double photometric_sum(const Spectrum& s) {
   const SpectrumPtr& ybar = cie_cmf(Observer::cie1931_2deg)[1];
   double sum = 0;
-  for (int nm = 360; nm <= 830; ++nm) sum += ybar->value(nm) * parsed->value(nm);
+  for (int nm = 360; nm <= 830; ++nm) sum += ybar->value(nm) * s.value(nm);
   return sum;
+}
+}  // namespace
+
+double pbrt_photometric(const nlohmann::json& spectrum, const std::filesystem::path& base_dir) {
+  // pbrt-v4 normalises an RGB illuminant by its illuminant alone; the RGB's own luminance stays.
+  if (spectrum.is_object() && spectrum.contains("rgb_illuminant")) return pbrt_d65_photometric();
+  return photometric_sum(
+      *parse_spectrum(JsonNode::parse_text(spectrum.dump(), "a pbrt-v4 spectrum", base_dir)));
 }
 
 double pbrt_d65_photometric() {
-  const SpectrumPtr white = parse_spectrum(
-      JsonNode::parse_text(R"({"rgb_illuminant": [1, 1, 1]})", "D65", ""));
-  const SpectrumPtr& ybar = cie_cmf(Observer::cie1931_2deg)[1];
-  double sum = 0;
-  for (int nm = 360; nm <= 830; ++nm) sum += ybar->value(nm) * white->value(nm);
-  return sum;
+  static const double d65 = photometric_sum(
+      *parse_spectrum(JsonNode::parse_text(R"({"rgb_illuminant": [1, 1, 1]})", "D65", "")));
+  return d65;
 }
 
 nlohmann::json pbrt_light_spectrum(const PbrtParameter* p, double scale,
