@@ -1,26 +1,12 @@
-/* Photon mapping's gather on the device (included by photon_map.cl): a hashed uniform grid over a
- * batch of stored photons built by counting sort (SmallVCM's hash grid: count per cell, prefix
- * sum, scatter), the gather at each pixel's visible point through it, and the per-pixel SPPM
- * statistics (sppm_statistics.h) kept here between passes.
+/* Photon mapping's gather on the device (included by photon_map.cl): the hashed grid's cell size
+ * from the visible points' radii (the grid itself: hash_grid.cl), the gather at each pixel's
+ * visible point through it, and the per-pixel SPPM statistics (sppm_statistics.h) kept here
+ * between passes.
  * Only disc_coverage, which traces rays, takes the scene's and the film's parameters; the others
  * take their own arguments alone (KernelIntegrator::launch_own). */
 
+#include "hash_grid.cl"
 #include "sppm_statistics.h"
-
-/* The gather's tests must round as nanoflann's on the host does (the two are compared). */
-#pragma OPENCL FP_CONTRACT OFF
-
-inline int3 grid_cell(float3 x, float inv_cell) {
-  return convert_int3_sat_rtn(x * inv_cell);
-}
-
-inline uint grid_hash(int3 c, uint mask) {
-  return ((uint)c.x * 73856093u ^ (uint)c.y * 19349663u ^ (uint)c.z * 83492791u) & mask;
-}
-
-inline float3 record_position(const __global float* r) {
-  return (float3)(r[0], r[1], r[2]);
-}
 
 /* One work-group: the grid's cell size from the radii of this pass's visible points — twice their
  * mean, but at least a quarter of the largest, so a gather visits at most 9³ cells and a typical
@@ -48,87 +34,6 @@ __kernel void grid_cell_size(__global const float* visible_points, __global cons
     if (!(size > 0.0f)) size = 1.0f;
     cell[0] = size;
     cell[1] = 1.0f / size;
-  }
-}
-
-/* Per photon: its cell's hash, counted. */
-__kernel void grid_count(__global const float* store, __global const float* cell, uint mask,
-                         __global int* cell_count, __global uint* photon_cell, int item_end) {
-  int i = get_global_id(0);
-  if (i >= item_end) return;
-  uint h = grid_hash(grid_cell(record_position(store + (long)i * KASHA_PHOTON_FLOATS(KASHA_BINS)), cell[1]), mask);
-  photon_cell[i] = h;
-  atomic_inc(cell_count + h);
-}
-
-/* One work-group: cell_end[h] = Σ_{j<h} cell_count[j], each work item scanning a contiguous chunk
- * (the scatter then advances it to the cell's end). */
-__kernel void grid_scan(__global const int* cell_count, int cells, __global int* cell_end, int item_end) {
-  __local int total[256];
-  int l = get_local_id(0), n = min((int)get_local_size(0), 256);
-  int chunk = (cells + n - 1) / n;
-  int first = min(l * chunk, cells), last = min(first + chunk, cells);
-  int s = 0;
-  if (l < n) {
-    for (int j = first; j < last; ++j) s += cell_count[j];
-    total[l] = s;
-  }
-  barrier(CLK_LOCAL_MEM_FENCE);
-  if (l >= n) return;
-  int offset = 0;
-  for (int i = 0; i < l; ++i) offset += total[i];
-  for (int j = first; j < last; ++j) {
-    cell_end[j] = offset;
-    offset += cell_count[j];
-  }
-}
-
-/* Per photon: its index into its cell's run of the sorted array. */
-__kernel void grid_scatter(__global const uint* photon_cell, __global int* cell_end, __global int* sorted,
-                           int item_end) {
-  int i = get_global_id(0);
-  if (i >= item_end) return;
-  sorted[atomic_inc(cell_end + photon_cell[i])] = i;
-}
-
-/* A stored photon's key: its index in the pass, then the bounce it was stored at. */
-inline ulong record_key(const __global float* store, int record) {
-  const __global float* r = store + (long)record * KASHA_PHOTON_FLOATS(KASHA_BINS);
-  return (ulong)as_uint(r[KASHA_PHOTON_INDEX]) << 32 | as_uint(r[KASHA_PHOTON_DEPTH]);
-}
-
-/* Per hash cell: its run of `sorted` ordered by key (heap sort, in place), as the scatter's atomics
- * leave it in arrival order. A gather then sums each cell's photons in one order whatever the
- * launches and the device, so the same photons always give the same image, bit for bit. */
-__kernel void grid_sort_cells(__global const float* store, __global const int* cell_count,
-                              __global const int* cell_end, __global int* sorted, int item_end) {
-  int h = get_global_id(0);
-  if (h >= item_end) return;
-  int n = cell_count[h];
-  if (n < 2) return;
-  __global int* a = sorted + (cell_end[h] - n);
-  /* Sift-down heap sort: a max-heap over [0, size), its root swapped to the end each round. */
-  for (int start = n / 2 - 1, size = n; size > 1;) {
-    int root;
-    if (start >= 0) {
-      root = start--;
-    } else {
-      --size;
-      int t = a[0];
-      a[0] = a[size];
-      a[size] = t;
-      root = 0;
-    }
-    for (;;) {
-      int child = 2 * root + 1;
-      if (child >= size) break;
-      if (child + 1 < size && record_key(store, a[child + 1]) > record_key(store, a[child])) ++child;
-      if (record_key(store, a[child]) <= record_key(store, a[root])) break;
-      int t = a[root];
-      a[root] = a[child];
-      a[child] = t;
-      root = child;
-    }
   }
 }
 
@@ -161,7 +66,7 @@ __kernel void gather_photons(__global const float* cmf, /* the film's C (film_vi
         uint h = grid_hash(c, mask);
         int end = cell_end[h];
         for (int j = end - cell_count[h]; j < end; ++j) {
-          const __global float* ph = store + (long)sorted[j] * KASHA_PHOTON_FLOATS(KASHA_BINS);
+          const __global float* ph = store + (long)sorted[j] * KASHA_RECORD_FLOATS;
           float3 y = record_position(ph);
           int3 own = grid_cell(y, inv_cell);
           if (own.x != cx || own.y != cy || own.z != cz) continue;

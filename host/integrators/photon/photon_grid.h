@@ -1,16 +1,13 @@
 #pragma once
-// Photon mapping's hashed grid on the device (kernels/photon_gather.cl): its cell size from the
-// pass's gather radii, built over a full store by counting sort — photons per cell, each cell's
-// end by a prefix sum, each photon's place in its cell's run, each run sorted by the photons'
-// keys so the gather sums in one order — and the gather of every visible point through it.
+// Photon mapping's gather on the device (kernels/photon_gather.cl): the hashed grid's cell size
+// from the pass's gather radii, the grid over a full store (render/hash_grid.h), and the gather
+// of every visible point through it.
 #include <cstddef>
 
+#include "render/hash_grid.h"
 #include "render/kernel_launcher.h"
 
 namespace kasha {
-
-// Bytes the grid keeps per store record: its cell and its sorted index.
-constexpr size_t kGridBytesPerRecord = 2 * sizeof(cl_int);
 
 class PhotonGrid {
  public:
@@ -27,16 +24,13 @@ class PhotonGrid {
   void gather(const cl::Buffer& store, size_t count, const cl::Buffer& visible_points,
               const cl::Buffer& radius, cl::Buffer& flux, cl::Buffer& found);
 
-  size_t bytes(size_t capacity) const {
-    return cells_ * 2 * sizeof(float) + capacity * kGridBytesPerRecord;
-  }
+  size_t bytes(size_t capacity) const { return grid_.bytes(capacity); }
 
  private:
   KernelLauncher& device_;
-  size_t cells_;
-  cl::Kernel cell_size_kernel_, count_kernel_, scan_kernel_, scatter_kernel_, sort_kernel_,
-      gather_kernel_;
-  cl::Buffer cell_, cell_count_, cell_end_, photon_cell_, sorted_;
+  HashGrid grid_;
+  cl::Kernel cell_size_kernel_, gather_kernel_;
+  cl::Buffer cell_;
 };
 
 }  // namespace kasha
