@@ -14,23 +14,6 @@
 #include "sampling.h"
 #include "scene_view.h"
 
-/* A Lambert branch chosen with probability `prob`: a cosine-distributed direction. */
-inline void lambert_bounce(CameraWalk* w, const CameraVertex* v, float prob) {
-  float3 ns = v->h.ns;
-  w->dir = sample_cosine_hemisphere(ns, v->u_dir.x, v->u_dir.y);
-  w->specular = false;
-  w->prev_pdf = prob * cosine_hemisphere_pdf(dot(w->dir, ns));
-}
-
-/* The Lambert bounce's factor beyond ρ/π: a coat's t(θo) t(θi) / η² (coat.h), else 1. */
-inline float lambert_weight(const CameraWalk* w, const CameraVertex* v) {
-#if KASHA_COATED
-  return surface_lambert_weight(&v->surf, dot(w->dir, v->h.ns));
-#else
-  return 1.0f;
-#endif
-}
-
 /* One camera path (camera_walk.h) on through every branch; adds its estimate to rows. Returns
  * what the path still carried (relative to its start) if the depth guard cut it, else 0. */
 inline float trace_camera_path(const SceneView* s, const FilmView* f, float3 org, float3 dir, Sampler* sampler,

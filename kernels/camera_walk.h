@@ -298,6 +298,23 @@ inline bool walk_rough(CameraWalk* w, const SceneView* s, const FilmView* f, con
 }
 #endif
 
+/* A Lambert branch chosen with probability `prob`: a cosine-distributed direction. */
+inline void lambert_bounce(CameraWalk* w, const CameraVertex* v, float prob) {
+  float3 ns = v->h.ns;
+  w->dir = sample_cosine_hemisphere(ns, v->u_dir.x, v->u_dir.y);
+  w->specular = false;
+  w->prev_pdf = prob * cosine_hemisphere_pdf(dot(w->dir, ns));
+}
+
+/* The Lambert bounce's factor beyond ρ/π: a coat's t(θo) t(θi) / η² (coat.h), else 1. */
+inline float lambert_weight(const CameraWalk* w, const CameraVertex* v) {
+#if KASHA_COATED
+  return surface_lambert_weight(&v->surf, dot(w->dir, v->h.ns));
+#else
+  return 1.0f;
+#endif
+}
+
 /* After the vertex's bounce: the end of a path that would leak through the surface (hit_no_leak),
  * Russian roulette from the path's KASHA_CAMERA_ROULETTE_FROM-th vertex
  * on (false: the path ends), then the next ray's origin just off the surface. */

@@ -5,41 +5,11 @@
  * spread over work items. A tabulated gloss lobe is splatted too; ideal mirrors, glass and metal
  * seen by the camera are out of reach of light tracing: a delta lobe never sends a photon into a
  * pinhole, so they show black (the render says so). Photons pass through them as anywhere. */
-#include "film_splat.h"
+#include "camera_splat.h"
 #include "film_view.h"
 #include "hit_point.h"
 #include "photon_transport.h"
 #include "scene_view.h"
-
-typedef struct {
-  __global ulong* film; /* 2 words (lo, hi) per pixel and row, film_splat.h */
-  int film_shift;       /* a splat of value v adds v · 2^film_shift units */
-  int overflow;
-} SplatTarget;
-
-/* Whether x (normal ns on the lit side) sees the camera: its pixel, and the factor cos·importance
- * that turns radiance leaving x (per nm, before that factor) into the pixel's average. */
-inline bool camera_connection(const SceneView* s, float3 x, float3 ns, float eps, int* pixel, float* k) {
-  float importance;
-  *pixel = camera_pixel(&s->camera, x, &importance);
-  if (*pixel < 0) return false;
-  float3 to_camera = camera_position(&s->camera) - x;
-  float dist = length(to_camera);
-  float3 dir = to_camera / dist;
-  float cos_x = dot(ns, dir);
-  if (cos_x <= 0.0f) return false;
-  if (dist - eps <= 0.0f) return false;
-  ++s->rays->shadow;
-  if (bvh_occluded(s->nodes, s->leaves, x + ns * eps, dir, 0.0f, dist - eps)) return false;
-  *k = cos_x * importance;
-  return true;
-}
-
-inline void splat_rows(SplatTarget* t, int pixel, const float* rows) {
-  __global ulong* cell = t->film + 2 * (long)pixel * KASHA_FILM_ROWS;
-  for (int r = 0; r < KASHA_FILM_ROWS; ++r)
-    if (rows[r] != 0.0f) splat_fixed(cell + 2 * r, rows[r], t->film_shift, &t->overflow);
-}
 
 #if KASHA_ROUGH
 /* A photon at a rough interface, connected to the camera on whichever side it is: f(camera,

@@ -1,0 +1,280 @@
+// `--integrator vcm`, `bpt` and `ppm`: vertex connection and merging (kernels/vcm.cl; Georgiev
+// et al. 2012, SmallVCM's vertexcm.hxx) and the two modes that share its kernels — connections
+// only (bidirectional path tracing) and merges only (progressive photon mapping, unweighted) —
+// each built with only the code it uses. An iteration is a light pass (a light subpath per
+// pixel, its vertices stored and splatted to the camera), the hashed grid over the stored
+// vertices (render/hash_grid.h), and a camera pass (one path per pixel). The merging radius
+// follows a global schedule r_i = r_1 · i^((α−1)/2), so an iteration depends on nothing but its
+// index and the seed: iterations are passes the ordered scheduler hands to any device or MPI rank,
+// and the image is the same bit for bit however they are shared (docs/integrators.md).
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include "core/error.h"
+#include "core/warning.h"
+#include "integrators/forward/fixed_point_film.h"
+#include "opencl/device_buffer.h"
+#include "render/hash_grid.h"
+#include "render/kernel_integrator.h"
+#include "render/launch_pacer.h"
+#include "vcm_layout.h"
+
+namespace kasha {
+
+namespace {
+
+enum class VcmMode { vcm, bpt, ppm };
+
+// Light subpaths per iteration: one a pixel (camera path p connects to light subpath p), and at
+// least this many, so that a small image's merges and light tracing are not starved of photons.
+constexpr size_t kLeastLightPaths = 1 << 16;
+
+const char* mode_name(VcmMode m) {
+  return m == VcmMode::vcm ? "vcm" : m == VcmMode::bpt ? "bpt" : "ppm";
+}
+
+KernelDefines mode_defines(VcmMode m) {
+  return {{"KASHA_VCM_CONNECT", m == VcmMode::ppm ? "0" : "1"},
+          {"KASHA_VCM_MERGE", m == VcmMode::bpt ? "0" : "1"}};
+}
+
+// What the kernels do not handle yet: one clear line before anything is built.
+void check_scene(const Scene& scene, VcmMode m) {
+  const char* what = nullptr;
+  if (scene.rough())
+    what = "a rough dielectric or conductor";
+  else if (scene.coated())
+    what = "a coated material";
+  else if (scene.shading_normals())
+    what = "shading normals";
+  else if (!scene.lights.empty())
+    what = "a light that is not an emitting shape";
+  else if (scene.dispersive())
+    what = "a dispersive dielectric";
+  else if (scene.textured() || scene.emission_textured())
+    what = "a texture";
+  if (what)
+    throw Error(std::string("--integrator ") + mode_name(m) + ": the scene has " + what +
+                ", which vertex connection and merging does not handle yet (photon and "
+                "backward do)");
+}
+
+}  // namespace
+
+template <VcmMode Mode>
+class VcmIntegrator : public KernelIntegrator {
+ public:
+  explicit VcmIntegrator(const IntegratorSetup& s)
+      : KernelIntegrator(s, (check_scene(s.scene, Mode), "vcm.cl"), mode_defines(Mode)),
+        alpha_(s.settings.alpha),
+        seed_(s.settings.seed),
+        paths_(std::max<size_t>(film_.pixels(), kLeastLightPaths)),
+        record_floats_(KASHA_VCM_FLOATS(s.scene.grid.bins)),
+        bins_(s.scene.grid.bins),
+        light_kernel_(program_, "vcm_light_pass"),
+        camera_kernel_(program_, "vcm_camera_pass") {
+    if (!(alpha_ > 0 && alpha_ < 1)) throw Error("--alpha must lie in (0, 1)");
+    budget_ = s.settings.memory > 0 ? static_cast<size_t>(s.settings.memory)
+                                    : default_memory_budget(cl_.info());
+    set_first_radius(s.scene, s.settings.radius);
+    film_shift_ = fixed_point_shift(scene_.data(), film_.cmf(), film_.spectral());
+    const size_t pixels = film_.pixels(), bins = s.scene.grid.bins;
+    if (paths_ > (1u << 31) - 1) throw Error("vcm: at most 2^31 - 1 pixels");
+    fixed_ = device_buffer(cl_, cells() * 2 * sizeof(cl_ulong), "vcm: the light paths' film");
+    stored_ = device_buffer(cl_, sizeof(cl_int), "vcm: the store's counter");
+    overflow_ = device_buffer(cl_, sizeof(cl_int), "vcm: the rejected splats' counter");
+    path_last_ = device_buffer(cl_, paths_ * sizeof(cl_int), "vcm: the light paths' ends");
+    light_cut_ = device_buffer(cl_, paths_ * sizeof(cl_float), "vcm: depth-guard tallies");
+    camera_cut_ = device_buffer(cl_, pixels * sizeof(cl_float), "vcm: depth-guard tallies");
+    rejected_ = device_buffer(cl_, pixels * sizeof(cl_int), "vcm: rejected counts");
+    // Connections compute a light vertex's f·Φ into a spectrum of the camera path's own.
+    spectra_ = device_buffer(cl_, (Mode == VcmMode::ppm ? 1 : pixels * bins) * sizeof(cl_float),
+                             "vcm: per-path spectra");
+    cell_ = device_buffer(cl_, 2 * sizeof(cl_float), "vcm: the grid's cell size");
+    allocate_store(4 * paths_);  // ~4 stored vertices a light path in ordinary scenes
+  }
+
+  PassResult render_pass(int pass) override {
+    const auto t0 = std::chrono::steady_clock::now();
+    const double device0 = device_seconds_;
+    // The iteration's radius: Georgiev's global schedule, from the iteration's index alone.
+    const double radius = first_radius_ * std::pow(pass + 1.0, (alpha_ - 1) / 2);
+    const double eta = M_PI * radius * radius * static_cast<double>(paths_);
+    const size_t stored = trace_light_paths(pass, eta);
+    const double light_s = device_seconds_ - device0;
+    if (Mode != VcmMode::bpt) {
+      const float cell[2] = {static_cast<float>(2 * radius), static_cast<float>(0.5 / radius)};
+      cl_.queue().enqueueWriteBuffer(cell_, CL_TRUE, 0, sizeof(cell), cell);
+      grid_->build(store_, stored, cell_);
+    }
+    const double grid_s = device_seconds_ - device0 - light_s;
+    const size_t pixels = film_.pixels();
+    film_.clear_pixel_sums();
+    cl_.queue().enqueueFillBuffer(rejected_, cl_int(0), 0, pixels * sizeof(cl_int));
+    size_t done = 0;
+    while (done < pixels) {
+      const size_t n = camera_pacer_.next(pixels - done);
+      const auto t = std::chrono::steady_clock::now();
+      launch_range(camera_kernel_, done, n, static_cast<cl_int>(paths_),
+                   static_cast<cl_float>(eta), static_cast<cl_float>(radius), store_, path_last_,
+                   grid_ ? grid_->sorted() : path_last_, grid_ ? grid_->cell_count() : path_last_,
+                   grid_ ? grid_->cell_end() : path_last_, static_cast<cl_float>(0.5 / radius),
+                   grid_ ? grid_->mask() : 0u, spectra_,
+                   film_.pixel_sums(), rejected_, camera_cut_, seed_, static_cast<cl_uint>(pass));
+      camera_pacer_.record(n, seconds_since(t));
+      done += n;
+      control_.report(0.5 + 0.5 * static_cast<double>(done) / pixels);
+    }
+    PassResult r{pass, 1, {}, film_.read_pixel_sums(), 1.0, {}, {}};
+    // The light subpaths' splats are one more estimate of every pixel: added to the camera's.
+    std::vector<cl_ulong> fixed(2 * cells());
+    cl_.queue().enqueueReadBuffer(fixed_, CL_TRUE, 0, fixed.size() * sizeof(cl_ulong),
+                                  fixed.data());
+    for (size_t i = 0; i < cells(); ++i)
+      r.sums[i] += fixed_point_value(fixed[2 * i], fixed[2 * i + 1], film_shift_);
+    r.tallies["rejected samples"] =
+        read_sum<cl_int>(rejected_, pixels) + read_sum<cl_int>(overflow_, 1);
+    r.tallies["light vertices stored"] = static_cast<double>(stored);
+    r.tallies["merging radius"] = radius;
+    r.tallies[kDepthGuardCut] = read_sum<cl_float>(light_cut_, paths_);
+    r.tallies[kDepthGuardOf] = static_cast<double>(paths_);
+    r.tallies[kCameraDepthGuardCut] = read_sum<cl_float>(camera_cut_, pixels);
+    r.tallies[kCameraDepthGuardOf] = static_cast<double>(pixels);
+    r.tallies["time: light pass (s)"] = light_s;
+    r.tallies["time: grid (s)"] = grid_s;
+    r.tallies["time: camera pass (s)"] = device_seconds_ - device0 - light_s - grid_s;
+    r.tallies["time: host (s)"] = std::max(0.0, seconds_since(t0) - (device_seconds_ - device0));
+    add_ray_tallies(r);
+    return r;
+  }
+
+  long long camera_paths_per_pass() const override {
+    return static_cast<long long>(film_.pixels());
+  }
+  long long photons_per_pass() const override { return static_cast<long long>(paths_); }
+  std::map<std::string, size_t> device_buffers() const override {
+    std::map<std::string, size_t> b{
+        {"light-vertex store", capacity_ * record_floats_ * sizeof(float)},
+        {"light paths' film", cells() * 2 * sizeof(cl_ulong)},
+        {"per-path tables", paths_ * 2 * sizeof(cl_int) + film_.pixels() * 2 * sizeof(float)},
+        {"per-path spectra", film_.pixels() * bins_ * sizeof(float)}};
+    if (grid_) b["hashed grid"] = grid_->bytes(capacity_);
+    return b;
+  }
+
+ private:
+  size_t cells() const { return film_.pixels() * film_.rows(); }
+  size_t record_bytes() const { return record_floats_ * sizeof(float) + kGridBytesPerRecord; }
+
+  // The first radius: one pixel's footprint at the distance from the camera to the centre of the
+  // scene's bounds (--radius sets it), within a fiftieth of the scene's diagonal as photon's.
+  void set_first_radius(const Scene& scene, double radius) {
+    const KCamera& c = scene_.data().camera;
+    const double footprint =
+        2.0 * std::sqrt(c.up[0] * c.up[0] + c.up[1] * c.up[1] + c.up[2] * c.up[2]) / c.height;
+    Eigen::AlignedBox3d box;
+    for (const KTriangle& t : scene.triangles)
+      for (const float* v : {t.v0, t.v1, t.v2}) box.extend(Eigen::Vector3d(v[0], v[1], v[2]));
+    const Eigen::Vector3d eye(c.position[0], c.position[1], c.position[2]);
+    const double largest = box.diagonal().norm() / 50;
+    first_radius_ = radius > 0 ? radius : footprint * (box.center() - eye).norm();
+    if (first_radius_ > largest) {
+      if (radius > 0)
+        warn("--radius " + std::to_string(radius) +
+             " is beyond 1/50 of the scene's diagonal; using " + std::to_string(largest));
+      first_radius_ = largest;
+    }
+    if (!(first_radius_ > 0)) first_radius_ = largest > 0 ? largest : 1;
+  }
+
+  // A store of `records` light vertices (and the grid over it), within the memory budget.
+  void allocate_store(size_t records) {
+    const size_t most = budget_ / record_bytes();
+    if (records > most) {
+      if (capacity_ >= most)
+        throw Error("--memory: " + std::to_string(budget_) +
+                    " bytes do not hold one iteration's light vertices (" +
+                    std::to_string(records) + " records of " + std::to_string(record_bytes()) +
+                    " bytes); give more --memory or a smaller image");
+      records = most;
+    }
+    capacity_ = records;
+    store_ = device_buffer(cl_, capacity_ * record_floats_ * sizeof(float),
+                           "vcm: the light-vertex store (--memory)");
+    KernelLauncher& device = *this;  // the grid launches its kernels through it
+    if (Mode != VcmMode::bpt) grid_.emplace(device, program_, capacity_);
+  }
+
+  // The iteration's light subpaths into the store, splatting to the light paths' film; a store
+  // too small for them grows and the pass runs again with the same random numbers. Returns the
+  // vertices stored.
+  size_t trace_light_paths(int pass, double eta) {
+    for (;;) {
+      cl_.queue().enqueueFillBuffer(fixed_, cl_ulong(0), 0, cells() * 2 * sizeof(cl_ulong));
+      cl_.queue().enqueueFillBuffer(stored_, cl_int(0), 0, sizeof(cl_int));
+      cl_.queue().enqueueFillBuffer(overflow_, cl_int(0), 0, sizeof(cl_int));
+      size_t done = 0;
+      while (done < paths_) {
+        const size_t n = light_pacer_.next(paths_ - done);
+        const auto t = std::chrono::steady_clock::now();
+        launch_range(light_kernel_, done, n, static_cast<cl_int>(paths_),
+                     static_cast<cl_float>(eta), store_, stored_,
+                     static_cast<cl_int>(capacity_), path_last_, fixed_,
+                     static_cast<cl_int>(film_shift_), overflow_, light_cut_, seed_,
+                     static_cast<cl_uint>(pass));
+        light_pacer_.record(n, seconds_since(t));
+        done += n;
+        control_.report(0.5 * static_cast<double>(done) / paths_);
+      }
+      cl_int stored = 0;
+      cl_.queue().enqueueReadBuffer(stored_, CL_TRUE, 0, sizeof(cl_int), &stored);
+      if (static_cast<size_t>(stored) <= capacity_) return static_cast<size_t>(stored);
+      allocate_store(static_cast<size_t>(stored) + static_cast<size_t>(stored) / 4);
+    }
+  }
+
+  double alpha_;
+  unsigned seed_;
+  size_t paths_;  // light subpaths per iteration: pixel p's camera path connects to the p-th
+  size_t record_floats_;
+  size_t bins_;
+  size_t budget_ = 0, capacity_ = 0;
+  double first_radius_ = 0;
+  int film_shift_ = 0;
+  LaunchPacer light_pacer_{0.2, 256}, camera_pacer_{0.2, 256};
+  cl::Kernel light_kernel_, camera_kernel_;
+  cl::Buffer store_, fixed_, stored_, overflow_, path_last_, light_cut_, camera_cut_, rejected_, spectra_,
+      cell_;
+  std::optional<HashGrid> grid_;
+};
+
+using VertexConnectionMerging = VcmIntegrator<VcmMode::vcm>;
+using BidirectionalPathTracing = VcmIntegrator<VcmMode::bpt>;
+using ProgressivePhotonMapping = VcmIntegrator<VcmMode::ppm>;
+
+KASHA_REGISTER_INTEGRATOR(
+    VertexConnectionMerging, "vcm",
+    "vertex connection and merging: light and camera subpaths joined by connections and merges "
+    "under one MIS weight, iterations independent (a global radius schedule)",
+    {"--alpha", "--radius", "--memory"},
+    IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
+                     /*reference*/ false});
+KASHA_REGISTER_INTEGRATOR(
+    BidirectionalPathTracing, "bpt",
+    "bidirectional path tracing: vcm's connections alone (next-event estimation, light "
+    "tracing, subpath connections), MIS-weighted",
+    {"--memory"},
+    IntegratorTraits{/*physical*/ true, /*unbiased*/ true, /*sees camera mirrors*/ true,
+                     /*reference*/ false});
+KASHA_REGISTER_INTEGRATOR(
+    ProgressivePhotonMapping, "ppm",
+    "progressive photon mapping: vcm's merges alone, unweighted, at each camera path's first "
+    "non-delta vertex",
+    {"--alpha", "--radius", "--memory"},
+    IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
+                     /*reference*/ false});
+
+}  // namespace kasha
