@@ -41,6 +41,22 @@
 
 #define VCM_FLOATS KASHA_VCM_FLOATS(KASHA_BINS)
 
+/* Test hooks (tests/vcm_test.cpp): KASHA_VCM_LENGTH > 0 keeps only the contributions of paths of
+ * that many segments; KASHA_VCM_EMISSION_ONLY keeps only camera paths hitting emitters,
+ * unweighted (path tracing without next-event estimation: the plain estimate the weighted
+ * techniques must add up to); KASHA_VCM_DROP_DENSITY leaves next-event estimation's density out
+ * of light tracing's weight, a wrong weight the tests must catch. */
+#ifndef KASHA_VCM_LENGTH
+#define KASHA_VCM_LENGTH 0
+#endif
+#ifndef KASHA_VCM_EMISSION_ONLY
+#define KASHA_VCM_EMISSION_ONLY 0
+#endif
+#ifndef KASHA_VCM_DROP_DENSITY
+#define KASHA_VCM_DROP_DENSITY 0
+#endif
+#define VCM_LENGTH_COUNTS(segments) (KASHA_VCM_LENGTH == 0 || (segments) == KASHA_VCM_LENGTH)
+
 /* The MIS factors of an iteration with merging radius r and L light subpaths, η = π r² L
  * (SmallVCM's mMisVmWeightFactor and mMisVcWeightFactor): a merge weighs η against a
  * connection's 1, a connection 1/η against a merge; 0 for a technique the mode leaves out. */
@@ -153,7 +169,7 @@ inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, con
   float k;
   if (!camera_connection(s, h->x, h->ns, h->eps, &pixel, &k)) return;
   float3 to = normalize(camera_position(&s->camera) - h->x);
-  float w_light = k / paths * (vm + dvcm + dvc * vcm_pdf(s, surf, share, h->ns, to, from));
+  float w_light = k / paths * (vm + (KASHA_VCM_DROP_DENSITY ? 0.0f : dvcm) + dvc * vcm_pdf(s, surf, share, h->ns, to, from));
   float scale = k / (1.0f + w_light) / s->bin_nm;
   float rows[KASHA_FILM_ROWS];
   film_rows_clear(rows);
@@ -221,8 +237,8 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
         m[6] = as_float(h.material), m[7] = h.eps, m[8] = as_float(last);
       }
       last = slot;
-#if KASHA_VCM_CONNECT
-      vcm_splat(&s, &f, &target, &surf, share, &h, from, &p, dvcm, dvc, vm, (float)paths);
+#if KASHA_VCM_CONNECT && !KASHA_VCM_EMISSION_ONLY
+      if (VCM_LENGTH_COUNTS(depth + 2)) vcm_splat(&s, &f, &target, &surf, share, &h, from, &p, dvcm, dvc, vm, (float)paths);
 #endif
     }
     int branch = scatter_photon(&p, &surf, &s, &h, &sampler, depth);
@@ -282,6 +298,7 @@ inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* 
     const __global float* r = store + (long)slot * VCM_FLOATS;
     const __global float* m = r + KASHA_VCM_ARRIVAL(KASHA_BINS);
     slot = as_int(m[8]);
+    if (!VCM_LENGTH_COUNTS(c->w.depth + as_int(r[KASHA_PHOTON_DEPTH]) + 3)) continue;
     float3 y = (float3)(r[0], r[1], r[2]), ny = (float3)(r[3], r[4], r[5]);
     float3 d = y - x;
     float dist2 = dot(d, d), dist = sqrt(dist2);
@@ -329,6 +346,7 @@ inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f,
           float3 y = record_position(r);
           int3 own = grid_cell(y, inv_cell);
           if (own.x != cx || own.y != cy || own.z != cz) continue;
+          if (!VCM_LENGTH_COUNTS(c->w.depth + as_int(r[KASHA_PHOTON_DEPTH]) + 2)) continue;
           float3 d = y - x;
           if (!(dot(d, d) < r2)) continue;
           float3 ny = (float3)(r[3], r[4], r[5]);
@@ -352,7 +370,8 @@ inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f,
 /* Emission hit by the camera path (SmallVCM's GetLightRadiance): whole when seen directly or
  * through delta bounces alone, else weighed against next-event estimation and light tracing. */
 inline float vcm_emission_weight(const VcmCamera* c, const SceneView* s, const HitPoint* h) {
-  if (c->w.depth == 0) return 1.0f;
+  if (!VCM_LENGTH_COUNTS(c->w.depth + 1)) return 0.0f;
+  if (c->w.depth == 0 || KASHA_VCM_EMISSION_ONLY) return 1.0f;
   float area = s->emitter_area_pdf[h->emitter];
   float w_camera = area * c->dvcm + area * dot(h->n, -c->w.dir) * KASHA_INV_PI * c->dvc;
   return 1.0f / (1.0f + w_camera);
@@ -403,9 +422,9 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
     }
 #endif
     float share = vcm_gloss_share(&v.surf);
-    if (vcm_connectible(&v.surf)) {
+    if (vcm_connectible(&v.surf) && !KASHA_VCM_EMISSION_ONLY) {
 #if KASHA_VCM_CONNECT
-      vcm_next_event(&c, s, f, &v, share, vm, rows);
+      if (VCM_LENGTH_COUNTS(c.w.depth + 2)) vcm_next_event(&c, s, f, &v, share, vm, rows);
       vcm_connect(&c, s, f, &v, share, vm, paths, store, path_last[pixel], out, rows);
 #if KASHA_VCM_MERGE
       vcm_merge(&c, s, f, &v, share, vc, radius, KASHA_INV_PI / (radius * radius * s->bin_nm), store, sorted,

@@ -22,10 +22,11 @@ HashGrid::HashGrid(KernelLauncher& device, const cl::Program& program, size_t ca
 
 void HashGrid::build(const cl::Buffer& store, size_t count, const cl::Buffer& cell) {
   device_.cl().queue().enqueueFillBuffer(cell_count_, cl_int(0), 0, cells_ * sizeof(cl_int));
-  device_.launch_own(count_kernel_, count, store, cell, mask(), cell_count_, record_cell_);
+  if (count > 0)
+    device_.launch_own(count_kernel_, count, store, cell, mask(), cell_count_, record_cell_);
   device_.launch_own_range(scan_kernel_, 0, device_.work_group_size(scan_kernel_), cell_count_,
                            static_cast<cl_int>(cells_), cell_end_);
-  device_.launch_own(scatter_kernel_, count, record_cell_, cell_end_, sorted_);
+  if (count > 0) device_.launch_own(scatter_kernel_, count, record_cell_, cell_end_, sorted_);
   device_.launch_own(sort_kernel_, cells_, store, cell_count_, cell_end_, sorted_);
 }
 

@@ -43,6 +43,9 @@ struct IntegratorInfo {
   std::vector<std::string> options;  // command-line options it takes besides the common ones
   IntegratorTraits traits;
   std::function<std::unique_ptr<Integrator>(const IntegratorSetup&)> make;
+  // What in a scene it does not handle yet, as the end of a sentence ("a texture"), or empty;
+  // unset: it handles every scene. `make` refuses such a scene with one line; tests skip it.
+  std::function<std::string(const Scene&)> unsupported;
 };
 
 class IntegratorRegistry {
@@ -53,6 +56,8 @@ class IntegratorRegistry {
   static std::vector<std::string> names(bool physical_only);
   static std::string reference();  // the reference integrator's name
   static std::unique_ptr<Integrator> make(const std::string& name, const IntegratorSetup& setup);
+  // What of `scene` the integrator does not handle (IntegratorInfo::unsupported), or empty.
+  static std::string unsupported(const std::string& name, const Scene& scene);
   // Throws kasha::Error for the first of `given` (option names) the integrator does not take.
   static void check_options(const std::string& name, const std::vector<std::string>& given);
 
@@ -76,4 +81,9 @@ std::unique_ptr<Integrator> make_integrator_of(const IntegratorSetup& setup) {
 // One line in an integrator's host file: the class, then its name, description, options and traits.
 #define KASHA_REGISTER_INTEGRATOR(CLASS, ...)                                  \
   static const ::kasha::IntegratorRegistry::Registrar kasha_registrar_##CLASS( \
-      ::kasha::IntegratorInfo{__VA_ARGS__, ::kasha::make_integrator_of<CLASS>})
+      ::kasha::IntegratorInfo{__VA_ARGS__, ::kasha::make_integrator_of<CLASS>, {}})
+// The same for an integrator that does not handle every scene: UNSUPPORTED is its
+// IntegratorInfo::unsupported.
+#define KASHA_REGISTER_INTEGRATOR_FOR(CLASS, UNSUPPORTED, ...)                 \
+  static const ::kasha::IntegratorRegistry::Registrar kasha_registrar_##CLASS( \
+      ::kasha::IntegratorInfo{__VA_ARGS__, ::kasha::make_integrator_of<CLASS>, UNSUPPORTED})

@@ -28,6 +28,9 @@ struct IntegratorSettings {
   // Test hooks, not on the command line.
   bool full_matrix = false;   // backward: carry the full rows × N path matrix
   int photons_per_item = 64;  // forward: photons per work item
+  int vcm_length = 0;              // vcm, bpt, ppm: only paths of this many segments (0: all)
+  bool vcm_emission_only = false;  // vcm, bpt: only camera paths hitting emitters, unweighted
+  bool vcm_drop_density = false;   // vcm, bpt: a wrong MIS weight (kernels/vcm.cl)
 };
 
 // Where a setting's value lives in IntegratorSettings.

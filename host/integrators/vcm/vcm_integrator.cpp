@@ -32,34 +32,25 @@ enum class VcmMode { vcm, bpt, ppm };
 // least this many, so that a small image's merges and light tracing are not starved of photons.
 constexpr size_t kLeastLightPaths = 1 << 16;
 
-const char* mode_name(VcmMode m) {
-  return m == VcmMode::vcm ? "vcm" : m == VcmMode::bpt ? "bpt" : "ppm";
+KernelDefines mode_defines(VcmMode m, const IntegratorSettings& s) {
+  KernelDefines d{{"KASHA_VCM_CONNECT", m == VcmMode::ppm ? "0" : "1"},
+                  {"KASHA_VCM_MERGE", m == VcmMode::bpt ? "0" : "1"}};
+  // The test hooks (kernels/vcm.cl), only when set.
+  if (s.vcm_length > 0) d["KASHA_VCM_LENGTH"] = std::to_string(s.vcm_length);
+  if (s.vcm_emission_only) d["KASHA_VCM_EMISSION_ONLY"] = "1";
+  if (s.vcm_drop_density) d["KASHA_VCM_DROP_DENSITY"] = "1";
+  return d;
 }
 
-KernelDefines mode_defines(VcmMode m) {
-  return {{"KASHA_VCM_CONNECT", m == VcmMode::ppm ? "0" : "1"},
-          {"KASHA_VCM_MERGE", m == VcmMode::bpt ? "0" : "1"}};
-}
-
-// What the kernels do not handle yet: one clear line before anything is built.
-void check_scene(const Scene& scene, VcmMode m) {
-  const char* what = nullptr;
-  if (scene.rough())
-    what = "a rough dielectric or conductor";
-  else if (scene.coated())
-    what = "a coated material";
-  else if (scene.shading_normals())
-    what = "shading normals";
-  else if (!scene.lights.empty())
-    what = "a light that is not an emitting shape";
-  else if (scene.dispersive())
-    what = "a dispersive dielectric";
-  else if (scene.textured() || scene.emission_textured())
-    what = "a texture";
-  if (what)
-    throw Error(std::string("--integrator ") + mode_name(m) + ": the scene has " + what +
-                ", which vertex connection and merging does not handle yet (photon and "
-                "backward do)");
+// What kernels/vcm.cl does not handle yet (IntegratorInfo::unsupported), or empty.
+std::string vcm_unsupported(const Scene& scene) {
+  if (scene.rough()) return "a rough dielectric or conductor";
+  if (scene.coated()) return "a coated material";
+  if (scene.shading_normals()) return "shading normals";
+  if (!scene.lights.empty()) return "a light that is not an emitting shape";
+  if (scene.dispersive()) return "a dispersive dielectric";
+  if (scene.textured() || scene.emission_textured()) return "a texture";
+  return {};
 }
 
 }  // namespace
@@ -68,9 +59,10 @@ template <VcmMode Mode>
 class VcmIntegrator : public KernelIntegrator {
  public:
   explicit VcmIntegrator(const IntegratorSetup& s)
-      : KernelIntegrator(s, (check_scene(s.scene, Mode), "vcm.cl"), mode_defines(Mode)),
+      : KernelIntegrator(s, "vcm.cl", mode_defines(Mode, s.settings)),
         alpha_(s.settings.alpha),
         seed_(s.settings.seed),
+        emission_only_(s.settings.vcm_emission_only),
         paths_(std::max<size_t>(film_.pixels(), kLeastLightPaths)),
         record_floats_(KASHA_VCM_FLOATS(s.scene.grid.bins)),
         bins_(s.scene.grid.bins),
@@ -103,7 +95,8 @@ class VcmIntegrator : public KernelIntegrator {
     // The iteration's radius: Georgiev's global schedule, from the iteration's index alone.
     const double radius = first_radius_ * std::pow(pass + 1.0, (alpha_ - 1) / 2);
     const double eta = M_PI * radius * radius * static_cast<double>(paths_);
-    const size_t stored = trace_light_paths(pass, eta);
+    // Path tracing alone (a test hook) needs no light subpaths.
+    const size_t stored = emission_only_ ? no_light_paths() : trace_light_paths(pass, eta);
     const double light_s = device_seconds_ - device0;
     if (Mode != VcmMode::bpt) {
       const float cell[2] = {static_cast<float>(2 * radius), static_cast<float>(0.5 / radius)};
@@ -114,8 +107,11 @@ class VcmIntegrator : public KernelIntegrator {
     const size_t pixels = film_.pixels();
     film_.clear_pixel_sums();
     cl_.queue().enqueueFillBuffer(rejected_, cl_int(0), 0, pixels * sizeof(cl_int));
+    // A pass cut short (deadline, Ctrl-C) between the camera pass's launches keeps the pixels
+    // its camera paths reached, each with its light subpaths' splats, and leaves the others out.
     size_t done = 0;
     while (done < pixels) {
+      if (done > 0 && control_.stop_now()) break;
       const size_t n = camera_pacer_.next(pixels - done);
       const auto t = std::chrono::steady_clock::now();
       launch_range(camera_kernel_, done, n, static_cast<cl_int>(paths_),
@@ -128,13 +124,20 @@ class VcmIntegrator : public KernelIntegrator {
       done += n;
       control_.report(0.5 + 0.5 * static_cast<double>(done) / pixels);
     }
-    PassResult r{pass, 1, {}, film_.read_pixel_sums(), 1.0, {}, {}};
-    // The light subpaths' splats are one more estimate of every pixel: added to the camera's.
+    PassResult r{pass, 1, {}, film_.read_pixel_sums(), static_cast<double>(done) / pixels, {}, {}};
+    // The light subpaths' splats are one more term of every pixel's estimate: added to the
+    // camera path's.
     std::vector<cl_ulong> fixed(2 * cells());
     cl_.queue().enqueueReadBuffer(fixed_, CL_TRUE, 0, fixed.size() * sizeof(cl_ulong),
                                   fixed.data());
-    for (size_t i = 0; i < cells(); ++i)
+    const size_t kept = done * film_.rows();
+    for (size_t i = 0; i < kept; ++i)
       r.sums[i] += fixed_point_value(fixed[2 * i], fixed[2 * i + 1], film_shift_);
+    if (done < pixels) {
+      r.samples = 0;
+      r.pixel_samples.assign(pixels, 0);
+      std::fill(r.pixel_samples.begin(), r.pixel_samples.begin() + done, 1);
+    }
     r.tallies["rejected samples"] =
         read_sum<cl_int>(rejected_, pixels) + read_sum<cl_int>(overflow_, 1);
     r.tallies["light vertices stored"] = static_cast<double>(stored);
@@ -236,8 +239,17 @@ class VcmIntegrator : public KernelIntegrator {
     }
   }
 
+  size_t no_light_paths() {
+    cl_.queue().enqueueFillBuffer(fixed_, cl_ulong(0), 0, cells() * 2 * sizeof(cl_ulong));
+    cl_.queue().enqueueFillBuffer(overflow_, cl_int(0), 0, sizeof(cl_int));
+    cl_.queue().enqueueFillBuffer(path_last_, cl_int(-1), 0, paths_ * sizeof(cl_int));
+    cl_.queue().enqueueFillBuffer(light_cut_, cl_float(0), 0, paths_ * sizeof(cl_float));
+    return 0;
+  }
+
   double alpha_;
   unsigned seed_;
+  bool emission_only_;
   size_t paths_;  // light subpaths per iteration: pixel p's camera path connects to the p-th
   size_t record_floats_;
   size_t bins_;
@@ -255,22 +267,22 @@ using VertexConnectionMerging = VcmIntegrator<VcmMode::vcm>;
 using BidirectionalPathTracing = VcmIntegrator<VcmMode::bpt>;
 using ProgressivePhotonMapping = VcmIntegrator<VcmMode::ppm>;
 
-KASHA_REGISTER_INTEGRATOR(
-    VertexConnectionMerging, "vcm",
+KASHA_REGISTER_INTEGRATOR_FOR(
+    VertexConnectionMerging, vcm_unsupported, "vcm",
     "vertex connection and merging: light and camera subpaths joined by connections and merges "
     "under one MIS weight, iterations independent (a global radius schedule)",
     {"--alpha", "--radius", "--memory"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
                      /*reference*/ false});
-KASHA_REGISTER_INTEGRATOR(
-    BidirectionalPathTracing, "bpt",
+KASHA_REGISTER_INTEGRATOR_FOR(
+    BidirectionalPathTracing, vcm_unsupported, "bpt",
     "bidirectional path tracing: vcm's connections alone (next-event estimation, light "
     "tracing, subpath connections), MIS-weighted",
     {"--memory"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ true, /*sees camera mirrors*/ true,
                      /*reference*/ false});
-KASHA_REGISTER_INTEGRATOR(
-    ProgressivePhotonMapping, "ppm",
+KASHA_REGISTER_INTEGRATOR_FOR(
+    ProgressivePhotonMapping, vcm_unsupported, "ppm",
     "progressive photon mapping: vcm's merges alone, unweighted, at each camera path's first "
     "non-delta vertex",
     {"--alpha", "--radius", "--memory"},
