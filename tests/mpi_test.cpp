@@ -124,7 +124,8 @@ TEST_P(MpiRender, TwoAndThreeRanksWriteTheOneProcessFile) {
 INSTANTIATE_TEST_SUITE_P(Integrators, MpiRender,
                          ::testing::Values(Case{"backward", "--spp 1 --passes 3"},
                                            Case{"forward", "--photons 50000 --passes 3"},
-                                           Case{"photon", "--photons 1000000 --spp 1 --passes 2"}),
+                                           Case{"photon", "--photons 1000000 --spp 1 --passes 2"},
+                                           Case{"vcm", "--passes 3"}),
                          [](const auto& info) { return info.param.integrator; });
 
 // KASHA_TEST_KILL_RANK=1: rank 1 dies by SIGKILL as its second pass is asked of it. mpirun then

@@ -1,5 +1,7 @@
 #include "bench/bench_scenes.h"
 
+#include <algorithm>
+
 #include "render/integrator_registry.h"
 
 namespace kasha {
@@ -12,7 +14,7 @@ const std::vector<BenchScene>& bench_scenes() {
       {"cornell_box", "cornell_box.json", 128, 128, "bench/cornell_box.reference.exr", false, 1e-4},
       {"furnace_fluorescent", "furnace_fluorescent.json", 32, 32, "furnace", false, 1e-3},
       {"mirror_caustic", "mirror_caustic.json", 64, 64, "bench/mirror_caustic.reference.exr", true,
-       0.1},
+       0.1, {"bpt"}},
       {"million_triangles", "million_triangles.json", 128, 128,
        "bench/million_triangles.reference.exr", false, 2e-4},
   };
@@ -22,7 +24,8 @@ const std::vector<BenchScene>& bench_scenes() {
 std::vector<std::string> bench_integrators(const BenchScene& scene) {
   std::vector<std::string> out;
   for (const std::string& name : IntegratorRegistry::names(true))
-    if (!scene.camera_sees_mirror || IntegratorRegistry::find(name).traits.sees_camera_mirrors)
+    if ((!scene.camera_sees_mirror || IntegratorRegistry::find(name).traits.sees_camera_mirrors) &&
+        std::find(scene.left_out.begin(), scene.left_out.end(), name) == scene.left_out.end())
       out.push_back(name);
   return out;
 }
