@@ -209,7 +209,7 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
   float cos_light = dot(o.normal, p.direction);
   float dvcm = KASHA_PI / cos_light, dvc = KASHA_PI / o.area_pdf, dvm = dvc * vc;
   SplatTarget target = {film, film_shift, 0};
-  int last = -1;
+  int last = -1, ordinal = 0;
   float guard = 0.0f;
   for (int depth = 0;; ++depth) {
     if (depth == KASHA_MAX_PATH_DEPTH) {
@@ -225,7 +225,7 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
     float3 from = -p.direction;
     if (vcm_connectible(&surf)) {
       int slot = atomic_inc(stored);
-      if (slot < capacity) {
+      if (slot >= 0 && slot < capacity) {
         __global float* r = store + (long)slot * VCM_FLOATS;
         r[0] = h.x.x, r[1] = h.x.y, r[2] = h.x.z;
         r[3] = h.ns.x, r[4] = h.ns.y, r[5] = h.ns.z;
@@ -234,9 +234,10 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
         __global float* m = r + KASHA_VCM_ARRIVAL(KASHA_BINS);
         m[0] = p.direction.x, m[1] = p.direction.y, m[2] = p.direction.z;
         m[3] = dvcm, m[4] = dvc, m[5] = dvm;
-        m[6] = as_float(h.material), m[7] = h.eps, m[8] = as_float(last);
+        m[6] = as_float(h.material), m[7] = h.eps, m[8] = as_float(last), m[9] = as_float(ordinal);
       }
       last = slot;
+      ++ordinal;
 #if KASHA_VCM_CONNECT && !KASHA_VCM_EMISSION_ONLY
       if (VCM_LENGTH_COUNTS(depth + 2)) vcm_splat(&s, &f, &target, &surf, share, &h, from, &p, dvcm, dvc, vm, (float)paths);
 #endif
@@ -286,18 +287,31 @@ inline void vcm_next_event(const VcmCamera* c, const SceneView* s, const FilmVie
                      rows);
 }
 
-/* Connections of a camera vertex to every stored vertex of light subpath `path` (SmallVCM's
- * ConnectVertices): T·f_c·G·f_l·Φ, Φ per light subpath (paths/Δλ undoes the photon's 1/paths
- * and bin width). `out` is the work item's spectrum for f_l·Φ. */
+/* A camera vertex connects to at most this many vertices of its light subpath: all of them in
+ * ordinary scenes (a few a subpath), an unbiased thinning of a long one (vcm_connect). */
+#define KASHA_VCM_CONNECTIONS 8
+
+/* Connections of a camera vertex to the stored vertices of its light subpath, the last stored
+ * at record `last` (SmallVCM's ConnectVertices): T·f_c·G·f_l·Φ, Φ per light subpath (paths/Δλ
+ * undoes the photon's 1/paths and bin width). A subpath of n > KASHA_VCM_CONNECTIONS vertices
+ * (a furnace of albedo 0.999 stores a thousand) is thinned: with s = ⌈n / KASHA_VCM_CONNECTIONS⌉
+ * only the vertices whose ordinal is o mod s, o uniform in [0, s) from `u`, connect, each
+ * weighed s — every vertex with probability 1/s, so the sum is unbiased and a path of n camera
+ * vertices costs O(n) shadow rays, not O(n²). `out` is the work item's spectrum for f_l·Φ. */
 inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* f, const CameraVertex* v, float share,
-                        float vm, float paths, const __global float* store, int last, __global float* out,
+                        float vm, float paths, const __global float* store, int last, uint u, __global float* out,
                         float* rows) {
+  if (last < 0) return;
   const Surface* surf = &v->surf;
   float3 x = v->h.x, ns = v->h.ns, eye = -c->w.dir;
+  int n = as_int(store[(long)last * VCM_FLOATS + KASHA_VCM_ORDINAL(KASHA_BINS)]) + 1;
+  int stride = (n + KASHA_VCM_CONNECTIONS - 1) / KASHA_VCM_CONNECTIONS;
+  int offset = (int)(u % (uint)stride);
   for (int slot = last; slot >= 0;) {
     const __global float* r = store + (long)slot * VCM_FLOATS;
     const __global float* m = r + KASHA_VCM_ARRIVAL(KASHA_BINS);
     slot = as_int(m[8]);
+    if (as_int(m[9]) % stride != offset) continue;
     if (!VCM_LENGTH_COUNTS(c->w.depth + as_int(r[KASHA_PHOTON_DEPTH]) + 3)) continue;
     float3 y = (float3)(r[0], r[1], r[2]), ny = (float3)(r[3], r[4], r[5]);
     float3 d = y - x;
@@ -317,8 +331,8 @@ inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* 
     if (!(weight > 0.0f)) continue;
     if (segment_occluded(s, x, ns, v->h.eps, dir, dist, m[7] / cos_y)) continue;
     vcm_light_scatter(s, &sy, ny, light, -dir, r + KASHA_PHOTON_POWER, out);
-    vcm_camera_scatter(&c->w.p, f, s, surf, ns, eye, dir, out, weight * cos_c * cos_y / dist2 * paths / s->bin_nm,
-                       rows);
+    vcm_camera_scatter(&c->w.p, f, s, surf, ns, eye, dir, out,
+                       stride * weight * cos_c * cos_y / dist2 * paths / s->bin_nm, rows);
   }
 }
 #endif
@@ -377,13 +391,14 @@ inline float vcm_emission_weight(const VcmCamera* c, const SceneView* s, const H
   return 1.0f / (1.0f + w_camera);
 }
 
-/* One camera path of the iteration. Returns what it still carried (relative to its start) if
- * the depth guard cut it. */
+/* One camera path of the iteration. `own`: its light subpath is in the store (the chunk holding
+ * it): emission, next-event estimation and connections count then; merges count with every
+ * chunk. Returns what it still carried (relative to its start) if the depth guard cut it. */
 inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, Sampler* sampler, float paths,
                              float eta, float radius, const __global float* store, const __global int* path_last,
                              const __global int* sorted, const __global int* cell_count,
-                             const __global int* cell_end, float inv_cell, uint mask, __global float* out,
-                             float* rows) {
+                             const __global int* cell_end, float inv_cell, uint mask, bool own, uint seed,
+                             __global float* out, float* rows) {
   const float vm = vcm_merge_factor(eta), vc = vcm_connect_factor(eta);
   VcmCamera c;
   float3 dir = camera_sample(&s->camera, pixel, sample_2d(sampler));
@@ -403,7 +418,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
     HitPoint* h = &v.h;
     if (!intersect_scene(s, c.w.org, c.w.dir, h)) return 0.0f;
     vcm_arrived(h->t, fabs(dot(h->n, c.w.dir)), &c.dvcm, &c.dvc, &c.dvm);
-    if (h->emitter >= 0 && h->front)
+    if (own && h->emitter >= 0 && h->front)
       pw_add(&c.w.p, f, emitter_spectrum(s, h->emitter), 0, vcm_emission_weight(&c, s, h), rows);
     load_surface_at(s, h, &v.surf);
     v.probs = surface_specular(&v.surf) ? (float3)(1.0f, 0.0f, 0.0f) : branch_probabilities(&c.w.p, f, &v.surf);
@@ -424,8 +439,11 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
     float share = vcm_gloss_share(&v.surf);
     if (vcm_connectible(&v.surf) && !KASHA_VCM_EMISSION_ONLY) {
 #if KASHA_VCM_CONNECT
-      if (VCM_LENGTH_COUNTS(c.w.depth + 2)) vcm_next_event(&c, s, f, &v, share, vm, rows);
-      vcm_connect(&c, s, f, &v, share, vm, paths, store, path_last[pixel], out, rows);
+      if (own) {
+        if (VCM_LENGTH_COUNTS(c.w.depth + 2)) vcm_next_event(&c, s, f, &v, share, vm, rows);
+        vcm_connect(&c, s, f, &v, share, vm, paths, store, path_last[pixel % (int)paths],
+                    hash_combine(hash_combine(seed, (uint)pixel), (uint)c.w.depth), out, rows);
+      }
 #if KASHA_VCM_MERGE
       vcm_merge(&c, s, f, &v, share, vc, radius, KASHA_INV_PI / (radius * radius * s->bin_nm), store, sorted,
                 cell_count, cell_end, inv_cell, mask, rows);
@@ -462,9 +480,12 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
   return walk_cut(&c.w, f);
 }
 
-/* One camera path per pixel (its light subpath: the pixel's index), its estimate into the
- * pixel's sums. `path_spectra`: KASHA_BINS floats per work item for a light vertex's f·Φ. */
-__kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, float eta, float radius,
+/* One camera path per pixel (its light subpath: the pixel's index modulo `paths`), its estimate with the store's
+ * chunk of light subpaths [chunk_first, chunk_end) added to the pixel's sums: the same path
+ * (the same random numbers) with every chunk. `path_spectra`: KASHA_BINS floats per work item
+ * for a light vertex's f·Φ. */
+__kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, int chunk_first, int chunk_end,
+                              float eta, float radius,
                               __global const float* store, __global const int* path_last,
                               __global const int* sorted, __global const int* cell_count,
                               __global const int* cell_end, float inv_cell, uint mask, __global float* path_spectra,
@@ -480,8 +501,12 @@ __kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, 
   float rows[KASHA_FILM_ROWS];
   film_rows_clear(rows);
   __global float* out = path_spectra + (long)(get_global_id(0) - get_global_offset(0)) * KASHA_BINS;
-  cut[pixel] = vcm_camera_path(&s, &f, pixel, &sampler, (float)paths, eta, radius, store, path_last, sorted,
-                               cell_count, cell_end, inv_cell, mask, out, rows);
+  int partner = pixel % paths; /* its light subpath */
+  bool own = partner >= chunk_first && partner < chunk_end;
+  float guard = vcm_camera_path(&s, &f, pixel, &sampler, (float)paths, eta, radius, store, path_last, sorted,
+                                cell_count, cell_end, inv_cell, mask, own,
+                                hash_combine(seed ^ 0x2545f491u, pass), out, rows);
+  if (own) cut[pixel] = guard;
   if (film_rows_finite(rows))
     film_add(sums, pixel, rows);
   else

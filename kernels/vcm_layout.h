@@ -2,8 +2,9 @@
  * a photon record (photon_layout.h: position, normal on the side the light arrived from, key,
  * power per bin), then what connections and Georgiev's MIS recursion need — the direction the
  * light travelled to arrive, the partial weights dVCM, dVC and dVM, the material, the hit's
- * offset, and the record of the light path's previous stored vertex (-1: none), so that a camera
- * path walks its light path's vertices from the last stored one back. */
+ * offset, the record of the light path's previous stored vertex (-1: none), so that a camera
+ * path walks its light path's vertices from the last stored one back, and its ordinal among them
+ * (0 for the first stored). */
 #ifndef KASHA_VCM_LAYOUT_H
 #define KASHA_VCM_LAYOUT_H
 
@@ -16,6 +17,7 @@
 #define KASHA_VCM_MATERIAL(N) (KASHA_PHOTON_FLOATS(N) + 6)
 #define KASHA_VCM_EPS(N) (KASHA_PHOTON_FLOATS(N) + 7)
 #define KASHA_VCM_PREVIOUS(N) (KASHA_PHOTON_FLOATS(N) + 8)
-#define KASHA_VCM_FLOATS(N) (KASHA_PHOTON_FLOATS(N) + 9)
+#define KASHA_VCM_ORDINAL(N) (KASHA_PHOTON_FLOATS(N) + 9)
+#define KASHA_VCM_FLOATS(N) (KASHA_PHOTON_FLOATS(N) + 10)
 
 #endif

@@ -15,7 +15,8 @@ namespace kasha {
 struct IntegratorSettings {
   int spp = 0;  // --spp: camera paths per pixel per pass (0: the integrator's default)
   static constexpr int kDefaultSpp = 16;  // backward's and debug's
-  long long photons = 1 << 18;            // --photons: photons per pass
+  long long photons = 0;  // --photons: photons (vcm: light subpaths) per pass (0: the default)
+  static constexpr long long kDefaultPhotons = 1 << 18;  // forward's and photon mapping's
   double alpha = 0.8;  // --alpha: SPPM radius reduction (pbrt-v4: 2/3; 0.8 measured better here)
   double radius = 0;   // --radius: initial gather radius (0: from the pixel footprint)
   bool edge_correction = true;           // --edge-correction: photon mapping's gathers at edges

@@ -18,7 +18,7 @@ class ForwardIntegrator : public KernelIntegrator {
  public:
   explicit ForwardIntegrator(const IntegratorSetup& s)
       : KernelIntegrator(s, "forward.cl"),
-        photons_(s.settings.photons),
+        photons_(s.settings.photons > 0 ? s.settings.photons : IntegratorSettings::kDefaultPhotons),
         seed_(s.settings.seed),
         max_depth_(s.settings.max_depth),
         photons_per_item_(s.settings.photons_per_item),

@@ -53,7 +53,7 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
  public:
   explicit PhotonMapIntegrator(const IntegratorSetup& s)
       : KernelIntegrator(s, "photon_map.cl"),
-        photons_(s.settings.photons),
+        photons_(s.settings.photons > 0 ? s.settings.photons : IntegratorSettings::kDefaultPhotons),
         spp_(s.settings.spp > 0 ? s.settings.spp : kDefaultCameraSamples),
         alpha_(s.settings.alpha),
         radius_(s.settings.radius),

@@ -28,8 +28,9 @@ namespace {
 
 enum class VcmMode { vcm, bpt, ppm };
 
-// Light subpaths per iteration: one a pixel (camera path p connects to light subpath p), and at
-// least this many, so that a small image's merges and light tracing are not starved of photons.
+// Light subpaths per iteration unless --photons says: one a pixel (pixel p's camera path connects
+// to light subpath p), and at least this many, so that a small image's merges and light tracing
+// are not starved of photons. With fewer than pixels, pixel p's partner is p mod their count.
 constexpr size_t kLeastLightPaths = 1 << 16;
 
 KernelDefines mode_defines(VcmMode m, const IntegratorSettings& s) {
@@ -63,7 +64,8 @@ class VcmIntegrator : public KernelIntegrator {
         alpha_(s.settings.alpha),
         seed_(s.settings.seed),
         emission_only_(s.settings.vcm_emission_only),
-        paths_(std::max<size_t>(film_.pixels(), kLeastLightPaths)),
+        paths_(s.settings.photons > 0 ? static_cast<size_t>(s.settings.photons)
+                                      : std::max<size_t>(film_.pixels(), kLeastLightPaths)),
         record_floats_(KASHA_VCM_FLOATS(s.scene.grid.bins)),
         bins_(s.scene.grid.bins),
         light_kernel_(program_, "vcm_light_pass"),
@@ -86,7 +88,11 @@ class VcmIntegrator : public KernelIntegrator {
     spectra_ = device_buffer(cl_, (Mode == VcmMode::ppm ? 1 : pixels * bins) * sizeof(cl_float),
                              "vcm: per-path spectra");
     cell_ = device_buffer(cl_, 2 * sizeof(cl_float), "vcm: the grid's cell size");
-    allocate_store(4 * paths_);  // ~4 stored vertices a light path in ordinary scenes
+    fixed_before_ = device_buffer(cl_, cells() * 2 * sizeof(cl_ulong), "vcm: the light paths' film");
+    // ~4 stored vertices a light path in ordinary scenes.
+    if (!allocate_store(std::max<size_t>(4 * paths_, 1024)) && capacity_ == 0)
+      throw Error("--memory: " + std::to_string(budget_) + " bytes hold no light vertex (" +
+                  std::to_string(record_bytes()) + " bytes each)");
   }
 
   PassResult render_pass(int pass) override {
@@ -95,38 +101,47 @@ class VcmIntegrator : public KernelIntegrator {
     // The iteration's radius: Georgiev's global schedule, from the iteration's index alone.
     const double radius = first_radius_ * std::pow(pass + 1.0, (alpha_ - 1) / 2);
     const double eta = M_PI * radius * radius * static_cast<double>(paths_);
-    // Path tracing alone (a test hook) needs no light subpaths.
-    const size_t stored = emission_only_ ? no_light_paths() : trace_light_paths(pass, eta);
-    const double light_s = device_seconds_ - device0;
-    if (Mode != VcmMode::bpt) {
-      const float cell[2] = {static_cast<float>(2 * radius), static_cast<float>(0.5 / radius)};
-      cl_.queue().enqueueWriteBuffer(cell_, CL_TRUE, 0, sizeof(cell), cell);
-      grid_->build(store_, stored, cell_);
-    }
-    const double grid_s = device_seconds_ - device0 - light_s;
     const size_t pixels = film_.pixels();
     film_.clear_pixel_sums();
+    cl_.queue().enqueueFillBuffer(fixed_, cl_ulong(0), 0, cells() * 2 * sizeof(cl_ulong));
+    cl_.queue().enqueueFillBuffer(overflow_, cl_int(0), 0, sizeof(cl_int));
     cl_.queue().enqueueFillBuffer(rejected_, cl_int(0), 0, pixels * sizeof(cl_int));
-    // A pass cut short (deadline, Ctrl-C) between the camera pass's launches keeps the pixels
-    // its camera paths reached, each with its light subpaths' splats, and leaves the others out.
-    size_t done = 0;
-    while (done < pixels) {
-      if (done > 0 && control_.stop_now()) break;
-      const size_t n = camera_pacer_.next(pixels - done);
-      const auto t = std::chrono::steady_clock::now();
-      launch_range(camera_kernel_, done, n, static_cast<cl_int>(paths_),
-                   static_cast<cl_float>(eta), static_cast<cl_float>(radius), store_, path_last_,
-                   grid_ ? grid_->sorted() : path_last_, grid_ ? grid_->cell_count() : path_last_,
-                   grid_ ? grid_->cell_end() : path_last_, static_cast<cl_float>(0.5 / radius),
-                   grid_ ? grid_->mask() : 0u, spectra_,
-                   film_.pixel_sums(), rejected_, camera_cut_, seed_, static_cast<cl_uint>(pass));
-      camera_pacer_.record(n, seconds_since(t));
-      done += n;
-      control_.report(0.5 + 0.5 * static_cast<double>(done) / pixels);
+    cl_.queue().enqueueFillBuffer(light_cut_, cl_float(0), 0, paths_ * sizeof(cl_float));
+    // The light subpaths in chunks of path ranges, each traced into the store and met by every
+    // camera path (the same paths again): one chunk while the store holds the iteration, so
+    // memory stays bounded however long light paths get.
+    double light_s = 0, grid_s = 0, stored_total = 0;
+    size_t first = 0, count = paths_, done = pixels, chunks = 0;
+    while (first < paths_) {
+      count = std::min(count, paths_ - first);
+      double t = device_seconds_;
+      // Path tracing alone (a test hook) needs no light subpaths.
+      const std::optional<size_t> stored =
+          emission_only_ ? no_light_paths() : trace_chunk(pass, eta, first, count);
+      light_s += device_seconds_ - t;
+      if (!stored) {
+        if (count == 1)
+          throw Error("--memory: " + std::to_string(budget_) +
+                      " bytes do not hold one light subpath's vertices; give more --memory");
+        count = (count + 1) / 2;
+        continue;
+      }
+      stored_total += static_cast<double>(*stored);
+      t = device_seconds_;
+      if (Mode != VcmMode::bpt) {
+        const float cell[2] = {static_cast<float>(2 * radius), static_cast<float>(0.5 / radius)};
+        cl_.queue().enqueueWriteBuffer(cell_, CL_TRUE, 0, sizeof(cell), cell);
+        grid_->build(store_, *stored, cell_);
+      }
+      grid_s += device_seconds_ - t;
+      const bool last = first + count >= paths_;
+      done = camera_pass(pass, eta, radius, first, first + count, last);
+      first += count;
+      ++chunks;
     }
     PassResult r{pass, 1, {}, film_.read_pixel_sums(), static_cast<double>(done) / pixels, {}, {}};
     // The light subpaths' splats are one more term of every pixel's estimate: added to the
-    // camera path's.
+    // camera path's. A pass cut short keeps the pixels its last camera pass reached.
     std::vector<cl_ulong> fixed(2 * cells());
     cl_.queue().enqueueReadBuffer(fixed_, CL_TRUE, 0, fixed.size() * sizeof(cl_ulong),
                                   fixed.data());
@@ -134,13 +149,15 @@ class VcmIntegrator : public KernelIntegrator {
     for (size_t i = 0; i < kept; ++i)
       r.sums[i] += fixed_point_value(fixed[2 * i], fixed[2 * i + 1], film_shift_);
     if (done < pixels) {
+      std::fill(r.sums.begin() + kept, r.sums.end(), 0.0);
       r.samples = 0;
       r.pixel_samples.assign(pixels, 0);
       std::fill(r.pixel_samples.begin(), r.pixel_samples.begin() + done, 1);
     }
     r.tallies["rejected samples"] =
         read_sum<cl_int>(rejected_, pixels) + read_sum<cl_int>(overflow_, 1);
-    r.tallies["light vertices stored"] = static_cast<double>(stored);
+    r.tallies["light vertices stored"] = stored_total;
+    r.tallies["light chunks"] = static_cast<double>(chunks);
     r.tallies["merging radius"] = radius;
     r.tallies[kDepthGuardCut] = read_sum<cl_float>(light_cut_, paths_);
     r.tallies[kDepthGuardOf] = static_cast<double>(paths_);
@@ -193,15 +210,12 @@ class VcmIntegrator : public KernelIntegrator {
     if (!(first_radius_ > 0)) first_radius_ = largest > 0 ? largest : 1;
   }
 
-  // A store of `records` light vertices (and the grid over it), within the memory budget.
-  void allocate_store(size_t records) {
+  // A store of `records` light vertices (and the grid over it), within the memory budget; false
+  // when the store is already as large as the budget allows.
+  bool allocate_store(size_t records) {
     const size_t most = budget_ / record_bytes();
     if (records > most) {
-      if (capacity_ >= most)
-        throw Error("--memory: " + std::to_string(budget_) +
-                    " bytes do not hold one iteration's light vertices (" +
-                    std::to_string(records) + " records of " + std::to_string(record_bytes()) +
-                    " bytes); give more --memory or a smaller image");
+      if (capacity_ >= most) return false;
       records = most;
     }
     capacity_ = records;
@@ -209,41 +223,66 @@ class VcmIntegrator : public KernelIntegrator {
                            "vcm: the light-vertex store (--memory)");
     KernelLauncher& device = *this;  // the grid launches its kernels through it
     if (Mode != VcmMode::bpt) grid_.emplace(device, program_, capacity_);
+    return true;
   }
 
-  // The iteration's light subpaths into the store, splatting to the light paths' film; a store
-  // too small for them grows and the pass runs again with the same random numbers. Returns the
-  // vertices stored.
-  size_t trace_light_paths(int pass, double eta) {
+  // Light subpaths [first, first + count) of the iteration into the emptied store, splatting to
+  // the light paths' film. A store too small for them grows (within the budget) and the chunk
+  // runs again with the same random numbers, its splats taken back; nothing: the chunk does not
+  // fit the budget. Returns the vertices stored.
+  std::optional<size_t> trace_chunk(int pass, double eta, size_t first, size_t count) {
+    cl_.queue().enqueueCopyBuffer(fixed_, fixed_before_, 0, 0, cells() * 2 * sizeof(cl_ulong));
     for (;;) {
-      cl_.queue().enqueueFillBuffer(fixed_, cl_ulong(0), 0, cells() * 2 * sizeof(cl_ulong));
       cl_.queue().enqueueFillBuffer(stored_, cl_int(0), 0, sizeof(cl_int));
-      cl_.queue().enqueueFillBuffer(overflow_, cl_int(0), 0, sizeof(cl_int));
       size_t done = 0;
-      while (done < paths_) {
-        const size_t n = light_pacer_.next(paths_ - done);
+      while (done < count) {
+        const size_t n = light_pacer_.next(count - done);
         const auto t = std::chrono::steady_clock::now();
-        launch_range(light_kernel_, done, n, static_cast<cl_int>(paths_),
+        launch_range(light_kernel_, first + done, n, static_cast<cl_int>(paths_),
                      static_cast<cl_float>(eta), store_, stored_,
                      static_cast<cl_int>(capacity_), path_last_, fixed_,
                      static_cast<cl_int>(film_shift_), overflow_, light_cut_, seed_,
                      static_cast<cl_uint>(pass));
         light_pacer_.record(n, seconds_since(t));
         done += n;
-        control_.report(0.5 * static_cast<double>(done) / paths_);
+        control_.report(0.5 * static_cast<double>(first + done) / paths_);
       }
       cl_int stored = 0;
       cl_.queue().enqueueReadBuffer(stored_, CL_TRUE, 0, sizeof(cl_int), &stored);
-      if (static_cast<size_t>(stored) <= capacity_) return static_cast<size_t>(stored);
-      allocate_store(static_cast<size_t>(stored) + static_cast<size_t>(stored) / 4);
+      if (stored >= 0 && static_cast<size_t>(stored) <= capacity_)
+        return static_cast<size_t>(stored);
+      cl_.queue().enqueueCopyBuffer(fixed_before_, fixed_, 0, 0, cells() * 2 * sizeof(cl_ulong));
+      const size_t wanted = stored < 0 ? SIZE_MAX / 2 : static_cast<size_t>(stored);
+      if (!allocate_store(wanted + wanted / 4)) return std::nullopt;
     }
   }
 
+  // The camera pass with the store's chunk [first, end) of light subpaths; returns the pixels
+  // done. Only the last chunk's pass may stop early (a deadline, Ctrl-C): every pixel it reached
+  // has met every chunk.
+  size_t camera_pass(int pass, double eta, double radius, size_t first, size_t end, bool last) {
+    const size_t pixels = film_.pixels();
+    size_t done = 0;
+    while (done < pixels) {
+      if (last && done > 0 && control_.stop_now()) break;
+      const size_t n = camera_pacer_.next(pixels - done);
+      const auto t = std::chrono::steady_clock::now();
+      launch_range(camera_kernel_, done, n, static_cast<cl_int>(paths_), static_cast<cl_int>(first),
+                   static_cast<cl_int>(end), static_cast<cl_float>(eta),
+                   static_cast<cl_float>(radius), store_, path_last_,
+                   grid_ ? grid_->sorted() : path_last_, grid_ ? grid_->cell_count() : path_last_,
+                   grid_ ? grid_->cell_end() : path_last_, static_cast<cl_float>(0.5 / radius),
+                   grid_ ? grid_->mask() : 0u, spectra_, film_.pixel_sums(), rejected_,
+                   camera_cut_, seed_, static_cast<cl_uint>(pass));
+      camera_pacer_.record(n, seconds_since(t));
+      done += n;
+      if (last) control_.report(0.5 + 0.5 * static_cast<double>(done) / pixels);
+    }
+    return done;
+  }
+
   size_t no_light_paths() {
-    cl_.queue().enqueueFillBuffer(fixed_, cl_ulong(0), 0, cells() * 2 * sizeof(cl_ulong));
-    cl_.queue().enqueueFillBuffer(overflow_, cl_int(0), 0, sizeof(cl_int));
     cl_.queue().enqueueFillBuffer(path_last_, cl_int(-1), 0, paths_ * sizeof(cl_int));
-    cl_.queue().enqueueFillBuffer(light_cut_, cl_float(0), 0, paths_ * sizeof(cl_float));
     return 0;
   }
 
@@ -258,7 +297,7 @@ class VcmIntegrator : public KernelIntegrator {
   int film_shift_ = 0;
   LaunchPacer light_pacer_{0.2, 256}, camera_pacer_{0.2, 256};
   cl::Kernel light_kernel_, camera_kernel_;
-  cl::Buffer store_, fixed_, stored_, overflow_, path_last_, light_cut_, camera_cut_, rejected_, spectra_,
+  cl::Buffer store_, fixed_, fixed_before_, stored_, overflow_, path_last_, light_cut_, camera_cut_, rejected_, spectra_,
       cell_;
   std::optional<HashGrid> grid_;
 };
@@ -271,21 +310,21 @@ KASHA_REGISTER_INTEGRATOR_FOR(
     VertexConnectionMerging, vcm_unsupported, "vcm",
     "vertex connection and merging: light and camera subpaths joined by connections and merges "
     "under one MIS weight, iterations independent (a global radius schedule)",
-    {"--alpha", "--radius", "--memory"},
+    {"--photons", "--alpha", "--radius", "--memory"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
                      /*reference*/ false});
 KASHA_REGISTER_INTEGRATOR_FOR(
     BidirectionalPathTracing, vcm_unsupported, "bpt",
     "bidirectional path tracing: vcm's connections alone (next-event estimation, light "
     "tracing, subpath connections), MIS-weighted",
-    {"--memory"},
+    {"--photons", "--memory"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ true, /*sees camera mirrors*/ true,
                      /*reference*/ false});
 KASHA_REGISTER_INTEGRATOR_FOR(
     ProgressivePhotonMapping, vcm_unsupported, "ppm",
     "progressive photon mapping: vcm's merges alone, unweighted, at each camera path's first "
     "non-delta vertex",
-    {"--alpha", "--radius", "--memory"},
+    {"--photons", "--alpha", "--radius", "--memory"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
                      /*reference*/ false});
 
