@@ -5,7 +5,7 @@
  * so a connection T·f·G·f·Φ and a merge T·f·Φ cost O(N) and never pair wavelengths.
  *
  * An iteration is two launches and a grid:
- * 1. vcm_light_pass: light subpaths (one per pixel, at least 2^16); each vertex with a non-delta part is stored
+ * 1. vcm_light_pass: light subpaths (one per pixel, at least 2^14); each vertex with a non-delta part is stored
  *    (vcm_layout.h), linked to its path's previous one, and (connecting modes) splatted to the
  *    camera, MIS-weighted;
  * 2. the hashed grid over the stored vertices (hash_grid.cl; merging modes), cells of 2r;

@@ -541,6 +541,9 @@ class StiffCases : public ::testing::TestWithParam<StiffCase> {
 
 TEST_P(StiffCases, EveryIntegratorMatchesTheReference) {
   for (const std::string& integrator : IntegratorRegistry::names(true)) {
+    // bpt and ppm are vcm's kernels with techniques left out: vcm runs them all here, and the
+    // furnaces and agreement tests run each mode.
+    if (integrator == "bpt" || integrator == "ppm") continue;
     if (GetParam().reference == Reference::kUntransformed)
       run_untransformed(integrator);
     else

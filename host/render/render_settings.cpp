@@ -18,7 +18,7 @@ const std::vector<RenderSetting>& render_settings() {
   static const std::vector<RenderSetting> table = {
     {"--spp", "camera samples per pixel per pass (default 16; photon mapping 8)",
      V::integer, 1, 1 << 20, {}, false, false, FIELD(spp)},
-    {"--photons", "photons per pass (default 2^18; vcm: light subpaths, one a pixel and at least 2^16)",
+    {"--photons", "photons per pass (default 2^18; vcm: light subpaths, one a pixel and at least 2^14)",
      V::integer, 1, kMaxInt, {}, false, false, FIELD(photons)},
     {"--alpha", "photon mapping: radius reduction α (default 0.8)",
      V::number, 0.01, 0.99, {}, false, false, FIELD(alpha)},

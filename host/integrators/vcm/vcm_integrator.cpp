@@ -31,7 +31,7 @@ enum class VcmMode { vcm, bpt, ppm };
 // Light subpaths per iteration unless --photons says: one a pixel (pixel p's camera path connects
 // to light subpath p), and at least this many, so that a small image's merges and light tracing
 // are not starved of photons. With fewer than pixels, pixel p's partner is p mod their count.
-constexpr size_t kLeastLightPaths = 1 << 16;
+constexpr size_t kLeastLightPaths = 1 << 14;
 
 KernelDefines mode_defines(VcmMode m, const IntegratorSettings& s) {
   KernelDefines d{{"KASHA_VCM_CONNECT", m == VcmMode::ppm ? "0" : "1"},
