@@ -169,7 +169,8 @@ inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, con
   float k;
   if (!camera_connection(s, h->x, h->ns, h->eps, &pixel, &k)) return;
   float3 to = normalize(camera_position(&s->camera) - h->x);
-  float w_light = k / paths * (vm + (KASHA_VCM_DROP_DENSITY ? 0.0f : dvcm) + dvc * vcm_pdf(s, surf, share, h->ns, to, from));
+  float nee = KASHA_VCM_DROP_DENSITY ? 0.0f : dvcm;
+  float w_light = k / paths * (vm + nee + dvc * vcm_pdf(s, surf, share, h->ns, to, from));
   float scale = k / (1.0f + w_light) / s->bin_nm;
   float rows[KASHA_FILM_ROWS];
   film_rows_clear(rows);
@@ -239,7 +240,8 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
       last = slot;
       ++ordinal;
 #if KASHA_VCM_CONNECT && !KASHA_VCM_EMISSION_ONLY
-      if (VCM_LENGTH_COUNTS(depth + 2)) vcm_splat(&s, &f, &target, &surf, share, &h, from, &p, dvcm, dvc, vm, (float)paths);
+      if (VCM_LENGTH_COUNTS(depth + 2))
+        vcm_splat(&s, &f, &target, &surf, share, &h, from, &p, dvcm, dvc, vm, (float)paths);
 #endif
     }
     int branch = scatter_photon(&p, &surf, &s, &h, &sampler, depth);

@@ -79,7 +79,8 @@ TEST(Vcm, BptWeightsSumToOnePerPathLength) {
     std::array<double, 3> z = z_scores(weighted.image, plain(length), &relative);
     std::printf("  length %d: bpt / plain - 1 = %+.2f %% (Y, %+.1f standard errors)\n", length,
                 100 * relative[1], z[1]);
-    for (int k = 0; k < 3; ++k) EXPECT_LT(std::abs(z[k]), 4.0) << "length " << length << " row " << k;
+    for (int k = 0; k < 3; ++k)
+      EXPECT_LT(std::abs(z[k]), 4.0) << "length " << length << " row " << k;
   }
 }
 
@@ -104,7 +105,8 @@ TEST(Vcm, AWeightWithADensityDroppedFails) {
   RenderResult wrong = render_length("bpt", 2, 16, false, true);
   std::array<double, 3> relative;
   std::array<double, 3> z = z_scores(wrong.image, plain(2), &relative);
-  std::printf("  length 2, density dropped: bpt / plain - 1 = %+.2f %% (Y, %+.1f standard errors)\n",
-              100 * relative[1], z[1]);
+  std::printf(
+      "  length 2, density dropped: bpt / plain - 1 = %+.2f %% (Y, %+.1f standard errors)\n",
+      100 * relative[1], z[1]);
   EXPECT_GT(z[1], 6.0);
 }

@@ -88,7 +88,8 @@ class VcmIntegrator : public KernelIntegrator {
     spectra_ = device_buffer(cl_, (Mode == VcmMode::ppm ? 1 : pixels * bins) * sizeof(cl_float),
                              "vcm: per-path spectra");
     cell_ = device_buffer(cl_, 2 * sizeof(cl_float), "vcm: the grid's cell size");
-    fixed_before_ = device_buffer(cl_, cells() * 2 * sizeof(cl_ulong), "vcm: the light paths' film");
+    fixed_before_ =
+        device_buffer(cl_, cells() * 2 * sizeof(cl_ulong), "vcm: the light paths' film");
     // ~4 stored vertices a light path in ordinary scenes.
     if (!allocate_store(std::max<size_t>(4 * paths_, 1024)) && capacity_ == 0)
       throw Error("--memory: " + std::to_string(budget_) + " bytes hold no light vertex (" +
@@ -239,10 +240,9 @@ class VcmIntegrator : public KernelIntegrator {
         const size_t n = light_pacer_.next(count - done);
         const auto t = std::chrono::steady_clock::now();
         launch_range(light_kernel_, first + done, n, static_cast<cl_int>(paths_),
-                     static_cast<cl_float>(eta), store_, stored_,
-                     static_cast<cl_int>(capacity_), path_last_, fixed_,
-                     static_cast<cl_int>(film_shift_), overflow_, light_cut_, seed_,
-                     static_cast<cl_uint>(pass));
+                     static_cast<cl_float>(eta), store_, stored_, static_cast<cl_int>(capacity_),
+                     path_last_, fixed_, static_cast<cl_int>(film_shift_), overflow_, light_cut_,
+                     seed_, static_cast<cl_uint>(pass));
         light_pacer_.record(n, seconds_since(t));
         done += n;
         control_.report(0.5 * static_cast<double>(first + done) / paths_);
@@ -272,8 +272,8 @@ class VcmIntegrator : public KernelIntegrator {
                    static_cast<cl_float>(radius), store_, path_last_,
                    grid_ ? grid_->sorted() : path_last_, grid_ ? grid_->cell_count() : path_last_,
                    grid_ ? grid_->cell_end() : path_last_, static_cast<cl_float>(0.5 / radius),
-                   grid_ ? grid_->mask() : 0u, spectra_, film_.pixel_sums(), rejected_,
-                   camera_cut_, seed_, static_cast<cl_uint>(pass));
+                   grid_ ? grid_->mask() : 0u, spectra_, film_.pixel_sums(), rejected_, camera_cut_,
+                   seed_, static_cast<cl_uint>(pass));
       camera_pacer_.record(n, seconds_since(t));
       done += n;
       if (last) control_.report(0.5 + 0.5 * static_cast<double>(done) / pixels);
@@ -297,8 +297,8 @@ class VcmIntegrator : public KernelIntegrator {
   int film_shift_ = 0;
   LaunchPacer light_pacer_{0.2, 256}, camera_pacer_{0.2, 256};
   cl::Kernel light_kernel_, camera_kernel_;
-  cl::Buffer store_, fixed_, fixed_before_, stored_, overflow_, path_last_, light_cut_, camera_cut_, rejected_, spectra_,
-      cell_;
+  cl::Buffer store_, fixed_, fixed_before_, stored_, overflow_, path_last_, light_cut_, camera_cut_,
+      rejected_, spectra_, cell_;
   std::optional<HashGrid> grid_;
 };
 
