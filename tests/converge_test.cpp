@@ -50,8 +50,17 @@ TEST(Converge, FurnaceSlopesMatchTheory) {
     std::vector<LogRow> log = read_convergence_log(o.out_dir + "/log_" + s.integrator + "_1.csv");
     ASSERT_EQ(log.size(), 64u);
     double slope = slope_over_passes(log, false), slope_rel = slope_over_passes(log, true);
-    EXPECT_NEAR(slope, theory, 0.1) << s.integrator;
-    EXPECT_NEAR(slope_rel, 2 * theory, 0.2) << s.integrator;
+    if (s.integrator == "vcm") {
+      // Connections (−1/2) and merges (−α/2) under one weight: between the two, nearer the
+      // technique that dominates (in a furnace, the connections: measured −0.51).
+      EXPECT_LT(slope, -o.settings.alpha / 2 + 0.1) << s.integrator;
+      EXPECT_GT(slope, -0.5 - 0.1) << s.integrator;
+      EXPECT_LT(slope_rel, -o.settings.alpha + 0.2) << s.integrator;
+      EXPECT_GT(slope_rel, -1.0 - 0.2) << s.integrator;
+    } else {
+      EXPECT_NEAR(slope, theory, 0.1) << s.integrator;
+      EXPECT_NEAR(slope_rel, 2 * theory, 0.2) << s.integrator;
+    }
     EXPECT_EQ(s.reached_target, 1) << s.integrator;  // the worst final RMSE is every run's target
     std::printf("  %s: RMSE slope %.3f, relMSE slope %.3f over passes\n", s.integrator.c_str(),
                 slope, slope_rel);

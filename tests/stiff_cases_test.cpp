@@ -50,6 +50,8 @@ struct StiffCase {
   double tolerance = 0.01, photon_tolerance = 0.03;
   // A known shortfall of one integrator in this case: its own bound (and why, in the table).
   std::map<std::string, double> integrator_tolerance;
+  // Integrators not run on it, and why (in the catalogue below).
+  std::vector<std::string> left_out;
   int bins = 40;  // the grid's bin count, asserted
 };
 
@@ -204,6 +206,9 @@ std::vector<StiffCase> catalogue() {
     if (albedo > 0.9995) {  // 10⁴ vertices a path: 512 paths, 4–5 % standard error
       k->spp = 2, k->photons = 32, k->pm_photons = 8, k->max_passes = 16, k->photon_passes = 8;
       k->target_se = 0.04, k->tolerance = 0.2, k->photon_tolerance = 0.2;
+      // vcm merges and connects at each of a camera path's 10⁴ vertices: over two minutes of
+      // the suite here; it runs the 10³-vertex cases.
+      k->left_out = {"vcm"};
     } else {  // 10³ vertices: 4096 paths, ~1.6 % standard error
       k->spp = 2, k->photons = 256, k->pm_photons = 512, k->max_passes = 32, k->photon_passes = 8;
       k->target_se = 0.015, k->tolerance = 0.07, k->photon_tolerance = 0.07;
@@ -224,10 +229,16 @@ std::vector<StiffCase> catalogue() {
   // equal-energy light a fluorescent bounce's branch energy (b·ê)·Σa exceeds the path's
   // magnitude Σb several times over, so after ~1000 bounces path weights spread log-normally.
   // A known shortfall (README, stiff cases); its bound is what this budget reaches.
-  long_paths(furnace("mixture_999_box", {kMixture999}), 0.999)->integrator_tolerance["backward"] =
-      0.25;
+  // vcm's camera paths branch as backward's do, and take as heavy a tail here: 8 iterations of
+  // 256 light subpaths leave standard errors of 8 % (the box) and 20 % (the mirror mixture).
+  {
+    StiffCase* k = long_paths(furnace("mixture_999_box", {kMixture999}), 0.999);
+    k->integrator_tolerance["backward"] = 0.25;
+    k->integrator_tolerance["vcm"] = 0.25;
+  }
   long_paths(furnace("mirror_999_box", {kMirror999}), 0.999);
-  long_paths(furnace("mirror_mixture_999_sphere", {kMirrorMixture999, "1", "", true}), 0.999);
+  long_paths(furnace("mirror_mixture_999_sphere", {kMirrorMixture999, "1", "", true}), 0.999)
+      ->integrator_tolerance["vcm"] = 0.25;
   // 2. Self-absorption: aᵀB⁻¹ê = 0.99 and 0.999, the lamp overlapping excitation and emission.
   long_paths(furnace("self_absorption_99",
                      {self_absorbing(0.99), R"({"gaussian_nm": 500, "fwhm_nm": 100})"}),
@@ -544,6 +555,8 @@ TEST_P(StiffCases, EveryIntegratorMatchesTheReference) {
     // bpt and ppm are vcm's kernels with techniques left out: vcm runs them all here, and the
     // furnaces and agreement tests run each mode.
     if (integrator == "bpt" || integrator == "ppm") continue;
+    const std::vector<std::string>& out = GetParam().left_out;
+    if (std::find(out.begin(), out.end(), integrator) != out.end()) continue;
     if (GetParam().reference == Reference::kUntransformed)
       run_untransformed(integrator);
     else

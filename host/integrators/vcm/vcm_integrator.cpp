@@ -32,6 +32,8 @@ enum class VcmMode { vcm, bpt, ppm };
 // to light subpath p), and at least this many, so that a small image's merges and light tracing
 // are not starved of photons. With fewer than pixels, pixel p's partner is p mod their count.
 constexpr size_t kLeastLightPaths = 1 << 14;
+// ppm, merges alone, takes direct light from them too: at least as many as these.
+constexpr size_t kLeastPhotonMappingPaths = 1 << 16;
 
 KernelDefines mode_defines(VcmMode m, const IntegratorSettings& s) {
   KernelDefines d{{"KASHA_VCM_CONNECT", m == VcmMode::ppm ? "0" : "1"},
@@ -64,8 +66,11 @@ class VcmIntegrator : public KernelIntegrator {
         alpha_(s.settings.alpha),
         seed_(s.settings.seed),
         emission_only_(s.settings.vcm_emission_only),
-        paths_(s.settings.photons > 0 ? static_cast<size_t>(s.settings.photons)
-                                      : std::max<size_t>(film_.pixels(), kLeastLightPaths)),
+        paths_(s.settings.photons > 0
+                   ? static_cast<size_t>(s.settings.photons)
+                   : std::max<size_t>(film_.pixels(), Mode == VcmMode::ppm
+                                                          ? kLeastPhotonMappingPaths
+                                                          : kLeastLightPaths)),
         record_floats_(KASHA_VCM_FLOATS(s.scene.grid.bins)),
         bins_(s.scene.grid.bins),
         light_kernel_(program_, "vcm_light_pass"),
