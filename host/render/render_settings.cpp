@@ -18,11 +18,11 @@ const std::vector<RenderSetting>& render_settings() {
   static const std::vector<RenderSetting> table = {
     {"--spp", "camera samples per pixel per pass (default 16; photon mapping 8)",
      V::integer, 1, 1 << 20, {}, false, false, FIELD(spp)},
-    {"--photons", "photons per pass (default 2^18; vcm: light subpaths, one a pixel and at least 2^14)",
-     V::integer, 1, kMaxInt, {}, false, false, FIELD(photons)},
-    {"--alpha", "photon mapping: radius reduction α (default 0.8)",
+    {"--photons", "photons per pass (default 2^18; vcm, bpt, ppm: light subpaths, one a pixel and "
+     "at least 2^14, ppm 2^16)", V::integer, 1, kMaxInt, {}, false, false, FIELD(photons)},
+    {"--alpha", "photon mapping, vcm, ppm: radius reduction α (default 0.8)",
      V::number, 0.01, 0.99, {}, false, false, FIELD(alpha)},
-    {"--radius", "photon mapping: initial gather radius (default: from the pixel footprint)",
+    {"--radius", "photon mapping, vcm, ppm: initial gather radius (default: from the pixel footprint)",
      V::positive, 0, 1e300, {}, false, false, FIELD(radius)},
     {"--edge-correction",
      "photon mapping: divide the density by the measured fraction of the gather discs on "

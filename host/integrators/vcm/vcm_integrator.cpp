@@ -14,6 +14,7 @@
 #include <optional>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/warning.h"
 #include "integrators/forward/fixed_point_film.h"
 #include "opencl/device_buffer.h"
@@ -269,7 +270,9 @@ class VcmIntegrator : public KernelIntegrator {
     const size_t pixels = film_.pixels();
     size_t done = 0;
     while (done < pixels) {
-      if (last && done > 0 && control_.stop_now()) break;
+      // A deadline stops an iteration only once one has run whole (the first compiles the
+      // kernels at its first launches: cut there, most pixels would have no sample at all).
+      if (last && done > 0 && (whole_ > 0 || interrupt_requested()) && control_.stop_now()) break;
       const size_t n = camera_pacer_.next(pixels - done);
       const auto t = std::chrono::steady_clock::now();
       launch_range(camera_kernel_, done, n, static_cast<cl_int>(paths_), static_cast<cl_int>(first),
@@ -283,6 +286,7 @@ class VcmIntegrator : public KernelIntegrator {
       done += n;
       if (last) control_.report(0.5 + 0.5 * static_cast<double>(done) / pixels);
     }
+    if (last && done == pixels) ++whole_;
     return done;
   }
 
@@ -294,13 +298,15 @@ class VcmIntegrator : public KernelIntegrator {
   double alpha_;
   unsigned seed_;
   bool emission_only_;
-  size_t paths_;  // light subpaths per iteration: pixel p's camera path connects to the p-th
+  int whole_ = 0;  // iterations that ran whole
+  size_t paths_;   // light subpaths per iteration: pixel p's camera path connects to the p-th
   size_t record_floats_;
   size_t bins_;
   size_t budget_ = 0, capacity_ = 0;
   double first_radius_ = 0;
   int film_shift_ = 0;
-  LaunchPacer light_pacer_{0.2, 256}, camera_pacer_{0.2, 256};
+  // Camera launches of 0.05 s: a deadline cuts an iteration at a finer grain of pixels.
+  LaunchPacer light_pacer_{0.2, 256}, camera_pacer_{0.05, 256};
   cl::Kernel light_kernel_, camera_kernel_;
   cl::Buffer store_, fixed_, fixed_before_, stored_, overflow_, path_last_, light_cut_, camera_cut_,
       rejected_, spectra_, cell_;
