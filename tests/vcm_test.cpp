@@ -70,15 +70,23 @@ const Image& plain(int length) {
 
 }  // namespace
 
+// `integrator` restricted to paths of `length` segments against the plain estimate: z-scores per
+// XYZ row, and the relative differences in *relative.
+std::array<double, 3> against_plain(const std::string& integrator, int length,
+                                    std::array<double, 3>* relative) {
+  RenderResult weighted = render_length(integrator, length, 16, false);
+  std::array<double, 3> z = z_scores(weighted.image, plain(length), relative);
+  std::printf("  length %d: %s / plain - 1 = %+.2f %% (Y, %+.1f standard errors)\n", length,
+              integrator.c_str(), 100 * (*relative)[1], z[1]);
+  return z;
+}
+
 // Lengths 2 (direct light: emission hit, next-event estimation, light tracing), 3 and 4 (all of
 // bpt's techniques, connections of both subpaths' inner vertices among them).
 TEST(Vcm, BptWeightsSumToOnePerPathLength) {
   for (int length : {2, 3, 4}) {
-    RenderResult weighted = render_length("bpt", length, 16, false);
     std::array<double, 3> relative;
-    std::array<double, 3> z = z_scores(weighted.image, plain(length), &relative);
-    std::printf("  length %d: bpt / plain - 1 = %+.2f %% (Y, %+.1f standard errors)\n", length,
-                100 * relative[1], z[1]);
+    std::array<double, 3> z = against_plain("bpt", length, &relative);
     for (int k = 0; k < 3; ++k)
       EXPECT_LT(std::abs(z[k]), 4.0) << "length " << length << " row " << k;
   }
@@ -88,11 +96,8 @@ TEST(Vcm, BptWeightsSumToOnePerPathLength) {
 // same path, so the sum holds within merging's bias at this radius (1 % here).
 TEST(Vcm, VcmWeightsSumToOnePerPathLength) {
   for (int length : {2, 3}) {
-    RenderResult weighted = render_length("vcm", length, 16, false);
     std::array<double, 3> relative;
-    std::array<double, 3> z = z_scores(weighted.image, plain(length), &relative);
-    std::printf("  length %d: vcm / plain - 1 = %+.2f %% (Y, %+.1f standard errors)\n", length,
-                100 * relative[1], z[1]);
+    std::array<double, 3> z = against_plain("vcm", length, &relative);
     for (int k = 0; k < 3; ++k)
       EXPECT_TRUE(std::abs(z[k]) < 4.0 || std::abs(relative[k]) < 0.01)
           << "length " << length << " row " << k;

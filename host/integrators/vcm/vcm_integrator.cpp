@@ -239,6 +239,8 @@ class VcmIntegrator : public KernelIntegrator {
   // fit the budget. Returns the vertices stored.
   std::optional<size_t> trace_chunk(int pass, double eta, size_t first, size_t count) {
     cl_.queue().enqueueCopyBuffer(fixed_, fixed_before_, 0, 0, cells() * 2 * sizeof(cl_ulong));
+    cl_int overflow_before = 0;
+    cl_.queue().enqueueReadBuffer(overflow_, CL_TRUE, 0, sizeof(cl_int), &overflow_before);
     for (;;) {
       cl_.queue().enqueueFillBuffer(stored_, cl_int(0), 0, sizeof(cl_int));
       size_t done = 0;
@@ -257,7 +259,9 @@ class VcmIntegrator : public KernelIntegrator {
       cl_.queue().enqueueReadBuffer(stored_, CL_TRUE, 0, sizeof(cl_int), &stored);
       if (stored >= 0 && static_cast<size_t>(stored) <= capacity_)
         return static_cast<size_t>(stored);
+      // The retried chunk's splats and rejected splats are taken back.
       cl_.queue().enqueueCopyBuffer(fixed_before_, fixed_, 0, 0, cells() * 2 * sizeof(cl_ulong));
+      cl_.queue().enqueueWriteBuffer(overflow_, CL_TRUE, 0, sizeof(cl_int), &overflow_before);
       const size_t wanted = stored < 0 ? SIZE_MAX / 2 : static_cast<size_t>(stored);
       if (!allocate_store(wanted + wanted / 4)) return std::nullopt;
     }
