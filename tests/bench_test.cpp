@@ -107,7 +107,7 @@ void expect_one_line_error(const test::CommandResult& r, int exit_code, const st
 // rendering each image; the record's "together" holds their set and score.
 TEST(Bench, TwoQueuesAreBenchmarkedAloneAndTogether) {
   const std::string path = (test::scratch_dir() / "b00.json").string();
-  auto r = run_kasha("bench --time 3 --device 0,0 --json " + quoted(path));
+  auto r = run_kasha("bench --time 1 --device 0,0 --json " + quoted(path));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("score of device 0: "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("score of devices 0+0 together: "), std::string::npos) << r.out;

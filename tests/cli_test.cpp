@@ -209,6 +209,17 @@ TEST(Cli, CompareReportsErrorsWithAndWithoutTheLampPixels) {
   EXPECT_EQ(lamp, 612);
   EXPECT_GT(all, 0);
   EXPECT_LT(rest, 0.05 * all) << other.out;
+  // Block means: the two differ at scattered edge pixels, which 8 x 8 averaging mostly cancels.
+  auto blocks = run_kasha("compare " + shell_quoted(a) + " " + shell_quoted(b) + " --block 8");
+  ASSERT_EQ(blocks.exit_code, 0) << blocks.err;
+  double block_rmse = -1, block_rel = -1, all2 = -1, rel2 = -1;
+  ASSERT_EQ(std::sscanf(blocks.out.c_str(), "rmse %lf relmse %lf | 8x8 block means: rmse %lf relmse %lf",
+                        &all2, &rel2, &block_rmse, &block_rel),
+            4)
+      << blocks.out;
+  EXPECT_EQ(all2, all);
+  EXPECT_GT(block_rmse, 0);
+  EXPECT_LT(block_rmse, 0.5 * all) << blocks.out;
   expect_one_line_error(
       run_kasha("compare " + shell_quoted(a) + " " + shell_quoted(a) + " --scene " +
                 shell_quoted(test::source_path("scenes/torus.json"))),

@@ -28,11 +28,23 @@ BenchRun bench_on_devices(const LoadedBenchScene& s, const std::string& integrat
   }
   run.width = s.scene.camera.width;
   run.height = s.scene.camera.height;
-  reset_peak_resident_memory();
 
   using clock = std::chrono::steady_clock;
   const auto t0 = clock::now();
   IntegratorSettings settings;  // every integrator's defaults, seed 1
+  {
+    // Untimed warm-up, a pass a device: PoCL compiles a kernel's work-group function at its first launch (seconds
+    // on a cold cache, more on a loaded machine). One pass of a throwaway job puts every kernel
+    // the run launches in PoCL's cache, so the timed run renders rather than compiles; else a slow
+    // build leaves vcm or bpt, whose first iteration is never cut, one iteration: too noisy to
+    // validate.
+    RenderJob warm_up(lanes, s.scene, integrator, settings, false);
+    RenderOptions one;
+    one.stop.passes = static_cast<int>(lanes.size());  // one a device
+    one.show_progress = false;
+    warm_up.run(one);
+  }
+  reset_peak_resident_memory();
   RenderJob job(lanes, s.scene, integrator, settings, false);
   run.kernel_build_seconds = std::chrono::duration<double>(clock::now() - t0).count();
 

@@ -1,10 +1,12 @@
-// `kasha compare IMAGE.exr REFERENCE.exr [--scene SCENE.json]`: the error of an image against a
-// reference as the convergence log measures it, and, given the scene, with the pixels that see an
-// emitter directly left out.
+// `kasha compare IMAGE.exr REFERENCE.exr [--scene SCENE.json] [--block N]`: the error of an image
+// against a reference as the convergence log measures it; given the scene, with the pixels that see
+// an emitter directly left out; given a block size, of the N x N block means (the bench's
+// validation measure: it sees a bias or a low-frequency error that per-pixel noise hides).
 #include <cstdio>
 #include <memory>
 #include <string>
 
+#include "bench/bench_validation.h"
 #include "cli/command.h"
 #include "cli/command_line_errors.h"
 #include "core/error.h"
@@ -18,7 +20,7 @@ namespace kasha {
 // line. When every pixel sees an emitter, nothing is left without them: that is said in words
 // (exit 0, the whole image's errors stand) rather than as an RMSE of 0 over no pixels.
 static int run_compare(const std::string& image_path, const std::string& reference_path,
-                       const std::string& scene_path) {
+                       const std::string& scene_path, int block) {
   Image image = read_exr(image_path), reference = read_exr(reference_path);
   ImageError all = image_error(image, reference);
   std::string rest_text;
@@ -43,6 +45,14 @@ static int run_compare(const std::string& image_path, const std::string& referen
                     rest.rmse, rest.relmse);
     rest_text = text;
   }
+  if (block > 0) {
+    ImageError blocks =
+        image_error(block_average(image, block), block_average(reference, block));
+    char text[160];
+    std::snprintf(text, sizeof text, " | %dx%d block means: rmse %.6g relmse %.6g", block, block,
+                  blocks.rmse, blocks.relmse);
+    rest_text += text;
+  }
   std::printf("rmse %.6g relmse %.6g%s\n", all.rmse, all.relmse, rest_text.c_str());
   return 0;
 }
@@ -50,13 +60,17 @@ static int run_compare(const std::string& image_path, const std::string& referen
 static Command::Action declare_compare(CLI::App& app) {
   struct Args {
     std::string image, reference, scene;
+    int block = 0;
   };
   auto a = std::make_shared<Args>();
   app.add_option("image", a->image, "EXR to measure")->required();
   app.add_option("reference", a->reference, "reference EXR")->required();
   app.add_option("--scene", a->scene,
                  "the scene: also report the error without the pixels that see an emitter");
-  return [a] { return run_compare(a->image, a->reference, a->scene); };
+  app.add_option("--block", a->block,
+                 "also the error of the N x N block means (the bench validates with 16)")
+      ->check(cli::integer_within(1, 1 << 16));
+  return [a] { return run_compare(a->image, a->reference, a->scene, a->block); };
 }
 
 KASHA_REGISTER_COMMAND(compare, "compare", "error of an image against a reference", 10, false,
