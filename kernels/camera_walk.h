@@ -266,16 +266,11 @@ inline void walk_rough_next_event(const CameraWalk* w, const SceneView* s, const
   pw_add(&w->p, f, le, 0, scale, rows);
 }
 
-/* A rough interface: next-event estimation, then a direction drawn from its visible normals (a
- * reflection or, for a dielectric, a refraction, chosen by the facet's Fresnel reflectance; a
- * conductor's F(λ) applied bin by bin). The fourth sample pair of the vertex picks a dispersive
- * dielectric's bin. False: the path ends. */
-inline bool walk_rough(CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v, Sampler* sampler,
-                       float* rows) {
+/* A direction drawn from a rough interface's visible normals at index eta (a reflection or, for
+ * a dielectric, a refraction, chosen by the facet's Fresnel reflectance; a conductor's F(λ)
+ * applied bin by bin). False: the path ends. */
+inline bool walk_rough_scatter(CameraWalk* w, const CameraVertex* v, float eta) {
   const Surface* surf = &v->surf;
-  float eta = surf->kind == KASHA_KIND_DIELECTRIC ? walk_eta(w, f, surf, sample_2d(sampler).x) : 1.0f;
-  if (eta < 0.0f) return false;
-  walk_rough_next_event(w, s, f, v, eta, rows);
   Frame fr = frame_of(hit_front(&v->h));
   float3 wo = to_local(&fr, -w->dir);
   InterfaceSample smp;
@@ -295,6 +290,17 @@ inline bool walk_rough(CameraWalk* w, const SceneView* s, const FilmView* f, con
   w->specular = false;
   w->prev_pdf = smp.pdf;
   return true;
+}
+
+/* A rough interface: next-event estimation, then a direction (walk_rough_scatter). The fourth
+ * sample pair of the vertex picks a dispersive dielectric's bin. False: the path ends. */
+inline bool walk_rough(CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v, Sampler* sampler,
+                       float* rows) {
+  const Surface* surf = &v->surf;
+  float eta = surf->kind == KASHA_KIND_DIELECTRIC ? walk_eta(w, f, surf, sample_2d(sampler).x) : 1.0f;
+  if (eta < 0.0f) return false;
+  walk_rough_next_event(w, s, f, v, eta, rows);
+  return walk_rough_scatter(w, v, eta);
 }
 #endif
 

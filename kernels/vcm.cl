@@ -40,6 +40,9 @@
 #endif
 
 #define VCM_FLOATS KASHA_VCM_FLOATS(KASHA_BINS)
+/* Floats of a work item's spectra: a light vertex's f·Φ, then room for the light vertex's
+ * surface (textured, coated) apart from the camera vertex's in the scene's scratch. */
+#define VCM_SPECTRA (KASHA_BINS + KASHA_SCRATCH_FLOATS)
 
 /* Test hooks (tests/vcm_test.cpp): KASHA_VCM_LENGTH > 0 keeps only the contributions of paths of
  * that many segments; KASHA_VCM_EMISSION_ONLY keeps only camera paths hitting emitters,
@@ -63,93 +66,198 @@
 inline float vcm_merge_factor(float eta) { return KASHA_VCM_MERGE ? eta : 0.0f; }
 inline float vcm_connect_factor(float eta) { return KASHA_VCM_CONNECT ? 1.0f / eta : 0.0f; }
 
-/* A vertex connects and merges where its surface has a non-delta part: a Lambert part or a
- * tabulated gloss lobe (mirrors, smooth glass and metal are delta: neither). */
+/* A vertex connects where its surface has a non-delta part: a Lambert part (bare or under a
+ * coat), a tabulated gloss lobe, a rough coat's lobe, or a rough dielectric or conductor. It
+ * merges where it has a Lambert part or a tabulated lobe: a rough interface only connects, a
+ * choice both subpaths make alike from the material (the recursion leaves its merge out). */
 inline bool vcm_connectible(const Surface* surf) {
+  if (surface_rough(surf)) return true;
+  if (surface_specular(surf)) return false;
+  return surface_has_lambert(surf) || (surf->g > 0.0f && !surf->mirror);
+}
+inline bool vcm_mergeable(const Surface* surf) {
   if (surface_specular(surf)) return false;
   return surface_has_lambert(surf) || (surf->g > 0.0f && !surf->mirror);
 }
 
-/* The gloss part's share of the pseudo-density: g against the Lambert parts' mean reflectance
- * and excitation, from the material alone, so both subpaths find the same density at a vertex. */
-inline float vcm_gloss_share(const Surface* surf) {
-  if (!(surf->g > 0.0f)) return 0.0f;
+/* The Lambert parts' mean reflectance and excitation (after textures and a coat's series), from
+ * the material alone: what the pseudo-density mixes the gloss part against. */
+inline float vcm_lambert_mean(const Surface* surf) {
   float lambert = 0.0f;
   if (surf->passive)
     for (int i = 0; i < KASHA_BINS; ++i) lambert += surf->rho[i];
 #if KASHA_FLUORESCENCE
   if (surf->fluorescent) lambert += surf->a_sum;
 #endif
-  lambert /= KASHA_BINS;
+  return lambert / KASHA_BINS;
+}
+
+/* The gloss part's share of the pseudo-density for a subpath that met the vertex at |cos| mu:
+ * g against the Lambert parts' mean, for a coat both taken at mu (its Fresnel reflectance or
+ * rough lobe albedo, and t(mu) for the parts under it); a function of the material and mu alone,
+ * so both subpaths find the same density for the same pair of directions. */
+inline float vcm_share(const Surface* surf, float lambert, float mu) {
+#if KASHA_COATED
+  if (surf->coated) {
+    float g = coat_rough(surf) ? coat_table_at(surf, 0, mu) : fresnel_dielectric(mu, surf->m->coat_eta);
+    float l = lambert * coat_transmission(surf, mu) * surf->m->coat_albedo;
+    return g + l > 0.0f ? g / (g + l) : 0.0f;
+  }
+#endif
+  if (!(surf->g > 0.0f)) return 0.0f;
   return surf->g / (surf->g + lambert);
 }
 
 /* The pseudo-density (per solid angle) of leaving the vertex along `to` having arrived from
- * `from` (both pointing away from the surface, ns on from's side): the Lambert parts' cosine and
- * the tabulated lobe, mixed by the gloss share; a mirror's delta part is not in it. */
-inline float vcm_pdf(const SceneView* s, const Surface* surf, float share, float3 ns, float3 from, float3 to) {
+ * `from` (both pointing away from the surface; ns the normal on from's side, nf the front one):
+ * a rough interface's own density (at the material's index); else the Lambert parts' cosine and
+ * the tabulated or coat lobe, mixed by the gloss share. A delta part is not in it. */
+inline float vcm_pdf(const SceneView* s, const Surface* surf, float lambert, float3 ns, float3 nf, float3 from,
+                     float3 to) {
+#if KASHA_ROUGH
+  if (surface_rough(surf)) {
+    Frame fr = frame_of(nf);
+    float pdf, cos_m;
+    float3 wo = to_local(&fr, from), wi = to_local(&fr, to);
+#if KASHA_DIELECTRIC
+    if (surf->kind == KASHA_KIND_DIELECTRIC) {
+      rough_dielectric_eval(wo, wi, surf->eta, surf->alpha, true, &pdf);
+      return pdf;
+    }
+#endif
+    rough_conductor_eval(wo, wi, surf->alpha, &pdf, &cos_m);
+    return pdf;
+  }
+#endif
   float c = dot(ns, to);
   if (c <= 0.0f) return 0.0f;
+  float share = vcm_share(surf, lambert, dot(ns, from));
   float pdf = (1.0f - share) * c * KASHA_INV_PI;
+#if KASHA_COATED
+  if (surface_coat_lobe(surf)) {
+    Frame fr = frame_of(ns);
+    float lobe;
+    coat_lobe_eval(surf, to_local(&fr, from), to_local(&fr, to), &lobe);
+    return pdf + share * lobe;
+  }
+#endif
 #if KASHA_GLOSS
   if (share > 0.0f && !surf->mirror) pdf += share * lobe_pdf(surf->m, s->lobes, dot(to, reflect_dir(-from, ns)));
 #endif
   return pdf;
 }
 
-/* out = f(eye, light)·phi at a light vertex, f's non-delta parts without the cosine: light
- * arriving from `light` leaves towards `eye` (Lambert, fluorescent re-emission ê (a·Φ)/π, lobe). */
-inline void vcm_light_scatter(const SceneView* s, const Surface* surf, float3 ns, float3 light, float3 eye,
-                              const __global float* phi, __global float* out) {
-  float fg = 0.0f, fl = 0.0f;
-#if KASHA_GLOSS
-  if (surf->g > 0.0f && !surf->mirror) fg = surf->g * lobe_brdf(surf->m, s->lobes, eye, light, ns);
+/* f(wo, wi) of a vertex's non-delta parts for radiance going from wi to wo (both away from the
+ * surface; ns on the side it was met from, nf the front), split by how each part colours: the
+ * Lambert parts' factor (1/π, times a coat's t t / η² with `other` the direction it was not met
+ * from), a white part (tabulated or coat lobe, rough dielectric) and a rough conductor's f before
+ * its F(λ) at cos_m. */
+typedef struct {
+  float lambert, white, conductor, cos_m;
+} VcmF;
+
+inline VcmF vcm_eval(const SceneView* s, const Surface* surf, float3 ns, float3 nf, float3 wo, float3 wi, float3 other) {
+  VcmF r = {0.0f, 0.0f, 0.0f, 0.0f};
+#if KASHA_ROUGH
+  if (surface_rough(surf)) {
+    Frame fr = frame_of(nf);
+    float pdf;
+    float3 o = to_local(&fr, wo), i = to_local(&fr, wi);
+#if KASHA_CONDUCTOR
+    if (surf->kind == KASHA_KIND_CONDUCTOR) {
+      r.conductor = rough_conductor_eval(o, i, surf->alpha, &pdf, &r.cos_m);
+      return r;
+    }
 #endif
+#if KASHA_DIELECTRIC
+    r.white = rough_dielectric_eval(o, i, surf->eta, surf->alpha, true, &pdf);
+#endif
+    return r;
+  }
+#endif
+  if (!(dot(ns, wo) > 0.0f && dot(ns, wi) > 0.0f)) return r;
+  r.lambert = KASHA_INV_PI * surface_lambert_weight(surf, dot(ns, other));
+#if KASHA_COATED
+  if (surface_coat_lobe(surf)) {
+    Frame fr = frame_of(ns);
+    float pdf;
+    r.white = coat_lobe_eval(surf, to_local(&fr, wo), to_local(&fr, wi), &pdf);
+    return r;
+  }
+#endif
+#if KASHA_GLOSS
+  if (surf->g > 0.0f && !surf->mirror) r.white = surf->g * lobe_brdf(surf->m, s->lobes, wo, wi, ns);
+#endif
+  return r;
+}
+
+/* out = f·phi at a light vertex (vcm_eval's parts applied to the light's spectrum: ρ∘Φ, the
+ * re-emission ê (a·Φ), white, a conductor's F(λ)). */
+inline void vcm_light_apply(const Surface* surf, VcmF fv, const __global float* phi, __global float* out) {
+#if KASHA_CONDUCTOR
+  if (fv.conductor > 0.0f) {
+    for (int i = 0; i < KASHA_BINS; ++i)
+      out[i] = phi[i] * fv.conductor * fresnel_conductor(fv.cos_m, surf->eta_c[i], surf->k_c[i]);
+    return;
+  }
+#endif
+  float l = surf->passive ? fv.lambert : 0.0f;
 #if KASHA_FLUORESCENCE
-  if (surf->fluorescent) fl = spectrum_dot(KASHA_BINS, 0, surf->a, phi) * KASHA_INV_PI;
-  for (int i = 0; i < KASHA_BINS; ++i) out[i] = phi[i] * (surf->rho[i] * KASHA_INV_PI + fg) + surf->ehat[i] * fl;
+  float fl = surf->fluorescent ? fv.lambert * spectrum_dot(KASHA_BINS, 0, surf->a, phi) : 0.0f;
+  for (int i = 0; i < KASHA_BINS; ++i) out[i] = phi[i] * (surf->rho[i] * l + fv.white) + surf->ehat[i] * fl;
 #else
-  for (int i = 0; i < KASHA_BINS; ++i) out[i] = phi[i] * (surf->rho[i] * KASHA_INV_PI + fg);
+  for (int i = 0; i < KASHA_BINS; ++i) out[i] = phi[i] * (surf->rho[i] * l + fv.white);
 #endif
 }
 
-/* rows += scale · T·f(eye, light)·spectrum at a camera vertex, f's non-delta parts without the
- * cosine (next_event.h's terms, with any spectrum). */
-inline void vcm_camera_scatter(const PathWeight* p, const FilmView* f, const SceneView* s, const Surface* surf,
-                               float3 ns, float3 eye, float3 light, const __global float* spectrum, float scale,
-                               float* rows) {
-  if (surf->passive) pw_add(p, f, surf->rho, spectrum, scale * KASHA_INV_PI, rows);
-#if KASHA_FLUORESCENCE
-  if (surf->fluorescent)
-    pw_add(p, f, surf->ehat, 0, scale * KASHA_INV_PI * spectrum_dot(KASHA_BINS, 0, surf->a, spectrum), rows);
-#endif
-#if KASHA_GLOSS
-  if (surf->g > 0.0f && !surf->mirror) {
-    float fg = lobe_brdf(surf->m, s->lobes, eye, light, ns);
-    if (fg > 0.0f) pw_add(p, f, spectrum, 0, scale * surf->g * fg, rows);
+/* rows += scale · T·f·spectrum at a camera vertex (vcm_eval's parts, next_event.h's terms). */
+inline void vcm_camera_apply(const PathWeight* p, const FilmView* f, const Surface* surf, VcmF fv,
+                             const __global float* spectrum, float scale, float* rows) {
+#if KASHA_CONDUCTOR
+  if (fv.conductor > 0.0f) {
+    pw_add_conductor(p, f, spectrum, surf->eta_c, surf->k_c, fv.cos_m, scale * fv.conductor, rows);
+    return;
   }
 #endif
+  if (fv.lambert > 0.0f) {
+    if (surf->passive) pw_add(p, f, surf->rho, spectrum, scale * fv.lambert, rows);
+#if KASHA_FLUORESCENCE
+    if (surf->fluorescent)
+      pw_add(p, f, surf->ehat, 0, scale * fv.lambert * spectrum_dot(KASHA_BINS, 0, surf->a, spectrum), rows);
+#endif
+  }
+  if (fv.white > 0.0f) pw_add(p, f, spectrum, 0, scale * fv.white, rows);
 }
 
 /* A subpath's partial MIS weights after its vertex scattered it from `from` to `to` (SmallVCM's
  * SampleScattering): a delta bounce keeps them but for the cosine; any other divides by the
- * pseudo-density of the direction and carries the reverse one. False: no density, the path ends. */
-inline bool vcm_scattered(const SceneView* s, const Surface* surf, float share, float3 ns, float3 from, float3 to,
-                          bool delta, float vm, float vc, float* dvcm, float* dvc, float* dvm) {
-  float cos_out = fabs(dot(ns, to));
+ * pseudo-density of the direction and carries the reverse one, with the vertex's own connection
+ * and (where it merges) merge. Densities are about the shading normal ns (nf: the front one),
+ * their turns to area about the geometric ng. False: no density, the path ends. */
+inline bool vcm_scattered(const SceneView* s, const Surface* surf, float lambert, float3 ns, float3 nf, float3 ng,
+                          float3 from, float3 to, bool delta, bool merges, float vm, float vc, float* dvcm, float* dvc,
+                          float* dvm) {
+  float cos_out = fabs(dot(ng, to)); /* turns the reverse density to area: the geometric cosine */
   if (delta) {
     *dvcm = 0.0f;
     *dvc *= cos_out;
     *dvm *= cos_out;
     return true;
   }
-  float pdf = vcm_pdf(s, surf, share, ns, from, to), rev = vcm_pdf(s, surf, share, ns, to, from);
+  float pdf = vcm_pdf(s, surf, lambert, ns, nf, from, to), rev = vcm_pdf(s, surf, lambert, ns, nf, to, from);
   if (!(pdf > 0.0f)) return false;
-  *dvc = cos_out / pdf * (*dvc * rev + *dvcm + vm);
-  *dvm = cos_out / pdf * (*dvm * rev + *dvcm * vc + 1.0f);
+  *dvc = cos_out / pdf * (*dvc * rev + *dvcm + (merges ? vm : 0.0f));
+  *dvm = cos_out / pdf * (*dvm * rev + *dvcm * vc + (merges ? 1.0f : 0.0f));
   *dvcm = 1.0f / pdf;
   return true;
 }
+
+/* The side of a surface (normal n) a direction leaves by: where a shadow ray starts off. */
+inline float3 vcm_toward(float3 n, float3 d) { return dot(n, d) >= 0.0f ? n : -n; }
+
+/* A direction leaves by the same side of the shading (ns) and geometric (ng) surfaces: else it
+ * would leak through (hit_no_leak). */
+inline bool vcm_no_leak(float3 ns, float3 ng, float3 d) { return (dot(d, ns) > 0.0f) == (dot(d, ng) > 0.0f); }
 
 /* Arriving at a hit at distance t, cosine cos_in: the weights turn from solid angle to area. */
 inline void vcm_arrived(float t, float cos_in, float* dvcm, float* dvc, float* dvm) {
@@ -162,29 +270,35 @@ inline void vcm_arrived(float t, float cos_in, float* dvcm, float* dvc, float* d
 /* A light vertex seen by the camera (light tracing, SmallVCM's ConnectToCamera): f Φ k / Δλ with
  * k = cos · importance (camera_connection), which is also the camera's density of the vertex per
  * area, weighed against every technique that samples it from the camera side. */
-inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, const Surface* surf, float share,
-                      const HitPoint* h, float3 from, const Photon* p, float dvcm, float dvc, float vm,
+inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, const Surface* surf, float lambert,
+                      bool merges, const HitPoint* h, float3 from, const Photon* p, float dvcm, float dvc, float vm,
                       float paths) {
   int pixel;
   float k;
-  if (!camera_connection(s, h->x, h->ns, h->eps, &pixel, &k)) return;
   float3 to = normalize(camera_position(&s->camera) - h->x);
+  float3 nf = hit_front(h), ng = hit_ng(h);
+  /* Off the geometric side the camera lies on, which the shading normal must agree with. */
+  if (!vcm_no_leak(h->ns, ng, to)) return;
+  if (!camera_connection(s, h->x, vcm_toward(ng, to), h->eps, &pixel, &k)) return;
+  VcmF fv = vcm_eval(s, surf, h->ns, nf, to, from, to);
   float nee = KASHA_VCM_DROP_DENSITY ? 0.0f : dvcm;
-  float w_light = k / paths * (vm + nee + dvc * vcm_pdf(s, surf, share, h->ns, to, from));
+  float w_light = k / paths * ((merges ? vm : 0.0f) + nee + dvc * vcm_pdf(s, surf, lambert, h->ns, nf, to, from));
+  k *= photon_arrival_correction(h, p->direction);
   float scale = k / (1.0f + w_light) / s->bin_nm;
   float rows[KASHA_FILM_ROWS];
   film_rows_clear(rows);
-  if (surf->passive) film_rows(f, p->power, surf->rho, 0, scale * KASHA_INV_PI, rows);
+#if KASHA_CONDUCTOR
+  if (fv.conductor > 0.0f)
+    film_rows_conductor(f, p->power, 0, surf->eta_c, surf->k_c, fv.cos_m, scale * fv.conductor, rows);
+#endif
+  if (fv.lambert > 0.0f) {
+    if (surf->passive) film_rows(f, p->power, surf->rho, 0, scale * fv.lambert, rows);
 #if KASHA_FLUORESCENCE
-  if (surf->fluorescent)
-    film_rows(f, 0, surf->ehat, 0, spectrum_dot(KASHA_BINS, p->power, surf->a, 0) * scale * KASHA_INV_PI, rows);
+    if (surf->fluorescent)
+      film_rows(f, 0, surf->ehat, 0, spectrum_dot(KASHA_BINS, p->power, surf->a, 0) * scale * fv.lambert, rows);
 #endif
-#if KASHA_GLOSS
-  if (surf->g > 0.0f && !surf->mirror) {
-    float fg = lobe_brdf(surf->m, s->lobes, to, from, h->ns);
-    if (fg > 0.0f) film_rows(f, p->power, 0, 0, surf->g * fg * scale, rows);
   }
-#endif
+  if (fv.white > 0.0f) film_rows(f, p->power, 0, 0, scale * fv.white, rows);
   if (film_rows_finite(rows)) splat_rows(t, pixel, rows);
 }
 #endif
@@ -220,34 +334,50 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
     HitPoint h;
     if (!intersect_scene(&s, p.position, p.direction, &h)) break;
     vcm_arrived(h.t, fabs(dot(h.n, p.direction)), &dvcm, &dvc, &dvm);
+#if KASHA_SHADING_NORMALS
+    /* From below the shading normal's hemisphere: the surface does not scatter it (hit_seen). */
+    if (!hit_seen(&h, p.direction)) break;
+#endif
     Surface surf;
     load_surface_at(&s, &h, &surf);
-    float share = vcm_gloss_share(&surf);
-    float3 from = -p.direction;
+    float lambert = vcm_lambert_mean(&surf);
+    bool merges = vcm_mergeable(&surf);
+    float3 from = -p.direction, nf = hit_front(&h), ng = hit_ng(&h);
     if (vcm_connectible(&surf)) {
       int slot = atomic_inc(stored);
-      if (slot >= 0 && slot < capacity) {
-        __global float* r = store + (long)slot * VCM_FLOATS;
+      bool kept = slot >= 0 && slot < capacity;
+      __global float* r = store + (long)slot * VCM_FLOATS;
+      if (kept) {
         r[0] = h.x.x, r[1] = h.x.y, r[2] = h.x.z;
-        r[3] = h.ns.x, r[4] = h.ns.y, r[5] = h.ns.z;
+        r[3] = ng.x, r[4] = ng.y, r[5] = ng.z;
         r[KASHA_PHOTON_INDEX] = as_float(index), r[KASHA_PHOTON_DEPTH] = as_float(depth);
-        for (int i = 0; i < KASHA_BINS; ++i) r[KASHA_PHOTON_POWER + i] = p.power[i];
+        float arrival = photon_arrival_correction(&h, p.direction);
+        for (int i = 0; i < KASHA_BINS; ++i) r[KASHA_PHOTON_POWER + i] = p.power[i] * arrival;
         __global float* m = r + KASHA_VCM_ARRIVAL(KASHA_BINS);
         m[0] = p.direction.x, m[1] = p.direction.y, m[2] = p.direction.z;
         m[3] = dvcm, m[4] = dvc, m[5] = dvm;
-        m[6] = as_float(h.material), m[7] = h.eps, m[8] = as_float(last), m[9] = as_float(ordinal);
+        m[6] = as_float(h.tri), m[7] = h.eps, m[8] = as_float(last), m[9] = as_float(ordinal);
+#if KASHA_TEXTURES
+        m[10] = h.b.x, m[11] = h.b.y;
+#else
+        m[10] = m[11] = 0.0f;
+#endif
+        m[12] = merges ? 1.0f : 0.0f;
+        m[13] = h.ns.x, m[14] = h.ns.y, m[15] = h.ns.z;
       }
       last = slot;
       ++ordinal;
 #if KASHA_VCM_CONNECT && !KASHA_VCM_EMISSION_ONLY
       if (VCM_LENGTH_COUNTS(depth + 2))
-        vcm_splat(&s, &f, &target, &surf, share, &h, from, &p, dvcm, dvc, vm, (float)paths);
+        vcm_splat(&s, &f, &target, &surf, lambert, merges, &h, from, &p, dvcm, dvc, vm, (float)paths);
 #endif
     }
     int branch = scatter_photon(&p, &surf, &s, &h, &sampler, depth);
     if (branch == BRANCH_ABSORBED) break;
-    bool delta = branch == BRANCH_SPECULAR || (branch == BRANCH_GLOSS && surf.mirror);
-    if (!vcm_scattered(&s, &surf, share, h.ns, from, p.direction, delta, vm, vc, &dvcm, &dvc, &dvm)) break;
+    bool delta = (branch == BRANCH_SPECULAR && !surface_rough(&surf)) || (branch == BRANCH_GLOSS && surf.mirror);
+    if (!vcm_scattered(&s, &surf, lambert, h.ns, nf, ng, from, p.direction, delta, merges, vm, vc, &dvcm, &dvc,
+                       &dvm))
+      break;
   }
   path_last[index] = last;
   cut[index] = guard;
@@ -261,15 +391,25 @@ typedef struct {
   float dvcm, dvc, dvm;
 } VcmCamera;
 
+/* What a camera vertex's techniques share: its normals (densities and f about the shading
+ * normal, turns to area about the geometric one), the Lambert mean its pseudo-densities
+ * mix by, and whether it merges. */
+typedef struct {
+  float3 ns, nf, ng; /* shading normal on the eye's side, on the front; geometric on the eye's side */
+  float lambert;
+  bool merges;
+} VcmVertex;
+
 #if KASHA_VCM_CONNECT
 /* Next-event estimation at a camera vertex (SmallVCM's DirectIllumination): one light point as
  * next_event.h samples it, weighed against the camera path hitting it and against every
- * technique that reaches it from the light's side. */
+ * technique that reaches it from the light's side. A rough dielectric takes light from either
+ * side. */
 inline void vcm_next_event(const VcmCamera* c, const SceneView* s, const FilmView* f, const CameraVertex* v,
-                           float share, float vm, float* rows) {
+                           const VcmVertex* cv, float vm, float* rows) {
   if (s->light_count == 0) return;
   const Surface* surf = &v->surf;
-  float3 x = v->h.x, ns = v->h.ns, eye = -c->w.dir;
+  float3 x = v->h.x, ns = cv->ns, eye = -c->w.dir;
   float pdf_light;
   LightPoint lp = sample_light_from(s, x, v->u_light, &pdf_light);
   if (!(pdf_light > 0.0f)) return;
@@ -277,21 +417,54 @@ inline void vcm_next_event(const VcmCamera* c, const SceneView* s, const FilmVie
   float dist = length(to);
   if (!(dist > v->h.eps + lp.eps)) return;
   float3 wi = to / dist;
-  float cos_x = dot(ns, wi), cos_l = -dot(lp.normal, wi);
-  if (cos_x <= 0.0f || cos_l <= 0.0f) return;
+  float cos_x = fabs(dot(ns, wi)), cos_g = fabs(dot(cv->ng, wi)), cos_l = -dot(lp.normal, wi);
+  if (cos_x <= 0.0f || cos_l <= 0.0f || !vcm_no_leak(ns, cv->ng, wi)) return;
+  VcmF fv = vcm_eval(s, surf, ns, cv->nf, eye, wi, wi);
+  if (!(fv.lambert > 0.0f || fv.white > 0.0f || fv.conductor > 0.0f)) return;
   float area = s->emitter_area_pdf[lp.emitter];
   float direct = area * dist * dist / cos_l, emission = area * cos_l * KASHA_INV_PI;
-  float w_light = vcm_pdf(s, surf, share, ns, eye, wi) / direct;
-  float w_camera = emission * cos_x / (direct * cos_l) * (vm + c->dvcm + c->dvc * vcm_pdf(s, surf, share, ns, wi, eye));
+  float w_light = vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, wi) / direct;
+  float w_camera = emission * cos_g / (direct * cos_l) *
+                   ((cv->merges ? vm : 0.0f) + c->dvcm + c->dvc * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, wi, eye));
   float weight = 1.0f / (w_light + 1.0f + w_camera);
-  if (segment_occluded(s, x, ns, v->h.eps, wi, dist, lp.eps / cos_l)) return;
-  vcm_camera_scatter(&c->w.p, f, s, surf, ns, eye, wi, light_point_spectrum(s, &lp), cos_x / pdf_light * weight,
-                     rows);
+  if (segment_occluded(s, x, vcm_toward(cv->ng, wi), v->h.eps, wi, dist, lp.eps / cos_l)) return;
+  float scale = cos_x / pdf_light * weight;
+#if KASHA_LIGHT_SOURCES || KASHA_EMISSION_TEXTURES
+  scale *= lp.scale;
+#endif
+  vcm_camera_apply(&c->w.p, f, surf, fv, light_point_spectrum(s, &lp), scale, rows);
 }
 
 /* A camera vertex connects to at most this many vertices of its light subpath: all of them in
  * ordinary scenes (a few a subpath), an unbiased thinning of a long one (vcm_connect). */
 #define KASHA_VCM_CONNECTIONS 8
+
+/* The surface of a stored light vertex as the light subpath met it (textures at its barycentrics,
+ * a coat for its arrival), its spectra in the work item's own scratch `room` so that the camera
+ * vertex's stay. *ns: the shading normal on the light's side, *nf the front one, *ng the
+ * geometric one on the light's side. */
+inline void vcm_light_surface(const SceneView* s, const __global float* r, __global float* room, Surface* sy,
+                              float3* ns, float3* nf, float3* ng) {
+  const __global float* m = r + KASHA_VCM_ARRIVAL(KASHA_BINS);
+  HitPoint h;
+  h.tri = as_int(m[6]);
+  const __global KTriangle* t = &s->tris[h.tri];
+  h.material = t->material;
+  float3 arrival = (float3)(m[0], m[1], m[2]);
+  *ns = (float3)(m[13], m[14], m[15]);
+  *ng = (float3)(r[3], r[4], r[5]);
+  float3 n = normalize(cross(load_float3(t->v1) - load_float3(t->v0), load_float3(t->v2) - load_float3(t->v0)));
+  *nf = dot(n, arrival) < 0.0f ? *ns : -*ns;
+#if KASHA_TEXTURES
+  h.b = (float2)(m[10], m[11]);
+#endif
+#if KASHA_COATED
+  h.cos_in = fabs(dot(n, arrival));
+#endif
+  SceneView own = *s;
+  own.scratch = room;
+  load_surface_at(&own, &h, sy);
+}
 
 /* Connections of a camera vertex to the stored vertices of its light subpath, the last stored
  * at record `last` (SmallVCM's ConnectVertices): T·f_c·G·f_l·Φ, Φ per light subpath (paths/Δλ
@@ -299,13 +472,14 @@ inline void vcm_next_event(const VcmCamera* c, const SceneView* s, const FilmVie
  * (a furnace of albedo 0.999 stores a thousand) is thinned: with s = ⌈n / KASHA_VCM_CONNECTIONS⌉
  * only the vertices whose ordinal is o mod s, o uniform in [0, s) from `u`, connect, each
  * weighed s — every vertex with probability 1/s, so the sum is unbiased and a path of n camera
- * vertices costs O(n) shadow rays, not O(n²). `out` is the work item's spectrum for f_l·Φ. */
-inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* f, const CameraVertex* v, float share,
-                        float vm, float paths, const __global float* store, int last, uint u, __global float* out,
-                        float* rows) {
+ * vertices costs O(n) shadow rays, not O(n²). `out` is the work item's spectra (VCM_SPECTRA):
+ * f_l·Φ, then the light vertex's surface. */
+inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* f, const CameraVertex* v,
+                        const VcmVertex* cv, float vm, float paths, const __global float* store, int last, uint u,
+                        __global float* out, float* rows) {
   if (last < 0) return;
   const Surface* surf = &v->surf;
-  float3 x = v->h.x, ns = v->h.ns, eye = -c->w.dir;
+  float3 x = v->h.x, ns = cv->ns, eye = -c->w.dir;
   int n = as_int(store[(long)last * VCM_FLOATS + KASHA_VCM_ORDINAL(KASHA_BINS)]) + 1;
   int stride = (n + KASHA_VCM_CONNECTIONS - 1) / KASHA_VCM_CONNECTIONS;
   int offset = (int)(u % (uint)stride);
@@ -315,41 +489,48 @@ inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* 
     slot = as_int(m[8]);
     if (as_int(m[9]) % stride != offset) continue;
     if (!VCM_LENGTH_COUNTS(c->w.depth + as_int(r[KASHA_PHOTON_DEPTH]) + 3)) continue;
-    float3 y = (float3)(r[0], r[1], r[2]), ny = (float3)(r[3], r[4], r[5]);
+    float3 y = (float3)(r[0], r[1], r[2]);
     float3 d = y - x;
     float dist2 = dot(d, d), dist = sqrt(dist2);
     float3 dir = d / dist;
-    float cos_c = dot(ns, dir), cos_y = -dot(ny, dir);
-    if (!(cos_c > 0.0f && cos_y > 0.0f)) continue;
+    VcmF fc = vcm_eval(s, surf, ns, cv->nf, eye, dir, dir);
+    if (!(fc.lambert > 0.0f || fc.white > 0.0f || fc.conductor > 0.0f)) continue;
+    if (!vcm_no_leak(ns, cv->ng, dir)) continue;
     Surface sy;
-    load_surface(s, as_int(m[6]), &sy);
-    float share_y = vcm_gloss_share(&sy);
+    float3 ny, nfy, ngy;
+    vcm_light_surface(s, r, out + KASHA_BINS, &sy, &ny, &nfy, &ngy);
+    if (!vcm_no_leak(ny, ngy, -dir)) continue;
     float3 light = -(float3)(m[0], m[1], m[2]);
-    float w_light = vcm_pdf(s, surf, share, ns, eye, dir) * cos_y / dist2 *
-                    (vm + m[3] + m[4] * vcm_pdf(s, &sy, share_y, ny, -dir, light));
-    float w_camera = vcm_pdf(s, &sy, share_y, ny, light, -dir) * cos_c / dist2 *
-                     (vm + c->dvcm + c->dvc * vcm_pdf(s, surf, share, ns, dir, eye));
+    VcmF fl = vcm_eval(s, &sy, ny, nfy, -dir, light, -dir);
+    if (!(fl.lambert > 0.0f || fl.white > 0.0f || fl.conductor > 0.0f)) continue;
+    /* The camera side's radiance takes the shading cosine; the turns to area, the geometric. */
+    float cos_s = fabs(dot(ns, dir)), cos_c = fabs(dot(cv->ng, dir)), cos_y = fabs(dot(ngy, dir));
+    float lambert_y = vcm_lambert_mean(&sy);
+    bool merges_y = m[12] > 0.5f;
+    float w_light = vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, dir) * cos_y / dist2 *
+                    ((merges_y ? vm : 0.0f) + m[3] + m[4] * vcm_pdf(s, &sy, lambert_y, ny, nfy, -dir, light));
+    float w_camera = vcm_pdf(s, &sy, lambert_y, ny, nfy, light, -dir) * cos_c / dist2 *
+                     ((cv->merges ? vm : 0.0f) + c->dvcm + c->dvc * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, dir, eye));
     float weight = 1.0f / (w_light + 1.0f + w_camera);
     if (!(weight > 0.0f)) continue;
-    if (segment_occluded(s, x, ns, v->h.eps, dir, dist, m[7] / cos_y)) continue;
-    vcm_light_scatter(s, &sy, ny, light, -dir, r + KASHA_PHOTON_POWER, out);
-    vcm_camera_scatter(&c->w.p, f, s, surf, ns, eye, dir, out,
-                       stride * weight * cos_c * cos_y / dist2 * paths / s->bin_nm, rows);
+    if (segment_occluded(s, x, vcm_toward(cv->ng, dir), v->h.eps, dir, dist, m[7] / cos_y)) continue;
+    vcm_light_apply(&sy, fl, r + KASHA_PHOTON_POWER, out);
+    vcm_camera_apply(&c->w.p, f, surf, fc, out, stride * weight * cos_s * cos_y / dist2 * paths / s->bin_nm, rows);
   }
 }
 #endif
 
 #if KASHA_VCM_MERGE
 /* Merges at a camera vertex (SmallVCM's RangeQuery with its MergingCallback): every stored light
- * vertex within r — on the same side, facing alike and near the tangent plane, as photon
- * mapping's gather — adds T·f_c·Φ weighed against the connections that sample the same path
- * (ppm: unweighted), scaled by `scale` (1/(π r² Δλ) over a branch probability). */
-inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f, const CameraVertex* v, float share,
-                      float vc, float radius, float scale, const __global float* store, const __global int* sorted,
-                      const __global int* cell_count, const __global int* cell_end, float inv_cell, uint mask,
-                      float* rows) {
+ * vertex within r that merges — on the same side, facing alike and near the tangent plane, as
+ * photon mapping's gather — adds T·f_c·Φ weighed against the connections that sample the same
+ * path (ppm: unweighted), scaled by `scale` (1/(π r² Δλ) over a branch probability). */
+inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f, const CameraVertex* v,
+                      const VcmVertex* cv, float vc, float radius, float scale, const __global float* store,
+                      const __global int* sorted, const __global int* cell_count, const __global int* cell_end,
+                      float inv_cell, uint mask, float* rows) {
   const Surface* surf = &v->surf;
-  float3 x = v->h.x, ns = v->h.ns, eye = -c->w.dir;
+  float3 x = v->h.x, ns = cv->ns, eye = -c->w.dir;
   float r2 = radius * radius;
   int3 lo = grid_cell(x - radius, inv_cell), hi = grid_cell(x + radius, inv_cell);
   for (int cz = lo.z; cz <= hi.z; ++cz)
@@ -365,19 +546,21 @@ inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f,
           if (!VCM_LENGTH_COUNTS(c->w.depth + as_int(r[KASHA_PHOTON_DEPTH]) + 2)) continue;
           float3 d = y - x;
           if (!(dot(d, d) < r2)) continue;
+          const __global float* m = r + KASHA_VCM_ARRIVAL(KASHA_BINS);
+          if (!(m[12] > 0.5f)) continue;
           float3 ny = (float3)(r[3], r[4], r[5]);
           if (dot(ny, ns) < 0.5f || fabs(dot(d, ns)) > KASHA_GATHER_SLAB * radius) continue;
-          const __global float* m = r + KASHA_VCM_ARRIVAL(KASHA_BINS);
           float3 light = -(float3)(m[0], m[1], m[2]);
           if (dot(light, ns) <= 0.0f) continue;
+          VcmF fv = vcm_eval(s, surf, ns, cv->nf, eye, light, light);
 #if KASHA_VCM_CONNECT
-          float w_light = m[3] * vc + m[5] * vcm_pdf(s, surf, share, ns, eye, light);
-          float w_camera = c->dvcm * vc + c->dvm * vcm_pdf(s, surf, share, ns, light, eye);
+          float w_light = m[3] * vc + m[5] * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, light);
+          float w_camera = c->dvcm * vc + c->dvm * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, light, eye);
           float weight = 1.0f / (w_light + 1.0f + w_camera);
 #else
           float weight = 1.0f;
 #endif
-          vcm_camera_scatter(&c->w.p, f, s, surf, ns, eye, light, r + KASHA_PHOTON_POWER, weight * scale, rows);
+          vcm_camera_apply(&c->w.p, f, surf, fv, r + KASHA_PHOTON_POWER, weight * scale, rows);
         }
       }
 }
@@ -420,8 +603,17 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
     HitPoint* h = &v.h;
     if (!intersect_scene(s, c.w.org, c.w.dir, h)) return 0.0f;
     vcm_arrived(h->t, fabs(dot(h->n, c.w.dir)), &c.dvcm, &c.dvc, &c.dvm);
-    if (own && h->emitter >= 0 && h->front)
-      pw_add(&c.w.p, f, emitter_spectrum(s, h->emitter), 0, vcm_emission_weight(&c, s, h), rows);
+    if (own && h->emitter >= 0 && h->front) {
+      float weight = vcm_emission_weight(&c, s, h);
+#if KASHA_EMISSION_TEXTURES
+      weight *= emission_factor(s, h->tri, h->b.x, h->b.y);
+#endif
+      pw_add(&c.w.p, f, emitter_spectrum(s, h->emitter), 0, weight, rows);
+    }
+#if KASHA_SHADING_NORMALS
+    /* Seen from below the shading normal's hemisphere, the surface scatters nothing (hit_seen). */
+    if (!hit_seen(h, c.w.dir)) return 0.0f;
+#endif
     load_surface_at(s, h, &v.surf);
     v.probs = surface_specular(&v.surf) ? (float3)(1.0f, 0.0f, 0.0f) : branch_probabilities(&c.w.p, f, &v.surf);
     if (v.probs.x + v.probs.y + v.probs.z <= 0.0f) return 0.0f;
@@ -430,52 +622,71 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
     v.u_light = sample_2d(sampler);
     v.u_dir = sample_2d(sampler);
     float3 eye = -c.w.dir;
+    VcmVertex cv;
+    cv.ns = h->ns;
+    cv.nf = hit_front(h);
+    cv.ng = hit_ng(h);
+    cv.lambert = vcm_lambert_mean(&v.surf);
+    cv.merges = vcm_mergeable(&v.surf);
+    bool rough = surface_rough(&v.surf);
 #if KASHA_DIELECTRIC || KASHA_CONDUCTOR
-    if (surface_specular(&v.surf)) {
+    if (surface_specular(&v.surf) && !rough) {
       if (!walk_specular(&c.w, f, &v)) return 0.0f;
-      vcm_scattered(s, &v.surf, 0.0f, h->ns, eye, c.w.dir, true, vm, vc, &c.dvcm, &c.dvc, &c.dvm);
+      vcm_scattered(s, &v.surf, 0.0f, h->ns, cv.nf, cv.ng, eye, c.w.dir, true, false, vm, vc, &c.dvcm, &c.dvc,
+                    &c.dvm);
       if (!walk_on(&c.w, f, &v)) return 0.0f;
       continue;
     }
 #endif
-    float share = vcm_gloss_share(&v.surf);
     if (vcm_connectible(&v.surf) && !KASHA_VCM_EMISSION_ONLY) {
 #if KASHA_VCM_CONNECT
       if (own) {
-        if (VCM_LENGTH_COUNTS(c.w.depth + 2)) vcm_next_event(&c, s, f, &v, share, vm, rows);
-        vcm_connect(&c, s, f, &v, share, vm, paths, store, path_last[pixel % (int)paths],
+        if (VCM_LENGTH_COUNTS(c.w.depth + 2)) vcm_next_event(&c, s, f, &v, &cv, vm, rows);
+        vcm_connect(&c, s, f, &v, &cv, vm, paths, store, path_last[pixel % (int)paths],
                     hash_combine(hash_combine(seed, (uint)pixel), (uint)c.w.depth), out, rows);
       }
 #if KASHA_VCM_MERGE
-      vcm_merge(&c, s, f, &v, share, vc, radius, KASHA_INV_PI / (radius * radius * s->bin_nm), store, sorted,
-                cell_count, cell_end, inv_cell, mask, rows);
+      if (cv.merges)
+        vcm_merge(&c, s, f, &v, &cv, vc, radius, KASHA_INV_PI / (radius * radius * s->bin_nm), store, sorted,
+                  cell_count, cell_end, inv_cell, mask, rows);
 #endif
 #else
-      /* ppm: the first vertex with a non-delta part merges all of it, unless a mirror lobe
-       * chosen by its probability carries the path on. */
+      /* ppm: the first vertex that merges merges all of it, unless a mirror lobe chosen by its
+       * probability carries the path on. */
       float p_mirror = v.surf.mirror ? v.probs.x : 0.0f;
-      if (!(v.u_choice.x < p_mirror)) {
-        vcm_merge(&c, s, f, &v, share, vc, radius,
-                  KASHA_INV_PI / (radius * radius * s->bin_nm) / (1.0f - p_mirror), store, sorted, cell_count,
-                  cell_end, inv_cell, mask, rows);
+      if (cv.merges && !(v.u_choice.x < p_mirror)) {
+        vcm_merge(&c, s, f, &v, &cv, vc, radius, KASHA_INV_PI / (radius * radius * s->bin_nm) / (1.0f - p_mirror),
+                  store, sorted, cell_count, cell_end, inv_cell, mask, rows);
         return 0.0f;
       }
 #endif
     }
-    float3 probs = v.probs;
-    float choice = v.u_choice.x;
-    if (choice < probs.x) {
-      if (!walk_gloss(&c.w, s, &v, sampler)) return 0.0f;
-    } else if (choice < probs.x + probs.y || probs.z <= 0.0f) {
-      lambert_bounce(&c.w, &v, probs.y);
-      pw_scatter_diagonal(&c.w.p, v.surf.rho, 1.0f / probs.y);
-#if KASHA_FLUORESCENCE
-    } else {
-      lambert_bounce(&c.w, &v, probs.z);
-      pw_scatter_fluorescent(&c.w.p, f, v.surf.ehat, v.surf.a, 1.0f / probs.z);
+#if KASHA_ROUGH
+    if (rough) {
+      /* A rough interface: its direction from the visible normals (walk_rough_scatter). */
+      if (!walk_rough_scatter(&c.w, &v, v.surf.kind == KASHA_KIND_DIELECTRIC ? v.surf.eta : 1.0f)) return 0.0f;
+    } else
 #endif
+    {
+      float3 probs = v.probs;
+      float choice = v.u_choice.x;
+      if (choice < probs.x) {
+        if (!walk_gloss(&c.w, s, &v, sampler)) return 0.0f;
+      } else if (choice < probs.x + probs.y || probs.z <= 0.0f) {
+        lambert_bounce(&c.w, &v, probs.y);
+        pw_scatter_diagonal(&c.w.p, v.surf.rho, lambert_weight(&c.w, &v) / probs.y);
+#if KASHA_FLUORESCENCE
+      } else {
+        lambert_bounce(&c.w, &v, probs.z);
+        pw_scatter_fluorescent(&c.w.p, f, v.surf.ehat, v.surf.a, lambert_weight(&c.w, &v) / probs.z);
+#if KASHA_DISPERSION
+        c.w.bin = -1; /* re-emission spreads the path over the excitation spectrum again */
+#endif
+#endif
+      }
     }
-    if (!vcm_scattered(s, &v.surf, share, h->ns, eye, c.w.dir, c.w.specular, vm, vc, &c.dvcm, &c.dvc, &c.dvm))
+    if (!vcm_scattered(s, &v.surf, cv.lambert, h->ns, cv.nf, cv.ng, eye, c.w.dir, c.w.specular, cv.merges, vm, vc,
+                       &c.dvcm, &c.dvc, &c.dvm))
       return 0.0f;
     if (!walk_on(&c.w, f, &v)) return 0.0f;
   }
@@ -484,8 +695,8 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
 
 /* One camera path per pixel (its light subpath: the pixel's index modulo `paths`), its estimate with the store's
  * chunk of light subpaths [chunk_first, chunk_end) added to the pixel's sums: the same path
- * (the same random numbers) with every chunk. `path_spectra`: KASHA_BINS floats per work item
- * for a light vertex's f·Φ. */
+ * (the same random numbers) with every chunk. `path_spectra`: VCM_SPECTRA floats per work item
+ * for a light vertex's f·Φ and surface. */
 __kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, int chunk_first, int chunk_end,
                               float eta, float radius,
                               __global const float* store, __global const int* path_last,
@@ -502,7 +713,7 @@ __kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, 
   sampler_next_sample(&sampler, pass);
   float rows[KASHA_FILM_ROWS];
   film_rows_clear(rows);
-  __global float* out = path_spectra + (long)(get_global_id(0) - get_global_offset(0)) * KASHA_BINS;
+  __global float* out = path_spectra + (long)(get_global_id(0) - get_global_offset(0)) * VCM_SPECTRA;
   int partner = pixel % paths; /* its light subpath */
   bool own = partner >= chunk_first && partner < chunk_end;
   float guard = vcm_camera_path(&s, &f, pixel, &sampler, (float)paths, eta, radius, store, path_last, sorted,

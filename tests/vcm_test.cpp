@@ -115,3 +115,4 @@ TEST(Vcm, AWeightWithADensityDroppedFails) {
       100 * relative[1], z[1]);
   EXPECT_GT(z[1], 6.0);
 }
+

@@ -46,14 +46,11 @@ KernelDefines mode_defines(VcmMode m, const IntegratorSettings& s) {
   return d;
 }
 
-// What kernels/vcm.cl does not handle yet (IntegratorInfo::unsupported), or empty.
+// What kernels/vcm.cl does not handle yet (IntegratorInfo::unsupported), or empty. A dispersive
+// dielectric that is rough would need each light vertex's bin at its index: refused with both.
 std::string vcm_unsupported(const Scene& scene) {
-  if (scene.rough()) return "a rough dielectric or conductor";
-  if (scene.coated()) return "a coated material";
-  if (scene.shading_normals()) return "shading normals";
   if (!scene.lights.empty()) return "a light that is not an emitting shape";
-  if (scene.dispersive()) return "a dispersive dielectric";
-  if (scene.textured() || scene.emission_textured()) return "a texture";
+  if (scene.dispersive() && scene.rough()) return "a dispersive dielectric in a scene with rough ones";
   return {};
 }
 
@@ -90,8 +87,10 @@ class VcmIntegrator : public KernelIntegrator {
     light_cut_ = device_buffer(cl_, paths_ * sizeof(cl_float), "vcm: depth-guard tallies");
     camera_cut_ = device_buffer(cl_, pixels * sizeof(cl_float), "vcm: depth-guard tallies");
     rejected_ = device_buffer(cl_, pixels * sizeof(cl_int), "vcm: rejected counts");
-    // Connections compute a light vertex's f·Φ into a spectrum of the camera path's own.
-    spectra_ = device_buffer(cl_, (Mode == VcmMode::ppm ? 1 : pixels * bins) * sizeof(cl_float),
+    // Connections compute a light vertex's f·Φ into a spectrum of the camera path's own, and
+    // its surface (textured, coated) into scratch of its own (kernels/vcm.cl, VCM_SPECTRA).
+    const size_t spectra = bins + static_cast<size_t>(scratch_floats(s.scene));
+    spectra_ = device_buffer(cl_, (Mode == VcmMode::ppm ? 1 : pixels * spectra) * sizeof(cl_float),
                              "vcm: per-path spectra");
     cell_ = device_buffer(cl_, 2 * sizeof(cl_float), "vcm: the grid's cell size");
     fixed_before_ =
