@@ -55,7 +55,7 @@ RenderResult render(const std::string& scene, const std::string& integrator) {
 TEST(ShadingNormals, AFloorIsLitAsItsShadingNormalFacesTheLight) {
   const std::string obj = tilted_floor("tilted_floor.obj", 20);
   const std::string scene = floor_scene("tilted_floor.json", obj, "[1, 0, 1]");
-  for (const char* integrator : {"backward", "photon", "forward"}) {
+  for (const char* integrator : {"backward", "photon", "forward", "vcm"}) {
     RenderResult r = render(scene, integrator);
     ASSERT_TRUE(r.scene.shading_normals());
     const std::vector<double>& e = r.scene.lights.front().per_bin;
@@ -106,7 +106,7 @@ TEST(ShadingNormals, NoLightLeaksThroughTheSurface) {
              {"type": "quad", "corner": [-1.5, -2, 0], "u": [0, 4, 0], "v": [0, 0, 1.5], "material": "white"},
              {"type": "quad", "corner": [-0.5, -0.5, -0.3], "u": [1, 0, 0], "v": [0, 1, 0], "material": "black",
               "emission": 10}]})");
-  for (const char* integrator : {"backward", "photon", "forward"}) {
+  for (const char* integrator : {"backward", "photon", "forward", "vcm"}) {
     RenderResult r = render(scene, integrator);
     ASSERT_TRUE(r.scene.shading_normals());
     double most = 0;
