@@ -34,6 +34,7 @@ typedef struct {
 #endif
 #if KASHA_LIGHT_SOURCES
   bool delta; /* no other strategy can find it: a point, a spot, a distant light */
+  const __global KLight* source; /* the light that is not a triangle, else null */
 #endif
 #if KASHA_ENVIRONMENT
   const __global float* le; /* an environment texel's radiance (the scratch spectrum), else null */
@@ -156,6 +157,7 @@ inline LightPoint sample_light_source(const SceneView* s, const __global KLight*
   p.eps = 0.0f;
   p.scale = 1.0f;
   p.delta = true;
+  p.source = l;
 #if KASHA_ENVIRONMENT
   p.le = 0;
 #endif
@@ -286,6 +288,7 @@ inline LightPoint sample_light_from(const SceneView* s, float3 x, float2 u, floa
 #endif
 #if KASHA_LIGHT_SOURCES
   p.delta = false;
+  p.source = 0;
 #endif
 #if KASHA_ENVIRONMENT
   p.le = 0;

@@ -46,6 +46,9 @@ typedef struct {
 #if KASHA_EMISSION_TEXTURES
   float scale; /* the emission texture's factor there */
 #endif
+#if KASHA_LIGHT_SOURCES
+  const __global KLight* source; /* the light that is not a triangle it left, else null */
+#endif
 } LightOrigin;
 
 /* A photon leaving a light: a triangle chosen by power, a uniform point, a cosine-weighted
@@ -67,6 +70,7 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
     origin->emitter = l->spectrum;
     origin->area_pdf = 0.0f;
     origin->eps = 0.0f;
+    origin->source = l;
 #if KASHA_EMISSION_TEXTURES
     origin->scale = 1.0f;
 #endif
@@ -94,6 +98,9 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
   p.direction = sample_cosine_hemisphere(lp.normal, d.x, d.y);
   origin->normal = lp.normal;
   origin->emitter = lp.emitter;
+#if KASHA_LIGHT_SOURCES
+  origin->source = 0;
+#endif
   origin->area_pdf = s->emitter_area_pdf[lp.emitter];
   origin->eps = lp.eps;
   float scale = s->bin_nm * KASHA_PI / (origin->area_pdf * photons);

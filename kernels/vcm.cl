@@ -69,13 +69,19 @@ inline float vcm_connect_factor(float eta) { return KASHA_VCM_CONNECT ? 1.0f / e
 /* A vertex connects where its surface has a non-delta part: a Lambert part (bare or under a
  * coat), a tabulated gloss lobe, a rough coat's lobe, or a rough dielectric or conductor. It
  * merges where it has a Lambert part or a tabulated lobe: a rough interface only connects, a
- * choice both subpaths make alike from the material (the recursion leaves its merge out). */
+ * choice both subpaths make alike from the material (the recursion leaves its merge out); ppm
+ * merges at a rough conductor too. */
 inline bool vcm_connectible(const Surface* surf) {
   if (surface_rough(surf)) return true;
   if (surface_specular(surf)) return false;
   return surface_has_lambert(surf) || (surf->g > 0.0f && !surf->mirror);
 }
 inline bool vcm_mergeable(const Surface* surf) {
+#if KASHA_CONDUCTOR
+  /* ppm, merges alone, must merge at a rough conductor: else a delta light's reflection in it
+   * (a sun, a spot) would reach the camera by no technique. */
+  if (!KASHA_VCM_CONNECT && surface_rough(surf) && surf->kind == KASHA_KIND_CONDUCTOR) return true;
+#endif
   if (surface_specular(surf)) return false;
   return surface_has_lambert(surf) || (surf->g > 0.0f && !surf->mirror);
 }
@@ -154,10 +160,28 @@ inline float vcm_pdf(const SceneView* s, const Surface* surf, float lambert, flo
  * its F(λ) at cos_m. */
 typedef struct {
   float lambert, white, conductor, cos_m;
+#if KASHA_DISPERSION
+  bool per_bin; /* a rough dispersive dielectric met by a spectrum: f bin by bin at o, i */
+  float3 o, i;
+#endif
 } VcmF;
 
-inline VcmF vcm_eval(const SceneView* s, const Surface* surf, float3 ns, float3 nf, float3 wo, float3 wi, float3 other) {
-  VcmF r = {0.0f, 0.0f, 0.0f, 0.0f};
+inline bool vcm_f_nonzero(const VcmF* fv) {
+#if KASHA_DISPERSION
+  if (fv->per_bin) return true;
+#endif
+  return fv->lambert > 0.0f || fv->white > 0.0f || fv->conductor > 0.0f;
+}
+
+/* eta: a rough dielectric's index for this path (a dispersive one's at the path's bin), or
+ * negative for a spectrum not narrowed to a bin: evaluated bin by bin then (per_bin). */
+inline VcmF vcm_eval(const SceneView* s, const Surface* surf, float3 ns, float3 nf, float3 wo, float3 wi, float3 other,
+                     float eta) {
+  VcmF r;
+  r.lambert = r.white = r.conductor = r.cos_m = 0.0f;
+#if KASHA_DISPERSION
+  r.per_bin = false;
+#endif
 #if KASHA_ROUGH
   if (surface_rough(surf)) {
     Frame fr = frame_of(nf);
@@ -169,8 +193,16 @@ inline VcmF vcm_eval(const SceneView* s, const Surface* surf, float3 ns, float3 
       return r;
     }
 #endif
+#if KASHA_DISPERSION
+    if (eta < 0.0f) {
+      r.per_bin = true;
+      r.o = o;
+      r.i = i;
+      return r;
+    }
+#endif
 #if KASHA_DIELECTRIC
-    r.white = rough_dielectric_eval(o, i, surf->eta, surf->alpha, true, &pdf);
+    r.white = rough_dielectric_eval(o, i, eta, surf->alpha, true, &pdf);
 #endif
     return r;
   }
@@ -191,9 +223,30 @@ inline VcmF vcm_eval(const SceneView* s, const Surface* surf, float3 ns, float3 
   return r;
 }
 
+/* The index a light vertex's rough dielectric is evaluated at: bin by bin (-1) where it disperses,
+ * else its own. */
+inline float vcm_light_eta(const Surface* surf) {
+#if KASHA_DISPERSION
+  if (surf->dispersive) return -1.0f;
+#endif
+#if KASHA_DIELECTRIC
+  return surf->eta;
+#else
+  return 1.0f;
+#endif
+}
+
 /* out = f·phi at a light vertex (vcm_eval's parts applied to the light's spectrum: ρ∘Φ, the
  * re-emission ê (a·Φ), white, a conductor's F(λ)). */
 inline void vcm_light_apply(const Surface* surf, VcmF fv, const __global float* phi, __global float* out) {
+#if KASHA_DISPERSION
+  if (fv.per_bin) {
+    float pdf;
+    for (int i = 0; i < KASHA_BINS; ++i)
+      out[i] = phi[i] == 0.0f ? 0.0f : phi[i] * rough_dielectric_eval(fv.o, fv.i, surf->eta_bins[i], surf->alpha, true, &pdf);
+    return;
+  }
+#endif
 #if KASHA_CONDUCTOR
   if (fv.conductor > 0.0f) {
     for (int i = 0; i < KASHA_BINS; ++i)
@@ -266,6 +319,35 @@ inline void vcm_arrived(float t, float cos_in, float* dvcm, float* dvc, float* d
   *dvm /= cos_in;
 }
 
+#if KASHA_LIGHT_SOURCES
+/* A light that is not a shape, for light travelling along d from it (SmallVCM's Emit and
+ * Illuminate, the pick probability left to the caller): the density of the emission technique —
+ * a photon's direction (point: 1/4π, spot: uniform in its cone), or its start on the disk as wide
+ * as the scene facing the direction (distant: 1/πr²; infinite: the direction's density over
+ * πr²) — and, as *direct, next-event estimation's density of the same light: 1 for a delta light
+ * (a point or spot's 1/d² is the caller's), the direction's density for an infinite one. */
+inline float vcm_source_emission(const SceneView* s, const __global KLight* l, float3 d, float* direct) {
+  *direct = 1.0f;
+  if (l->type == KASHA_LIGHT_POINT) return 0.25f * KASHA_INV_PI;
+#if KASHA_SPOT_LIGHTS
+  if (l->type == KASHA_LIGHT_SPOT) return 1.0f / (2.0f * KASHA_PI * (1.0f - l->cos_total));
+#endif
+  float disk = 1.0f / (KASHA_PI * l->radius * l->radius);
+#if KASHA_INFINITE_LIGHTS
+  if (l->type == KASHA_LIGHT_INFINITE) {
+    *direct = infinite_light_pdf(s, l, -d) / l->pick;
+    return *direct * disk;
+  }
+#endif
+  return disk;
+}
+
+/* A point or spot light: at a finite place (its photons' first hit turns to area with t²). */
+inline bool vcm_source_finite(const __global KLight* l) {
+  return l->type == KASHA_LIGHT_POINT || l->type == KASHA_LIGHT_SPOT;
+}
+#endif
+
 #if KASHA_VCM_CONNECT
 /* A light vertex seen by the camera (light tracing, SmallVCM's ConnectToCamera): f Φ k / Δλ with
  * k = cos · importance (camera_connection), which is also the camera's density of the vertex per
@@ -280,7 +362,7 @@ inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, con
   /* Off the geometric side the camera lies on, which the shading normal must agree with. */
   if (!vcm_no_leak(h->ns, ng, to)) return;
   if (!camera_connection(s, h->x, vcm_toward(ng, to), h->eps, &pixel, &k)) return;
-  VcmF fv = vcm_eval(s, surf, h->ns, nf, to, from, to);
+  VcmF fv = vcm_eval(s, surf, h->ns, nf, to, from, to, vcm_light_eta(surf));
   float nee = KASHA_VCM_DROP_DENSITY ? 0.0f : dvcm;
   float w_light = k / paths * ((merges ? vm : 0.0f) + nee + dvc * vcm_pdf(s, surf, lambert, h->ns, nf, to, from));
   k *= photon_arrival_correction(h, p->direction);
@@ -299,6 +381,20 @@ inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, con
 #endif
   }
   if (fv.white > 0.0f) film_rows(f, p->power, 0, 0, scale * fv.white, rows);
+#if KASHA_DISPERSION
+  if (fv.per_bin) {
+    float pdf;
+    for (int i = 0; i < KASHA_BINS; ++i) {
+      if (p->power[i] == 0.0f) continue;
+      float v = p->power[i] * scale * rough_dielectric_eval(fv.o, fv.i, surf->eta_bins[i], surf->alpha, true, &pdf);
+#if KASHA_SPECTRAL_FILM
+      rows[i] += v;
+#else
+      for (int r = 0; r < 3; ++r) rows[r] += f->cmf[r * KASHA_BINS + i] * v;
+#endif
+    }
+  }
+#endif
   if (film_rows_finite(rows)) splat_rows(t, pixel, rows);
 }
 #endif
@@ -320,9 +416,26 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
   LightOrigin o;
   Photon p = emit_photon(&s, (float)paths, &sampler, &o);
   p.position += o.normal * o.eps;
-  /* Emission by area and cosine, p_e = p_A cos/π; next-event estimation's pseudo-density p_A. */
-  float cos_light = dot(o.normal, p.direction);
-  float dvcm = KASHA_PI / cos_light, dvc = KASHA_PI / o.area_pdf, dvm = dvc * vc;
+  float dvcm, dvc, dvm;
+  bool far_start = false; /* from a distant or infinite light's disk: no t² at the first hit */
+#if KASHA_LIGHT_SOURCES
+  if (o.source) {
+    /* dVCM = direct / emission, dVC = 1 / (pick · emission), 0 for a delta light (no camera
+     * path hits it), as SmallVCM's GenerateLightSample. */
+    const __global KLight* l = o.source;
+    float direct, emission = vcm_source_emission(&s, l, p.direction, &direct);
+    bool delta = l->type != KASHA_LIGHT_INFINITE;
+    dvcm = direct / emission;
+    dvc = delta ? 0.0f : 1.0f / (l->pick * emission);
+    dvm = dvc * vc;
+    far_start = !vcm_source_finite(l);
+  } else
+#endif
+  {
+    /* Emission by area and cosine, p_e = p_A cos/π; next-event estimation's pseudo-density p_A. */
+    float cos_light = dot(o.normal, p.direction);
+    dvcm = KASHA_PI / cos_light, dvc = KASHA_PI / o.area_pdf, dvm = dvc * vc;
+  }
   SplatTarget target = {film, film_shift, 0};
   int last = -1, ordinal = 0;
   float guard = 0.0f;
@@ -333,7 +446,7 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
     }
     HitPoint h;
     if (!intersect_scene(&s, p.position, p.direction, &h)) break;
-    vcm_arrived(h.t, fabs(dot(h.n, p.direction)), &dvcm, &dvc, &dvm);
+    vcm_arrived(far_start && depth == 0 ? 1.0f : h.t, fabs(dot(h.n, p.direction)), &dvcm, &dvc, &dvm);
 #if KASHA_SHADING_NORMALS
     /* From below the shading normal's hemisphere: the surface does not scatter it (hit_seen). */
     if (!hit_seen(&h, p.direction)) break;
@@ -397,6 +510,7 @@ typedef struct {
 typedef struct {
   float3 ns, nf, ng; /* shading normal on the eye's side, on the front; geometric on the eye's side */
   float lambert;
+  float eta; /* a rough dielectric's index for the path (at its bin where it disperses) */
   bool merges;
 } VcmVertex;
 
@@ -419,11 +533,24 @@ inline void vcm_next_event(const VcmCamera* c, const SceneView* s, const FilmVie
   float3 wi = to / dist;
   float cos_x = fabs(dot(ns, wi)), cos_g = fabs(dot(cv->ng, wi)), cos_l = -dot(lp.normal, wi);
   if (cos_x <= 0.0f || cos_l <= 0.0f || !vcm_no_leak(ns, cv->ng, wi)) return;
-  VcmF fv = vcm_eval(s, surf, ns, cv->nf, eye, wi, wi);
-  if (!(fv.lambert > 0.0f || fv.white > 0.0f || fv.conductor > 0.0f)) return;
-  float area = s->emitter_area_pdf[lp.emitter];
-  float direct = area * dist * dist / cos_l, emission = area * cos_l * KASHA_INV_PI;
-  float w_light = vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, wi) / direct;
+  VcmF fv = vcm_eval(s, surf, ns, cv->nf, eye, wi, wi, cv->eta);
+  if (!vcm_f_nonzero(&fv)) return;
+  float w_light, direct, emission;
+#if KASHA_LIGHT_SOURCES
+  if (lp.source) {
+    /* cos_l is 1; a point or spot's direct density per solid angle is d² (its 1/d² in the
+     * contribution); a delta light is found by nothing else. */
+    const __global KLight* l = lp.source;
+    emission = vcm_source_emission(s, l, -wi, &direct);
+    if (vcm_source_finite(l)) direct *= dist * dist;
+    w_light = lp.delta ? 0.0f : vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, wi) / (l->pick * direct);
+  } else
+#endif
+  {
+    float area = s->emitter_area_pdf[lp.emitter];
+    direct = area * dist * dist / cos_l, emission = area * cos_l * KASHA_INV_PI;
+    w_light = vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, wi) / direct;
+  }
   float w_camera = emission * cos_g / (direct * cos_l) *
                    ((cv->merges ? vm : 0.0f) + c->dvcm + c->dvc * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, wi, eye));
   float weight = 1.0f / (w_light + 1.0f + w_camera);
@@ -493,16 +620,16 @@ inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* 
     float3 d = y - x;
     float dist2 = dot(d, d), dist = sqrt(dist2);
     float3 dir = d / dist;
-    VcmF fc = vcm_eval(s, surf, ns, cv->nf, eye, dir, dir);
-    if (!(fc.lambert > 0.0f || fc.white > 0.0f || fc.conductor > 0.0f)) continue;
+    VcmF fc = vcm_eval(s, surf, ns, cv->nf, eye, dir, dir, cv->eta);
+    if (!vcm_f_nonzero(&fc)) continue;
     if (!vcm_no_leak(ns, cv->ng, dir)) continue;
     Surface sy;
     float3 ny, nfy, ngy;
     vcm_light_surface(s, r, out + KASHA_BINS, &sy, &ny, &nfy, &ngy);
     if (!vcm_no_leak(ny, ngy, -dir)) continue;
     float3 light = -(float3)(m[0], m[1], m[2]);
-    VcmF fl = vcm_eval(s, &sy, ny, nfy, -dir, light, -dir);
-    if (!(fl.lambert > 0.0f || fl.white > 0.0f || fl.conductor > 0.0f)) continue;
+    VcmF fl = vcm_eval(s, &sy, ny, nfy, -dir, light, -dir, vcm_light_eta(&sy));
+    if (!vcm_f_nonzero(&fl)) continue;
     /* The camera side's radiance takes the shading cosine; the turns to area, the geometric. */
     float cos_s = fabs(dot(ns, dir)), cos_c = fabs(dot(cv->ng, dir)), cos_y = fabs(dot(ngy, dir));
     float lambert_y = vcm_lambert_mean(&sy);
@@ -522,8 +649,8 @@ inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* 
 
 #if KASHA_VCM_MERGE
 /* Merges at a camera vertex (SmallVCM's RangeQuery with its MergingCallback): every stored light
- * vertex within r that merges — on the same side, facing alike and near the tangent plane, as
- * photon mapping's gather — adds T·f_c·Φ weighed against the connections that sample the same
+ * vertex within r that merges — on the same side, facing alike and near the tangent plane of the
+ * geometric surface, as photon mapping's gather — adds T·f_c·Φ weighed against the connections that sample the same
  * path (ppm: unweighted), scaled by `scale` (1/(π r² Δλ) over a branch probability). */
 inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f, const CameraVertex* v,
                       const VcmVertex* cv, float vc, float radius, float scale, const __global float* store,
@@ -549,10 +676,13 @@ inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f,
           const __global float* m = r + KASHA_VCM_ARRIVAL(KASHA_BINS);
           if (!(m[12] > 0.5f)) continue;
           float3 ny = (float3)(r[3], r[4], r[5]);
-          if (dot(ny, ns) < 0.5f || fabs(dot(d, ns)) > KASHA_GATHER_SLAB * radius) continue;
+          /* The gather's tests about the geometric surface (a shading normal tilts off the plane
+           * the photons lie in: about it the slab would cut the disc). */
+          float3 ng = cv->ng;
+          if (dot(ny, ng) < 0.5f || fabs(dot(d, ng)) > KASHA_GATHER_SLAB * radius) continue;
           float3 light = -(float3)(m[0], m[1], m[2]);
-          if (dot(light, ns) <= 0.0f) continue;
-          VcmF fv = vcm_eval(s, surf, ns, cv->nf, eye, light, light);
+          if (dot(light, ng) <= 0.0f) continue;
+          VcmF fv = vcm_eval(s, surf, ns, cv->nf, eye, light, light, cv->eta);
 #if KASHA_VCM_CONNECT
           float w_light = m[3] * vc + m[5] * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, light);
           float w_camera = c->dvcm * vc + c->dvm * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, light, eye);
@@ -570,11 +700,36 @@ inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f,
  * through delta bounces alone, else weighed against next-event estimation and light tracing. */
 inline float vcm_emission_weight(const VcmCamera* c, const SceneView* s, const HitPoint* h) {
   if (!VCM_LENGTH_COUNTS(c->w.depth + 1)) return 0.0f;
-  if (c->w.depth == 0 || KASHA_VCM_EMISSION_ONLY) return 1.0f;
+  /* ppm: no other technique reaches an emitter (merges are taken at the first vertex that
+   * merges; this path went through delta or rough ones only). */
+  if (c->w.depth == 0 || KASHA_VCM_EMISSION_ONLY || !KASHA_VCM_CONNECT) return 1.0f;
   float area = s->emitter_area_pdf[h->emitter];
   float w_camera = area * c->dvcm + area * dot(h->n, -c->w.dir) * KASHA_INV_PI * c->dvc;
   return 1.0f / (1.0f + w_camera);
 }
+
+#if KASHA_INFINITE_LIGHTS
+/* A camera path that leaves the scene sees the infinite lights (SmallVCM's background in
+ * GetLightRadiance): whole when seen directly, else each weighed against next-event estimation
+ * of it (its direction's density, dVCM per solid angle: no hit turned it to area) and against
+ * light subpaths leaving its disk. */
+inline void vcm_escaped(const VcmCamera* c, const SceneView* s, const FilmView* f, float* rows) {
+  if (!VCM_LENGTH_COUNTS(c->w.depth + 1)) return;
+  for (int k = 0; k < s->light_sources; ++k) {
+    const __global KLight* l = &s->lights[k];
+    if (l->type != KASHA_LIGHT_INFINITE) continue;
+    float weight = 1.0f;
+#if !KASHA_VCM_EMISSION_ONLY && KASHA_VCM_CONNECT
+    if (c->w.depth > 0) {
+      float direct = infinite_light_pdf(s, l, c->w.dir);
+      float emission = direct / (KASHA_PI * l->radius * l->radius);
+      weight = 1.0f / (1.0f + direct * c->dvcm + emission * c->dvc);
+    }
+#endif
+    pw_add(&c->w.p, f, infinite_light_spectrum(s, l, c->w.dir), 0, weight, rows);
+  }
+}
+#endif
 
 /* One camera path of the iteration. `own`: its light subpath is in the store (the chunk holding
  * it): emission, next-event estimation and connections count then; merges count with every
@@ -601,7 +756,12 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
   CameraVertex v;
   while (c.w.depth < KASHA_MAX_PATH_DEPTH) {
     HitPoint* h = &v.h;
-    if (!intersect_scene(s, c.w.org, c.w.dir, h)) return 0.0f;
+    if (!intersect_scene(s, c.w.org, c.w.dir, h)) {
+#if KASHA_INFINITE_LIGHTS
+      if (own) vcm_escaped(&c, s, f, rows);
+#endif
+      return 0.0f;
+    }
     vcm_arrived(h->t, fabs(dot(h->n, c.w.dir)), &c.dvcm, &c.dvc, &c.dvm);
     if (own && h->emitter >= 0 && h->front) {
       float weight = vcm_emission_weight(&c, s, h);
@@ -629,6 +789,15 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
     cv.lambert = vcm_lambert_mean(&v.surf);
     cv.merges = vcm_mergeable(&v.surf);
     bool rough = surface_rough(&v.surf);
+    cv.eta = 1.0f;
+#if KASHA_ROUGH && KASHA_DIELECTRIC
+    /* A rough dielectric's index, a dispersive one's at the path's bin (chosen here on the
+     * vertex's fourth sample pair if the path has none, as walk_rough does). */
+    if (rough && v.surf.kind == KASHA_KIND_DIELECTRIC) {
+      cv.eta = walk_eta(&c.w, f, &v.surf, sample_2d(sampler).x);
+      if (cv.eta < 0.0f) return 0.0f;
+    }
+#endif
 #if KASHA_DIELECTRIC || KASHA_CONDUCTOR
     if (surface_specular(&v.surf) && !rough) {
       if (!walk_specular(&c.w, f, &v)) return 0.0f;
@@ -653,7 +822,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
 #else
       /* ppm: the first vertex that merges merges all of it, unless a mirror lobe chosen by its
        * probability carries the path on. */
-      float p_mirror = v.surf.mirror ? v.probs.x : 0.0f;
+      float p_mirror = v.surf.mirror && !surface_specular(&v.surf) ? v.probs.x : 0.0f;
       if (cv.merges && !(v.u_choice.x < p_mirror)) {
         vcm_merge(&c, s, f, &v, &cv, vc, radius, KASHA_INV_PI / (radius * radius * s->bin_nm) / (1.0f - p_mirror),
                   store, sorted, cell_count, cell_end, inv_cell, mask, rows);
@@ -664,7 +833,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
 #if KASHA_ROUGH
     if (rough) {
       /* A rough interface: its direction from the visible normals (walk_rough_scatter). */
-      if (!walk_rough_scatter(&c.w, &v, v.surf.kind == KASHA_KIND_DIELECTRIC ? v.surf.eta : 1.0f)) return 0.0f;
+      if (!walk_rough_scatter(&c.w, &v, cv.eta)) return 0.0f;
     } else
 #endif
     {

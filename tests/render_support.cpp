@@ -101,10 +101,6 @@ std::string furnace_test_name(const ::testing::TestParamInfo<const char*>& info)
   return s.substr(8, s.size() - 13);
 }
 
-std::string unsupported(const std::string& integrator, const std::string& scene) {
-  return IntegratorRegistry::unsupported(integrator, load_scene(source_path("scenes/" + scene)));
-}
-
 ComparedRenders render_against_backward(const std::string& scene, const std::string& integrator,
                                         int passes, long long photons, int size) {
   const std::string path = source_path("scenes/" + scene);

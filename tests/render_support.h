@@ -72,10 +72,6 @@ struct ComparedRenders {
 ComparedRenders render_against_backward(const std::string& scene, const std::string& integrator,
                                         int passes, long long photons, int size = 48);
 
-// What of scenes/<scene> the integrator does not handle yet (IntegratorInfo::unsupported), or
-// empty: a test of every integrator skips the pair, saying so.
-std::string unsupported(const std::string& integrator, const std::string& scene);
-
 // Pixels grouped by what their centre sees first: the material's name, or "lamp" for an emitter
 // (found with Embree, independently of the integrators).
 std::map<std::string, std::vector<size_t>> primary_hit_regions(const Scene& scene,

@@ -54,17 +54,8 @@ std::string IntegratorRegistry::reference() {
   throw Error("no reference integrator is registered");
 }
 
-std::string IntegratorRegistry::unsupported(const std::string& name, const Scene& scene) {
-  const IntegratorInfo& info = find(name);
-  return info.unsupported ? info.unsupported(scene) : std::string();
-}
-
 std::unique_ptr<Integrator> IntegratorRegistry::make(const std::string& name,
                                                      const IntegratorSetup& setup) {
-  const std::string missing = unsupported(name, setup.scene);
-  if (!missing.empty())
-    throw Error("--integrator " + name + ": the scene has " + missing + ", which " + name +
-                " does not handle yet (backward and photon handle every scene)");
   std::unique_ptr<Integrator> integrator = find(name).make(setup);
   integrator->name_ = name;
   return integrator;

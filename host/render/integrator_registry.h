@@ -36,6 +36,10 @@ struct IntegratorTraits {
   bool unbiased = true;  // its mean is the image (else consistent: its bias falls with passes)
   bool sees_camera_mirrors = true;  // estimates what the camera sees in an ideal mirror
   bool reference = false;           // the one `kasha reference` renders with
+  // Takes direct light by density estimation too (ppm, a baseline for comparing techniques): its
+  // radius biases it most, so the bench leaves it out and the agreement tests allow it 3 times
+  // the tolerance.
+  bool direct_by_merges = false;
 };
 
 struct IntegratorInfo {
@@ -43,9 +47,6 @@ struct IntegratorInfo {
   std::vector<std::string> options;  // command-line options it takes besides the common ones
   IntegratorTraits traits;
   std::function<std::unique_ptr<Integrator>(const IntegratorSetup&)> make;
-  // What in a scene it does not handle yet, as the end of a sentence ("a texture"), or empty;
-  // unset: it handles every scene. `make` refuses such a scene with one line; tests skip it.
-  std::function<std::string(const Scene&)> unsupported;
 };
 
 class IntegratorRegistry {
@@ -56,8 +57,6 @@ class IntegratorRegistry {
   static std::vector<std::string> names(bool physical_only);
   static std::string reference();  // the reference integrator's name
   static std::unique_ptr<Integrator> make(const std::string& name, const IntegratorSetup& setup);
-  // What of `scene` the integrator does not handle (IntegratorInfo::unsupported), or empty.
-  static std::string unsupported(const std::string& name, const Scene& scene);
   // Throws kasha::Error for the first of `given` (option names) the integrator does not take.
   static void check_options(const std::string& name, const std::vector<std::string>& given);
 
@@ -81,9 +80,4 @@ std::unique_ptr<Integrator> make_integrator_of(const IntegratorSetup& setup) {
 // One line in an integrator's host file: the class, then its name, description, options and traits.
 #define KASHA_REGISTER_INTEGRATOR(CLASS, ...)                                  \
   static const ::kasha::IntegratorRegistry::Registrar kasha_registrar_##CLASS( \
-      ::kasha::IntegratorInfo{__VA_ARGS__, ::kasha::make_integrator_of<CLASS>, {}})
-// The same for an integrator that does not handle every scene: UNSUPPORTED is its
-// IntegratorInfo::unsupported.
-#define KASHA_REGISTER_INTEGRATOR_FOR(CLASS, UNSUPPORTED, ...)                 \
-  static const ::kasha::IntegratorRegistry::Registrar kasha_registrar_##CLASS( \
-      ::kasha::IntegratorInfo{__VA_ARGS__, ::kasha::make_integrator_of<CLASS>, UNSUPPORTED})
+      ::kasha::IntegratorInfo{__VA_ARGS__, ::kasha::make_integrator_of<CLASS>})

@@ -46,14 +46,6 @@ KernelDefines mode_defines(VcmMode m, const IntegratorSettings& s) {
   return d;
 }
 
-// What kernels/vcm.cl does not handle yet (IntegratorInfo::unsupported), or empty. A dispersive
-// dielectric that is rough would need each light vertex's bin at its index: refused with both.
-std::string vcm_unsupported(const Scene& scene) {
-  if (!scene.lights.empty()) return "a light that is not an emitting shape";
-  if (scene.dispersive() && scene.rough()) return "a dispersive dielectric in a scene with rough ones";
-  return {};
-}
-
 }  // namespace
 
 template <VcmMode Mode>
@@ -320,26 +312,26 @@ using VertexConnectionMerging = VcmIntegrator<VcmMode::vcm>;
 using BidirectionalPathTracing = VcmIntegrator<VcmMode::bpt>;
 using ProgressivePhotonMapping = VcmIntegrator<VcmMode::ppm>;
 
-KASHA_REGISTER_INTEGRATOR_FOR(
-    VertexConnectionMerging, vcm_unsupported, "vcm",
+KASHA_REGISTER_INTEGRATOR(
+    VertexConnectionMerging, "vcm",
     "vertex connection and merging: light and camera subpaths joined by connections and merges "
     "under one MIS weight, iterations independent (a global radius schedule)",
     {"--photons", "--alpha", "--radius", "--memory"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
                      /*reference*/ false});
-KASHA_REGISTER_INTEGRATOR_FOR(
-    BidirectionalPathTracing, vcm_unsupported, "bpt",
+KASHA_REGISTER_INTEGRATOR(
+    BidirectionalPathTracing, "bpt",
     "bidirectional path tracing: vcm's connections alone (next-event estimation, light "
     "tracing, subpath connections), MIS-weighted",
     {"--photons", "--memory"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ true, /*sees camera mirrors*/ true,
                      /*reference*/ false});
-KASHA_REGISTER_INTEGRATOR_FOR(
-    ProgressivePhotonMapping, vcm_unsupported, "ppm",
+KASHA_REGISTER_INTEGRATOR(
+    ProgressivePhotonMapping, "ppm",
     "progressive photon mapping: vcm's merges alone, unweighted, at each camera path's first "
     "non-delta vertex",
     {"--photons", "--alpha", "--radius", "--memory"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
-                     /*reference*/ false});
+                     /*reference*/ false, /*direct by merges*/ true});
 
 }  // namespace kasha
