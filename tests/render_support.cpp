@@ -4,7 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
+#include <unistd.h>
+
+#include "image/exr_io.h"
 #include "render/device_scene.h"
 #include "render/render_job.h"
 #include "study/image_regions.h"
@@ -101,6 +105,11 @@ std::string furnace_test_name(const ::testing::TestParamInfo<const char*>& info)
   return s.substr(8, s.size() - 13);
 }
 
+static std::string slashes_to_underscores(std::string s) {
+  std::replace(s.begin(), s.end(), '/', '_');
+  return s;
+}
+
 ComparedRenders render_against_backward(const std::string& scene, const std::string& integrator,
                                         int passes, long long photons, int size) {
   const std::string path = source_path("scenes/" + scene);
@@ -114,10 +123,27 @@ ComparedRenders render_against_backward(const std::string& scene, const std::str
   s.passes = passes;
   s.integrator_settings.photons = photons;
   pair.tested = render_scene(path, s);
+  // The reference is the same for every integrator compared on the scene (a fixed seed): rendered
+  // once per build of this binary and kept beside the tests' scratch folders, keyed by the
+  // binary's write time (the kernels are compiled into it, so a changed kernel renders it again).
+  // Written under a temporary name and renamed, so tests running side by side never read half.
+  const auto built = std::filesystem::last_write_time("/proc/self/exe").time_since_epoch().count();
+  const std::filesystem::path cache = std::filesystem::path(KASHA_TEST_TMP) / "backward_references" /
+                                      (std::to_string(built) + "_" + std::to_string(size) + "_" +
+                                       slashes_to_underscores(scene) + ".exr");
+  if (std::filesystem::exists(cache)) {
+    pair.backward.scene = pair.tested.scene;
+    pair.backward.image = read_exr(cache.string());
+    return pair;
+  }
   s.integrator = "backward";
   s.passes = 16;
   s.integrator_settings.spp = 64;
   pair.backward = render_scene(path, s);
+  std::filesystem::create_directories(cache.parent_path());
+  const std::string partial = cache.string() + "." + std::to_string(::getpid()) + ".part.exr";
+  write_exr(partial, pair.backward.image);
+  std::filesystem::rename(partial, cache);
   return pair;
 }
 
