@@ -702,10 +702,14 @@ inline float vcm_emission_weight(const VcmCamera* c, const SceneView* s, const H
   if (!VCM_LENGTH_COUNTS(c->w.depth + 1)) return 0.0f;
   /* ppm: no other technique reaches an emitter (merges are taken at the first vertex that
    * merges; this path went through delta or rough ones only). */
-  if (c->w.depth == 0 || KASHA_VCM_EMISSION_ONLY || !KASHA_VCM_CONNECT) return 1.0f;
+#if KASHA_VCM_EMISSION_ONLY || !KASHA_VCM_CONNECT
+  return 1.0f;
+#else
+  if (c->w.depth == 0) return 1.0f;
   float area = s->emitter_area_pdf[h->emitter];
   float w_camera = area * c->dvcm + area * dot(h->n, -c->w.dir) * KASHA_INV_PI * c->dvc;
   return 1.0f / (1.0f + w_camera);
+#endif
 }
 
 #if KASHA_INFINITE_LIGHTS
