@@ -308,9 +308,14 @@ inline bool vcm_scattered(const SceneView* s, const Surface* surf, float lambert
 /* The side of a surface (normal n) a direction leaves by: where a shadow ray starts off. */
 inline float3 vcm_toward(float3 n, float3 d) { return dot(n, d) >= 0.0f ? n : -n; }
 
-/* A direction leaves by the same side of the shading (ns) and geometric (ng) surfaces: else it
- * would leak through (hit_no_leak). */
-inline bool vcm_no_leak(float3 ns, float3 ng, float3 d) { return (dot(d, ns) > 0.0f) == (dot(d, ng) > 0.0f); }
+/* hit_no_leak for a stored light vertex, which keeps its normals rather than its hit. */
+inline bool vcm_no_leak(float3 ns, float3 ng, float3 d) {
+#if KASHA_SHADING_NORMALS
+  return (dot(d, ns) > 0.0f) == (dot(d, ng) > 0.0f);
+#else
+  return true;
+#endif
+}
 
 /* Arriving at a hit at distance t, cosine cos_in: the weights turn from solid angle to area. */
 inline void vcm_arrived(float t, float cos_in, float* dvcm, float* dvc, float* dvm) {
@@ -360,7 +365,7 @@ inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, con
   float3 to = normalize(camera_position(&s->camera) - h->x);
   float3 nf = hit_front(h), ng = hit_ng(h);
   /* Off the geometric side the camera lies on, which the shading normal must agree with. */
-  if (!vcm_no_leak(h->ns, ng, to)) return;
+  if (!hit_no_leak(h, to)) return;
   if (!camera_connection(s, h->x, vcm_toward(ng, to), h->eps, &pixel, &k)) return;
   VcmF fv = vcm_eval(s, surf, h->ns, nf, to, from, to, vcm_light_eta(surf));
   float nee = KASHA_VCM_DROP_DENSITY ? 0.0f : dvcm;
@@ -532,7 +537,7 @@ inline void vcm_next_event(const VcmCamera* c, const SceneView* s, const FilmVie
   if (!(dist > v->h.eps + lp.eps)) return;
   float3 wi = to / dist;
   float cos_x = fabs(dot(ns, wi)), cos_g = fabs(dot(cv->ng, wi)), cos_l = -dot(lp.normal, wi);
-  if (cos_x <= 0.0f || cos_l <= 0.0f || !vcm_no_leak(ns, cv->ng, wi)) return;
+  if (cos_x <= 0.0f || cos_l <= 0.0f || !hit_no_leak(&v->h, wi)) return;
   VcmF fv = vcm_eval(s, surf, ns, cv->nf, eye, wi, wi, cv->eta);
   if (!vcm_f_nonzero(&fv)) return;
   float w_light, direct, emission;
@@ -622,7 +627,7 @@ inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* 
     float3 dir = d / dist;
     VcmF fc = vcm_eval(s, surf, ns, cv->nf, eye, dir, dir, cv->eta);
     if (!vcm_f_nonzero(&fc)) continue;
-    if (!vcm_no_leak(ns, cv->ng, dir)) continue;
+    if (!hit_no_leak(&v->h, dir)) continue;
     Surface sy;
     float3 ny, nfy, ngy;
     vcm_light_surface(s, r, out + KASHA_BINS, &sy, &ny, &nfy, &ngy);
