@@ -65,6 +65,18 @@ __kernel void grid_scatter(__global const uint* photon_cell, __global int* cell_
   sorted[atomic_inc(cell_end + photon_cell[i])] = i;
 }
 
+/* Per sorted slot: its record's position and index (float bits), in the grid's order, for queries
+ * that test many records' distances (vertex merging): they read these in runs rather than each
+ * record where it lies in a store far larger than the caches. Run after grid_sort_cells. */
+__kernel void grid_place(__global const float* store, __global const int* sorted, __global float4* placed,
+                         int item_end) {
+  int i = get_global_id(0);
+  if (i >= item_end) return;
+  int record = sorted[i];
+  const __global float* r = store + (long)record * KASHA_RECORD_FLOATS;
+  placed[i] = (float4)(r[0], r[1], r[2], as_float(record));
+}
+
 /* A stored photon's key: its index in the pass, then the bounce it was stored at. */
 inline ulong record_key(const __global float* store, int record) {
   const __global float* r = store + (long)record * KASHA_RECORD_FLOATS;

@@ -38,11 +38,21 @@
 #ifndef KASHA_VCM_MERGE
 #define KASHA_VCM_MERGE 1
 #endif
+/* Where vcm merges (--merges): at every camera vertex that is not delta (1, Georgiev et al.), or
+ * only at the first (0, the default, where SPPM gathers): then no light vertex but one the camera
+ * sees directly is a merging vertex of any full path — the light subpaths' partial weights leave
+ * their own merges out, light tracing keeps the merge at the vertex it splats, and a connection
+ * counts no merge on the light side — so every path still has its weights summing to one, and a
+ * camera path makes one range query instead of one a bounce. */
+#ifndef KASHA_VCM_MERGE_EVERY
+#define KASHA_VCM_MERGE_EVERY 0
+#endif
 
 #define VCM_FLOATS KASHA_VCM_FLOATS(KASHA_BINS)
 /* Floats of a work item's spectra: a light vertex's f·Φ, then room for the light vertex's
- * surface (textured, coated) apart from the camera vertex's in the scene's scratch. */
-#define VCM_SPECTRA (KASHA_BINS + KASHA_SCRATCH_FLOATS)
+ * surface (textured, coated) apart from the camera vertex's in the scene's scratch; merges sum
+ * their photons in the same floats (two spectra). */
+#define VCM_SPECTRA (KASHA_BINS + (KASHA_SCRATCH_FLOATS > KASHA_BINS ? KASHA_SCRATCH_FLOATS : KASHA_BINS))
 
 /* Test hooks (tests/vcm_test.cpp): KASHA_VCM_LENGTH > 0 keeps only the contributions of paths of
  * that many segments; KASHA_VCM_EMISSION_ONLY keeps only camera paths hitting emitters,
@@ -356,10 +366,11 @@ inline bool vcm_source_finite(const __global KLight* l) {
 #if KASHA_VCM_CONNECT
 /* A light vertex seen by the camera (light tracing, SmallVCM's ConnectToCamera): f Φ k / Δλ with
  * k = cos · importance (camera_connection), which is also the camera's density of the vertex per
- * area, weighed against every technique that samples it from the camera side. */
+ * area, weighed against every technique that samples it from the camera side — `spp` camera paths
+ * a pixel against `paths` light subpaths. */
 inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, const Surface* surf, float lambert,
                       bool merges, const HitPoint* h, float3 from, const Photon* p, float dvcm, float dvc, float vm,
-                      float paths) {
+                      float paths, int spp) {
   int pixel;
   float k;
   float3 to = normalize(camera_position(&s->camera) - h->x);
@@ -369,7 +380,7 @@ inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, con
   if (!camera_connection(s, h->x, vcm_toward(ng, to), h->eps, &pixel, &k)) return;
   VcmF fv = vcm_eval(s, surf, h->ns, nf, to, from, to, vcm_light_eta(surf));
   float nee = KASHA_VCM_DROP_DENSITY ? 0.0f : dvcm;
-  float w_light = k / paths * ((merges ? vm : 0.0f) + nee + dvc * vcm_pdf(s, surf, lambert, h->ns, nf, to, from));
+  float w_light = k * spp / paths * ((merges ? vm : 0.0f) + nee + dvc * vcm_pdf(s, surf, lambert, h->ns, nf, to, from));
   k *= photon_arrival_correction(h, p->direction);
   float scale = k / (1.0f + w_light) / s->bin_nm;
   float rows[KASHA_FILM_ROWS];
@@ -411,7 +422,7 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
                              __global int* stored, int capacity, __global int* path_last, __global ulong* film,
                              int film_shift, __global int* overflow,
                              __global float* cut, /* per path: power the depth guard cut, per its start */
-                             uint seed, uint pass, int item_end) {
+                             int spp, /* camera paths a pixel */ uint seed, uint pass, int item_end) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
   int index = get_global_id(0);
@@ -487,13 +498,14 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
       ++ordinal;
 #if KASHA_VCM_CONNECT && !KASHA_VCM_EMISSION_ONLY
       if (VCM_LENGTH_COUNTS(depth + 2))
-        vcm_splat(&s, &f, &target, &surf, lambert, merges, &h, from, &p, dvcm, dvc, vm, (float)paths);
+        vcm_splat(&s, &f, &target, &surf, lambert, merges, &h, from, &p, dvcm, dvc, vm, (float)paths, spp);
 #endif
     }
     int branch = scatter_photon(&p, &surf, &s, &h, &sampler, depth);
     if (branch == BRANCH_ABSORBED) break;
     bool delta = (branch == BRANCH_SPECULAR && !surface_rough(&surf)) || (branch == BRANCH_GLOSS && surf.mirror);
-    if (!vcm_scattered(&s, &surf, lambert, h.ns, nf, ng, from, p.direction, delta, merges, vm, vc, &dvcm, &dvc,
+    if (!vcm_scattered(&s, &surf, lambert, h.ns, nf, ng, from, p.direction, delta, KASHA_VCM_MERGE_EVERY && merges,
+                       vm, vc, &dvcm, &dvc,
                        &dvm))
       break;
   }
@@ -638,7 +650,7 @@ inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* 
     /* The camera side's radiance takes the shading cosine; the turns to area, the geometric. */
     float cos_s = fabs(dot(ns, dir)), cos_c = fabs(dot(cv->ng, dir)), cos_y = fabs(dot(ngy, dir));
     float lambert_y = vcm_lambert_mean(&sy);
-    bool merges_y = m[12] > 0.5f;
+    bool merges_y = KASHA_VCM_MERGE_EVERY && m[12] > 0.5f; /* else behind the camera's merging vertex */
     float w_light = vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, dir) * cos_y / dist2 *
                     ((merges_y ? vm : 0.0f) + m[3] + m[4] * vcm_pdf(s, &sy, lambert_y, ny, nfy, -dir, light));
     float w_camera = vcm_pdf(s, &sy, lambert_y, ny, nfy, light, -dir) * cos_c / dist2 *
@@ -655,15 +667,21 @@ inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* 
 #if KASHA_VCM_MERGE
 /* Merges at a camera vertex (SmallVCM's RangeQuery with its MergingCallback): every stored light
  * vertex within r that merges — on the same side, facing alike and near the tangent plane of the
- * geometric surface, as photon mapping's gather — adds T·f_c·Φ weighed against the connections that sample the same
- * path (ppm: unweighted), scaled by `scale` (1/(π r² Δλ) over a branch probability). */
+ * geometric surface, as photon mapping's gather — adds T·f_c·Φ weighed against the connections
+ * that sample the same path (ppm: unweighted), scaled by `scale` (1/(π r² Δλ) over a branch
+ * probability). The photons' Φ, weighted, are summed in `acc` (two spectra of the work item's:
+ * the Lambert parts' and the white part's) and the path's colour applied to the sums once, so a
+ * photon costs a pass over the bins rather than the path colour's product with the film's rows;
+ * a rough conductor (ppm), whose F(λ) turns with each photon, is applied photon by photon. */
 inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f, const CameraVertex* v,
                       const VcmVertex* cv, float vc, float radius, float scale, const __global float* store,
-                      const __global int* sorted, const __global int* cell_count, const __global int* cell_end,
-                      float inv_cell, uint mask, float* rows) {
+                      const __global float4* placed, const __global int* cell_count, const __global int* cell_end,
+                      float inv_cell, uint mask, __global float* acc, float* rows) {
   const Surface* surf = &v->surf;
   float3 x = v->h.x, ns = cv->ns, eye = -c->w.dir;
   float r2 = radius * radius;
+  __global float *lam = acc, *white = acc + KASHA_BINS;
+  bool any_lambert = false, any_white = false;
   int3 lo = grid_cell(x - radius, inv_cell), hi = grid_cell(x + radius, inv_cell);
   for (int cz = lo.z; cz <= hi.z; ++cz)
     for (int cy = lo.y; cy <= hi.y; ++cy)
@@ -671,13 +689,16 @@ inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f,
         uint h = grid_hash((int3)(cx, cy, cz), mask);
         int end = cell_end[h];
         for (int j = end - cell_count[h]; j < end; ++j) {
-          const __global float* r = store + (long)sorted[j] * VCM_FLOATS;
-          float3 y = record_position(r);
+          /* The distance from the grid's own copy of the positions, in the cell's run; the
+           * record only for a vertex within r. */
+          float4 place = placed[j];
+          float3 y = place.xyz;
           int3 own = grid_cell(y, inv_cell);
           if (own.x != cx || own.y != cy || own.z != cz) continue;
-          if (!VCM_LENGTH_COUNTS(c->w.depth + as_int(r[KASHA_PHOTON_DEPTH]) + 2)) continue;
           float3 d = y - x;
           if (!(dot(d, d) < r2)) continue;
+          const __global float* r = store + (long)as_int(place.w) * VCM_FLOATS;
+          if (!VCM_LENGTH_COUNTS(c->w.depth + as_int(r[KASHA_PHOTON_DEPTH]) + 2)) continue;
           const __global float* m = r + KASHA_VCM_ARRIVAL(KASHA_BINS);
           if (!(m[12] > 0.5f)) continue;
           float3 ny = (float3)(r[3], r[4], r[5]);
@@ -691,13 +712,43 @@ inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f,
 #if KASHA_VCM_CONNECT
           float w_light = m[3] * vc + m[5] * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, light);
           float w_camera = c->dvcm * vc + c->dvm * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, light, eye);
-          float weight = 1.0f / (w_light + 1.0f + w_camera);
+          float weight = scale / (w_light + 1.0f + w_camera);
 #else
-          float weight = 1.0f;
+          float weight = scale;
 #endif
-          vcm_camera_apply(&c->w.p, f, surf, fv, r + KASHA_PHOTON_POWER, weight * scale, rows);
+          const __global float* phi = r + KASHA_PHOTON_POWER;
+#if KASHA_CONDUCTOR
+          if (fv.conductor > 0.0f) {
+            vcm_camera_apply(&c->w.p, f, surf, fv, phi, weight, rows);
+            continue;
+          }
+#endif
+          if (fv.lambert > 0.0f && surface_has_lambert(surf)) {
+            float k = weight * fv.lambert;
+            if (any_lambert)
+              for (int i = 0; i < KASHA_BINS; ++i) lam[i] += k * phi[i];
+            else
+              for (int i = 0; i < KASHA_BINS; ++i) lam[i] = k * phi[i];
+            any_lambert = true;
+          }
+          if (fv.white > 0.0f) {
+            float k = weight * fv.white;
+            if (any_white)
+              for (int i = 0; i < KASHA_BINS; ++i) white[i] += k * phi[i];
+            else
+              for (int i = 0; i < KASHA_BINS; ++i) white[i] = k * phi[i];
+            any_white = true;
+          }
         }
       }
+  /* T·(ρ∘Σ) for the passive part, ê (a·Σ) for re-emission: vcm_camera_apply's terms, summed. */
+  if (any_lambert) {
+    if (surf->passive) pw_add(&c->w.p, f, surf->rho, lam, 1.0f, rows);
+#if KASHA_FLUORESCENCE
+    if (surf->fluorescent) pw_add(&c->w.p, f, surf->ehat, 0, spectrum_dot(KASHA_BINS, 0, surf->a, lam), rows);
+#endif
+  }
+  if (any_white) pw_add(&c->w.p, f, white, 0, 1.0f, rows);
 }
 #endif
 
@@ -740,29 +791,32 @@ inline void vcm_escaped(const VcmCamera* c, const SceneView* s, const FilmView* 
 }
 #endif
 
-/* One camera path of the iteration. `own`: its light subpath is in the store (the chunk holding
- * it): emission, next-event estimation and connections count then; merges count with every
- * chunk. Returns what it still carried (relative to its start) if the depth guard cut it. */
-inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, Sampler* sampler, float paths,
-                             float eta, float radius, const __global float* store, const __global int* path_last,
-                             const __global int* sorted, const __global int* cell_count,
-                             const __global int* cell_end, float inv_cell, uint mask, bool own, uint seed,
-                             __global float* out, float* rows) {
+/* One camera path of the iteration, one of `spp` the pixel has, with light subpath `partner`.
+ * `own`: that subpath is in the store (the chunk holding it): emission, next-event estimation and
+ * connections count then; merges count with every chunk. Returns what it still carried (relative
+ * to its start) if the depth guard cut it. */
+inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, int spp, int partner, Sampler* sampler,
+                             float paths, float eta, float radius, const __global float* store,
+                             const __global int* path_last, const __global float4* placed,
+                             const __global int* cell_count, const __global int* cell_end, float inv_cell, uint mask,
+                             bool own, uint seed, __global float* out, float* rows) {
   const float vm = vcm_merge_factor(eta), vc = vcm_connect_factor(eta);
   VcmCamera c;
   float3 dir = camera_sample(&s->camera, pixel, sample_2d(sampler));
   walk_start(&c.w, f, camera_position(&s->camera), dir);
   {
-    /* The camera's density of the direction per solid angle, for one pixel's sample. */
+    /* The camera's density of the direction per solid angle, for one of the pixel's spp samples
+     * (dVCM: light subpaths over camera paths, as SmallVCM's with one camera path a pixel). */
     const KCamera* k = &s->camera;
     float3 forward = normalize((float3)(k->forward[0], k->forward[1], k->forward[2]));
     float pixel_area = 4.0f * length((float3)(k->right[0], k->right[1], k->right[2])) *
                        length((float3)(k->up[0], k->up[1], k->up[2])) / (float)(k->width * k->height);
     float cos_c = dot(dir, forward);
-    c.dvcm = paths * pixel_area * cos_c * cos_c * cos_c;
+    c.dvcm = paths / spp * pixel_area * cos_c * cos_c * cos_c;
     c.dvc = c.dvm = 0.0f;
   }
   CameraVertex v;
+  bool met = false; /* a vertex that is not delta is behind */
   while (c.w.depth < KASHA_MAX_PATH_DEPTH) {
     HitPoint* h = &v.h;
     if (!intersect_scene(s, c.w.org, c.w.dir, h)) {
@@ -796,7 +850,14 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
     cv.nf = hit_front(h);
     cv.ng = hit_ng(h);
     cv.lambert = vcm_lambert_mean(&v.surf);
+    /* Merging here: a vertex whose material merges, and (--merges first) no vertex before it that
+     * is not delta (ppm merges once, at the first that merges). */
+#if KASHA_VCM_MERGE_EVERY || !KASHA_VCM_CONNECT
     cv.merges = vcm_mergeable(&v.surf);
+#else
+    cv.merges = vcm_mergeable(&v.surf) && !met;
+#endif
+    met = met || vcm_connectible(&v.surf);
     bool rough = surface_rough(&v.surf);
     cv.eta = 1.0f;
 #if KASHA_ROUGH && KASHA_DIELECTRIC
@@ -820,13 +881,13 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
 #if KASHA_VCM_CONNECT
       if (own) {
         if (VCM_LENGTH_COUNTS(c.w.depth + 2)) vcm_next_event(&c, s, f, &v, &cv, vm, rows);
-        vcm_connect(&c, s, f, &v, &cv, vm, paths, store, path_last[pixel % (int)paths],
-                    hash_combine(hash_combine(seed, (uint)pixel), (uint)c.w.depth), out, rows);
+        vcm_connect(&c, s, f, &v, &cv, vm, paths, store, path_last[partner],
+                    hash_combine(hash_combine(seed, (uint)partner), (uint)c.w.depth), out, rows);
       }
 #if KASHA_VCM_MERGE
       if (cv.merges)
-        vcm_merge(&c, s, f, &v, &cv, vc, radius, KASHA_INV_PI / (radius * radius * s->bin_nm), store, sorted,
-                  cell_count, cell_end, inv_cell, mask, rows);
+        vcm_merge(&c, s, f, &v, &cv, vc, radius, KASHA_INV_PI / (radius * radius * s->bin_nm), store, placed,
+                  cell_count, cell_end, inv_cell, mask, out, rows);
 #endif
 #else
       /* ppm: the first vertex that merges merges all of it, unless a mirror lobe chosen by its
@@ -834,7 +895,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
       float p_mirror = v.surf.mirror && !surface_specular(&v.surf) ? v.probs.x : 0.0f;
       if (cv.merges && !(v.u_choice.x < p_mirror)) {
         vcm_merge(&c, s, f, &v, &cv, vc, radius, KASHA_INV_PI / (radius * radius * s->bin_nm) / (1.0f - p_mirror),
-                  store, sorted, cell_count, cell_end, inv_cell, mask, rows);
+                  store, placed, cell_count, cell_end, inv_cell, mask, out, rows);
         return 0.0f;
       }
 #endif
@@ -871,16 +932,16 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
   return walk_cut(&c.w, f);
 }
 
-/* One camera path per pixel (its light subpath: the pixel's index modulo `paths`), its estimate with the store's
- * chunk of light subpaths [chunk_first, chunk_end) added to the pixel's sums: the same path
- * (the same random numbers) with every chunk. `path_spectra`: VCM_SPECTRA floats per work item
- * for a light vertex's f·Φ and surface. */
+/* `spp` camera paths a pixel, sample j's light subpath (pixel · spp + j) modulo `paths`, their
+ * estimates with the store's chunk of light subpaths [chunk_first, chunk_end) added to the pixel's
+ * sums: the same paths (the same random numbers) with every chunk. `path_spectra`: VCM_SPECTRA
+ * floats per work item for a light vertex's f·Φ and surface. */
 __kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, int chunk_first, int chunk_end,
                               float eta, float radius,
                               __global const float* store, __global const int* path_last,
-                              __global const int* sorted, __global const int* cell_count,
+                              __global const float4* placed, __global const int* cell_count,
                               __global const int* cell_end, float inv_cell, uint mask, __global float* path_spectra,
-                              __global float* sums, __global int* rejected, __global float* cut, uint seed,
+                              __global float* sums, __global int* rejected, __global float* cut, int spp, uint seed,
                               uint pass, int item_end) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
@@ -888,19 +949,26 @@ __kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, 
   if (pixel < 0) return;
   /* The pixel's stream: a seed apart from the light subpaths'. */
   Sampler sampler = sampler_start(seed ^ 0x5bd1e995u, (uint)pixel, 0, pass, (uint)pixel);
-  sampler_next_sample(&sampler, pass);
-  float rows[KASHA_FILM_ROWS];
-  film_rows_clear(rows);
   __global float* out = path_spectra + (long)(get_global_id(0) - get_global_offset(0)) * VCM_SPECTRA;
-  int partner = pixel % paths; /* its light subpath */
-  bool own = partner >= chunk_first && partner < chunk_end;
-  float guard = vcm_camera_path(&s, &f, pixel, &sampler, (float)paths, eta, radius, store, path_last, sorted,
-                                cell_count, cell_end, inv_cell, mask, own,
-                                hash_combine(seed ^ 0x2545f491u, pass), out, rows);
-  if (own) cut[pixel] = guard;
-  if (film_rows_finite(rows))
-    film_add(sums, pixel, rows);
-  else
-    rejected[pixel] += 1;
+  float guard = 0.0f;
+  int bad = 0;
+  bool owned = false;
+  for (int j = 0; j < spp; ++j) {
+    sampler_next_sample(&sampler, pass * (uint)spp + (uint)j);
+    float rows[KASHA_FILM_ROWS];
+    film_rows_clear(rows);
+    int partner = (int)(((long)pixel * spp + j) % paths);
+    bool own = partner >= chunk_first && partner < chunk_end;
+    float g = vcm_camera_path(&s, &f, pixel, spp, partner, &sampler, (float)paths, eta, radius, store, path_last,
+                              placed, cell_count, cell_end, inv_cell, mask, own,
+                              hash_combine(seed ^ 0x2545f491u, pass), out, rows);
+    if (own) guard += g, owned = true;
+    if (film_rows_finite(rows))
+      film_add(sums, pixel, rows);
+    else
+      ++bad;
+  }
+  if (owned) cut[pixel] += guard;
+  rejected[pixel] += bad;
   add_ray_counts(&s, ray_counts);
 }

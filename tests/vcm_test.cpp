@@ -36,10 +36,13 @@ std::string lamp_box() {
 }
 
 RenderResult render_length(const std::string& integrator, int length, int passes,
-                           bool emission_only, bool drop_density = false) {
+                           bool emission_only, bool drop_density = false, int spp = 0,
+                           const std::string& merges = "first") {
   RenderSettings s;
   s.integrator = integrator;
   s.passes = passes;
+  s.integrator_settings.spp = spp;
+  s.integrator_settings.merges = merges;
   s.spectral = false;
   s.integrator_settings.vcm_length = length;
   s.integrator_settings.vcm_emission_only = emission_only;
@@ -73,16 +76,19 @@ const Image& plain(int length) {
 // `integrator` restricted to paths of `length` segments against the plain estimate: z-scores per
 // XYZ row, and the relative differences in *relative.
 std::array<double, 3> against_plain(const std::string& integrator, int length,
-                                    std::array<double, 3>* relative) {
-  RenderResult weighted = render_length(integrator, length, 16, false);
+                                    std::array<double, 3>* relative, int spp = 0,
+                                    const std::string& merges = "first") {
+  RenderResult weighted = render_length(integrator, length, 16, false, false, spp, merges);
   std::array<double, 3> z = z_scores(weighted.image, plain(length), relative);
-  std::printf("  length %d: %s / plain - 1 = %+.2f %% (Y, %+.1f standard errors)\n", length,
-              integrator.c_str(), 100 * (*relative)[1], z[1]);
+  std::printf("  length %d, %d camera paths a pixel, merges %s: %s / plain - 1 = %+.2f %% (Y, "
+              "%+.1f standard errors)\n",
+              length, spp, merges.c_str(), integrator.c_str(), 100 * (*relative)[1], z[1]);
   return z;
 }
 
 // Lengths 2 (direct light: emission hit, next-event estimation, light tracing), 3 and 4 (all of
 // bpt's techniques, connections of both subpaths' inner vertices among them).
+// Then with three camera paths a pixel (light tracing weighed against three).
 TEST(Vcm, BptWeightsSumToOnePerPathLength) {
   for (int length : {2, 3, 4}) {
     std::array<double, 3> relative;
@@ -90,18 +96,27 @@ TEST(Vcm, BptWeightsSumToOnePerPathLength) {
     for (int k = 0; k < 3; ++k)
       EXPECT_LT(std::abs(z[k]), 4.0) << "length " << length << " row " << k;
   }
+  for (int length : {2, 3}) {
+    std::array<double, 3> relative;
+    std::array<double, 3> z = against_plain("bpt", length, &relative, 3);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_LT(std::abs(z[k]), 4.0) << "length " << length << " row " << k;
+  }
 }
 
 // Merges join the weights: a vertex's merge is weighed against the connections that make the
-// same path, so the sum holds within merging's bias at this radius (1 % here).
+// same path, so the sum holds within merging's bias at this radius (1 % here) — merging at the
+// camera path's first vertex (the default), at every vertex, and with three camera paths a pixel.
 TEST(Vcm, VcmWeightsSumToOnePerPathLength) {
-  for (int length : {2, 3}) {
-    std::array<double, 3> relative;
-    std::array<double, 3> z = against_plain("vcm", length, &relative);
-    for (int k = 0; k < 3; ++k)
-      EXPECT_TRUE(std::abs(z[k]) < 4.0 || std::abs(relative[k]) < 0.01)
-          << "length " << length << " row " << k;
-  }
+  for (const auto& [merges, spp] : std::vector<std::pair<std::string, int>>{
+           {"first", 0}, {"every", 0}, {"first", 3}})
+    for (int length : {2, 3}) {
+      std::array<double, 3> relative;
+      std::array<double, 3> z = against_plain("vcm", length, &relative, spp, merges);
+      for (int k = 0; k < 3; ++k)
+        EXPECT_TRUE(std::abs(z[k]) < 4.0 || std::abs(relative[k]) < 0.01)
+            << "length " << length << " merges " << merges << " spp " << spp << " row " << k;
+    }
 }
 
 // Light tracing's weight without next-event estimation's density: direct light counted more

@@ -4,7 +4,7 @@
 
 namespace kasha {
 
-HashGrid::HashGrid(KernelLauncher& device, const cl::Program& program, size_t capacity)
+HashGrid::HashGrid(KernelLauncher& device, const cl::Program& program, size_t capacity, bool placed)
     : device_(device),
       count_kernel_(program, "grid_count"),
       scan_kernel_(program, "grid_scan"),
@@ -18,6 +18,10 @@ HashGrid::HashGrid(KernelLauncher& device, const cl::Program& program, size_t ca
   cell_end_ = device_buffer(cl, cells_ * sizeof(cl_int), "hashed grid: its cells");
   record_cell_ = device_buffer(cl, capacity * sizeof(cl_uint), "hashed grid: its records");
   sorted_ = device_buffer(cl, capacity * sizeof(cl_int), "hashed grid: its records");
+  if (placed) {
+    place_kernel_ = cl::Kernel(program, "grid_place");
+    placed_ = device_buffer(cl, capacity * sizeof(cl_float4), "hashed grid: its records' places");
+  }
 }
 
 void HashGrid::build(const cl::Buffer& store, size_t count, const cl::Buffer& cell) {
@@ -28,6 +32,7 @@ void HashGrid::build(const cl::Buffer& store, size_t count, const cl::Buffer& ce
                            static_cast<cl_int>(cells_), cell_end_);
   if (count > 0) device_.launch_own(scatter_kernel_, count, record_cell_, cell_end_, sorted_);
   device_.launch_own(sort_kernel_, cells_, store, cell_count_, cell_end_, sorted_);
+  if (place_kernel_() && count > 0) device_.launch_own(place_kernel_, count, store, sorted_, placed_);
 }
 
 }  // namespace kasha

@@ -35,10 +35,13 @@ enum class VcmMode { vcm, bpt, ppm };
 constexpr size_t kLeastLightPaths = 1 << 14;
 // ppm, merges alone, takes direct light from them too: at least as many as these.
 constexpr size_t kLeastPhotonMappingPaths = 1 << 16;
+// Camera paths a pixel per iteration unless --spp says.
+constexpr int kDefaultCameraPaths = 1;
 
 KernelDefines mode_defines(VcmMode m, const IntegratorSettings& s) {
   KernelDefines d{{"KASHA_VCM_CONNECT", m == VcmMode::ppm ? "0" : "1"},
                   {"KASHA_VCM_MERGE", m == VcmMode::bpt ? "0" : "1"}};
+  if (m == VcmMode::vcm && s.merges == "every") d["KASHA_VCM_MERGE_EVERY"] = "1";
   // The test hooks (kernels/vcm.cl), only when set.
   if (s.vcm_length > 0) d["KASHA_VCM_LENGTH"] = std::to_string(s.vcm_length);
   if (s.vcm_emission_only) d["KASHA_VCM_EMISSION_ONLY"] = "1";
@@ -55,6 +58,7 @@ class VcmIntegrator : public KernelIntegrator {
       : KernelIntegrator(s, "vcm.cl", mode_defines(Mode, s.settings)),
         alpha_(s.settings.alpha),
         seed_(s.settings.seed),
+        spp_(s.settings.spp > 0 ? s.settings.spp : kDefaultCameraPaths),
         emission_only_(s.settings.vcm_emission_only),
         paths_(s.settings.photons > 0
                    ? static_cast<size_t>(s.settings.photons)
@@ -80,10 +84,10 @@ class VcmIntegrator : public KernelIntegrator {
     camera_cut_ = device_buffer(cl_, pixels * sizeof(cl_float), "vcm: depth-guard tallies");
     rejected_ = device_buffer(cl_, pixels * sizeof(cl_int), "vcm: rejected counts");
     // Connections compute a light vertex's f·Φ into a spectrum of the camera path's own, and
-    // its surface (textured, coated) into scratch of its own (kernels/vcm.cl, VCM_SPECTRA).
-    const size_t spectra = bins + static_cast<size_t>(scratch_floats(s.scene));
-    spectra_ = device_buffer(cl_, (Mode == VcmMode::ppm ? 1 : pixels * spectra) * sizeof(cl_float),
-                             "vcm: per-path spectra");
+    // its surface (textured, coated) into scratch of its own; merges sum their photons in two
+    // spectra there (kernels/vcm.cl, VCM_SPECTRA).
+    spectra_floats_ = bins + std::max(bins, static_cast<size_t>(scratch_floats(s.scene)));
+    spectra_ = device_buffer(cl_, pixels * spectra_floats_ * sizeof(cl_float), "vcm: per-path spectra");
     cell_ = device_buffer(cl_, 2 * sizeof(cl_float), "vcm: the grid's cell size");
     fixed_before_ =
         device_buffer(cl_, cells() * 2 * sizeof(cl_ulong), "vcm: the light paths' film");
@@ -98,13 +102,17 @@ class VcmIntegrator : public KernelIntegrator {
     const double device0 = device_seconds_;
     // The iteration's radius: Georgiev's global schedule, from the iteration's index alone.
     const double radius = first_radius_ * std::pow(pass + 1.0, (alpha_ - 1) / 2);
-    const double eta = M_PI * radius * radius * static_cast<double>(paths_);
+    // η weighs a merge against a connection: π r² times the light subpaths, over the camera paths
+    // a pixel has — their merges at one pixel's vertices meet the same photons, so together they
+    // count as one camera path's (the weights still sum to one: both subpaths use this η).
+    const double eta = M_PI * radius * radius * static_cast<double>(paths_) / spp_;
     const size_t pixels = film_.pixels();
     film_.clear_pixel_sums();
     cl_.queue().enqueueFillBuffer(fixed_, cl_ulong(0), 0, cells() * 2 * sizeof(cl_ulong));
     cl_.queue().enqueueFillBuffer(overflow_, cl_int(0), 0, sizeof(cl_int));
     cl_.queue().enqueueFillBuffer(rejected_, cl_int(0), 0, pixels * sizeof(cl_int));
     cl_.queue().enqueueFillBuffer(light_cut_, cl_float(0), 0, paths_ * sizeof(cl_float));
+    cl_.queue().enqueueFillBuffer(camera_cut_, cl_float(0), 0, pixels * sizeof(cl_float));
     // The light subpaths in chunks of path ranges, each traced into the store and met by every
     // camera path (the same paths again): one chunk while the store holds the iteration, so
     // memory stays bounded however long light paths get.
@@ -137,20 +145,21 @@ class VcmIntegrator : public KernelIntegrator {
       first += count;
       ++chunks;
     }
-    PassResult r{pass, 1, {}, film_.read_pixel_sums(), static_cast<double>(done) / pixels, {}, {}};
-    // The light subpaths' splats are one more term of every pixel's estimate: added to the
-    // camera path's. A pass cut short keeps the pixels its last camera pass reached.
+    PassResult r{pass, spp_, {}, film_.read_pixel_sums(), static_cast<double>(done) / pixels, {}, {}};
+    // The light subpaths' splats are one more term of every camera path's estimate: added to the
+    // pixel's sums as many times as it has camera paths. A pass cut short keeps the pixels its
+    // last camera pass reached.
     std::vector<cl_ulong> fixed(2 * cells());
     cl_.queue().enqueueReadBuffer(fixed_, CL_TRUE, 0, fixed.size() * sizeof(cl_ulong),
                                   fixed.data());
     const size_t kept = done * film_.rows();
     for (size_t i = 0; i < kept; ++i)
-      r.sums[i] += fixed_point_value(fixed[2 * i], fixed[2 * i + 1], film_shift_);
+      r.sums[i] += static_cast<double>(spp_) * fixed_point_value(fixed[2 * i], fixed[2 * i + 1], film_shift_);
     if (done < pixels) {
       std::fill(r.sums.begin() + kept, r.sums.end(), 0.0);
       r.samples = 0;
       r.pixel_samples.assign(pixels, 0);
-      std::fill(r.pixel_samples.begin(), r.pixel_samples.begin() + done, 1);
+      std::fill(r.pixel_samples.begin(), r.pixel_samples.begin() + done, spp_);
     }
     r.tallies["rejected samples"] =
         read_sum<cl_int>(rejected_, pixels) + read_sum<cl_int>(overflow_, 1);
@@ -160,7 +169,7 @@ class VcmIntegrator : public KernelIntegrator {
     r.tallies[kDepthGuardCut] = read_sum<cl_float>(light_cut_, paths_);
     r.tallies[kDepthGuardOf] = static_cast<double>(paths_);
     r.tallies[kCameraDepthGuardCut] = read_sum<cl_float>(camera_cut_, pixels);
-    r.tallies[kCameraDepthGuardOf] = static_cast<double>(pixels);
+    r.tallies[kCameraDepthGuardOf] = static_cast<double>(pixels) * spp_;
     r.tallies["time: light pass (s)"] = light_s;
     r.tallies["time: grid (s)"] = grid_s;
     r.tallies["time: camera pass (s)"] = device_seconds_ - device0 - light_s - grid_s;
@@ -170,7 +179,7 @@ class VcmIntegrator : public KernelIntegrator {
   }
 
   long long camera_paths_per_pass() const override {
-    return static_cast<long long>(film_.pixels());
+    return static_cast<long long>(film_.pixels()) * spp_;
   }
   long long photons_per_pass() const override { return static_cast<long long>(paths_); }
   std::map<std::string, size_t> device_buffers() const override {
@@ -178,14 +187,16 @@ class VcmIntegrator : public KernelIntegrator {
         {"light-vertex store", capacity_ * record_floats_ * sizeof(float)},
         {"light paths' film", cells() * 2 * sizeof(cl_ulong)},
         {"per-path tables", paths_ * 2 * sizeof(cl_int) + film_.pixels() * 2 * sizeof(float)},
-        {"per-path spectra", film_.pixels() * bins_ * sizeof(float)}};
+        {"per-path spectra", film_.pixels() * spectra_floats_ * sizeof(float)}};
     if (grid_) b["hashed grid"] = grid_->bytes(capacity_);
     return b;
   }
 
  private:
   size_t cells() const { return film_.pixels() * film_.rows(); }
-  size_t record_bytes() const { return record_floats_ * sizeof(float) + kGridBytesPerRecord; }
+  size_t record_bytes() const {
+    return record_floats_ * sizeof(float) + (Mode == VcmMode::bpt ? 0 : kPlacedGridBytesPerRecord);
+  }
 
   // The first radius: one pixel's footprint at the distance from the camera to the centre of the
   // scene's bounds (--radius sets it), within a fiftieth of the scene's diagonal as photon's.
@@ -220,7 +231,7 @@ class VcmIntegrator : public KernelIntegrator {
     store_ = device_buffer(cl_, capacity_ * record_floats_ * sizeof(float),
                            "vcm: the light-vertex store (--memory)");
     KernelLauncher& device = *this;  // the grid launches its kernels through it
-    if (Mode != VcmMode::bpt) grid_.emplace(device, program_, capacity_);
+    if (Mode != VcmMode::bpt) grid_.emplace(device, program_, capacity_, /*placed*/ true);
     return true;
   }
 
@@ -241,7 +252,7 @@ class VcmIntegrator : public KernelIntegrator {
         launch_range(light_kernel_, first + done, n, static_cast<cl_int>(paths_),
                      static_cast<cl_float>(eta), store_, stored_, static_cast<cl_int>(capacity_),
                      path_last_, fixed_, static_cast<cl_int>(film_shift_), overflow_, light_cut_,
-                     seed_, static_cast<cl_uint>(pass));
+                     static_cast<cl_int>(spp_), seed_, static_cast<cl_uint>(pass));
         light_pacer_.record(n, seconds_since(t));
         done += n;
         control_.report(0.5 * static_cast<double>(first + done) / paths_);
@@ -273,10 +284,10 @@ class VcmIntegrator : public KernelIntegrator {
       launch_range(camera_kernel_, done, n, static_cast<cl_int>(paths_), static_cast<cl_int>(first),
                    static_cast<cl_int>(end), static_cast<cl_float>(eta),
                    static_cast<cl_float>(radius), store_, path_last_,
-                   grid_ ? grid_->sorted() : path_last_, grid_ ? grid_->cell_count() : path_last_,
+                   grid_ ? grid_->placed() : path_last_, grid_ ? grid_->cell_count() : path_last_,
                    grid_ ? grid_->cell_end() : path_last_, static_cast<cl_float>(0.5 / radius),
                    grid_ ? grid_->mask() : 0u, spectra_, film_.pixel_sums(), rejected_, camera_cut_,
-                   seed_, static_cast<cl_uint>(pass));
+                   static_cast<cl_int>(spp_), seed_, static_cast<cl_uint>(pass));
       camera_pacer_.record(n, seconds_since(t));
       done += n;
       if (last) control_.report(0.5 + 0.5 * static_cast<double>(done) / pixels);
@@ -292,11 +303,13 @@ class VcmIntegrator : public KernelIntegrator {
 
   double alpha_;
   unsigned seed_;
+  int spp_;  // camera paths a pixel per iteration
   bool emission_only_;
   int whole_ = 0;  // iterations that ran whole
   size_t paths_;   // light subpaths per iteration: pixel p's camera path connects to the p-th
   size_t record_floats_;
   size_t bins_;
+  size_t spectra_floats_ = 0;  // a camera path's spectra (kernels/vcm.cl, VCM_SPECTRA)
   size_t budget_ = 0, capacity_ = 0;
   double first_radius_ = 0;
   int film_shift_ = 0;
@@ -316,21 +329,21 @@ KASHA_REGISTER_INTEGRATOR(
     VertexConnectionMerging, "vcm",
     "vertex connection and merging: light and camera subpaths joined by connections and merges "
     "under one MIS weight, iterations independent (a global radius schedule)",
-    {"--photons", "--alpha", "--radius", "--memory"},
+    {"--photons", "--alpha", "--radius", "--memory", "--spp", "--merges"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
                      /*reference*/ false});
 KASHA_REGISTER_INTEGRATOR(
     BidirectionalPathTracing, "bpt",
     "bidirectional path tracing: vcm's connections alone (next-event estimation, light "
     "tracing, subpath connections), MIS-weighted",
-    {"--photons", "--memory"},
+    {"--photons", "--memory", "--spp"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ true, /*sees camera mirrors*/ true,
                      /*reference*/ false});
 KASHA_REGISTER_INTEGRATOR(
     ProgressivePhotonMapping, "ppm",
     "progressive photon mapping: vcm's merges alone, unweighted, at each camera path's first "
     "non-delta vertex",
-    {"--photons", "--alpha", "--radius", "--memory"},
+    {"--photons", "--alpha", "--radius", "--memory", "--spp"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
                      /*reference*/ false, /*direct by merges*/ true});
 
