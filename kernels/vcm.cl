@@ -76,6 +76,20 @@
 inline float vcm_merge_factor(float eta) { return KASHA_VCM_MERGE ? eta : 0.0f; }
 inline float vcm_connect_factor(float eta) { return KASHA_VCM_CONNECT ? 1.0f / eta : 0.0f; }
 
+/* An iteration's merging radius: one for every vertex (per_unit 0: --radius, --merges every), or
+ * (per_unit > 0) a pixel's footprint where the camera path merges — per_unit times the distance it
+ * travelled there, through delta bounces — up to `radius`. Either subpath finds the radius of a
+ * vertex where the camera path would merge (light tracing: its distance to the camera), so both
+ * weigh merges alike. η = eta_unit · r² with eta_unit = π L over the pixel's camera paths. */
+typedef struct {
+  float eta_unit, radius, per_unit;
+} VcmRadius;
+
+inline float vcm_radius_at(const VcmRadius* r, float travelled) {
+  return r->per_unit > 0.0f ? fmin(r->per_unit * travelled, r->radius) : r->radius;
+}
+inline float vcm_eta_at(const VcmRadius* r, float radius) { return r->eta_unit * radius * radius; }
+
 /* A vertex connects where its surface has a non-delta part: a Lambert part (bare or under a
  * coat), a tabulated gloss lobe, a rough coat's lobe, or a rough dielectric or conductor. It
  * merges where it has a Lambert part or a tabulated lobe: a rough interface only connects, a
@@ -369,11 +383,14 @@ inline bool vcm_source_finite(const __global KLight* l) {
  * area, weighed against every technique that samples it from the camera side — `spp` camera paths
  * a pixel against `paths` light subpaths. */
 inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, const Surface* surf, float lambert,
-                      bool merges, const HitPoint* h, float3 from, const Photon* p, float dvcm, float dvc, float vm,
-                      float paths, int spp) {
+                      bool merges, const HitPoint* h, float3 from, const Photon* p, float dvcm, float dvc,
+                      const VcmRadius* radius, float paths, int spp) {
   int pixel;
   float k;
-  float3 to = normalize(camera_position(&s->camera) - h->x);
+  float3 to = camera_position(&s->camera) - h->x;
+  /* The merge at this vertex, the camera path's first: its radius at the camera's distance. */
+  float vm = vcm_merge_factor(vcm_eta_at(radius, vcm_radius_at(radius, length(to))));
+  to = normalize(to);
   float3 nf = hit_front(h), ng = hit_ng(h);
   /* Off the geometric side the camera lies on, which the shading normal must agree with. */
   if (!hit_no_leak(h, to)) return;
@@ -418,7 +435,8 @@ inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, con
 /* Light subpaths [get_global_id(0)] of the iteration's `paths`, photons as in forward transport
  * (each carrying 1/paths of the lights' power), from the stream of their index. Records past
  * `capacity` are counted but not written: the host grows the store and runs the pass again. */
-__kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, float eta, __global float* store,
+__kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, float eta_unit, float radius,
+                             float per_unit, __global float* store,
                              __global int* stored, int capacity, __global int* path_last, __global ulong* film,
                              int film_shift, __global int* overflow,
                              __global float* cut, /* per path: power the depth guard cut, per its start */
@@ -427,7 +445,10 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
   KASHA_FILM_VIEW(f);
   int index = get_global_id(0);
   if (index >= item_end) return;
-  const float vm = vcm_merge_factor(eta), vc = vcm_connect_factor(eta);
+  /* The global radius's factors (per_unit > 0: dVM is not read, and merges count only where
+   * light tracing splats). */
+  const VcmRadius rad = {eta_unit, radius, per_unit};
+  const float vm = vcm_merge_factor(vcm_eta_at(&rad, radius)), vc = vcm_connect_factor(vcm_eta_at(&rad, radius));
   Sampler sampler = photon_sampler(seed, pass, paths, index);
   LightOrigin o;
   Photon p = emit_photon(&s, (float)paths, &sampler, &o);
@@ -498,7 +519,7 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
       ++ordinal;
 #if KASHA_VCM_CONNECT && !KASHA_VCM_EMISSION_ONLY
       if (VCM_LENGTH_COUNTS(depth + 2))
-        vcm_splat(&s, &f, &target, &surf, lambert, merges, &h, from, &p, dvcm, dvc, vm, (float)paths, spp);
+        vcm_splat(&s, &f, &target, &surf, lambert, merges, &h, from, &p, dvcm, dvc, &rad, (float)paths, spp);
 #endif
     }
     int branch = scatter_photon(&p, &surf, &s, &h, &sampler, depth);
@@ -710,7 +731,12 @@ inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f,
           if (dot(light, ng) <= 0.0f) continue;
           VcmF fv = vcm_eval(s, surf, ns, cv->nf, eye, light, light, cv->eta);
 #if KASHA_VCM_CONNECT
-          float w_light = m[3] * vc + m[5] * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, light);
+#if KASHA_VCM_MERGE_EVERY
+          float dvm_light = m[5];
+#else
+          float dvm_light = m[4] * vc; /* a light subpath that never merges has dVM = dVC / η */
+#endif
+          float w_light = m[3] * vc + dvm_light * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, light);
           float w_camera = c->dvcm * vc + c->dvm * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, light, eye);
           float weight = scale / (w_light + 1.0f + w_camera);
 #else
@@ -796,11 +822,14 @@ inline void vcm_escaped(const VcmCamera* c, const SceneView* s, const FilmView* 
  * connections count then; merges count with every chunk. Returns what it still carried (relative
  * to its start) if the depth guard cut it. */
 inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, int spp, int partner, Sampler* sampler,
-                             float paths, float eta, float radius, const __global float* store,
+                             float paths, VcmRadius radius, const __global float* store,
                              const __global int* path_last, const __global float4* placed,
                              const __global int* cell_count, const __global int* cell_end, float inv_cell, uint mask,
                              bool own, uint seed, __global float* out, float* rows) {
-  const float vm = vcm_merge_factor(eta), vc = vcm_connect_factor(eta);
+  /* The factors of the global radius; where the radius is the path's, of its merging vertex's. */
+  float r_merge = radius.radius;
+  float vm = vcm_merge_factor(vcm_eta_at(&radius, r_merge)), vc = vcm_connect_factor(vcm_eta_at(&radius, r_merge));
+  float travelled = 0.0f;
   VcmCamera c;
   float3 dir = camera_sample(&s->camera, pixel, sample_2d(sampler));
   walk_start(&c.w, f, camera_position(&s->camera), dir);
@@ -826,6 +855,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, i
       return 0.0f;
     }
     vcm_arrived(h->t, fabs(dot(h->n, c.w.dir)), &c.dvcm, &c.dvc, &c.dvm);
+    travelled += h->t;
     if (own && h->emitter >= 0 && h->front) {
       float weight = vcm_emission_weight(&c, s, h);
 #if KASHA_EMISSION_TEXTURES
@@ -858,6 +888,11 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, i
     cv.merges = vcm_mergeable(&v.surf) && !met;
 #endif
     met = met || vcm_connectible(&v.surf);
+    if (cv.merges && radius.per_unit > 0.0f) {
+      r_merge = vcm_radius_at(&radius, travelled);
+      vm = vcm_merge_factor(vcm_eta_at(&radius, r_merge));
+      vc = vcm_connect_factor(vcm_eta_at(&radius, r_merge));
+    }
     bool rough = surface_rough(&v.surf);
     cv.eta = 1.0f;
 #if KASHA_ROUGH && KASHA_DIELECTRIC
@@ -886,7 +921,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, i
       }
 #if KASHA_VCM_MERGE
       if (cv.merges)
-        vcm_merge(&c, s, f, &v, &cv, vc, radius, KASHA_INV_PI / (radius * radius * s->bin_nm), store, placed,
+        vcm_merge(&c, s, f, &v, &cv, vc, r_merge, KASHA_INV_PI / (r_merge * r_merge * s->bin_nm), store, placed,
                   cell_count, cell_end, inv_cell, mask, out, rows);
 #endif
 #else
@@ -894,7 +929,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, i
        * probability carries the path on. */
       float p_mirror = v.surf.mirror && !surface_specular(&v.surf) ? v.probs.x : 0.0f;
       if (cv.merges && !(v.u_choice.x < p_mirror)) {
-        vcm_merge(&c, s, f, &v, &cv, vc, radius, KASHA_INV_PI / (radius * radius * s->bin_nm) / (1.0f - p_mirror),
+        vcm_merge(&c, s, f, &v, &cv, vc, r_merge, KASHA_INV_PI / (r_merge * r_merge * s->bin_nm) / (1.0f - p_mirror),
                   store, placed, cell_count, cell_end, inv_cell, mask, out, rows);
         return 0.0f;
       }
@@ -937,7 +972,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, i
  * sums: the same paths (the same random numbers) with every chunk. `path_spectra`: VCM_SPECTRA
  * floats per work item for a light vertex's f·Φ and surface. */
 __kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, int chunk_first, int chunk_end,
-                              float eta, float radius,
+                              float eta_unit, float radius, float per_unit,
                               __global const float* store, __global const int* path_last,
                               __global const float4* placed, __global const int* cell_count,
                               __global const int* cell_end, float inv_cell, uint mask, __global float* path_spectra,
@@ -959,7 +994,8 @@ __kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, 
     film_rows_clear(rows);
     int partner = (int)(((long)pixel * spp + j) % paths);
     bool own = partner >= chunk_first && partner < chunk_end;
-    float g = vcm_camera_path(&s, &f, pixel, spp, partner, &sampler, (float)paths, eta, radius, store, path_last,
+    VcmRadius rad = {eta_unit, radius, per_unit};
+    float g = vcm_camera_path(&s, &f, pixel, spp, partner, &sampler, (float)paths, rad, store, path_last,
                               placed, cell_count, cell_end, inv_cell, mask, own,
                               hash_combine(seed ^ 0x2545f491u, pass), out, rows);
     if (own) guard += g, owned = true;
