@@ -127,12 +127,13 @@ TEST_P(IntegratorAgreement, RegionsMatchTheReferenceIntegrator) {
   // booth's grey card, 5.3 % on the textured scene, 9.4 % on the glass scene's floor seen through
   // the rough cube, against photon mapping's within 3 %.
   const double tolerance = c.tolerance * (IntegratorRegistry::find(c.integrator).traits.direct_by_merges ? 3 : 1);
-  const std::vector<std::string>& options = IntegratorRegistry::find(c.integrator).options;
-  const bool one_camera_sample = std::find(options.begin(), options.end(), "--spp") == options.end();
+  // A lamp's highlight in smooth glass or a coat is found by camera paths alone: vcm's and bpt's
+  // 96 a pixel at this budget (4 an iteration) and ppm's 24 miss it or hit it by chance.
+  const bool few_camera_samples = tested.samples_per_pixel < 128;
   for (auto [name, pixels] : regions) {
     const std::string& h = c.camera_highlight;
     const bool highlight = !h.empty() && name.size() >= h.size() && name.compare(name.size() - h.size(), h.size(), h) == 0;
-    if (one_camera_sample && !blind && highlight) {
+    if (few_camera_samples && !blind && highlight) {
       std::printf("  %-13s left out: a highlight only camera paths find\n", name.c_str());
       continue;
     }

@@ -35,6 +35,7 @@ RenderResult render_scene(const std::string& path, const RenderSettings& s) {
   r.device_buffers = job.integrator().device_buffers();
   r.work_passes = job.film().work_passes();
   r.passes = job.film().passes();
+  r.samples_per_pixel = job.film().samples_per_pixel();
   return r;
 }
 

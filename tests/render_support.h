@@ -23,6 +23,7 @@ struct RenderResult {
   std::map<std::string, size_t> device_buffers;  // the integrator's
   double work_passes = 0;                        // passes, a cut-short one counted by its fraction
   int passes = 0;
+  long long samples_per_pixel = 0;  // camera paths a pixel (the film's count)
 };
 
 struct RenderSettings {
