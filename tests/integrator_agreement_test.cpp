@@ -75,10 +75,12 @@ std::vector<AgreementCase> all_cases() {
     // photon mapping's camera samples (8 a pass): that region's mean scatters by about 6 % either
     // way at this budget (seeds 5 and the default: +5.4 %, −6.4 %), while its pixels away from
     // the silhouette agree within 0.1 % (`kasha regions`, 24 passes).
-    // With one camera sample a pixel a pass (bpt, vcm, ppm), the highlight's region scatters by
+    // With one camera sample a pixel a pass (bpt, vcm, ppm), the highlight's region scattered by
     // about ±12 % at 24 passes (all three −10 to −12 % on the same camera samples), while bpt at
-    // 256 × 256 and 48 passes is within 1 % of backward there (`kasha regions`).
-    cases.push_back({integrator, "lacquered_vase.json", unbiased ? 0.03 : 0.08, true, 32, 4, "glazed_paper"});
+    // 256 × 256 and 48 passes is within 1 % of backward there (`kasha regions`); with vcm's and
+    // bpt's 4 a pass it still falls outside 3 % (left out below by camera paths a pixel).
+    cases.push_back(
+        {integrator, "lacquered_vase.json", unbiased ? 0.03 : 0.08, true, 32, 4, "glazed_paper"});
     // pbrt-v4 scene files (docs/pbrt-import.md): RGB walls and a coated sphere; rough metals
     // under a spot and a point light; dispersive and rough glass under a disk lamp and a sky;
     // an image and a checkerboard texture and a PLY torus under a sun and a sky.
@@ -126,13 +128,15 @@ TEST_P(IntegratorAgreement, RegionsMatchTheReferenceIntegrator) {
   // ppm (direct light by merges) is biased most by its radius at this budget: 3.4 % on the light
   // booth's grey card, 5.3 % on the textured scene, 9.4 % on the glass scene's floor seen through
   // the rough cube, against photon mapping's within 3 %.
-  const double tolerance = c.tolerance * (IntegratorRegistry::find(c.integrator).traits.direct_by_merges ? 3 : 1);
+  const double tolerance =
+      c.tolerance * (IntegratorRegistry::find(c.integrator).traits.direct_by_merges ? 3 : 1);
   // A lamp's highlight in smooth glass or a coat is found by camera paths alone: vcm's and bpt's
   // 96 a pixel at this budget (4 an iteration) and ppm's 24 miss it or hit it by chance.
   const bool few_camera_samples = tested.samples_per_pixel < 128;
   for (auto [name, pixels] : regions) {
     const std::string& h = c.camera_highlight;
-    const bool highlight = !h.empty() && name.size() >= h.size() && name.compare(name.size() - h.size(), h.size(), h) == 0;
+    const bool highlight = !h.empty() && name.size() >= h.size() &&
+                           name.compare(name.size() - h.size(), h.size(), h) == 0;
     if (few_camera_samples && !blind && highlight) {
       std::printf("  %-13s left out: a highlight only camera paths find\n", name.c_str());
       continue;
@@ -175,7 +179,8 @@ TEST_P(IntegratorAgreement, RegionsMatchTheReferenceIntegrator) {
 INSTANTIATE_TEST_SUITE_P(Registry, IntegratorAgreement, ::testing::ValuesIn(all_cases()),
                          [](const auto& info) {
                            const AgreementCase& c = info.param;
-                           std::string name = c.integrator + "_" + c.scene.substr(0, c.scene.size() - 5);
+                           std::string name =
+                               c.integrator + "_" + c.scene.substr(0, c.scene.size() - 5);
                            std::replace(name.begin(), name.end(), '/', '_');
                            return name;
                          });

@@ -1,12 +1,11 @@
 #include "render_support.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-
-#include <unistd.h>
 
 #include "image/exr_io.h"
 #include "render/device_scene.h"
@@ -129,7 +128,8 @@ ComparedRenders render_against_backward(const std::string& scene, const std::str
   // binary's write time (the kernels are compiled into it, so a changed kernel renders it again).
   // Written under a temporary name and renamed, so tests running side by side never read half.
   const auto built = std::filesystem::last_write_time("/proc/self/exe").time_since_epoch().count();
-  const std::filesystem::path cache = std::filesystem::path(KASHA_TEST_TMP) / "backward_references" /
+  const std::filesystem::path cache = std::filesystem::path(KASHA_TEST_TMP) /
+                                      "backward_references" /
                                       (std::to_string(built) + "_" + std::to_string(size) + "_" +
                                        slashes_to_underscores(scene) + ".exr");
   if (std::filesystem::exists(cache)) {

@@ -80,9 +80,10 @@ std::array<double, 3> against_plain(const std::string& integrator, int length,
                                     const std::string& merges = "first") {
   RenderResult weighted = render_length(integrator, length, 16, false, false, spp, merges);
   std::array<double, 3> z = z_scores(weighted.image, plain(length), relative);
-  std::printf("  length %d, %d camera paths a pixel, merges %s: %s / plain - 1 = %+.2f %% (Y, "
-              "%+.1f standard errors)\n",
-              length, spp, merges.c_str(), integrator.c_str(), 100 * (*relative)[1], z[1]);
+  std::printf(
+      "  length %d, %d camera paths a pixel, merges %s: %s / plain - 1 = %+.2f %% (Y, "
+      "%+.1f standard errors)\n",
+      length, spp, merges.c_str(), integrator.c_str(), 100 * (*relative)[1], z[1]);
   return z;
 }
 
@@ -108,8 +109,8 @@ TEST(Vcm, BptWeightsSumToOnePerPathLength) {
 // same path, so the sum holds within merging's bias at this radius (1 % here) — merging at the
 // camera path's first vertex (the default), at every vertex, and with three camera paths a pixel.
 TEST(Vcm, VcmWeightsSumToOnePerPathLength) {
-  for (const auto& [merges, spp] : std::vector<std::pair<std::string, int>>{
-           {"first", 0}, {"every", 0}, {"first", 3}})
+  for (const auto& [merges, spp] :
+       std::vector<std::pair<std::string, int>>{{"first", 0}, {"every", 0}, {"first", 3}})
     for (int length : {2, 3}) {
       std::array<double, 3> relative;
       std::array<double, 3> z = against_plain("vcm", length, &relative, spp, merges);
@@ -130,4 +131,3 @@ TEST(Vcm, AWeightWithADensityDroppedFails) {
       100 * relative[1], z[1]);
   EXPECT_GT(z[1], 6.0);
 }
-

@@ -18,7 +18,8 @@ class HashGrid {
  public:
   // A hash table of about one cell per record of a store of `capacity`; `placed`: it also keeps
   // the records' positions in its order (placed()).
-  HashGrid(KernelLauncher& device, const cl::Program& program, size_t capacity, bool placed = false);
+  HashGrid(KernelLauncher& device, const cl::Program& program, size_t capacity,
+           bool placed = false);
 
   // Builds the grid over the first `count` records of `store` with the cell size in `cell`
   // (size, 1/size: two floats on the device).

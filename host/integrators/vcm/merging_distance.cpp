@@ -19,7 +19,9 @@ bool delta_surface(const Material& m) {
   return m.rho.empty() && !m.fluorescent() && !m.coat && m.gloss && m.gloss->mirror;
 }
 
-Eigen::Vector3f vec(const float* v) { return {v[0], v[1], v[2]}; }
+Eigen::Vector3f vec(const float* v) {
+  return {v[0], v[1], v[2]};
+}
 
 }  // namespace
 
@@ -48,8 +50,7 @@ double merging_distance(const Scene& scene, const KCamera& camera) {
         }
         const Eigen::Vector3f n = (vec(t.v1) - vec(t.v0)).cross(vec(t.v2) - vec(t.v0)).normalized();
         org += h.t * dir;
-        if (scene.materials[t.material].kind != MaterialKind::dielectric)
-          dir -= 2 * n.dot(dir) * n;
+        if (scene.materials[t.material].kind != MaterialKind::dielectric) dir -= 2 * n.dot(dir) * n;
         // Off the surface by a relative epsilon, on the side the path leaves by.
         org += (n.dot(dir) > 0 ? 1e-4f : -1e-4f) * std::max(1.0f, org.norm()) * n;
       }

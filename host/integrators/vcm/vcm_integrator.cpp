@@ -63,7 +63,7 @@ class VcmIntegrator : public KernelIntegrator {
       : KernelIntegrator(s, "vcm.cl", mode_defines(Mode, s.settings)),
         alpha_(s.settings.alpha),
         seed_(s.settings.seed),
-        spp_(s.settings.spp > 0                 ? s.settings.spp
+        spp_(s.settings.spp > 0     ? s.settings.spp
              : Mode == VcmMode::ppm ? kDefaultPhotonMappingCameraPaths
                                     : kDefaultCameraPaths),
         emission_only_(s.settings.vcm_emission_only),
@@ -79,8 +79,9 @@ class VcmIntegrator : public KernelIntegrator {
     if (!(alpha_ > 0 && alpha_ < 1)) throw Error("--alpha must lie in (0, 1)");
     budget_ = s.settings.memory > 0 ? static_cast<size_t>(s.settings.memory)
                                     : default_memory_budget(cl_.info());
-    set_first_radius(s.scene, s.settings.radius,
-                     Mode != VcmMode::bpt && !(Mode == VcmMode::vcm && s.settings.merges == "every"));
+    set_first_radius(
+        s.scene, s.settings.radius,
+        Mode != VcmMode::bpt && !(Mode == VcmMode::vcm && s.settings.merges == "every"));
     film_shift_ = fixed_point_shift(scene_.data(), film_.cmf(), film_.spectral());
     const size_t pixels = film_.pixels(), bins = s.scene.grid.bins;
     if (paths_ > (1u << 31) - 1) throw Error("vcm: at most 2^31 - 1 pixels");
@@ -95,7 +96,8 @@ class VcmIntegrator : public KernelIntegrator {
     // its surface (textured, coated) into scratch of its own; merges sum their photons in two
     // spectra there (kernels/vcm.cl, VCM_SPECTRA).
     spectra_floats_ = bins + std::max(bins, static_cast<size_t>(scratch_floats(s.scene)));
-    spectra_ = device_buffer(cl_, pixels * spectra_floats_ * sizeof(cl_float), "vcm: per-path spectra");
+    spectra_ =
+        device_buffer(cl_, pixels * spectra_floats_ * sizeof(cl_float), "vcm: per-path spectra");
     cell_ = device_buffer(cl_, 2 * sizeof(cl_float), "vcm: the grid's cell size");
     fixed_before_ =
         device_buffer(cl_, cells() * 2 * sizeof(cl_ulong), "vcm: the light paths' film");
@@ -142,7 +144,8 @@ class VcmIntegrator : public KernelIntegrator {
       stored_total += static_cast<double>(*stored);
       t = device_seconds_;
       if (Mode != VcmMode::bpt) {
-        const float cell[2] = {static_cast<float>(radius.cell()), static_cast<float>(1 / radius.cell())};
+        const float cell[2] = {static_cast<float>(radius.cell()),
+                               static_cast<float>(1 / radius.cell())};
         cl_.queue().enqueueWriteBuffer(cell_, CL_TRUE, 0, sizeof(cell), cell);
         grid_->build(store_, *stored, cell_);
       }
@@ -152,7 +155,8 @@ class VcmIntegrator : public KernelIntegrator {
       first += count;
       ++chunks;
     }
-    PassResult r{pass, spp_, {}, film_.read_pixel_sums(), static_cast<double>(done) / pixels, {}, {}};
+    PassResult r{pass, spp_, {}, film_.read_pixel_sums(), static_cast<double>(done) / pixels,
+                 {},   {}};
     // The light subpaths' splats are one more term of every camera path's estimate: added to the
     // pixel's sums as many times as it has camera paths. A pass cut short keeps the pixels its
     // last camera pass reached.
@@ -161,7 +165,8 @@ class VcmIntegrator : public KernelIntegrator {
                                   fixed.data());
     const size_t kept = done * film_.rows();
     for (size_t i = 0; i < kept; ++i)
-      r.sums[i] += static_cast<double>(spp_) * fixed_point_value(fixed[2 * i], fixed[2 * i + 1], film_shift_);
+      r.sums[i] += static_cast<double>(spp_) *
+                   fixed_point_value(fixed[2 * i], fixed[2 * i + 1], film_shift_);
     if (done < pixels) {
       std::fill(r.sums.begin() + kept, r.sums.end(), 0.0);
       r.samples = 0;
@@ -276,8 +281,9 @@ class VcmIntegrator : public KernelIntegrator {
         const auto t = std::chrono::steady_clock::now();
         launch_range(light_kernel_, first + done, n, static_cast<cl_int>(paths_),
                      static_cast<cl_float>(radius.eta_unit), static_cast<cl_float>(radius.radius),
-                     static_cast<cl_float>(radius.per_unit), store_, stored_, static_cast<cl_int>(capacity_),
-                     path_last_, fixed_, static_cast<cl_int>(film_shift_), overflow_, light_cut_,
+                     static_cast<cl_float>(radius.per_unit), store_, stored_,
+                     static_cast<cl_int>(capacity_), path_last_, fixed_,
+                     static_cast<cl_int>(film_shift_), overflow_, light_cut_,
                      static_cast<cl_int>(spp_), seed_, static_cast<cl_uint>(pass));
         light_pacer_.record(n, seconds_since(t));
         done += n;
@@ -310,11 +316,11 @@ class VcmIntegrator : public KernelIntegrator {
       launch_range(camera_kernel_, done, n, static_cast<cl_int>(paths_), static_cast<cl_int>(first),
                    static_cast<cl_int>(end), static_cast<cl_float>(radius.eta_unit),
                    static_cast<cl_float>(radius.radius), static_cast<cl_float>(radius.per_unit),
-                   store_, path_last_,
-                   grid_ ? grid_->placed() : path_last_, grid_ ? grid_->cell_count() : path_last_,
-                   grid_ ? grid_->cell_end() : path_last_, static_cast<cl_float>(1 / radius.cell()),
-                   grid_ ? grid_->mask() : 0u, spectra_, film_.pixel_sums(), rejected_, camera_cut_,
-                   static_cast<cl_int>(spp_), seed_, static_cast<cl_uint>(pass));
+                   store_, path_last_, grid_ ? grid_->placed() : path_last_,
+                   grid_ ? grid_->cell_count() : path_last_, grid_ ? grid_->cell_end() : path_last_,
+                   static_cast<cl_float>(1 / radius.cell()), grid_ ? grid_->mask() : 0u, spectra_,
+                   film_.pixel_sums(), rejected_, camera_cut_, static_cast<cl_int>(spp_), seed_,
+                   static_cast<cl_uint>(pass));
       camera_pacer_.record(n, seconds_since(t));
       done += n;
       if (last) control_.report(0.5 + 0.5 * static_cast<double>(done) / pixels);
