@@ -50,9 +50,8 @@
 
 #define VCM_FLOATS KASHA_VCM_FLOATS(KASHA_BINS)
 /* Floats of a work item's spectra: a light vertex's f·Φ, then room for the light vertex's
- * surface (textured, coated) apart from the camera vertex's in the scene's scratch; merges sum
- * their photons in the same floats (two spectra). */
-#define VCM_SPECTRA (KASHA_BINS + (KASHA_SCRATCH_FLOATS > KASHA_BINS ? KASHA_SCRATCH_FLOATS : KASHA_BINS))
+ * surface (textured, coated) apart from the camera vertex's in the scene's scratch. */
+#define VCM_SPECTRA (KASHA_BINS + KASHA_SCRATCH_FLOATS)
 
 /* Test hooks (tests/vcm_test.cpp): KASHA_VCM_LENGTH > 0 keeps only the contributions of paths of
  * that many segments; KASHA_VCM_EMISSION_ONLY keeps only camera paths hitting emitters,
@@ -690,19 +689,14 @@ inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* 
  * vertex within r that merges — on the same side, facing alike and near the tangent plane of the
  * geometric surface, as photon mapping's gather — adds T·f_c·Φ weighed against the connections
  * that sample the same path (ppm: unweighted), scaled by `scale` (1/(π r² Δλ) over a branch
- * probability). The photons' Φ, weighted, are summed in `acc` (two spectra of the work item's:
- * the Lambert parts' and the white part's) and the path's colour applied to the sums once, so a
- * photon costs a pass over the bins rather than the path colour's product with the film's rows;
- * a rough conductor (ppm), whose F(λ) turns with each photon, is applied photon by photon. */
+ * probability). */
 inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f, const CameraVertex* v,
                       const VcmVertex* cv, float vc, float radius, float scale, const __global float* store,
                       const __global float4* placed, const __global int* cell_count, const __global int* cell_end,
-                      float inv_cell, uint mask, __global float* acc, float* rows) {
+                      float inv_cell, uint mask, float* rows) {
   const Surface* surf = &v->surf;
   float3 x = v->h.x, ns = cv->ns, eye = -c->w.dir;
   float r2 = radius * radius;
-  __global float *lam = acc, *white = acc + KASHA_BINS;
-  bool any_lambert = false, any_white = false;
   int3 lo = grid_cell(x - radius, inv_cell), hi = grid_cell(x + radius, inv_cell);
   for (int cz = lo.z; cz <= hi.z; ++cz)
     for (int cy = lo.y; cy <= hi.y; ++cy)
@@ -742,39 +736,9 @@ inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f,
 #else
           float weight = scale;
 #endif
-          const __global float* phi = r + KASHA_PHOTON_POWER;
-#if KASHA_CONDUCTOR
-          if (fv.conductor > 0.0f) {
-            vcm_camera_apply(&c->w.p, f, surf, fv, phi, weight, rows);
-            continue;
-          }
-#endif
-          if (fv.lambert > 0.0f && surface_has_lambert(surf)) {
-            float k = weight * fv.lambert;
-            if (any_lambert)
-              for (int i = 0; i < KASHA_BINS; ++i) lam[i] += k * phi[i];
-            else
-              for (int i = 0; i < KASHA_BINS; ++i) lam[i] = k * phi[i];
-            any_lambert = true;
-          }
-          if (fv.white > 0.0f) {
-            float k = weight * fv.white;
-            if (any_white)
-              for (int i = 0; i < KASHA_BINS; ++i) white[i] += k * phi[i];
-            else
-              for (int i = 0; i < KASHA_BINS; ++i) white[i] = k * phi[i];
-            any_white = true;
-          }
+          vcm_camera_apply(&c->w.p, f, surf, fv, r + KASHA_PHOTON_POWER, weight, rows);
         }
       }
-  /* T·(ρ∘Σ) for the passive part, ê (a·Σ) for re-emission: vcm_camera_apply's terms, summed. */
-  if (any_lambert) {
-    if (surf->passive) pw_add(&c->w.p, f, surf->rho, lam, 1.0f, rows);
-#if KASHA_FLUORESCENCE
-    if (surf->fluorescent) pw_add(&c->w.p, f, surf->ehat, 0, spectrum_dot(KASHA_BINS, 0, surf->a, lam), rows);
-#endif
-  }
-  if (any_white) pw_add(&c->w.p, f, white, 0, 1.0f, rows);
 }
 #endif
 
@@ -922,7 +886,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, i
 #if KASHA_VCM_MERGE
       if (cv.merges)
         vcm_merge(&c, s, f, &v, &cv, vc, r_merge, KASHA_INV_PI / (r_merge * r_merge * s->bin_nm), store, placed,
-                  cell_count, cell_end, inv_cell, mask, out, rows);
+                  cell_count, cell_end, inv_cell, mask, rows);
 #endif
 #else
       /* ppm: the first vertex that merges merges all of it, unless a mirror lobe chosen by its
@@ -930,7 +894,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, i
       float p_mirror = v.surf.mirror && !surface_specular(&v.surf) ? v.probs.x : 0.0f;
       if (cv.merges && !(v.u_choice.x < p_mirror)) {
         vcm_merge(&c, s, f, &v, &cv, vc, r_merge, KASHA_INV_PI / (r_merge * r_merge * s->bin_nm) / (1.0f - p_mirror),
-                  store, placed, cell_count, cell_end, inv_cell, mask, out, rows);
+                  store, placed, cell_count, cell_end, inv_cell, mask, rows);
         return 0.0f;
       }
 #endif

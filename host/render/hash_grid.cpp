@@ -6,6 +6,7 @@ namespace kasha {
 
 HashGrid::HashGrid(KernelLauncher& device, const cl::Program& program, size_t capacity, bool placed)
     : device_(device),
+      placing_(placed),
       count_kernel_(program, "grid_count"),
       scan_kernel_(program, "grid_scan"),
       scatter_kernel_(program, "grid_scatter"),
@@ -32,8 +33,7 @@ void HashGrid::build(const cl::Buffer& store, size_t count, const cl::Buffer& ce
                            static_cast<cl_int>(cells_), cell_end_);
   if (count > 0) device_.launch_own(scatter_kernel_, count, record_cell_, cell_end_, sorted_);
   device_.launch_own(sort_kernel_, cells_, store, cell_count_, cell_end_, sorted_);
-  if (place_kernel_() && count > 0)
-    device_.launch_own(place_kernel_, count, store, sorted_, placed_);
+  if (placing_ && count > 0) device_.launch_own(place_kernel_, count, store, sorted_, placed_);
 }
 
 }  // namespace kasha

@@ -33,12 +33,13 @@ class HashGrid {
   const cl::Buffer& placed() const { return placed_; }
   size_t bytes(size_t capacity) const {
     return cells_ * 2 * sizeof(cl_int) +
-           capacity * (place_kernel_() ? kPlacedGridBytesPerRecord : kGridBytesPerRecord);
+           capacity * (placing_ ? kPlacedGridBytesPerRecord : kGridBytesPerRecord);
   }
 
  private:
   KernelLauncher& device_;
   size_t cells_;
+  bool placing_;  // keeps placed()
   cl::Kernel count_kernel_, scan_kernel_, scatter_kernel_, sort_kernel_, place_kernel_;
   cl::Buffer cell_count_, cell_end_, record_cell_, sorted_, placed_;
 };

@@ -93,11 +93,11 @@ class VcmIntegrator : public KernelIntegrator {
     camera_cut_ = device_buffer(cl_, pixels * sizeof(cl_float), "vcm: depth-guard tallies");
     rejected_ = device_buffer(cl_, pixels * sizeof(cl_int), "vcm: rejected counts");
     // Connections compute a light vertex's f·Φ into a spectrum of the camera path's own, and
-    // its surface (textured, coated) into scratch of its own; merges sum their photons in two
-    // spectra there (kernels/vcm.cl, VCM_SPECTRA).
-    spectra_floats_ = bins + std::max(bins, static_cast<size_t>(scratch_floats(s.scene)));
-    spectra_ =
-        device_buffer(cl_, pixels * spectra_floats_ * sizeof(cl_float), "vcm: per-path spectra");
+    // its surface (textured, coated) into scratch of its own (kernels/vcm.cl, VCM_SPECTRA).
+    spectra_floats_ =
+        Mode == VcmMode::ppm ? 0 : bins + static_cast<size_t>(scratch_floats(s.scene));
+    spectra_ = device_buffer(cl_, std::max<size_t>(pixels * spectra_floats_, 1) * sizeof(cl_float),
+                             "vcm: per-path spectra");
     cell_ = device_buffer(cl_, 2 * sizeof(cl_float), "vcm: the grid's cell size");
     fixed_before_ =
         device_buffer(cl_, cells() * 2 * sizeof(cl_ulong), "vcm: the light paths' film");
