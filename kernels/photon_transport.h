@@ -41,6 +41,7 @@ enum { BRANCH_ABSORBED = 0, BRANCH_GLOSS = 1, BRANCH_PASSIVE = 2, BRANCH_FLUORES
 typedef struct {
   float3 normal;
   int emitter;
+  int tri; /* the emitting triangle it left (-1: a light that is not a triangle) */
   float area_pdf;
   float eps; /* how far off the light the photon starts (LightPoint::eps) */
 #if KASHA_EMISSION_TEXTURES
@@ -68,6 +69,7 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
     float scale = emit_from_source(s, l, u, d, &p.position, &p.direction, &texel) * s->bin_nm / photons;
     origin->normal = (float3)(0.0f, 0.0f, 0.0f);
     origin->emitter = l->spectrum;
+    origin->tri = -1;
     origin->area_pdf = 0.0f;
     origin->eps = 0.0f;
     origin->source = l;
@@ -88,16 +90,17 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
   }
 #endif
   LightPoint lp = sample_light(s->tris, s->light_tri, s->light_cdf, s->light_count, u0, u.x, u.y);
+  int tri = s->light_tri[choose_light(s->light_cdf, s->light_count, u0)]; /* the triangle it chose */
 #if KASHA_EMISSION_TEXTURES
-  /* sample_light's point is b1 = √u.x (1 − u.y), b2 = √u.x u.y on the triangle it chose. */
-  float texture_scale = emission_factor(s, s->light_tri[choose_light(s->light_cdf, s->light_count, u0)],
-                                        sqrt(u.x) * (1.0f - u.y), sqrt(u.x) * u.y);
+  /* sample_light's point is b1 = √u.x (1 − u.y), b2 = √u.x u.y on that triangle. */
+  float texture_scale = emission_factor(s, tri, sqrt(u.x) * (1.0f - u.y), sqrt(u.x) * u.y);
 #endif
   Photon p;
   p.position = lp.position;
   p.direction = sample_cosine_hemisphere(lp.normal, d.x, d.y);
   origin->normal = lp.normal;
   origin->emitter = lp.emitter;
+  origin->tri = tri;
 #if KASHA_LIGHT_SOURCES
   origin->source = 0;
 #endif

@@ -5,7 +5,7 @@
  * so a connection T·f·G·f·Φ and a merge T·f·Φ cost O(N) and never pair wavelengths.
  *
  * An iteration is two launches and a grid:
- * 1. vcm_light_pass: light subpaths (one per pixel, at least 2^14); each vertex with a non-delta part is stored
+ * 1. vcm_light_pass: light subpaths (one per pixel; ppm at least 2^16); each vertex with a non-delta part is stored
  *    (vcm_layout.h), linked to its path's previous one, and (connecting modes) splatted to the
  *    camera, MIS-weighted;
  * 2. the hashed grid over the stored vertices (hash_grid.cl; merging modes), cells of 2r;
@@ -69,7 +69,7 @@
 #endif
 #define VCM_LENGTH_COUNTS(segments) (KASHA_VCM_LENGTH == 0 || (segments) == KASHA_VCM_LENGTH)
 
-/* The MIS factors of an iteration with merging radius r and L light subpaths, η = π r² L
+/* The MIS factors of an iteration with merging radius r and L light subpaths, η = κ π r² L / spp
  * (SmallVCM's mMisVmWeightFactor and mMisVcWeightFactor): a merge weighs η against a
  * connection's 1, a connection 1/η against a merge; 0 for a technique the mode leaves out. */
 inline float vcm_merge_factor(float eta) { return KASHA_VCM_MERGE ? eta : 0.0f; }
@@ -79,7 +79,8 @@ inline float vcm_connect_factor(float eta) { return KASHA_VCM_CONNECT ? 1.0f / e
  * (per_unit > 0) a pixel's footprint where the camera path merges — per_unit times the distance it
  * travelled there, through delta bounces — up to `radius`. Either subpath finds the radius of a
  * vertex where the camera path would merge (light tracing: its distance to the camera), so both
- * weigh merges alike. η = eta_unit · r² with eta_unit = π L over the pixel's camera paths. */
+ * weigh merges alike. η = eta_unit · r² with eta_unit = κ π L over the pixel's camera paths (the host's
+ * kMergeWeight κ weighs merges down where connections also reach a path). */
 typedef struct {
   float eta_unit, radius, per_unit;
 } VcmRadius;
@@ -340,6 +341,17 @@ inline bool vcm_no_leak(float3 ns, float3 ng, float3 d) {
 #endif
 }
 
+/* Next-event estimation's density, per area of the light, of the point y on emitting triangle
+ * `tri` (cos_light there) from x: what sample_light_from at x truly samples — by solid angle
+ * where the triangle subtends enough, else by area. A function of x and y alone, so next-event
+ * estimation, a camera path hitting the lamp and a light subpath's first vertex weigh it alike,
+ * and a lamp near a surface is left to the technique that samples it well, as backward's MIS does
+ * (an area density there would move the weight to the camera path's hits). */
+inline float vcm_direct_area(const SceneView* s, int tri, float3 x, float3 y, float cos_light) {
+  float3 d = y - x;
+  return light_pdf_from(s, tri, x, y, cos_light) * cos_light / dot(d, d);
+}
+
 /* Arriving at a hit at distance t, cosine cos_in: the weights turn from solid angle to area. */
 inline void vcm_arrived(float t, float cos_in, float* dvcm, float* dvc, float* dvm) {
   *dvcm *= t * t / cos_in;
@@ -451,6 +463,7 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
   Sampler sampler = photon_sampler(seed, pass, paths, index);
   LightOrigin o;
   Photon p = emit_photon(&s, (float)paths, &sampler, &o);
+  const float3 start = p.position;
   p.position += o.normal * o.eps;
   float dvcm, dvc, dvm;
   bool far_start = false; /* from a distant or infinite light's disk: no t² at the first hit */
@@ -483,6 +496,9 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
     HitPoint h;
     if (!intersect_scene(&s, p.position, p.direction, &h)) break;
     vcm_arrived(far_start && depth == 0 ? 1.0f : h.t, fabs(dot(h.n, p.direction)), &dvcm, &dvc, &dvm);
+    /* dVCM's next-event density (SmallVCM's directPdfA, by area above) as it truly is from here. */
+    if (depth == 0 && o.tri >= 0)
+      dvcm *= vcm_direct_area(&s, o.tri, h.x, start, dot(o.normal, p.direction)) / o.area_pdf;
 #if KASHA_SHADING_NORMALS
     /* From below the shading normal's hemisphere: the surface does not scatter it (hit_seen). */
     if (!hit_seen(&h, p.direction)) break;
@@ -584,8 +600,8 @@ inline void vcm_next_event(const VcmCamera* c, const SceneView* s, const FilmVie
   } else
 #endif
   {
-    float area = s->emitter_area_pdf[lp.emitter];
-    direct = area * dist * dist / cos_l, emission = area * cos_l * KASHA_INV_PI;
+    /* The density it was sampled with (per solid angle), as the weights at the lamp's hits. */
+    direct = pdf_light, emission = s->emitter_area_pdf[lp.emitter] * cos_l * KASHA_INV_PI;
     w_light = vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, wi) / direct;
   }
   float w_camera = emission * cos_g / (direct * cos_l) *
@@ -752,8 +768,9 @@ inline float vcm_emission_weight(const VcmCamera* c, const SceneView* s, const H
   return 1.0f;
 #else
   if (c->w.depth == 0) return 1.0f;
-  float area = s->emitter_area_pdf[h->emitter];
-  float w_camera = area * c->dvcm + area * dot(h->n, -c->w.dir) * KASHA_INV_PI * c->dvc;
+  float cos_light = dot(h->n, -c->w.dir);
+  float direct = vcm_direct_area(s, h->tri, c->w.prev_x, h->x, cos_light);
+  float w_camera = direct * c->dvcm + s->emitter_area_pdf[h->emitter] * cos_light * KASHA_INV_PI * c->dvc;
   return 1.0f / (1.0f + w_camera);
 #endif
 }
