@@ -18,8 +18,8 @@ const std::vector<RenderSetting>& render_settings() {
   static const std::vector<RenderSetting> table = {
     {"--spp", "camera samples per pixel per pass (default 16; photon mapping 8; vcm, bpt 4; ppm 1)",
      V::integer, 1, 1 << 20, {}, false, false, FIELD(spp)},
-    {"--photons", "photons per pass (default 2^18; vcm, bpt, ppm: light subpaths, one a pixel and "
-     "at least 2^14, ppm 2^16)", V::integer, 1, kMaxInt, {}, false, false, FIELD(photons)},
+    {"--photons", "photons per pass (default 2^18; vcm, bpt, ppm: light subpaths, one a pixel, "
+     "ppm at least 2^16)", V::integer, 1, kMaxInt, {}, false, false, FIELD(photons)},
     {"--alpha", "photon mapping, vcm, ppm: radius reduction α (default 0.8)",
      V::number, 0.01, 0.99, {}, false, false, FIELD(alpha)},
     {"--radius", "photon mapping, vcm, ppm: initial gather radius (default: from the pixel footprint)",
