@@ -60,10 +60,9 @@ inline int choose_light(const __global float* light_cdf, int light_count, float 
   return lo;
 }
 
-inline LightPoint sample_light(const __global KTriangle* tris, const __global int* light_tri,
-                               const __global float* light_cdf, int light_count, float u0, float u1, float u2) {
-  int lo = choose_light(light_cdf, light_count, u0);
-  const __global KTriangle* t = &tris[light_tri[lo]];
+/* A uniform point on emitting triangle `tri`. */
+inline LightPoint sample_light_on(const __global KTriangle* tris, int tri, float u1, float u2) {
+  const __global KTriangle* t = &tris[tri];
   float3 v0 = load_float3(t->v0), e1 = load_float3(t->v1) - v0, e2 = load_float3(t->v2) - v0;
   float2 b = sample_triangle(u1, u2);
   LightPoint p;
@@ -75,6 +74,12 @@ inline LightPoint sample_light(const __global KTriangle* tris, const __global in
   p.le = 0;
 #endif
   return p;
+}
+
+/* An emitting triangle chosen by power (u0), then a uniform point on it. */
+inline LightPoint sample_light(const __global KTriangle* tris, const __global int* light_tri,
+                               const __global float* light_cdf, int light_count, float u0, float u1, float u2) {
+  return sample_light_on(tris, light_tri[choose_light(light_cdf, light_count, u0)], u1, u2);
 }
 
 /* Solid-angle density of reaching a light point at distance `dist` whose normal makes cos_light

@@ -59,11 +59,12 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
   sampler_at(sampler, 0);
   float u0 = sample_2d(sampler).x;
   float2 u = sample_2d(sampler), d = sample_2d(sampler);
+  /* The light chosen by power: an emitting triangle, or (negative) a light that is not one. */
+  int tri = s->light_tri[choose_light(s->light_cdf, s->light_count, u0)];
 #if KASHA_LIGHT_SOURCES
-  int chosen = s->light_tri[choose_light(s->light_cdf, s->light_count, u0)];
-  if (chosen < 0) {
+  if (tri < 0) {
     /* A light that is not a triangle: no light point for forward to see (origin's normal 0). */
-    const __global KLight* l = &s->lights[~chosen];
+    const __global KLight* l = &s->lights[~tri];
     Photon p;
     int texel;
     float scale = emit_from_source(s, l, u, d, &p.position, &p.direction, &texel) * s->bin_nm / photons;
@@ -89,10 +90,9 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
     return p;
   }
 #endif
-  LightPoint lp = sample_light(s->tris, s->light_tri, s->light_cdf, s->light_count, u0, u.x, u.y);
-  int tri = s->light_tri[choose_light(s->light_cdf, s->light_count, u0)]; /* the triangle it chose */
+  LightPoint lp = sample_light_on(s->tris, tri, u.x, u.y);
 #if KASHA_EMISSION_TEXTURES
-  /* sample_light's point is b1 = √u.x (1 − u.y), b2 = √u.x u.y on that triangle. */
+  /* sample_light_on's point is b1 = √u.x (1 − u.y), b2 = √u.x u.y on that triangle. */
   float texture_scale = emission_factor(s, tri, sqrt(u.x) * (1.0f - u.y), sqrt(u.x) * u.y);
 #endif
   Photon p;

@@ -769,7 +769,8 @@ inline float vcm_emission_weight(const VcmCamera* c, const SceneView* s, const H
 #else
   if (c->w.depth == 0) return 1.0f;
   float cos_light = dot(h->n, -c->w.dir);
-  float direct = vcm_direct_area(s, h->tri, c->w.prev_x, h->x, cos_light);
+  /* After a delta bounce next-event estimation could not have found it (dVCM 0). */
+  float direct = c->dvcm > 0.0f ? vcm_direct_area(s, h->tri, c->w.prev_x, h->x, cos_light) : 0.0f;
   float w_camera = direct * c->dvcm + s->emitter_area_pdf[h->emitter] * cos_light * KASHA_INV_PI * c->dvc;
   return 1.0f / (1.0f + w_camera);
 #endif
