@@ -9,6 +9,12 @@
 #ifndef KASHA_RECORD_FLOATS
 #define KASHA_RECORD_FLOATS KASHA_PHOTON_FLOATS(KASHA_BINS)
 #endif
+/* Whether a record goes in the grid (vertex merging leaves out the vertices no merge may use);
+ * the others get no cell (KASHA_NO_CELL) and no slot. */
+#ifndef KASHA_RECORD_IN_GRID
+#define KASHA_RECORD_IN_GRID(r) true
+#endif
+#define KASHA_NO_CELL 0xffffffffu
 
 /* The gather's tests must round as nanoflann's on the host does (the two are compared). */
 #pragma OPENCL FP_CONTRACT OFF
@@ -30,7 +36,12 @@ __kernel void grid_count(__global const float* store, __global const float* cell
                          __global int* cell_count, __global uint* photon_cell, int item_end) {
   int i = get_global_id(0);
   if (i >= item_end) return;
-  uint h = grid_hash(grid_cell(record_position(store + (long)i * KASHA_RECORD_FLOATS), cell[1]), mask);
+  const __global float* r = store + (long)i * KASHA_RECORD_FLOATS;
+  if (!KASHA_RECORD_IN_GRID(r)) {
+    photon_cell[i] = KASHA_NO_CELL;
+    return;
+  }
+  uint h = grid_hash(grid_cell(record_position(r), cell[1]), mask);
   photon_cell[i] = h;
   atomic_inc(cell_count + h);
 }
@@ -62,16 +73,18 @@ __kernel void grid_scatter(__global const uint* photon_cell, __global int* cell_
                            int item_end) {
   int i = get_global_id(0);
   if (i >= item_end) return;
-  sorted[atomic_inc(cell_end + photon_cell[i])] = i;
+  uint h = photon_cell[i];
+  if (h != KASHA_NO_CELL) sorted[atomic_inc(cell_end + h)] = i;
 }
 
 /* Per sorted slot: its record's position and index (float bits), in the grid's order, for queries
  * that test many records' distances (vertex merging): they read these in runs rather than each
- * record where it lies in a store far larger than the caches. Run after grid_sort_cells. */
-__kernel void grid_place(__global const float* store, __global const int* sorted, __global float4* placed,
-                         int item_end) {
+ * record where it lies in a store far larger than the caches. Run after grid_sort_cells; the
+ * slots past the last cell's end (records left out of the grid) hold none. */
+__kernel void grid_place(__global const float* store, __global const int* sorted, __global const int* cell_end,
+                         uint mask, __global float4* placed, int item_end) {
   int i = get_global_id(0);
-  if (i >= item_end) return;
+  if (i >= item_end || i >= cell_end[mask]) return;
   int record = sorted[i];
   const __global float* r = store + (long)record * KASHA_RECORD_FLOATS;
   placed[i] = (float4)(r[0], r[1], r[2], as_float(record));

@@ -26,6 +26,9 @@
 
 #include "vcm_layout.h"
 
+/* The grid holds only the vertices merges may use. */
+#define KASHA_RECORD_IN_GRID(r) ((r)[KASHA_VCM_MERGEABLE(KASHA_BINS)] > 0.5f)
+
 #include "camera.h"
 #include "camera_splat.h"
 #include "camera_walk.h"
@@ -46,6 +49,17 @@
  * camera path makes one range query instead of one a bounce. */
 #ifndef KASHA_VCM_MERGE_EVERY
 #define KASHA_VCM_MERGE_EVERY 0
+#endif
+/* --merges caustic (the default, with merges at the first vertex): a merge counts only for a path
+ * whose light arrived at the merging vertex from a delta bounce (a mirror, glass: a caustic), the
+ * paths no connection and no next-event estimation reaches. Elsewhere connections do better than
+ * a count of photons in a disc, and a merge there costs a range query for almost no weight; so
+ * the grid holds only the light vertices reached from a delta bounce (none on a diffuse scene).
+ * Every technique knows whether the path it makes is such: a light subpath from its last bounce;
+ * a camera path from the bounce after its merging vertex (the part of dVC that merge put in is
+ * kept apart until then, VcmCamera), so every path's weights still sum to one. */
+#ifndef KASHA_VCM_MERGE_CAUSTIC
+#define KASHA_VCM_MERGE_CAUSTIC 0
 #endif
 
 #define VCM_FLOATS KASHA_VCM_FLOATS(KASHA_BINS)
@@ -309,20 +323,24 @@ inline void vcm_camera_apply(const PathWeight* p, const FilmView* f, const Surfa
 /* A subpath's partial MIS weights after its vertex scattered it from `from` to `to` (SmallVCM's
  * SampleScattering): a delta bounce keeps them but for the cosine; any other divides by the
  * pseudo-density of the direction and carries the reverse one, with the vertex's own connection
- * and (where it merges) merge. Densities are about the shading normal ns (nf: the front one),
- * their turns to area about the geometric ng. False: no density, the path ends. */
+ * and (where it merges) merge, whose part of dVC also goes to dvc_merge. Densities are about the
+ * shading normal ns (nf: the front one), their turns to area about the geometric ng. False: no
+ * density, the path ends. */
 inline bool vcm_scattered(const SceneView* s, const Surface* surf, float lambert, float3 ns, float3 nf, float3 ng,
                           float3 from, float3 to, bool delta, bool merges, float vm, float vc, float* dvcm, float* dvc,
-                          float* dvm) {
+                          float* dvm, float* dvc_merge) {
   float cos_out = fabs(dot(ng, to)); /* turns the reverse density to area: the geometric cosine */
   if (delta) {
     *dvcm = 0.0f;
     *dvc *= cos_out;
     *dvm *= cos_out;
+    *dvc_merge *= cos_out;
     return true;
   }
   float pdf = vcm_pdf(s, surf, lambert, ns, nf, from, to), rev = vcm_pdf(s, surf, lambert, ns, nf, to, from);
   if (!(pdf > 0.0f)) return false;
+  /* dVC's part from the merge here, carried as dVC carries it (the camera's caustic merges). */
+  *dvc_merge = cos_out / pdf * (*dvc_merge * rev + (merges ? vm : 0.0f));
   *dvc = cos_out / pdf * (*dvc * rev + *dvcm + (merges ? vm : 0.0f));
   *dvm = cos_out / pdf * (*dvm * rev + *dvcm * vc + (merges ? 1.0f : 0.0f));
   *dvcm = 1.0f / pdf;
@@ -487,7 +505,8 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
   }
   SplatTarget target = {film, film_shift, 0};
   int last = -1, ordinal = 0;
-  float guard = 0.0f;
+  float guard = 0.0f, dvc_merge = 0.0f; /* the light side leaves its own merges out */
+  bool caustic = false;                  /* it arrives from a delta bounce */
   for (int depth = 0;; ++depth) {
     if (depth == KASHA_MAX_PATH_DEPTH) {
       guard = photon_total(&p) / p.start;
@@ -506,7 +525,8 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
     Surface surf;
     load_surface_at(&s, &h, &surf);
     float lambert = vcm_lambert_mean(&surf);
-    bool merges = vcm_mergeable(&surf);
+    /* A merge here is a technique (caustic merges: only from a delta bounce). */
+    bool merges = vcm_mergeable(&surf) && (caustic || !KASHA_VCM_MERGE_CAUSTIC);
     float3 from = -p.direction, nf = hit_front(&h), ng = hit_ng(&h);
     if (vcm_connectible(&surf)) {
       int slot = atomic_inc(stored);
@@ -540,9 +560,9 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
     int branch = scatter_photon(&p, &surf, &s, &h, &sampler, depth);
     if (branch == BRANCH_ABSORBED) break;
     bool delta = (branch == BRANCH_SPECULAR && !surface_rough(&surf)) || (branch == BRANCH_GLOSS && surf.mirror);
+    caustic = delta;
     if (!vcm_scattered(&s, &surf, lambert, h.ns, nf, ng, from, p.direction, delta, KASHA_VCM_MERGE_EVERY && merges,
-                       vm, vc, &dvcm, &dvc,
-                       &dvm))
+                       vm, vc, &dvcm, &dvc, &dvm, &dvc_merge))
       break;
   }
   path_last[index] = last;
@@ -551,11 +571,33 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
   add_ray_counts(&s, ray_counts);
 }
 
-/* A camera subpath: the walk (camera_walk.h) and its partial MIS weights. */
+/* A camera subpath: the walk (camera_walk.h) and its partial MIS weights; dvc_merge, the part of
+ * dVC the merge at its merging vertex put in, until the next vertex's bounce decides whether that
+ * merge makes the paths beyond (caustic merges: if that bounce is delta). */
 typedef struct {
   CameraWalk w;
-  float dvcm, dvc, dvm;
+  float dvcm, dvc, dvm, dvc_merge;
 } VcmCamera;
+
+/* dVC for the techniques at the current vertex (next-event estimation, connections, an emitter
+ * hit): with caustic merges, at the vertex after the merging one no merge makes their paths (the
+ * light reaches the merging vertex from this vertex's own non-delta scattering or emission). */
+inline float vcm_camera_dvc(const VcmCamera* c) {
+#if KASHA_VCM_MERGE_CAUSTIC
+  return fmax(c->dvc - c->dvc_merge, 0.0f);
+#else
+  return c->dvc;
+#endif
+}
+
+/* Caustic merges: the vertex after the merging one scatters (delta or not): the merge's part of
+ * dVC stays for the paths beyond only if it is delta. */
+inline void vcm_camera_decide(VcmCamera* c, bool delta) {
+#if KASHA_VCM_MERGE_CAUSTIC
+  if (c->dvc_merge > 0.0f && !delta) c->dvc = fmax(c->dvc - c->dvc_merge, 0.0f);
+#endif
+  c->dvc_merge = 0.0f;
+}
 
 /* What a camera vertex's techniques share: its normals (densities and f about the shading
  * normal, turns to area about the geometric one), the Lambert mean its pseudo-densities
@@ -604,8 +646,10 @@ inline void vcm_next_event(const VcmCamera* c, const SceneView* s, const FilmVie
     direct = pdf_light, emission = s->emitter_area_pdf[lp.emitter] * cos_l * KASHA_INV_PI;
     w_light = vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, wi) / direct;
   }
+  /* The light part is the light point: with caustic merges no merge here or behind makes it. */
   float w_camera = emission * cos_g / (direct * cos_l) *
-                   ((cv->merges ? vm : 0.0f) + c->dvcm + c->dvc * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, wi, eye));
+                   ((cv->merges && !KASHA_VCM_MERGE_CAUSTIC ? vm : 0.0f) + c->dvcm +
+                    vcm_camera_dvc(c) * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, wi, eye));
   float weight = 1.0f / (w_light + 1.0f + w_camera);
   if (segment_occluded(s, x, vcm_toward(cv->ng, wi), v->h.eps, wi, dist, lp.eps / cos_l)) return;
   float scale = cos_x / pdf_light * weight;
@@ -690,7 +734,8 @@ inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* 
     float w_light = vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, dir) * cos_y / dist2 *
                     ((merges_y ? vm : 0.0f) + m[3] + m[4] * vcm_pdf(s, &sy, lambert_y, ny, nfy, -dir, light));
     float w_camera = vcm_pdf(s, &sy, lambert_y, ny, nfy, light, -dir) * cos_c / dist2 *
-                     ((cv->merges ? vm : 0.0f) + c->dvcm + c->dvc * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, dir, eye));
+                     ((cv->merges && !KASHA_VCM_MERGE_CAUSTIC ? vm : 0.0f) + c->dvcm +
+                      vcm_camera_dvc(c) * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, dir, eye));
     float weight = 1.0f / (w_light + 1.0f + w_camera);
     if (!(weight > 0.0f)) continue;
     if (segment_occluded(s, x, vcm_toward(cv->ng, dir), v->h.eps, dir, dist, m[7] / cos_y)) continue;
@@ -771,7 +816,8 @@ inline float vcm_emission_weight(const VcmCamera* c, const SceneView* s, const H
   float cos_light = dot(h->n, -c->w.dir);
   /* After a delta bounce next-event estimation could not have found it (dVCM 0). */
   float direct = c->dvcm > 0.0f ? vcm_direct_area(s, h->tri, c->w.prev_x, h->x, cos_light) : 0.0f;
-  float w_camera = direct * c->dvcm + s->emitter_area_pdf[h->emitter] * cos_light * KASHA_INV_PI * c->dvc;
+  float w_camera =
+      direct * c->dvcm + s->emitter_area_pdf[h->emitter] * cos_light * KASHA_INV_PI * vcm_camera_dvc(c);
   return 1.0f / (1.0f + w_camera);
 #endif
 }
@@ -791,7 +837,7 @@ inline void vcm_escaped(const VcmCamera* c, const SceneView* s, const FilmView* 
     if (c->w.depth > 0) {
       float direct = infinite_light_pdf(s, l, c->w.dir);
       float emission = direct / (KASHA_PI * l->radius * l->radius);
-      weight = 1.0f / (1.0f + direct * c->dvcm + emission * c->dvc);
+      weight = 1.0f / (1.0f + direct * c->dvcm + emission * vcm_camera_dvc(c));
     }
 #endif
     pw_add(&c->w.p, f, infinite_light_spectrum(s, l, c->w.dir), 0, weight, rows);
@@ -824,7 +870,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, i
                        length((float3)(k->up[0], k->up[1], k->up[2])) / (float)(k->width * k->height);
     float cos_c = dot(dir, forward);
     c.dvcm = paths / spp * pixel_area * cos_c * cos_c * cos_c;
-    c.dvc = c.dvm = 0.0f;
+    c.dvc = c.dvm = c.dvc_merge = 0.0f;
   }
   CameraVertex v;
   bool met = false; /* a vertex that is not delta is behind */
@@ -888,8 +934,9 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, i
 #if KASHA_DIELECTRIC || KASHA_CONDUCTOR
     if (surface_specular(&v.surf) && !rough) {
       if (!walk_specular(&c.w, f, &v)) return 0.0f;
+      vcm_camera_decide(&c, true);
       vcm_scattered(s, &v.surf, 0.0f, h->ns, cv.nf, cv.ng, eye, c.w.dir, true, false, vm, vc, &c.dvcm, &c.dvc,
-                    &c.dvm);
+                    &c.dvm, &c.dvc_merge);
       if (!walk_on(&c.w, f, &v)) return 0.0f;
       continue;
     }
@@ -941,8 +988,9 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, i
 #endif
       }
     }
+    vcm_camera_decide(&c, c.w.specular);
     if (!vcm_scattered(s, &v.surf, cv.lambert, h->ns, cv.nf, cv.ng, eye, c.w.dir, c.w.specular, cv.merges, vm, vc,
-                       &c.dvcm, &c.dvc, &c.dvm))
+                       &c.dvcm, &c.dvc, &c.dvm, &c.dvc_merge))
       return 0.0f;
     if (!walk_on(&c.w, f, &v)) return 0.0f;
   }

@@ -4,8 +4,9 @@
  * light travelled to arrive, the partial weights dVCM, dVC and dVM, the triangle (leaf order), the
  * hit's offset, the record of the light path's previous stored vertex (-1: none), so that a camera
  * path walks its light path's vertices from the last stored one back, its ordinal among them (0
- * for the first stored), the hit's barycentrics (for textures) and whether merges may use it (1;
- * 0 at a rough interface, which only connects) and the shading normal on the light's side. */
+ * for the first stored), the hit's barycentrics (for textures), whether merges may use it (1; 0
+ * at a rough interface, which only connects, and with caustic merges where the light came by no
+ * delta bounce) and the shading normal on the light's side. */
 #ifndef KASHA_VCM_LAYOUT_H
 #define KASHA_VCM_LAYOUT_H
 

@@ -33,7 +33,7 @@ void HashGrid::build(const cl::Buffer& store, size_t count, const cl::Buffer& ce
                            static_cast<cl_int>(cells_), cell_end_);
   if (count > 0) device_.launch_own(scatter_kernel_, count, record_cell_, cell_end_, sorted_);
   device_.launch_own(sort_kernel_, cells_, store, cell_count_, cell_end_, sorted_);
-  if (placing_ && count > 0) device_.launch_own(place_kernel_, count, store, sorted_, placed_);
+  if (placing_ && count > 0) device_.launch_own(place_kernel_, count, store, sorted_, cell_end_, mask(), placed_);
 }
 
 }  // namespace kasha

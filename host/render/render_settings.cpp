@@ -37,9 +37,10 @@ const std::vector<RenderSetting>& render_settings() {
      "default: a quarter of the device's memory (an eighth on a CPU)",
      V::bytes, 1, 1125899906842624.0 /* 2^50 */, {}, false, /*device's own*/ true, FIELD(memory)},
     {"--merges",
-     "vcm: merge at the first camera vertex that is not delta (default, as SPPM gathers) or at "
-     "every one (Georgiev et al.'s VCM)",
-     V::choice, 0, 0, {"first", "every"}, false, false, FIELD(merges)},
+     "vcm: merge at the first camera vertex that is not delta only the light that came through a "
+     "mirror or glass (default: caustic), all light there (first, as SPPM gathers), or all light "
+     "at every such vertex (every, Georgiev et al.'s VCM)",
+     V::choice, 0, 0, {"caustic", "first", "every"}, false, false, FIELD(merges)},
     {"--view", "debug view: emission, normals or albedo",
      V::choice, 0, 0, {"emission", "normals", "albedo"}, false, false, FIELD(view)},
     {"--seed", "random seed", V::integer, 0, 4294967295.0, {}, /*common*/ true, false, FIELD(seed)},

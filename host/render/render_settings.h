@@ -21,7 +21,7 @@ struct IntegratorSettings {
   double radius = 0;   // --radius: initial gather radius (0: from the pixel footprint)
   bool edge_correction = true;           // --edge-correction: photon mapping's gathers at edges
   std::string gather = "auto";           // --gather: where photon mapping gathers (device, host)
-  std::string merges = "first";          // --merges: where vcm merges (first, every)
+  std::string merges = "caustic";        // --merges: what vcm merges (caustic, first, every)
   std::string view = "emission";         // --view: the debug view
   unsigned seed = 1;                     // --seed (every integrator)
   std::string sampler = "sobol";         // --sampler (every integrator): sobol or independent

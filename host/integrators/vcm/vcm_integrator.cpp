@@ -57,6 +57,7 @@ KernelDefines mode_defines(VcmMode m, const IntegratorSettings& s) {
   KernelDefines d{{"KASHA_VCM_CONNECT", m == VcmMode::ppm ? "0" : "1"},
                   {"KASHA_VCM_MERGE", m == VcmMode::bpt ? "0" : "1"}};
   if (m == VcmMode::vcm && s.merges == "every") d["KASHA_VCM_MERGE_EVERY"] = "1";
+  if (m == VcmMode::vcm && s.merges == "caustic") d["KASHA_VCM_MERGE_CAUSTIC"] = "1";
   // The test hooks (kernels/vcm.cl), only when set.
   if (s.vcm_length > 0) d["KASHA_VCM_LENGTH"] = std::to_string(s.vcm_length);
   if (s.vcm_emission_only) d["KASHA_VCM_EMISSION_ONLY"] = "1";
