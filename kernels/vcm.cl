@@ -370,11 +370,13 @@ inline float vcm_direct_area(const SceneView* s, int tri, float3 x, float3 y, fl
   return light_pdf_from(s, tri, x, y, cos_light) * cos_light / dot(d, d);
 }
 
-/* Arriving at a hit at distance t, cosine cos_in: the weights turn from solid angle to area. */
-inline void vcm_arrived(float t, float cos_in, float* dvcm, float* dvc, float* dvm) {
+/* Arriving at a hit at distance t, cosine cos_in: the weights turn from solid angle to area (dVC's
+ * part from a merge with it). */
+inline void vcm_arrived(float t, float cos_in, float* dvcm, float* dvc, float* dvm, float* dvc_merge) {
   *dvcm *= t * t / cos_in;
   *dvc /= cos_in;
   *dvm /= cos_in;
+  *dvc_merge /= cos_in;
 }
 
 #if KASHA_LIGHT_SOURCES
@@ -514,7 +516,7 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, f
     }
     HitPoint h;
     if (!intersect_scene(&s, p.position, p.direction, &h)) break;
-    vcm_arrived(far_start && depth == 0 ? 1.0f : h.t, fabs(dot(h.n, p.direction)), &dvcm, &dvc, &dvm);
+    vcm_arrived(far_start && depth == 0 ? 1.0f : h.t, fabs(dot(h.n, p.direction)), &dvcm, &dvc, &dvm, &dvc_merge);
     /* dVCM's next-event density (SmallVCM's directPdfA, by area above) as it truly is from here. */
     if (depth == 0 && o.tri >= 0)
       dvcm *= vcm_direct_area(&s, o.tri, h.x, start, dot(o.normal, p.direction)) / o.area_pdf;
@@ -882,7 +884,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, i
 #endif
       return 0.0f;
     }
-    vcm_arrived(h->t, fabs(dot(h->n, c.w.dir)), &c.dvcm, &c.dvc, &c.dvm);
+    vcm_arrived(h->t, fabs(dot(h->n, c.w.dir)), &c.dvcm, &c.dvc, &c.dvm, &c.dvc_merge);
     travelled += h->t;
     if (own && h->emitter >= 0 && h->front) {
       float weight = vcm_emission_weight(&c, s, h);
