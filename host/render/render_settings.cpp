@@ -16,7 +16,8 @@ constexpr double kMaxInt = 2147483647;
 const std::vector<RenderSetting>& render_settings() {
   // clang-format off: a table, a setting a row
   static const std::vector<RenderSetting> table = {
-    {"--spp", "camera samples per pixel per pass (default 16; photon mapping 8; vcm, bpt 4; ppm 1)",
+    {"--spp", "camera samples per pixel per pass (default 16; photon mapping 8; vcm, bpt 8, 4 where "
+     "mirrors, glass or smooth coats are; ppm 1)",
      V::integer, 1, 1 << 20, {}, false, false, FIELD(spp)},
     {"--photons", "photons per pass (default 2^18; vcm, bpt, ppm: light subpaths, one a pixel, "
      "ppm at least 2^16)", V::integer, 1, kMaxInt, {}, false, false, FIELD(photons)},
