@@ -58,15 +58,9 @@ constexpr int kDefaultCameraPaths = 8;
 constexpr int kCausticCameraPaths = 4;
 constexpr int kDefaultPhotonMappingCameraPaths = 1;
 
-// A material that scatters some light by a delta lobe: a smooth dielectric or conductor, an ideal
-// mirror lobe, a smooth coat.
-bool delta_scattering(const Material& m) {
-  return (m.specular() && !m.rough()) || (m.gloss && m.gloss->mirror) || (m.coat && !m.coat->rough());
-}
-
 int default_camera_paths(VcmMode m, const Scene& scene) {
   if (m == VcmMode::ppm) return kDefaultPhotonMappingCameraPaths;
-  return scene.any_used(delta_scattering) ? kCausticCameraPaths : kDefaultCameraPaths;
+  return scene.has_delta_surfaces() ? kCausticCameraPaths : kDefaultCameraPaths;
 }
 
 KernelDefines mode_defines(VcmMode m, const IntegratorSettings& s) {
