@@ -4,5 +4,5 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
 mkdir -p out
-./build/kasha render scenes/cornell_box.json --passes 40 \
+./build/kasha render scenes/cornell_box.json --passes 20 \
   -o out/cornell_box.exr --png out/cornell_box.png

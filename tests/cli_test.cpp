@@ -45,13 +45,13 @@ TEST(Cli, RenderWritesExrAndPng) {
 }
 
 // `--device 0,0` (one device, two queues) writes the `--device 0` EXR byte for byte: photon
-// mapping, the default, shares each pass's photons between them.
+// mapping shares each pass's photons between them.
 TEST(Cli, RenderOnTwoQueuesWritesTheOneDeviceFile) {
   const std::string scene = shell_quoted(test::source_path("scenes/cornell_box.json"));
   std::string files[2];
   for (int k = 0; k < 2; ++k) {
     files[k] = (test::scratch_dir() / ("device" + std::to_string(k) + ".exr")).string();
-    auto r = run_kasha("render " + scene + " --passes 2 --photons 70000 --spp 2 --device " +
+    auto r = run_kasha("render " + scene + " --integrator photon --passes 2 --photons 70000 --spp 2 --device " +
                        (k ? "0,0" : "0") + " -o " + shell_quoted(files[k]));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     if (k) {
@@ -75,7 +75,7 @@ TEST(Cli, LogHasARowPerPassWithErrorsAgainstAReference) {
                 .exit_code,
             0);
   auto r =
-      run_kasha("render " + scene + " --passes 3 --photons 4096 --seed 9 -o " + shell_quoted(out) +
+      run_kasha("render " + scene + " --integrator photon --passes 3 --photons 4096 --seed 9 -o " + shell_quoted(out) +
                 " --reference " + shell_quoted(ref) + " --log " + shell_quoted(log));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::ifstream in(log);
@@ -114,7 +114,7 @@ TEST(Cli, BadInputsGiveOneLineAndNoOutput) {
                         "directory /nonexistent/dir does not exist");
   expect_one_line_error(
       run_kasha("render " + scene + " --passes 1 --view normals -o " + shell_quoted(out)),
-      "--view: the photon integrator does not take this option");
+      "--view: the vcm integrator does not take this option");
   expect_one_line_error(
       run_kasha("render " + scene + " --integrator backward --alpha 0.5 --passes 1 -o " +
                 shell_quoted(out)),

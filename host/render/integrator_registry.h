@@ -68,7 +68,7 @@ class IntegratorRegistry {
   static std::vector<IntegratorInfo>& entries();
 };
 
-constexpr const char* kDefaultIntegrator = "photon";
+constexpr const char* kDefaultIntegrator = "vcm";
 
 template <typename T>
 std::unique_ptr<Integrator> make_integrator_of(const IntegratorSetup& setup) {
