@@ -66,7 +66,8 @@ struct Scene {
   bool rough() const;                  // some shape's material is a rough dielectric or conductor
   bool coated() const;                 // some shape's material has a coat
   bool shading_normals() const { return !normals.empty(); }  // some shape has them
-  // Some shape's material is a delta lobe: an ideal mirror, a smooth dielectric or conductor.
+  // Some used material scatters by a delta lobe: an ideal mirror, a smooth dielectric or
+  // conductor, or a smooth coat's reflection.
   bool has_delta_surfaces() const;
   int material_index(const std::string& name) const;  // -1 when absent
   bool has_light(LightType type) const;
