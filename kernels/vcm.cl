@@ -42,8 +42,8 @@
 #define KASHA_VCM_MERGE 1
 #endif
 /* Where vcm merges (--merges): at every camera vertex that is not delta (1, Georgiev et al.), or
- * only at the first (0, as SPPM gathers; the default, with caustic merges below): then no light vertex but one the camera
- * sees directly is a merging vertex of any full path — the light subpaths' partial weights leave
+ * only at the first (0, as SPPM gathers; the default, with caustic merges below): then no light
+ * vertex but one the camera sees directly is a merging vertex of any full path — the light subpaths' partial weights leave
  * their own merges out, light tracing keeps the merge at the vertex it splats, and a connection
  * counts no merge on the light side — so every path still has its weights summing to one, and a
  * camera path makes one range query instead of one a bounce. */

@@ -65,7 +65,8 @@ render cornell_box_demo scenes/cornell_box.json scenes/cornell_box.json --passes
 # times the pixels of the scene's 256², so four times the default photons per pass: the same
 # photons per pixel.
 scene=$(resized scenes/cornell_box.json $SIZE $SIZE); TEMPORARY+=("$scene")
-render cornell_box_512 "scenes/cornell_box.json (${SIZE}²)" "$scene" --integrator photon --photons 1048576 --time 90
+render cornell_box_512 "scenes/cornell_box.json (${SIZE}²)" "$scene" --integrator photon \
+  --photons 1048576 --time 90
 
 # The light booth under D65: every sample lit directly by a large lamp, where backward's
 # next-event estimation has next to no variance.
@@ -77,8 +78,8 @@ render light_booth_512 "scenes/light_booth.json (${SIZE}²)" "$scene" --integrat
 # only in the mirror; photon mapping carries both halves (backward is noise, forward black).
 # More photons per pass, as the 512² camera's gather radii are 8 times smaller than at 64².
 scene=$(resized scenes/mirror_caustic.json $SIZE $SIZE); TEMPORARY+=("$scene")
-render mirror_caustic_512 "scenes/mirror_caustic.json (${SIZE}²)" "$scene" --integrator photon --photons 1048576 \
-  --time 90
+render mirror_caustic_512 "scenes/mirror_caustic.json (${SIZE}²)" "$scene" --integrator photon \
+  --photons 1048576 --time 90
 
 # The glossy Cornell box: a tabulated 12° lobe on the floor; backward has the lowest error at
 # equal time over all pixels (the lamp and its reflection included).
@@ -91,7 +92,8 @@ render glossy_cornell_box_512 "scenes/glossy_cornell_box.json (${SIZE}²)" "$sce
 # only by rare paths.
 for name in glass_caustic glass_of_water still_life; do
   scene=$(resized scenes/$name.json $SIZE $SIZE); TEMPORARY+=("$scene")
-  render ${name}_512 "scenes/$name.json (${SIZE}²)" "$scene" --integrator photon --photons 1048576 --time 90
+  render ${name}_512 "scenes/$name.json (${SIZE}²)" "$scene" --integrator photon \
+    --photons 1048576 --time 90
 done
 
 # Lights that are not shapes (docs/lights.md): the booth's samples under a point-like UV spot
@@ -101,7 +103,8 @@ scene=$(resized scenes/light_booth_uv_spot.json $SIZE $SIZE); TEMPORARY+=("$scen
 render light_booth_uv_spot_512 "scenes/light_booth_uv_spot.json (${SIZE}²)" "$scene" \
   --integrator backward --time 60
 scene=$(resized scenes/sunlit_table.json $SIZE $SIZE); TEMPORARY+=("$scene")
-render sunlit_table_512 "scenes/sunlit_table.json (${SIZE}²)" "$scene" --integrator photon --photons 1048576 --time 90
+render sunlit_table_512 "scenes/sunlit_table.json (${SIZE}²)" "$scene" --integrator photon \
+  --photons 1048576 --time 90
 
 # Textures (docs/textures.md): a colour print with an invisible fluorescent ink star, under a dim
 # D65 and the UV spot.
@@ -113,7 +116,8 @@ render fluorescent_print_512 "scenes/fluorescent_print.json (${SIZE}²)" "$scene
 # docs/formats.md#shading-normals): the measured Post-it under a clear lacquer on a smooth-shaded
 # vase, a glazed brightened paper on a coarse sphere with smooth normals, a lacquered table.
 scene=$(resized scenes/lacquered_vase.json $SIZE $SIZE); TEMPORARY+=("$scene")
-render lacquered_vase_512 "scenes/lacquered_vase.json (${SIZE}²)" "$scene" --integrator photon --photons 1048576 --time 90
+render lacquered_vase_512 "scenes/lacquered_vase.json (${SIZE}²)" "$scene" --integrator photon \
+  --photons 1048576 --time 90
 
 # A pbrt-v4 scene file (docs/pbrt-import.md): the pbrt Cornell box with its lacquered sphere
 # replaced by the measured Post-it from the command line (--material), at 512 × 512 (a copy

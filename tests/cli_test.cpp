@@ -51,7 +51,8 @@ TEST(Cli, RenderOnTwoQueuesWritesTheOneDeviceFile) {
   std::string files[2];
   for (int k = 0; k < 2; ++k) {
     files[k] = (test::scratch_dir() / ("device" + std::to_string(k) + ".exr")).string();
-    auto r = run_kasha("render " + scene + " --integrator photon --passes 2 --photons 70000 --spp 2 --device " +
+    auto r = run_kasha("render " + scene +
+                       " --integrator photon --passes 2 --photons 70000 --spp 2 --device " +
                        (k ? "0,0" : "0") + " -o " + shell_quoted(files[k]));
     ASSERT_EQ(r.exit_code, 0) << r.err;
     if (k) {
@@ -74,9 +75,9 @@ TEST(Cli, LogHasARowPerPassWithErrorsAgainstAReference) {
   ASSERT_EQ(run_kasha("render " + scene + " --passes 1 --photons 65536 -o " + shell_quoted(ref))
                 .exit_code,
             0);
-  auto r =
-      run_kasha("render " + scene + " --integrator photon --passes 3 --photons 4096 --seed 9 -o " + shell_quoted(out) +
-                " --reference " + shell_quoted(ref) + " --log " + shell_quoted(log));
+  auto r = run_kasha(
+      "render " + scene + " --integrator photon --passes 3 --photons 4096 --seed 9 -o " +
+      shell_quoted(out) + " --reference " + shell_quoted(ref) + " --log " + shell_quoted(log));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   std::ifstream in(log);
   std::string line;
