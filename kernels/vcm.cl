@@ -11,7 +11,9 @@
  * 2. the hashed grid over the stored vertices (hash_grid.cl; merging modes), cells of 2r;
  * 3. vcm_camera_pass: one camera path per pixel; at each vertex with a non-delta part, emission
  *    hit, next-event estimation, connections to its light subpath's vertices (connecting modes)
- *    and merges with the stored vertices within r (merging modes), each MIS-weighted.
+ *    and merges with the stored vertices within r (merging modes), each MIS-weighted; where the
+ *    light seen through delta bounces alone has an edge, that light from extra samples
+ *    (vcm_seen_light).
  * Modes are build options: KASHA_VCM_CONNECT and KASHA_VCM_MERGE both (vcm), connections only
  * (bpt), merges only (ppm: unweighted, once at the camera path's first non-delta vertex).
  *
@@ -863,15 +865,68 @@ inline void vcm_escaped(const VcmCamera* c, const SceneView* s, const FilmView* 
 }
 #endif
 
+/* Light the camera sees directly or through delta bounces alone — a lamp, the sky, their images
+ * in glass, a mirror or a smooth coat — on a walk of its own that takes only delta bounces. No
+ * other technique reaches such a path (next-event estimation, connections and merges need a
+ * bounce that is not delta; dVCM and dVC are 0 along it), so its MIS weight is 1 and a pixel may
+ * take it from more samples than it has full camera paths: a lamp's edges and its highlight on a
+ * coat converge with a pixel's samples, and these cost a ray or two, a full camera path tens. At
+ * a surface that also scatters otherwise (a coat, a gloss lobe over a Lambert part) the walk
+ * takes the delta lobe always, weighed by its albedo, where the full path picks it with a
+ * probability: the same expectation, without the full path's rare bright picks. Bounces and
+ * roulette otherwise as vcm_camera_path's. */
+inline void vcm_seen_light(const SceneView* s, const FilmView* f, int pixel, Sampler* sampler, float* rows) {
+  CameraWalk w;
+  walk_start(&w, f, camera_position(&s->camera), camera_sample(&s->camera, pixel, sample_2d(sampler)));
+  CameraVertex v;
+  while (w.depth < KASHA_MAX_PATH_DEPTH) {
+    HitPoint* h = &v.h;
+    if (!intersect_scene(s, w.org, w.dir, h)) {
+#if KASHA_INFINITE_LIGHTS
+      if (VCM_LENGTH_COUNTS(w.depth + 1)) walk_escaped(&w, s, f, rows); /* whole: w.specular */
+#endif
+      return;
+    }
+    if (h->emitter >= 0 && h->front && VCM_LENGTH_COUNTS(w.depth + 1)) {
+      float weight = 1.0f;
+#if KASHA_EMISSION_TEXTURES
+      weight *= emission_factor(s, h->tri, h->b.x, h->b.y);
+#endif
+      pw_add(&w.p, f, emitter_spectrum(s, h->emitter), 0, weight, rows);
+    }
+#if KASHA_SHADING_NORMALS
+    if (!hit_seen(h, w.dir)) return;
+#endif
+    load_surface_at(s, h, &v.surf);
+    if (surface_rough(&v.surf)) return;
+    sampler_at(sampler, 1 + w.depth * KASHA_CAMERA_PAIRS_PER_VERTEX);
+    v.u_choice = sample_2d(sampler);
+    v.u_light = sample_2d(sampler);
+    v.u_dir = sample_2d(sampler);
+#if KASHA_DIELECTRIC || KASHA_CONDUCTOR
+    if (surface_specular(&v.surf)) {
+      if (!walk_specular(&w, f, &v)) return;
+    } else
+#endif
+    {
+      if (!(v.surf.g > 0.0f && v.surf.mirror)) return;
+      w.dir = reflect_dir(w.dir, h->ns);
+      pw_scatter_diagonal(&w.p, 0, v.surf.g);
+    }
+    if (!walk_on(&w, f, &v)) return;
+  }
+}
+
 /* One camera path of the iteration, one of `spp` the pixel has, with light subpath `partner`.
  * `own`: that subpath is in the store (the chunk holding it): emission, next-event estimation and
- * connections count then; merges count with every chunk. Returns what it still carried (relative
- * to its start) if the depth guard cut it. */
+ * connections count then; merges count with every chunk. `seen_apart`: vcm_seen_light takes the
+ * light reached through delta bounces alone, so this path leaves it out. Returns what it still
+ * carried (relative to its start) if the depth guard cut it. */
 inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, int spp, int partner, Sampler* sampler,
                              float paths, VcmRadius radius, const __global float* store,
                              const __global int* path_last, const __global float4* placed,
                              const __global int* cell_count, const __global int* cell_end, float inv_cell, uint mask,
-                             bool own, uint seed, __global float* out, float* rows) {
+                             bool own, bool seen_apart, uint seed, __global float* out, float* rows) {
   /* The factors of the global radius; where the radius is the path's, of its merging vertex's. */
   float r_merge = radius.radius;
   float vm = vcm_merge_factor(vcm_eta_at(&radius, r_merge)), vc = vcm_connect_factor(vcm_eta_at(&radius, r_merge));
@@ -891,18 +946,19 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, i
     c.dvc = c.dvm = c.dvc_merge = 0.0f;
   }
   CameraVertex v;
-  bool met = false; /* a vertex that is not delta is behind */
+  bool met = false;       /* a vertex that is not delta is behind */
+  bool delta_only = true; /* every bounce so far was delta (vcm_seen_light's paths) */
   while (c.w.depth < KASHA_MAX_PATH_DEPTH) {
     HitPoint* h = &v.h;
     if (!intersect_scene(s, c.w.org, c.w.dir, h)) {
 #if KASHA_INFINITE_LIGHTS
-      if (own) vcm_escaped(&c, s, f, rows);
+      if (own && !(seen_apart && delta_only)) vcm_escaped(&c, s, f, rows);
 #endif
       return 0.0f;
     }
     vcm_arrived(h->t, fabs(dot(h->n, c.w.dir)), &c.dvcm, &c.dvc, &c.dvm, &c.dvc_merge);
     travelled += h->t;
-    if (own && h->emitter >= 0 && h->front) {
+    if (own && h->emitter >= 0 && h->front && !(seen_apart && delta_only)) {
       float weight = vcm_emission_weight(&c, s, h);
 #if KASHA_EMISSION_TEXTURES
       weight *= emission_factor(s, h->tri, h->b.x, h->b.y);
@@ -1010,6 +1066,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, i
     if (!vcm_scattered(s, &v.surf, cv.lambert, h->ns, cv.nf, cv.ng, eye, c.w.dir, c.w.specular, cv.merges, vm, vc,
                        &c.dvcm, &c.dvc, &c.dvm, &c.dvc_merge))
       return 0.0f;
+    delta_only = delta_only && c.w.specular;
     if (!walk_on(&c.w, f, &v)) return 0.0f;
   }
   return walk_cut(&c.w, f);
@@ -1024,8 +1081,9 @@ __kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, 
                               __global const float* store, __global const int* path_last,
                               __global const float4* placed, __global const int* cell_count,
                               __global const int* cell_end, float inv_cell, uint mask, __global float* path_spectra,
-                              __global float* sums, __global int* rejected, __global float* cut, int spp, uint seed,
-                              uint pass, int item_end) {
+                              __global float* sums, __global int* rejected, __global float* cut, int spp,
+                              __global const int* seen_pixels, int seen_samples, uint seed, uint pass,
+                              int item_end) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
   int pixel = launch_pixel(&camera, item_end);
@@ -1036,6 +1094,11 @@ __kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, 
   float guard = 0.0f;
   int bad = 0;
   bool owned = false;
+  /* The light seen through delta bounces alone, in the pixels the host found it in
+   * (seen_pixels), from `seen_samples` samples per camera path, each index of their own stream a
+   * point of one Sobol sequence; elsewhere the camera paths take it. */
+  int seen = seen_pixels[pixel] ? seen_samples : 0;
+  Sampler seen_sampler = sampler_start(seed ^ 0x7f4a7c15u, (uint)pixel, 0, pass, (uint)pixel);
   for (int j = 0; j < spp; ++j) {
     sampler_next_sample(&sampler, pass * (uint)spp + (uint)j);
     float rows[KASHA_FILM_ROWS];
@@ -1044,8 +1107,17 @@ __kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, 
     bool own = partner >= chunk_first && partner < chunk_end;
     VcmRadius rad = {eta_unit, radius, per_unit};
     float g = vcm_camera_path(&s, &f, pixel, spp, partner, &sampler, (float)paths, rad, store, path_last,
-                              placed, cell_count, cell_end, inv_cell, mask, own,
+                              placed, cell_count, cell_end, inv_cell, mask, own, seen > 0,
                               hash_combine(seed ^ 0x2545f491u, pass), out, rows);
+    if (own && seen > 0) {
+      float seen_rows[KASHA_FILM_ROWS];
+      film_rows_clear(seen_rows);
+      for (int k = 0; k < seen; ++k) {
+        sampler_next_sample(&seen_sampler, (pass * (uint)spp + (uint)j) * (uint)seen + (uint)k);
+        vcm_seen_light(&s, &f, pixel, &seen_sampler, seen_rows);
+      }
+      for (int r = 0; r < KASHA_FILM_ROWS; ++r) rows[r] += seen_rows[r] / (float)seen;
+    }
     if (own) guard += g, owned = true;
     if (film_rows_finite(rows))
       film_add(sums, pixel, rows);
