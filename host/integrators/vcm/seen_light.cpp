@@ -78,8 +78,8 @@ bool reaches_light(const Scene& scene, const EmbreeScene& embree, bool infinite,
 
 }  // namespace
 
-std::vector<int> seen_light_pixels(const Scene& scene, const KCamera& camera) {
-  const EmbreeScene embree(scene.triangles);
+std::vector<int> seen_light_pixels(const Scene& scene, const EmbreeScene& embree,
+                                   const KCamera& camera) {
   const bool infinite = std::any_of(scene.lights.begin(), scene.lights.end(),
                                     [](const Light& l) { return l.type == LightType::infinite; });
   const int w = camera.width, h = camera.height;

@@ -6,6 +6,7 @@
 // the extra samples would find nothing and only cost rays.
 #include <vector>
 
+#include "geometry/embree_scene.h"
 #include "scene/scene.h"
 #include "shared_types.h"
 
@@ -17,6 +18,7 @@ namespace kasha {
 // followed), smooth metal, ideal mirror lobes and smooth coats, up to 8 of them — and some do
 // not. Inside a lamp (or a furnace's emitter, or a mirror that shows only it) every sample sees
 // the same light, and extra ones would only cost rays. Embree on the host.
-std::vector<int> seen_light_pixels(const Scene& scene, const KCamera& camera);
+std::vector<int> seen_light_pixels(const Scene& scene, const EmbreeScene& embree,
+                                   const KCamera& camera);
 
 }  // namespace kasha
