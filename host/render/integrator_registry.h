@@ -40,6 +40,9 @@ struct IntegratorTraits {
   // radius biases it most, so the bench leaves it out and the agreement tests allow it 3 times
   // the tolerance.
   bool direct_by_merges = false;
+  // Takes the light seen through delta bounces alone (a lamp, its highlight in glass or a coat)
+  // from extra samples where it has an edge (vcm and its modes): camera paths alone find it.
+  bool samples_seen_light = false;
 };
 
 struct IntegratorInfo {

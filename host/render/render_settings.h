@@ -33,6 +33,8 @@ struct IntegratorSettings {
   int vcm_length = 0;              // vcm, bpt, ppm: only paths of this many segments (0: all)
   bool vcm_emission_only = false;  // vcm, bpt: only camera paths hitting emitters, unweighted
   bool vcm_drop_density = false;   // vcm, bpt: a wrong MIS weight (kernels/vcm.cl)
+  bool vcm_no_seen_light = false;  // vcm, bpt, ppm: the camera paths alone take the light seen
+                                   // through delta bounces (no vcm_seen_light samples)
 };
 
 // Where a setting's value lives in IntegratorSettings.

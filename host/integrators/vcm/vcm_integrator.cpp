@@ -67,17 +67,18 @@ constexpr int kSeenLightSamples = 8;
 constexpr int kCausticCameraPaths = 4;
 constexpr int kDefaultPhotonMappingCameraPaths = 1;
 
-// vcm and bpt take one light subpath a camera path instead of one a pixel where the scene has
-// delta surfaces and most merging vertices see no lamp (`unlit`, merging_distance.h): their light
-// is then a caustic that merges and light tracing alone bring, and photons matter more than
-// camera paths there. Measured (vcm, RMSE after 20 s against a 120-s photon-mapping render): the
-// mirror caustic −28 % with 4 a pixel; the mirror furnace, lit directly everywhere, +9 % with 4
-// a pixel and +23 % with 16; the 256² glass scenes and the lacquered vase within ±4 % with 2 or 4.
+// vcm takes one light subpath a camera path instead of one a pixel where the scene has delta
+// surfaces and most merging vertices see no lamp (`unlit`, merging_distance.h): their light is
+// then a caustic that merges and light tracing alone bring, and photons matter more than camera
+// paths there (bpt, which does not merge, gains nothing: the mirror caustic +7 %). Measured (vcm,
+// RMSE after 20 s against a 120-s photon-mapping render): the mirror caustic −28 % with 4 a pixel;
+// the mirror furnace, lit directly everywhere, +9 % with 4 a pixel and +23 % with 16; the 256²
+// glass scenes and the lacquered vase within ±4 % with 2 or 4.
 constexpr double kMostlyUnlit = 0.5;
 
 size_t default_light_paths(VcmMode m, const Scene& scene, size_t pixels, int spp, double unlit) {
   if (m == VcmMode::ppm) return std::max<size_t>(pixels, kLeastPhotonMappingPaths);
-  if (scene.has_delta_surfaces() && unlit > kMostlyUnlit) return pixels * spp;
+  if (m == VcmMode::vcm && scene.has_delta_surfaces() && unlit > kMostlyUnlit) return pixels * spp;
   return pixels;
 }
 
@@ -127,7 +128,9 @@ class VcmIntegrator : public KernelIntegrator {
         s.scene, Mode != VcmMode::bpt ? merging.distance : 0, s.settings.radius,
         Mode != VcmMode::bpt && !(Mode == VcmMode::vcm && s.settings.merges == "every"));
     // The pixels where the light seen through delta bounces alone has an edge (seen_light.h).
-    const std::vector<int> seen = seen_light_pixels(s.scene, embree, scene_.data().camera);
+    const std::vector<int> seen = s.settings.vcm_no_seen_light
+                                      ? std::vector<int>(film_.pixels(), 0)
+                                      : seen_light_pixels(s.scene, embree, scene_.data().camera);
     seen_pixels_ = device_buffer(cl_, seen.size() * sizeof(cl_int), "vcm: the pixels seeing light");
     cl_.queue().enqueueWriteBuffer(seen_pixels_, CL_TRUE, 0, seen.size() * sizeof(cl_int),
                                    seen.data());
@@ -417,20 +420,20 @@ KASHA_REGISTER_INTEGRATOR(
     "under one MIS weight, iterations independent (a global radius schedule)",
     {"--photons", "--alpha", "--radius", "--memory", "--spp", "--merges"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
-                     /*reference*/ false});
+                     /*reference*/ false, /*direct by merges*/ false, /*samples seen light*/ true});
 KASHA_REGISTER_INTEGRATOR(
     BidirectionalPathTracing, "bpt",
     "bidirectional path tracing: vcm's connections alone (next-event estimation, light "
     "tracing, subpath connections), MIS-weighted",
     {"--photons", "--memory", "--spp"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ true, /*sees camera mirrors*/ true,
-                     /*reference*/ false});
+                     /*reference*/ false, /*direct by merges*/ false, /*samples seen light*/ true});
 KASHA_REGISTER_INTEGRATOR(
     ProgressivePhotonMapping, "ppm",
     "progressive photon mapping: vcm's merges alone, unweighted, at each camera path's first "
     "non-delta vertex",
     {"--photons", "--alpha", "--radius", "--memory", "--spp"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
-                     /*reference*/ false, /*direct by merges*/ true});
+                     /*reference*/ false, /*direct by merges*/ true, /*samples seen light*/ true});
 
 }  // namespace kasha
