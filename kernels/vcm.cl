@@ -875,7 +875,7 @@ inline void vcm_escaped(const VcmCamera* c, const SceneView* s, const FilmView* 
  * takes the delta lobe always, weighed by its albedo, where the full path picks it with a
  * probability: the same expectation, without the full path's rare bright picks. Bounces and
  * roulette otherwise as vcm_camera_path's. */
-inline void vcm_seen_light(const SceneView* s, const FilmView* f, int pixel, Sampler* sampler, float* rows) {
+inline float vcm_seen_light(const SceneView* s, const FilmView* f, int pixel, Sampler* sampler, float* rows) {
   CameraWalk w;
   walk_start(&w, f, camera_position(&s->camera), camera_sample(&s->camera, pixel, sample_2d(sampler)));
   CameraVertex v;
@@ -885,7 +885,7 @@ inline void vcm_seen_light(const SceneView* s, const FilmView* f, int pixel, Sam
 #if KASHA_INFINITE_LIGHTS
       if (VCM_LENGTH_COUNTS(w.depth + 1)) walk_escaped(&w, s, f, rows); /* whole: w.specular */
 #endif
-      return;
+      return 0.0f;
     }
     if (h->emitter >= 0 && h->front && VCM_LENGTH_COUNTS(w.depth + 1)) {
       float weight = 1.0f;
@@ -895,26 +895,27 @@ inline void vcm_seen_light(const SceneView* s, const FilmView* f, int pixel, Sam
       pw_add(&w.p, f, emitter_spectrum(s, h->emitter), 0, weight, rows);
     }
 #if KASHA_SHADING_NORMALS
-    if (!hit_seen(h, w.dir)) return;
+    if (!hit_seen(h, w.dir)) return 0.0f;
 #endif
     load_surface_at(s, h, &v.surf);
-    if (surface_rough(&v.surf)) return;
+    if (surface_rough(&v.surf)) return 0.0f;
     sampler_at(sampler, 1 + w.depth * KASHA_CAMERA_PAIRS_PER_VERTEX);
     v.u_choice = sample_2d(sampler);
     v.u_light = sample_2d(sampler);
     v.u_dir = sample_2d(sampler);
 #if KASHA_DIELECTRIC || KASHA_CONDUCTOR
     if (surface_specular(&v.surf)) {
-      if (!walk_specular(&w, f, &v)) return;
+      if (!walk_specular(&w, f, &v)) return 0.0f;
     } else
 #endif
     {
-      if (!(v.surf.g > 0.0f && v.surf.mirror)) return;
+      if (!(v.surf.g > 0.0f && v.surf.mirror)) return 0.0f;
       w.dir = reflect_dir(w.dir, h->ns);
       pw_scatter_diagonal(&w.p, 0, v.surf.g);
     }
-    if (!walk_on(&w, f, &v)) return;
+    if (!walk_on(&w, f, &v)) return 0.0f;
   }
+  return walk_cut(&w, f);
 }
 
 /* One camera path of the iteration, one of `spp` the pixel has, with light subpath `partner`.
@@ -1110,13 +1111,14 @@ __kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, 
                               placed, cell_count, cell_end, inv_cell, mask, own, seen > 0,
                               hash_combine(seed ^ 0x2545f491u, pass), out, rows);
     if (own && seen > 0) {
-      float seen_rows[KASHA_FILM_ROWS];
+      float seen_rows[KASHA_FILM_ROWS], seen_cut = 0.0f;
       film_rows_clear(seen_rows);
       for (int k = 0; k < seen; ++k) {
         sampler_next_sample(&seen_sampler, (pass * (uint)spp + (uint)j) * (uint)seen + (uint)k);
-        vcm_seen_light(&s, &f, pixel, &seen_sampler, seen_rows);
+        seen_cut += vcm_seen_light(&s, &f, pixel, &seen_sampler, seen_rows);
       }
       for (int r = 0; r < KASHA_FILM_ROWS; ++r) rows[r] += seen_rows[r] / (float)seen;
+      guard += seen_cut / (float)seen; /* the depth guard's tally: a camera path's share */
     }
     if (own) guard += g, owned = true;
     if (film_rows_finite(rows))

@@ -21,7 +21,7 @@ const std::vector<RenderSetting>& render_settings() {
      V::integer, 1, 1 << 20, {}, false, false, FIELD(spp)},
     {"--photons",
      "photons per pass (default 2^18; vcm, bpt, ppm: light subpaths, one a pixel, ppm at least "
-     "2^16, vcm one a camera path where caustics light most of what the camera sees)",
+     "2^16, vcm 4 a pixel where caustics light most of what the camera sees)",
      V::integer, 1, kMaxInt, {}, false, false, FIELD(photons)},
     {"--alpha", "photon mapping, vcm, ppm: radius reduction α (default 0.8)",
      V::number, 0.01, 0.99, {}, false, false, FIELD(alpha)},

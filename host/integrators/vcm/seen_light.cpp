@@ -33,9 +33,11 @@ bool has_delta_lobe(const Material& m) {
 // Whether a camera ray from `org` along `dir` reaches light through delta bounces alone.
 bool reaches_light(const Scene& scene, const EmbreeScene& embree, bool infinite,
                    const Eigen::Vector3f& org, const Eigen::Vector3f& dir) {
-  constexpr int kMostBounces = 8;
+  // Glass splits a probe in two at every hit: at most this many rays a probe, so nested glass
+  // costs a bounded start-up (a missed edge costs variance only).
+  constexpr int kMostBounces = 8, kMostRays = 32;
   std::vector<Probe> stack{{org, dir, 0}};
-  while (!stack.empty()) {
+  for (int rays = 0; !stack.empty() && rays < kMostRays; ++rays) {
     const Probe p = stack.back();
     stack.pop_back();
     KRay r{};
