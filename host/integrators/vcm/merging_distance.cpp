@@ -6,23 +6,19 @@
 #include <cmath>
 #include <vector>
 
+#include "integrators/vcm/camera_probe.h"
+
 namespace kasha {
 
 namespace {
+
+using namespace camera_probe;
 
 // A surface the camera path passes without a vertex that merges or connects: a smooth dielectric
 // or conductor, or a material that is only an ideal mirror lobe.
 bool delta_surface(const Material& m) {
   if (m.specular()) return !m.rough();
   return m.rho.empty() && !m.fluorescent() && !m.coat && m.gloss && m.gloss->mirror;
-}
-
-Eigen::Vector3f vec(const float* v) {
-  return {v[0], v[1], v[2]};
-}
-
-Eigen::Vector3f normal(const KTriangle& t) {
-  return (vec(t.v1) - vec(t.v0)).cross(vec(t.v2) - vec(t.v0)).normalized();
 }
 
 // Points on the emitters' fronts: the centroids of up to 64 of their triangles, evenly spread.
@@ -44,7 +40,7 @@ bool lit_directly(const EmbreeScene& embree, const std::vector<const KTriangle*>
   for (const KTriangle* t : lamps) {
     const Eigen::Vector3f c = (vec(t->v0) + vec(t->v1) + vec(t->v2)) / 3, d = c - x;
     const float dist = d.norm();
-    if (!(dist > 0) || d.dot(side) <= 0 || normal(*t).dot(d) >= 0) continue;
+    if (!(dist > 0) || d.dot(side) <= 0 || triangle_normal(*t).dot(d) >= 0) continue;
     KRay r{};
     const Eigen::Vector3f org = x + 1e-4f * std::max(1.0f, x.norm()) * side;
     for (int k = 0; k < 3; ++k) r.org[k] = org[k], r.dir[k] = d[k] / dist;
@@ -65,9 +61,7 @@ MergingVertices probe_merging_vertices(const Scene& scene, const EmbreeScene& em
   for (int y = 0; y < kGrid; ++y)
     for (int x = 0; x < kGrid; ++x) {
       const float sx = 2.0f * (x + 0.5f) / kGrid - 1, sy = 1 - 2.0f * (y + 0.5f) / kGrid;
-      Eigen::Vector3f org = vec(camera.position),
-                      dir = (vec(camera.forward) + sx * vec(camera.right) + sy * vec(camera.up))
-                                .normalized();
+      Eigen::Vector3f org = vec(camera.position), dir = camera_direction(camera, sx, sy);
       double travelled = 0;
       for (int bounce = 0; bounce < kMostBounces; ++bounce) {
         KRay r{};
@@ -77,7 +71,7 @@ MergingVertices probe_merging_vertices(const Scene& scene, const EmbreeScene& em
         if (h.prim < 0) break;
         travelled += h.t;
         const KTriangle& t = scene.triangles[h.prim];
-        const Eigen::Vector3f n = normal(t);
+        const Eigen::Vector3f n = triangle_normal(t);
         if (t.material < 0 || !delta_surface(scene.materials[t.material])) {
           distances.push_back(travelled);
           if (t.emitter < 0 && !lit_directly(embree, lamps, org + h.t * dir,

@@ -8,14 +8,13 @@
 
 #include "core/parallel_for.h"
 #include "geometry/embree_scene.h"
+#include "integrators/vcm/camera_probe.h"
 
 namespace kasha {
 
 namespace {
 
-Eigen::Vector3f vec(const float* v) {
-  return {v[0], v[1], v[2]};
-}
+using namespace camera_probe;
 
 // A ray still followed: where it starts, where it goes, its bounces so far.
 struct Probe {
@@ -49,7 +48,7 @@ bool reaches_light(const Scene& scene, const EmbreeScene& embree, bool infinite,
       continue;
     }
     const KTriangle& t = scene.triangles[h.prim];
-    Eigen::Vector3f n = (vec(t.v1) - vec(t.v0)).cross(vec(t.v2) - vec(t.v0)).normalized();
+    Eigen::Vector3f n = triangle_normal(t);
     const bool front = n.dot(p.dir) < 0;
     if (t.emitter >= 0 && front) return true;
     if (t.material < 0 || p.bounces == kMostBounces) continue;
@@ -92,12 +91,9 @@ std::vector<int> seen_light_pixels(const Scene& scene, const EmbreeScene& embree
     for (size_t i = begin; i < end; ++i) {
       const int px = static_cast<int>(i % w), py = static_cast<int>(i / w);
       for (int k = 0; k < 4; ++k) {
-        // As kernels/camera.h's camera_direction.
         const float sx = 2.0f * (px + 0.25f + 0.5f * (k & 1)) / w - 1,
                     sy = 1 - 2.0f * (py + 0.25f + 0.5f * (k >> 1)) / h;
-        const Eigen::Vector3f dir =
-            (vec(camera.forward) + sx * vec(camera.right) + sy * vec(camera.up)).normalized();
-        lit[i] += reaches_light(scene, embree, infinite, org, dir);
+        lit[i] += reaches_light(scene, embree, infinite, org, camera_direction(camera, sx, sy));
       }
     }
   });
