@@ -5,6 +5,7 @@
  * Only disc_coverage, which traces rays, takes the scene's and the film's parameters; the others
  * take their own arguments alone (KernelIntegrator::launch_own). */
 
+#include "disc_coverage.h"
 #include "hash_grid.cl"
 #include "sppm_statistics.h"
 
@@ -88,11 +89,8 @@ __kernel void gather_photons(__global const float* cmf, /* the film's C (film_vi
   pass_found[pixel] += found;
 }
 
-/* Edge correction: near an edge a gather disc hangs over it; the photons there are rejected by the
- * normal test while the density estimate divides by the whole disc, so pixels darken towards
- * edges and corners. Per pixel with a visible point: `probes` short rays along the normal through
- * the gather's slab, at equal-area radii on a pattern rotated by `rotation`, find the fraction of
- * the disc on surface the gather accepts; its sum and the number of passes measured go to
+/* Edge correction (disc_coverage.h): per pixel with a visible point, `probes` probes of its disc
+ * on a pattern rotated by `rotation`; the fraction covered and the number of passes measured go to
  * coverage[2·pixel], coverage[2·pixel + 1]. The image divides by their ratio once (a ratio of
  * sums: a per-pass division would be a mean of noisy ratios, biased high). */
 __kernel void disc_coverage(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const float* visible_points,
@@ -104,28 +102,9 @@ __kernel void disc_coverage(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global cons
   const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
   const __global float* vp = visible_points + (long)pixel * vp_floats;
   if (vp[KASHA_VP_VALID] == 0.0f) return;
-  const float r = radius[pixel], slab = KASHA_GATHER_SLAB * r;
+  const float r = radius[pixel];
   float3 x = record_position(vp), n = (float3)(vp[3], vp[4], vp[5]);
-  /* A tangent basis (t1, t2) around n (Duff et al. 2017). */
-  float sign = n.z >= 0.0f ? 1.0f : -1.0f, a = -1.0f / (sign + n.z), b = n.x * n.y * a;
-  float3 t1 = (float3)(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
-  float3 t2 = (float3)(b, sign + n.y * n.y * a, -n.y);
-  int covered = 0;
-  for (int j = 0; j < probes; ++j) {
-    float rho = r * sqrt((j + 0.5f) / probes);
-    float phi = rotation + 2.39996323f * j; /* the golden angle: probes spread over the disc */
-    float3 org = x + rho * (cos(phi) * t1 + sin(phi) * t2) + slab * n;
-    float t, u, v;
-    ++s.rays->closest;
-    int hit = bvh_closest(s.nodes, s.leaves, org, -n, 0.0f, 2.0f * slab, &t, &u, &v);
-    if (hit < 0) continue;
-    const __global KTriangle* tri = &s.tris[hit];
-    float3 v0 = load_float3(tri->v0);
-    float3 g = normalize(cross(load_float3(tri->v1) - v0, load_float3(tri->v2) - v0));
-    /* The normal on the side the probe arrives from, n's side, is |g·n| from n. */
-    if (fabs(dot(g, n)) > 0.5f) ++covered;
-  }
-  coverage[2 * pixel] += (float)covered / probes;
+  coverage[2 * pixel] += disc_covered(&s, x, n, r, KASHA_GATHER_SLAB * r, probes, rotation);
   coverage[2 * pixel + 1] += 1.0f;
   add_ray_counts(&s, ray_counts);
 }

@@ -34,6 +34,7 @@
 #include "camera.h"
 #include "camera_splat.h"
 #include "camera_walk.h"
+#include "disc_coverage.h"
 #include "hash_grid.cl"
 #include "photon_transport.h"
 
@@ -765,7 +766,28 @@ inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* 
 }
 #endif
 
+/* Edge correction of merges (--edge-correction, on by default): a merge divides by the fraction of
+ * its disc on surface it accepts (disc_coverage.h), measured with KASHA_VCM_COVERAGE_PROBES probes
+ * once the merge has met a photon. The pattern's rotation is a hash of the vertex's position, so
+ * the fraction is a function of the vertex and the radius alone; it tends to 1 with the radius
+ * everywhere but on the edges themselves, so merges stay consistent. */
+#ifndef KASHA_VCM_EDGE_CORRECTION
+#define KASHA_VCM_EDGE_CORRECTION 0
+#endif
+#ifndef KASHA_VCM_COVERAGE_PROBES
+#define KASHA_VCM_COVERAGE_PROBES 8
+#endif
+
 #if KASHA_VCM_MERGE
+#if KASHA_VCM_EDGE_CORRECTION
+inline float vcm_coverage(const SceneView* s, float3 x, float3 ng, float radius) {
+  uint h = hash_combine(hash_combine(hash_u32(as_uint(x.x)), as_uint(x.y)), as_uint(x.z));
+  float c = disc_covered(s, x, ng, radius, KASHA_GATHER_SLAB * radius, KASHA_VCM_COVERAGE_PROBES,
+                         (float)h * (2.0f * KASHA_PI / 4294967296.0f));
+  return c > 0.0f ? c : 1.0f; /* no probe on accepted surface: nothing to correct by */
+}
+#endif
+
 /* Merges at a camera vertex (SmallVCM's RangeQuery with its MergingCallback): every stored light
  * vertex within r that merges — on the same side, facing alike and near the tangent plane of the
  * geometric surface, as photon mapping's gather — adds T·f_c·Φ weighed against the connections
@@ -778,6 +800,7 @@ inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f,
   const Surface* surf = &v->surf;
   float3 x = v->h.x, ns = cv->ns, eye = -c->w.dir;
   float r2 = radius * radius;
+  float covered = 0.0f; /* edge correction: the disc's fraction measured at the first photon */
   int3 lo = grid_cell(x - radius, inv_cell), hi = grid_cell(x + radius, inv_cell);
   for (int cz = lo.z; cz <= hi.z; ++cz)
     for (int cy = lo.y; cy <= hi.y; ++cy)
@@ -805,6 +828,12 @@ inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f,
           float3 light = -(float3)(m[0], m[1], m[2]);
           if (dot(light, ng) <= 0.0f) continue;
           VcmF fv = vcm_eval(s, surf, ns, cv->nf, eye, light, light, cv->eta);
+#if KASHA_VCM_EDGE_CORRECTION
+          if (covered == 0.0f) {
+            covered = vcm_coverage(s, x, ng, radius);
+            scale /= covered;
+          }
+#endif
 #if KASHA_VCM_CONNECT
 #if KASHA_VCM_MERGE_EVERY
           float dvm_light = m[5];

@@ -28,8 +28,8 @@ const std::vector<RenderSetting>& render_settings() {
     {"--radius", "photon mapping, vcm, ppm: initial gather radius (default: from the pixel footprint)",
      V::positive, 0, 1e300, {}, false, false, FIELD(radius)},
     {"--edge-correction",
-     "photon mapping: divide the density by the measured fraction of the gather discs on "
-     "accepted surface (default; --edge-correction=false leaves it out)",
+     "photon mapping, vcm, ppm: divide the density by the measured fraction of the gather discs "
+     "on accepted surface (default; --edge-correction=false leaves it out)",
      V::flag, 0, 0, {}, false, false, FIELD(edge_correction)},
     {"--gather",
      "photon mapping: gather on the device (a hashed grid) or on the host (nanoflann); default "
@@ -41,9 +41,10 @@ const std::vector<RenderSetting>& render_settings() {
      V::bytes, 1, 1125899906842624.0 /* 2^50 */, {}, false, /*device's own*/ true, FIELD(memory)},
     {"--merges",
      "vcm: merge at the first camera vertex that is not delta only the light that came through a "
-     "mirror or glass (default: caustic), all light there (first, as SPPM gathers), or all light "
-     "at every such vertex (every, Georgiev et al.'s VCM)",
-     V::choice, 0, 0, {"caustic", "first", "every"}, false, false, FIELD(merges)},
+     "mirror or glass (caustic), all light there (first, as SPPM gathers), or all light at every "
+     "such vertex (every, Georgiev et al.'s VCM); default auto: first where caustics light most "
+     "of what the camera sees, else caustic",
+     V::choice, 0, 0, {"auto", "caustic", "first", "every"}, false, false, FIELD(merges)},
     {"--view", "debug view: emission, normals or albedo",
      V::choice, 0, 0, {"emission", "normals", "albedo"}, false, false, FIELD(view)},
     {"--seed", "random seed", V::integer, 0, 4294967295.0, {}, /*common*/ true, false, FIELD(seed)},

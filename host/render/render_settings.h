@@ -19,9 +19,9 @@ struct IntegratorSettings {
   static constexpr long long kDefaultPhotons = 1 << 18;  // forward's and photon mapping's
   double alpha = 0.8;  // --alpha: SPPM radius reduction (pbrt-v4: 2/3; 0.8 measured better here)
   double radius = 0;   // --radius: initial gather radius (0: from the pixel footprint)
-  bool edge_correction = true;           // --edge-correction: photon mapping's gathers at edges
+  bool edge_correction = true;           // --edge-correction: gathers and merges at edges
   std::string gather = "auto";           // --gather: where photon mapping gathers (device, host)
-  std::string merges = "caustic";        // --merges: what vcm merges (caustic, first, every)
+  std::string merges = "auto";           // --merges: what vcm merges (auto, caustic, first, every)
   std::string view = "emission";         // --view: the debug view
   unsigned seed = 1;                     // --seed (every integrator)
   std::string sampler = "sobol";         // --sampler (every integrator): sobol or independent

@@ -65,35 +65,72 @@ constexpr int kDefaultCameraPaths = 8;
 // box −7 %; 16 gained 0–6 % more on those, none elsewhere (docs/integrators.md).
 constexpr int kSeenLightSamples = 8;
 constexpr int kCausticCameraPaths = 4;
+// Probes of a merge's disc for the edge correction (kernels/disc_coverage.h), once a merge has
+// met a photon; each is a short ray through the gather's slab.
+constexpr int kCoverageProbes = 8;
 constexpr int kDefaultPhotonMappingCameraPaths = 1;
 
-// vcm takes one light subpath a default camera path (4 a pixel, whatever --spp says) instead of
-// one a pixel where the scene has delta
-// surfaces and most merging vertices see no lamp (`unlit`, merging_distance.h): their light is
-// then a caustic that merges and light tracing alone bring, and photons matter more than camera
-// paths there (bpt, which does not merge, gains nothing: the mirror caustic +7 %). Measured (vcm,
-// RMSE after 20 s against a 120-s photon-mapping render): the mirror caustic −28 % with 4 a pixel;
-// the mirror furnace, lit directly everywhere, +9 % with 4 a pixel and +23 % with 16; the 256²
-// glass scenes and the lacquered vase within ±4 % with 2 or 4.
+// A caustic-lit view: the scene has delta surfaces and most merging vertices see no lamp
+// (`unlit`, merging_distance.h), so what the camera sees is lit by caustics and the light they
+// bring on, which merges and light tracing alone reach. There vcm runs as photon mapping does —
+// --merges auto merges all light at the first vertex (`first`: next to a wall, the light the
+// wall throws on the floor comes from connections alone under `caustic`, whose 1/d² near the
+// corner leaves it short at 20 s: 0.29 against 0.35) — and with light subpaths for merges before
+// camera paths: 2 camera paths a pixel unless --spp says, and 32 light subpaths a pixel whatever
+// --spp says (capped at 2^31 − 1). bpt, which does not merge, gains nothing from more
+// (the mirror caustic +7 % with 4 a pixel). Measured on the mirror caustic (vcm --merges first,
+// RMSE after 20 s against the mean of 120-s photon-mapping and 300-s vcm renders): 4 camera paths
+// and 4 light subpaths a pixel 0.0139, 4 and 32 0.0104, 4 and 64 0.0095, 2 and 32 0.0092, 2 and
+// 64 0.0093, 1 and 32 0.0104; photon mapping 0.0098. Elsewhere more light subpaths lengthen the
+// light pass: the mirror furnace, lit directly everywhere, +9 % with 4 a pixel and +23 % with 16.
 constexpr double kMostlyUnlit = 0.5;
+constexpr int kCausticLitCameraPaths = 2;
+constexpr size_t kCausticLitLightPaths = 32;
 
-size_t default_light_paths(VcmMode m, const Scene& scene, size_t pixels, double unlit) {
+size_t default_light_paths(VcmMode m, size_t pixels, bool caustic_lit) {
   if (m == VcmMode::ppm) return std::max<size_t>(pixels, kLeastPhotonMappingPaths);
-  if (m == VcmMode::vcm && scene.has_delta_surfaces() && unlit > kMostlyUnlit)
-    return std::min<size_t>(pixels * kCausticCameraPaths, (1u << 31) - 1);
+  if (m == VcmMode::vcm && caustic_lit)
+    return std::min<size_t>(pixels * kCausticLitLightPaths, (1u << 31) - 1);
   return pixels;
 }
 
-int default_camera_paths(VcmMode m, const Scene& scene) {
+int default_camera_paths(VcmMode m, const Scene& scene, bool caustic_lit) {
   if (m == VcmMode::ppm) return kDefaultPhotonMappingCameraPaths;
+  if (m == VcmMode::vcm && caustic_lit) return kCausticLitCameraPaths;
   return scene.has_delta_surfaces() ? kCausticCameraPaths : kDefaultCameraPaths;
 }
 
-KernelDefines mode_defines(VcmMode m, const IntegratorSettings& s) {
+// What vcm takes from camera rays on the host (Embree) before its kernels are built: where
+// camera paths merge, whether the view is caustic-lit, what merges, and the pixels where the
+// light seen through delta bounces alone has an edge (seen_light.h).
+struct VcmPlan {
+  MergingVertices merging;
+  bool caustic_lit = false;
+  std::string merges;    // --merges, `auto` resolved: caustic, first or every
+  std::vector<int> seen;  // per pixel: 1 where that light has an edge
+};
+
+VcmPlan plan_for(VcmMode m, const IntegratorSetup& s) {
+  VcmPlan p;
+  const EmbreeScene embree(s.scene.triangles);
+  const KCamera& camera = s.device_scene.data().camera;
+  p.merging = probe_merging_vertices(s.scene, embree, camera);
+  p.caustic_lit = m == VcmMode::vcm && s.scene.has_delta_surfaces() && p.merging.unlit > kMostlyUnlit;
+  p.merges = s.settings.merges != "auto" ? s.settings.merges : p.caustic_lit ? "first" : "caustic";
+  p.seen = s.settings.vcm_no_seen_light ? std::vector<int>(s.film.pixels(), 0)
+                                        : seen_light_pixels(s.scene, embree, camera);
+  return p;
+}
+
+KernelDefines mode_defines(VcmMode m, const IntegratorSettings& s, const std::string& merges) {
   KernelDefines d{{"KASHA_VCM_CONNECT", m == VcmMode::ppm ? "0" : "1"},
                   {"KASHA_VCM_MERGE", m == VcmMode::bpt ? "0" : "1"}};
-  if (m == VcmMode::vcm && s.merges == "every") d["KASHA_VCM_MERGE_EVERY"] = "1";
-  if (m == VcmMode::vcm && s.merges == "caustic") d["KASHA_VCM_MERGE_CAUSTIC"] = "1";
+  if (m == VcmMode::vcm && merges == "every") d["KASHA_VCM_MERGE_EVERY"] = "1";
+  if (m == VcmMode::vcm && merges == "caustic") d["KASHA_VCM_MERGE_CAUSTIC"] = "1";
+  if (m != VcmMode::bpt && s.edge_correction) {
+    d["KASHA_VCM_EDGE_CORRECTION"] = "1";
+    d["KASHA_VCM_COVERAGE_PROBES"] = std::to_string(kCoverageProbes);
+  }
   // The test hooks (kernels/vcm.cl), only when set.
   if (s.vcm_length > 0) d["KASHA_VCM_LENGTH"] = std::to_string(s.vcm_length);
   if (s.vcm_emission_only) d["KASHA_VCM_EMISSION_ONLY"] = "1";
@@ -106,11 +143,15 @@ KernelDefines mode_defines(VcmMode m, const IntegratorSettings& s) {
 template <VcmMode Mode>
 class VcmIntegrator : public KernelIntegrator {
  public:
-  explicit VcmIntegrator(const IntegratorSetup& s)
-      : KernelIntegrator(s, "vcm.cl", mode_defines(Mode, s.settings)),
+  explicit VcmIntegrator(const IntegratorSetup& s) : VcmIntegrator(s, plan_for(Mode, s)) {}
+
+ private:
+  VcmIntegrator(const IntegratorSetup& s, const VcmPlan& plan)
+      : KernelIntegrator(s, "vcm.cl", mode_defines(Mode, s.settings, plan.merges)),
         alpha_(s.settings.alpha),
         seed_(s.settings.seed),
-        spp_(s.settings.spp > 0 ? s.settings.spp : default_camera_paths(Mode, s.scene)),
+        spp_(s.settings.spp > 0 ? s.settings.spp
+                                : default_camera_paths(Mode, s.scene, plan.caustic_lit)),
         emission_only_(s.settings.vcm_emission_only),
         record_floats_(KASHA_VCM_FLOATS(s.scene.grid.bins)),
         bins_(s.scene.grid.bins),
@@ -119,20 +160,12 @@ class VcmIntegrator : public KernelIntegrator {
     if (!(alpha_ > 0 && alpha_ < 1)) throw Error("--alpha must lie in (0, 1)");
     budget_ = s.settings.memory > 0 ? static_cast<size_t>(s.settings.memory)
                                     : default_memory_budget(cl_.info());
-    // Camera rays on the host: where camera paths merge, and where the light seen through delta
-    // bounces alone has an edge.
-    const EmbreeScene embree(s.scene.triangles);
-    const MergingVertices merging = probe_merging_vertices(s.scene, embree, scene_.data().camera);
     paths_ = s.settings.photons > 0
                  ? static_cast<size_t>(s.settings.photons)
-                 : default_light_paths(Mode, s.scene, film_.pixels(), merging.unlit);
-    set_first_radius(
-        s.scene, Mode != VcmMode::bpt ? merging.distance : 0, s.settings.radius,
-        Mode != VcmMode::bpt && !(Mode == VcmMode::vcm && s.settings.merges == "every"));
-    // The pixels where the light seen through delta bounces alone has an edge (seen_light.h).
-    const std::vector<int> seen = s.settings.vcm_no_seen_light
-                                      ? std::vector<int>(film_.pixels(), 0)
-                                      : seen_light_pixels(s.scene, embree, scene_.data().camera);
+                 : default_light_paths(Mode, film_.pixels(), plan.caustic_lit);
+    set_first_radius(s.scene, Mode != VcmMode::bpt ? plan.merging.distance : 0, s.settings.radius,
+                     Mode != VcmMode::bpt && !(Mode == VcmMode::vcm && plan.merges == "every"));
+    const std::vector<int>& seen = plan.seen;
     seen_pixels_ = device_buffer(cl_, seen.size() * sizeof(cl_int), "vcm: the pixels seeing light");
     cl_.queue().enqueueWriteBuffer(seen_pixels_, CL_TRUE, 0, seen.size() * sizeof(cl_int),
                                    seen.data());
@@ -161,6 +194,7 @@ class VcmIntegrator : public KernelIntegrator {
                   std::to_string(record_bytes()) + " bytes each)");
   }
 
+ public:
   PassResult render_pass(int pass) override {
     const auto t0 = std::chrono::steady_clock::now();
     const double device0 = device_seconds_;
@@ -420,7 +454,7 @@ KASHA_REGISTER_INTEGRATOR(
     VertexConnectionMerging, "vcm",
     "vertex connection and merging: light and camera subpaths joined by connections and merges "
     "under one MIS weight, iterations independent (a global radius schedule)",
-    {"--photons", "--alpha", "--radius", "--memory", "--spp", "--merges"},
+    {"--photons", "--alpha", "--radius", "--memory", "--spp", "--merges", "--edge-correction"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
                      /*reference*/ false, /*direct by merges*/ false, /*samples seen light*/ true});
 KASHA_REGISTER_INTEGRATOR(
@@ -434,7 +468,7 @@ KASHA_REGISTER_INTEGRATOR(
     ProgressivePhotonMapping, "ppm",
     "progressive photon mapping: vcm's merges alone, unweighted, at each camera path's first "
     "non-delta vertex",
-    {"--photons", "--alpha", "--radius", "--memory", "--spp"},
+    {"--photons", "--alpha", "--radius", "--memory", "--spp", "--edge-correction"},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
                      /*reference*/ false, /*direct by merges*/ true, /*samples seen light*/ true});
 
