@@ -8,7 +8,8 @@
 #ifndef KASHA_DISC_COVERAGE_H
 #define KASHA_DISC_COVERAGE_H
 
-inline float disc_covered(const SceneView* s, float3 x, float3 n, float r, float slab, int probes, float rotation) {
+inline float disc_covered(const SceneView* s, float3 x, float3 n, float r, float slab, int probes,
+                          float rotation) {
   /* A tangent basis (t1, t2) around n (Duff et al. 2017). */
   float sign = n.z >= 0.0f ? 1.0f : -1.0f, a = -1.0f / (sign + n.z), b = n.x * n.y * a;
   float3 t1 = (float3)(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x);
