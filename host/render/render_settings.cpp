@@ -17,11 +17,12 @@ const std::vector<RenderSetting>& render_settings() {
   // clang-format off: a table, a setting a row
   static const std::vector<RenderSetting> table = {
     {"--spp", "camera samples per pixel per pass (default 16; photon mapping 8; vcm, bpt 8, 4 where "
-     "mirrors, glass or smooth coats are; ppm 1)",
+     "mirrors, glass or smooth coats are, vcm 2 where caustics light most of what the camera "
+     "sees; ppm 1)",
      V::integer, 1, 1 << 20, {}, false, false, FIELD(spp)},
     {"--photons",
      "photons per pass (default 2^18; vcm, bpt, ppm: light subpaths, one a pixel, ppm at least "
-     "2^16, vcm 4 a pixel where caustics light most of what the camera sees)",
+     "2^16, vcm 32 a pixel where caustics light most of what the camera sees)",
      V::integer, 1, kMaxInt, {}, false, false, FIELD(photons)},
     {"--alpha", "photon mapping, vcm, ppm: radius reduction α (default 0.8)",
      V::number, 0.01, 0.99, {}, false, false, FIELD(alpha)},
