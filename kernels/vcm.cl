@@ -5,9 +5,9 @@
  * so a connection T·f·G·f·Φ and a merge T·f·Φ cost O(N) and never pair wavelengths.
  *
  * An iteration is two launches and a grid:
- * 1. vcm_light_pass: light subpaths (one per pixel; ppm at least 2^16); each vertex with a non-delta part is stored
- *    (vcm_layout.h), linked to its path's previous one, and (connecting modes) splatted to the
- *    camera, MIS-weighted;
+ * 1. vcm_light_pass: light subpaths (one per pixel, 32 in a caustic-lit view; ppm at least
+ *    2^16); each vertex with a non-delta part is stored (vcm_layout.h), linked to its path's
+ *    previous one, and (connecting modes) splatted to the camera, MIS-weighted;
  * 2. the hashed grid over the stored vertices (hash_grid.cl; merging modes), cells of 2r;
  * 3. vcm_camera_pass: one camera path per pixel; at each vertex with a non-delta part, emission
  *    hit, next-event estimation, connections to its light subpath's vertices (connecting modes)
@@ -53,7 +53,8 @@
 #ifndef KASHA_VCM_MERGE_EVERY
 #define KASHA_VCM_MERGE_EVERY 0
 #endif
-/* --merges caustic (the default, with merges at the first vertex): a merge counts only for a path
+/* --merges caustic (the default but in caustic-lit views, host/integrators/vcm/vcm_integrator.cpp;
+ * with merges at the first vertex): a merge counts only for a path
  * whose light arrived at the merging vertex from a delta bounce (a mirror, glass: a caustic), the
  * paths no connection and no next-event estimation reaches. Elsewhere connections do better than
  * a count of photons in a disc, and a merge there costs a range query for almost no weight; so

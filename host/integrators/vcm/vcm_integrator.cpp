@@ -106,7 +106,7 @@ int default_camera_paths(VcmMode m, const Scene& scene, bool caustic_lit) {
 struct VcmPlan {
   MergingVertices merging;
   bool caustic_lit = false;
-  std::string merges;    // --merges, `auto` resolved: caustic, first or every
+  std::string merges;     // --merges, `auto` resolved: caustic, first or every
   std::vector<int> seen;  // per pixel: 1 where that light has an edge
 };
 
@@ -115,7 +115,8 @@ VcmPlan plan_for(VcmMode m, const IntegratorSetup& s) {
   const EmbreeScene embree(s.scene.triangles);
   const KCamera& camera = s.device_scene.data().camera;
   p.merging = probe_merging_vertices(s.scene, embree, camera);
-  p.caustic_lit = m == VcmMode::vcm && s.scene.has_delta_surfaces() && p.merging.unlit > kMostlyUnlit;
+  p.caustic_lit =
+      m == VcmMode::vcm && s.scene.has_delta_surfaces() && p.merging.unlit > kMostlyUnlit;
   p.merges = s.settings.merges != "auto" ? s.settings.merges : p.caustic_lit ? "first" : "caustic";
   p.seen = s.settings.vcm_no_seen_light ? std::vector<int>(s.film.pixels(), 0)
                                         : seen_light_pixels(s.scene, embree, camera);
@@ -160,9 +161,8 @@ class VcmIntegrator : public KernelIntegrator {
     if (!(alpha_ > 0 && alpha_ < 1)) throw Error("--alpha must lie in (0, 1)");
     budget_ = s.settings.memory > 0 ? static_cast<size_t>(s.settings.memory)
                                     : default_memory_budget(cl_.info());
-    paths_ = s.settings.photons > 0
-                 ? static_cast<size_t>(s.settings.photons)
-                 : default_light_paths(Mode, film_.pixels(), plan.caustic_lit);
+    paths_ = s.settings.photons > 0 ? static_cast<size_t>(s.settings.photons)
+                                    : default_light_paths(Mode, film_.pixels(), plan.caustic_lit);
     set_first_radius(s.scene, Mode != VcmMode::bpt ? plan.merging.distance : 0, s.settings.radius,
                      Mode != VcmMode::bpt && !(Mode == VcmMode::vcm && plan.merges == "every"));
     const std::vector<int>& seen = plan.seen;
