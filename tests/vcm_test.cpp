@@ -152,15 +152,15 @@ TEST(Vcm, VcmWeightsSumToOnePerPathLength) {
     }
 }
 
-// Caustic merges (the default) in the box with a mirror floor: a merge counts only for light that
-// came to the merging vertex from a delta bounce, which the light side knows from its last bounce
-// and the camera side from the bounce after its merging vertex. Lengths 3 and 4 have paths of
-// both kinds (lamp–mirror–wall–camera, lamp–wall–mirror–wall–camera, and their plain
-// neighbours), 2 the mirror seen directly. Measured: light vertices merging whatever their last
-// bounce fails (+3.5 % at length 3, 6 standard errors), so does the camera side keeping the merge
-// after a bounce that is not delta (+2.7 %, 4.6); a light side counting any earlier delta bounce
-// against the camera's last-bounce rule is +1.6 % at length 4 (3 standard errors), below what
-// this image's spread resolves.
+// Caustic merges (the default outside caustic-lit views) in the box with a mirror floor: a merge
+// counts only for light that came to the merging vertex from a delta bounce, which the light side
+// knows from its last bounce and the camera side from the bounce after its merging vertex. Lengths
+// 3 and 4 have paths of both kinds (lamp–mirror–wall–camera, lamp–wall–mirror–wall–camera, and
+// their plain neighbours), 2 the mirror seen directly. Measured: light vertices merging whatever
+// their last bounce fails (+3.5 % at length 3, 6 standard errors), so does the camera side keeping
+// the merge after a bounce that is not delta (+2.7 %, 4.6); a light side counting any earlier delta
+// bounce against the camera's last-bounce rule is +1.6 % at length 4 (3 standard errors), below
+// what this image's spread resolves.
 TEST(Vcm, CausticMergesWeightsSumToOnePerPathLength) {
   for (int length : {2, 3, 4}) {
     std::array<double, 3> relative;

@@ -80,9 +80,11 @@ constexpr int kDefaultPhotonMappingCameraPaths = 1;
 // --spp says (capped at 2^31 − 1). bpt, which does not merge, gains nothing from more
 // (the mirror caustic +7 % with 4 a pixel). Measured on the mirror caustic (vcm --merges first,
 // RMSE after 20 s against the mean of 120-s photon-mapping and 300-s vcm renders): 4 camera paths
-// and 4 light subpaths a pixel 0.0139, 4 and 32 0.0104, 4 and 64 0.0095, 2 and 32 0.0092, 2 and
-// 64 0.0093, 1 and 32 0.0104; photon mapping 0.0098. Elsewhere more light subpaths lengthen the
-// light pass: the mirror furnace, lit directly everywhere, +9 % with 4 a pixel and +23 % with 16.
+// and 4 light subpaths a pixel 0.0139, 4 and 16 0.0104, 4 and 32 0.0097, 4 and 64 0.0095, 2 and
+// 32 0.0092, 2 and 64 0.0093, 1 and 32 0.0104; photon mapping 0.0098. The counts go with `first`:
+// an explicit --merges caustic or every keeps those of other views. Elsewhere more light subpaths
+// lengthen the light pass: the mirror furnace, lit directly everywhere, +9 % with 4 a pixel and +23
+// % with 16.
 constexpr double kMostlyUnlit = 0.5;
 constexpr int kCausticLitCameraPaths = 2;
 constexpr size_t kCausticLitLightPaths = 32;
@@ -105,9 +107,9 @@ int default_camera_paths(VcmMode m, const Scene& scene, bool caustic_lit) {
 // light seen through delta bounces alone has an edge (seen_light.h).
 struct VcmPlan {
   MergingVertices merging;
-  bool caustic_lit = false;
-  std::string merges;     // --merges, `auto` resolved: caustic, first or every
-  std::vector<int> seen;  // per pixel: 1 where that light has an edge
+  bool caustic_lit = false;  // a caustic-lit view merging all light at the first vertex
+  std::string merges;        // --merges, `auto` resolved: caustic, first or every
+  std::vector<int> seen;     // per pixel: 1 where that light has an edge
 };
 
 VcmPlan plan_for(VcmMode m, const IntegratorSetup& s) {
@@ -118,6 +120,7 @@ VcmPlan plan_for(VcmMode m, const IntegratorSetup& s) {
   p.caustic_lit =
       m == VcmMode::vcm && s.scene.has_delta_surfaces() && p.merging.unlit > kMostlyUnlit;
   p.merges = s.settings.merges != "auto" ? s.settings.merges : p.caustic_lit ? "first" : "caustic";
+  p.caustic_lit = p.caustic_lit && p.merges == "first";  // the counts go with all light merged
   p.seen = s.settings.vcm_no_seen_light ? std::vector<int>(s.film.pixels(), 0)
                                         : seen_light_pixels(s.scene, embree, camera);
   return p;
