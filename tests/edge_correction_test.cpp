@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "geometry/embree_scene.h"
+#include "integrators/vcm/camera_probe.h"
 #include "render_support.h"
 #include "test_support.h"
 
@@ -45,12 +46,10 @@ std::vector<size_t> rim_pixels(const Scene& scene) {
   const int w = scene.camera.width, h = scene.camera.height;
   // The height of what the ray through image point (px, py) meets first (-1: nothing).
   auto height = [&](double px, double py) {
+    const Eigen::Vector3f d = camera_probe::camera_direction(c, static_cast<float>(2 * px / w - 1),
+                                                             static_cast<float>(1 - 2 * py / h));
     KRay r{};
-    const float sx = static_cast<float>(2 * px / w - 1), sy = static_cast<float>(1 - 2 * py / h);
-    for (int k = 0; k < 3; ++k) {
-      r.org[k] = c.position[k];
-      r.dir[k] = c.forward[k] + sx * c.right[k] + sy * c.up[k];
-    }
+    for (int k = 0; k < 3; ++k) r.org[k] = c.position[k], r.dir[k] = d[k];
     r.tmax = INFINITY;
     const KHit hit = embree.intersect(r);
     return hit.prim < 0 ? -1.0 : r.org[1] + hit.t * r.dir[1];

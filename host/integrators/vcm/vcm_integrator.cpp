@@ -117,10 +117,10 @@ VcmPlan plan_for(VcmMode m, const IntegratorSetup& s) {
   const EmbreeScene embree(s.scene.triangles);
   const KCamera& camera = s.device_scene.data().camera;
   p.merging = probe_merging_vertices(s.scene, embree, camera);
-  p.caustic_lit =
+  const bool caustic_lit =
       m == VcmMode::vcm && s.scene.has_delta_surfaces() && p.merging.unlit > kMostlyUnlit;
-  p.merges = s.settings.merges != "auto" ? s.settings.merges : p.caustic_lit ? "first" : "caustic";
-  p.caustic_lit = p.caustic_lit && p.merges == "first";  // the counts go with all light merged
+  p.merges = s.settings.merges != "auto" ? s.settings.merges : caustic_lit ? "first" : "caustic";
+  p.caustic_lit = caustic_lit && p.merges == "first";  // the counts go with all light merged
   p.seen = s.settings.vcm_no_seen_light ? std::vector<int>(s.film.pixels(), 0)
                                         : seen_light_pixels(s.scene, embree, camera);
   return p;
