@@ -3,7 +3,13 @@
 set(body "#include \"core/embedded_file.h\"\nnamespace kasha {\nconst std::vector<EmbeddedFile>& ${SYMBOL}() {\n  static const std::vector<EmbeddedFile> files = {\n")
 string(REPLACE "|" ";" FILES "${FILES}")
 foreach(f ${FILES})
-  get_filename_component(name ${f} NAME)
+  # Named by the path below BASE where one is given (kernels/vcm/vcm.cl is "vcm/vcm.cl", as kernel
+  # sources include it), else by the file's name.
+  if(BASE)
+    file(RELATIVE_PATH name ${BASE} ${f})
+  else()
+    get_filename_component(name ${f} NAME)
+  endif()
   file(READ ${f} content)
   string(LENGTH "${content}" len)
   set(pieces "")

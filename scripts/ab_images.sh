@@ -5,7 +5,8 @@
 #   bash scripts/ab_images.sh compare DIR_A DIR_B      # cmp every EXR; exit 1 on a difference
 # The set: the demo (scripts/demo.sh's command), one analytic furnace per integrator, the mirror
 # caustic and the glossy box (photon, backward), the host gather, the independent sampler, two
-# queues on one device, and two MPI ranks where mpirun exists.
+# queues on one device, vcm, bpt and ppm on a furnace, the mirror caustic and a pbrt-v4 scene (each
+# --merges of vcm, its test hooks), and two MPI ranks where mpirun exists.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scenes=scenes
@@ -28,6 +29,21 @@ render)
   r cornell_independent $scenes/cornell_box.json --integrator backward --sampler independent --passes 2
   r cornell_two_queues $scenes/cornell_box.json --device 0,0 --passes 3
   r cornell_forward_two_queues $scenes/cornell_box.json --integrator forward --device 0,0 --passes 3
+  for i in vcm bpt ppm; do
+    r furnace_$i $scenes/furnace_fluorescent.json --integrator $i --passes 4
+    r mirror_$i $scenes/mirror_caustic.json --integrator $i --passes 2
+    r pbrt_rough_$i $scenes/pbrt/rough_metals.pbrt --integrator $i --passes 2
+    r pbrt_textured_$i $scenes/pbrt/textured.pbrt --integrator $i --passes 2
+  done
+  for m in caustic first every; do
+    r cornell_vcm_$m $scenes/cornell_box.json --merges $m --passes 2
+  done
+  r glass_vcm $scenes/glass_caustic.json --passes 2
+  r lacquer_vcm $scenes/lacquered_vase.json --passes 2
+  r booth_uv_vcm $scenes/light_booth_uv_spot.json --passes 2
+  r sunlit_vcm $scenes/sunlit_table.json --passes 2
+  r cornell_vcm_small_memory $scenes/cornell_box.json --memory 2MiB --passes 2
+  r cornell_vcm_two_queues $scenes/cornell_box.json --device 0,0 --passes 3
   if command -v mpirun >/dev/null; then
     echo "== mpi_photon: mpirun -np 2 kasha render cornell_box --passes 3" >&2
     mpirun --allow-run-as-root --oversubscribe -np 2 "$kasha" render $scenes/cornell_box.json \

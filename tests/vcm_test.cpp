@@ -1,4 +1,4 @@
-// Vertex connection and merging's MIS weights (kernels/vcm.cl): for each path length, the
+// Vertex connection and merging's MIS weights (kernels/vcm/): for each path length, the
 // weighted techniques together must estimate what one unweighted technique estimates alone — the
 // weights of every path sum to one. The reference is path tracing without next-event estimation
 // (the vcm kernel's emission-only hook), in a box lit by a large lamp so that it converges; a
@@ -49,7 +49,7 @@ RenderResult render_length(const std::string& integrator, int length, int passes
                            const std::string& sampler = "sobol") {
   RenderSettings s;
   // The plain estimate takes the light seen through delta bounces from its camera paths alone,
-  // so the weighted ones' extra samples of it (kernels/vcm.cl, vcm_seen_light) are checked too.
+  // so the weighted ones' extra samples of it (kernels/vcm/vcm_seen_light.h) are checked too.
   s.integrator_settings.vcm_no_seen_light = emission_only;
   s.integrator_settings.sampler = sampler;
   // The mirror box's tests take one radius for all, large enough that merges weigh much.

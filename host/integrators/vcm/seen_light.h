@@ -1,7 +1,7 @@
 #pragma once
 // The pixels where the camera sees light through delta bounces alone — a lamp, the sky, their
 // images in glass, a mirror or a smooth coat — which vcm takes there from extra samples of the
-// pixel (kernels/vcm.cl, vcm_seen_light; so do bpt and ppm): a lamp's edges converge with a
+// pixel (kernels/vcm/vcm_seen_light.h; so do bpt and ppm): a lamp's edges converge with a
 // pixel's samples. Chosen
 // before the render from the geometry alone, so which pixels take them biases nothing; elsewhere
 // the extra samples would find nothing and only cost rays.

@@ -1,4 +1,4 @@
-// `--integrator vcm`, `bpt` and `ppm`: vertex connection and merging (kernels/vcm.cl; Georgiev
+// `--integrator vcm`, `bpt` and `ppm`: vertex connection and merging (kernels/vcm/; Georgiev
 // et al. 2012, SmallVCM's vertexcm.hxx) and the two modes that share its kernels — connections
 // only (bidirectional path tracing) and merges only (progressive photon mapping, unweighted) —
 // each built with only the code it uses. An iteration is a light pass (a light subpath per
@@ -24,7 +24,7 @@
 #include "render/hash_grid.h"
 #include "render/kernel_integrator.h"
 #include "render/launch_pacer.h"
-#include "vcm_layout.h"
+#include "vcm/vcm_records.h"
 
 namespace kasha {
 
@@ -58,7 +58,7 @@ constexpr double kMergeWeight = 0.25;
 // estimate is all merges with the one photon map, gains nothing from more.
 constexpr int kDefaultCameraPaths = 8;
 // Samples per camera path of the light seen through delta bounces alone (a lamp, its image in
-// glass, a mirror or a coat; kernels/vcm.cl, vcm_seen_light), in the pixels where it has an edge
+// glass, a mirror or a coat; kernels/vcm/vcm_seen_light.h), in the pixels where it has an edge
 // (seen_light.h). Its MIS weight is 1, so any number is unbiased; each costs a ray or a few, a
 // camera path tens. Measured (vcm, RMSE after 20 s against none): the lacquered vase's highlight
 // −54 %, the glass of water −51 %, the glass caustic −46 %, a million triangles −17 %, the Cornell
@@ -135,7 +135,7 @@ KernelDefines mode_defines(VcmMode m, const IntegratorSettings& s, const std::st
     d["KASHA_VCM_EDGE_CORRECTION"] = "1";
     d["KASHA_VCM_COVERAGE_PROBES"] = std::to_string(kCoverageProbes);
   }
-  // The test hooks (kernels/vcm.cl), only when set.
+  // The test hooks (kernels/vcm/vcm_modes.h), only when set.
   if (s.vcm_length > 0) d["KASHA_VCM_LENGTH"] = std::to_string(s.vcm_length);
   if (s.vcm_emission_only) d["KASHA_VCM_EMISSION_ONLY"] = "1";
   if (s.vcm_drop_density) d["KASHA_VCM_DROP_DENSITY"] = "1";
@@ -151,13 +151,13 @@ class VcmIntegrator : public KernelIntegrator {
 
  private:
   VcmIntegrator(const IntegratorSetup& s, const VcmPlan& plan)
-      : KernelIntegrator(s, "vcm.cl", mode_defines(Mode, s.settings, plan.merges)),
+      : KernelIntegrator(s, "vcm/vcm.cl", mode_defines(Mode, s.settings, plan.merges)),
         alpha_(s.settings.alpha),
         seed_(s.settings.seed),
         spp_(s.settings.spp > 0 ? s.settings.spp
                                 : default_camera_paths(Mode, s.scene, plan.caustic_lit)),
         emission_only_(s.settings.vcm_emission_only),
-        record_floats_(KASHA_VCM_FLOATS(s.scene.grid.bins)),
+        record_floats_(KASHA_VCM_VERTEX_FLOATS(s.scene.grid.bins)),
         bins_(s.scene.grid.bins),
         light_kernel_(program_, "vcm_light_pass"),
         camera_kernel_(program_, "vcm_camera_pass") {
@@ -168,20 +168,19 @@ class VcmIntegrator : public KernelIntegrator {
                                     : default_light_paths(Mode, film_.pixels(), plan.caustic_lit);
     set_first_radius(s.scene, Mode != VcmMode::bpt ? plan.merging.distance : 0, s.settings.radius,
                      Mode != VcmMode::bpt && !(Mode == VcmMode::vcm && plan.merges == "every"));
-    const std::vector<int>& seen = plan.seen;
-    seen_pixels_ = device_buffer(cl_, seen.size() * sizeof(cl_int), "vcm: the pixels seeing light");
-    cl_.queue().enqueueWriteBuffer(seen_pixels_, CL_TRUE, 0, seen.size() * sizeof(cl_int),
-                                   seen.data());
+    pixel_start_.resize(plan.seen.size());
+    for (size_t p = 0; p < pixel_start_.size(); ++p) pixel_start_[p] = KVcmPixel{plan.seen[p], 0, 0};
     film_shift_ = fixed_point_shift(scene_.data(), film_.cmf(), film_.spectral());
     const size_t pixels = film_.pixels(), bins = s.scene.grid.bins;
     if (paths_ > (1u << 31) - 1) throw Error("vcm: at most 2^31 - 1 pixels");
     fixed_ = device_buffer(cl_, cells() * 2 * sizeof(cl_ulong), "vcm: the light paths' film");
-    stored_ = device_buffer(cl_, sizeof(cl_int), "vcm: the store's counter");
-    overflow_ = device_buffer(cl_, sizeof(cl_int), "vcm: the rejected splats' counter");
-    path_last_ = device_buffer(cl_, paths_ * sizeof(cl_int), "vcm: the light paths' ends");
-    light_cut_ = device_buffer(cl_, paths_ * sizeof(cl_float), "vcm: depth-guard tallies");
-    camera_cut_ = device_buffer(cl_, pixels * sizeof(cl_float), "vcm: depth-guard tallies");
-    rejected_ = device_buffer(cl_, pixels * sizeof(cl_int), "vcm: rejected counts");
+    counters_ = device_buffer(cl_, sizeof(KVcmCounters), "vcm: the light pass's counters");
+    pixels_ = device_buffer(cl_, pixels * sizeof(KVcmPixel), "vcm: the pixels' records");
+    // A chunk of light subpaths has a record each (KVcmLightPath): at most as many as the store
+    // holds vertices, so that --photons grows no buffer beyond the --memory budget.
+    chunk_paths_ = std::max<size_t>(1, std::min(paths_, budget_ / record_bytes()));
+    light_paths_ = device_buffer(cl_, chunk_paths_ * sizeof(KVcmLightPath),
+                                 "vcm: the chunk's light subpaths");
     // Connections compute a light vertex's f·Φ into a spectrum of the camera path's own, and
     // its surface (textured, coated) into scratch of its own (kernels/vcm.cl, VCM_SPECTRA).
     spectra_floats_ =
@@ -201,81 +200,68 @@ class VcmIntegrator : public KernelIntegrator {
   PassResult render_pass(int pass) override {
     const auto t0 = std::chrono::steady_clock::now();
     const double device0 = device_seconds_;
-    // The iteration's radius (or the per-path radii's footprint and cap): Georgiev's global
-    // schedule, from the iteration's index alone.
-    const double shrink = std::pow(pass + 1.0, (alpha_ - 1) / 2);
-    const Radius radius{kMergeWeight * M_PI * static_cast<double>(paths_) / spp_,
-                        first_radius_ * shrink, per_path_ ? footprint_ * shrink : 0};
+    const Radius radius = radius_of(pass);
     const size_t pixels = film_.pixels();
     film_.clear_pixel_sums();
     cl_.queue().enqueueFillBuffer(fixed_, cl_ulong(0), 0, cells() * 2 * sizeof(cl_ulong));
-    cl_.queue().enqueueFillBuffer(overflow_, cl_int(0), 0, sizeof(cl_int));
-    cl_.queue().enqueueFillBuffer(rejected_, cl_int(0), 0, pixels * sizeof(cl_int));
-    cl_.queue().enqueueFillBuffer(light_cut_, cl_float(0), 0, paths_ * sizeof(cl_float));
-    cl_.queue().enqueueFillBuffer(camera_cut_, cl_float(0), 0, pixels * sizeof(cl_float));
+    cl_.queue().enqueueWriteBuffer(pixels_, CL_TRUE, 0, pixels * sizeof(KVcmPixel),
+                                   pixel_start_.data());
+    overflow_ = 0;
     // The light subpaths in chunks of path ranges, each traced into the store and met by every
     // camera path (the same paths again): one chunk while the store holds the iteration, so
-    // memory stays bounded however long light paths get.
-    double light_s = 0, grid_s = 0, stored_total = 0;
+    // memory stays bounded however long light paths get and however many --photons asks for.
+    Stages stages;
     size_t first = 0, count = paths_, done = pixels, chunks = 0;
-    while (first < paths_) {
+    bool interrupted = false;
+    while (first < paths_ && !interrupted) {
       count = std::min(count, paths_ - first);
+      // A chunk never has more subpaths than the chunk's table holds (they could not all store a
+      // vertex in a store of that size): the halving below, without tracing.
+      while (count > chunk_paths_) count = (count + 1) / 2;
       double t = device_seconds_;
       // Path tracing alone (a test hook) needs no light subpaths.
-      const std::optional<size_t> stored =
-          emission_only_ ? no_light_paths() : trace_chunk(pass, radius, first, count);
-      light_s += device_seconds_ - t;
-      if (!stored) {
+      const Chunk chunk = emission_only_ ? no_light_paths(count) : trace_chunk(pass, radius, first, count);
+      stages.light += device_seconds_ - t;
+      if (chunk.outcome == Chunk::interrupted) {
+        interrupted = true;
+        break;
+      }
+      if (chunk.outcome == Chunk::too_big) {
         if (count == 1)
           throw Error("--memory: " + std::to_string(budget_) +
                       " bytes do not hold one light subpath's vertices; give more --memory");
         count = (count + 1) / 2;
         continue;
       }
-      stored_total += static_cast<double>(*stored);
+      stages.stored += static_cast<double>(chunk.stored);
+      stages.light_cut += read_light_cut(count);
       t = device_seconds_;
       if (Mode != VcmMode::bpt) {
         const float cell[2] = {static_cast<float>(radius.cell()),
                                static_cast<float>(1 / radius.cell())};
         cl_.queue().enqueueWriteBuffer(cell_, CL_TRUE, 0, sizeof(cell), cell);
-        grid_->build(store_, *stored, cell_);
+        grid_->build(store_, chunk.stored, cell_);
       }
-      grid_s += device_seconds_ - t;
+      stages.grid += device_seconds_ - t;
       const bool last = first + count >= paths_;
       done = camera_pass(pass, radius, first, first + count, last);
+      // Ctrl-C during a chunk's camera pass that is not the last: no pixel has met every chunk.
+      if (!last && done < pixels) interrupted = true;
       first += count;
       ++chunks;
     }
+    if (interrupted) done = 0;
     PassResult r{pass, spp_, {}, film_.read_pixel_sums(), static_cast<double>(done) / pixels,
                  {},   {}};
-    // The light subpaths' splats are one more term of every camera path's estimate: added to the
-    // pixel's sums as many times as it has camera paths. A pass cut short keeps the pixels its
-    // last camera pass reached.
-    std::vector<cl_ulong> fixed(2 * cells());
-    cl_.queue().enqueueReadBuffer(fixed_, CL_TRUE, 0, fixed.size() * sizeof(cl_ulong),
-                                  fixed.data());
-    const size_t kept = done * film_.rows();
-    for (size_t i = 0; i < kept; ++i)
-      r.sums[i] += static_cast<double>(spp_) *
-                   fixed_point_value(fixed[2 * i], fixed[2 * i + 1], film_shift_);
+    add_light_splats(r, done);
     if (done < pixels) {
-      std::fill(r.sums.begin() + kept, r.sums.end(), 0.0);
+      std::fill(r.sums.begin() + done * film_.rows(), r.sums.end(), 0.0);
       r.samples = 0;
       r.pixel_samples.assign(pixels, 0);
       std::fill(r.pixel_samples.begin(), r.pixel_samples.begin() + done, spp_);
     }
-    r.tallies["rejected samples"] =
-        read_sum<cl_int>(rejected_, pixels) + read_sum<cl_int>(overflow_, 1);
-    r.tallies["light vertices stored"] = stored_total;
-    r.tallies["light chunks"] = static_cast<double>(chunks);
-    r.tallies["merging radius"] = per_path_ ? radius.radius / 2 : radius.radius;  // a typical one
-    r.tallies[kDepthGuardCut] = read_sum<cl_float>(light_cut_, paths_);
-    r.tallies[kDepthGuardOf] = static_cast<double>(paths_);
-    r.tallies[kCameraDepthGuardCut] = read_sum<cl_float>(camera_cut_, pixels);
-    r.tallies[kCameraDepthGuardOf] = static_cast<double>(pixels) * spp_;
-    r.tallies["time: light pass (s)"] = light_s;
-    r.tallies["time: grid (s)"] = grid_s;
-    r.tallies["time: camera pass (s)"] = device_seconds_ - device0 - light_s - grid_s;
+    add_tallies(r, radius, stages, chunks);
+    r.tallies["time: camera pass (s)"] = device_seconds_ - device0 - stages.light - stages.grid;
     r.tallies["time: host (s)"] = std::max(0.0, seconds_since(t0) - (device_seconds_ - device0));
     add_ray_tallies(r);
     return r;
@@ -289,9 +275,9 @@ class VcmIntegrator : public KernelIntegrator {
     std::map<std::string, size_t> b{
         {"light-vertex store", capacity_ * record_floats_ * sizeof(float)},
         {"light paths' film", cells() * 2 * sizeof(cl_ulong)},
-        {"per-path tables", paths_ * 2 * sizeof(cl_int) + film_.pixels() * 2 * sizeof(float)},
+        {"per-path tables", chunk_paths_ * sizeof(KVcmLightPath)},
         {"per-path spectra", film_.pixels() * spectra_floats_ * sizeof(float)},
-        {"pixels seeing light's edges", film_.pixels() * sizeof(cl_int)}};
+        {"pixels' records", film_.pixels() * sizeof(KVcmPixel)}};
     if (grid_) b["hashed grid"] = grid_->bytes(capacity_);
     return b;
   }
@@ -302,16 +288,99 @@ class VcmIntegrator : public KernelIntegrator {
     return record_floats_ * sizeof(float) + (Mode == VcmMode::bpt ? 0 : kPlacedGridBytesPerRecord);
   }
 
-  // An iteration's merging radius (kernels/vcm.cl, VcmRadius): η per r² (κ π L over the camera
-  // paths a pixel has — their merges at one pixel's vertices meet the same photons, so together
-  // they count as one camera path's), the global radius or the per-path radii's cap, and the
-  // per-path radii's footprint per unit of distance (0: the global radius).
+  // An iteration's merging radius (KVcmRadius, kernels/vcm/vcm_records.h), computed in double
+  // and rounded to float only in the launch's record: η per r² (κ π L over the camera paths a
+  // pixel has — their merges at one pixel's vertices meet the same photons, so together they
+  // count as one camera path's), the global radius or the per-path radii's cap, and the per-path
+  // radii's footprint per unit of distance (0: the global radius).
   struct Radius {
     double eta_unit, radius, per_unit;
     // The hashed grid's cell: a query meets 2 × 2 × 2 cells at the global radius (or the per-path
     // radius at the typical distance, half the cap), at most 3 × 3 × 3 at the cap.
     double cell() const { return per_unit > 0 ? radius : 2 * radius; }
   };
+
+  // Georgiev's global schedule, from the iteration's index alone.
+  Radius radius_of(int pass) const {
+    const double shrink = std::pow(pass + 1.0, (alpha_ - 1) / 2);
+    return Radius{kMergeWeight * M_PI * static_cast<double>(paths_) / spp_, first_radius_ * shrink,
+                  per_path_ ? footprint_ * shrink : 0};
+  }
+
+  // What a launch of either pass takes (KVcmIteration) for the store's chunk [first, end).
+  KVcmIteration iteration(int pass, const Radius& radius, size_t first, size_t end) const {
+    KVcmIteration it{};
+    it.radius = KVcmRadius{static_cast<float>(radius.eta_unit), static_cast<float>(radius.radius),
+                           static_cast<float>(radius.per_unit)};
+    it.inv_cell = static_cast<float>(1 / radius.cell());
+    it.mask = grid_ ? grid_->mask() : 0u;
+    it.paths = static_cast<int>(paths_);
+    it.chunk_first = static_cast<int>(first);
+    it.chunk_end = static_cast<int>(end);
+    it.capacity = static_cast<int>(capacity_);
+    it.spp = spp_;
+    it.seen_samples = kSeenLightSamples;
+    it.film_shift = film_shift_;
+    it.seed = seed_;
+    it.pass = static_cast<uint>(pass);
+    return it;
+  }
+
+  // Where a pass's device time went, and what its chunks stored and cut.
+  struct Stages {
+    double light = 0, grid = 0;  // seconds
+    double stored = 0;           // light vertices
+    double light_cut = 0;        // the depth guard's tally over the light subpaths
+  };
+
+  // How a chunk of light subpaths went: stored whole, too big for the store within the budget,
+  // or cut by Ctrl-C.
+  struct Chunk {
+    enum Outcome { stored_whole, too_big, interrupted } outcome = stored_whole;
+    size_t stored = 0;  // vertices
+  };
+
+  // The light subpaths' splats are one more term of every camera path's estimate: added to the
+  // pixel's sums as many times as it has camera paths. A pass cut short keeps the pixels its last
+  // camera pass reached.
+  void add_light_splats(PassResult& r, size_t done) {
+    std::vector<cl_ulong> fixed(2 * cells());
+    cl_.queue().enqueueReadBuffer(fixed_, CL_TRUE, 0, fixed.size() * sizeof(cl_ulong),
+                                  fixed.data());
+    const size_t kept = done * film_.rows();
+    for (size_t i = 0; i < kept; ++i)
+      r.sums[i] += static_cast<double>(spp_) *
+                   fixed_point_value(fixed[2 * i], fixed[2 * i + 1], film_shift_);
+  }
+
+  void add_tallies(PassResult& r, const Radius& radius, const Stages& stages, size_t chunks) {
+    const size_t pixels = film_.pixels();
+    std::vector<KVcmPixel> px(pixels);
+    cl_.queue().enqueueReadBuffer(pixels_, CL_TRUE, 0, pixels * sizeof(KVcmPixel), px.data());
+    double rejected = 0, camera_cut = 0;
+    for (const KVcmPixel& p : px) rejected += p.rejected;
+    for (const KVcmPixel& p : px) camera_cut += p.cut;
+    r.tallies["rejected samples"] = rejected + overflow_;
+    r.tallies["light vertices stored"] = stages.stored;
+    r.tallies["light chunks"] = static_cast<double>(chunks);
+    r.tallies["merging radius"] = per_path_ ? radius.radius / 2 : radius.radius;  // a typical one
+    r.tallies[kDepthGuardCut] = stages.light_cut;
+    r.tallies[kDepthGuardOf] = static_cast<double>(paths_);
+    r.tallies[kCameraDepthGuardCut] = camera_cut;
+    r.tallies[kCameraDepthGuardOf] = static_cast<double>(pixels) * spp_;
+    r.tallies["time: light pass (s)"] = stages.light;
+    r.tallies["time: grid (s)"] = stages.grid;
+  }
+
+  // The depth guard's tally over the chunk's `count` light subpaths.
+  double read_light_cut(size_t count) {
+    std::vector<KVcmLightPath> paths(count);
+    cl_.queue().enqueueReadBuffer(light_paths_, CL_TRUE, 0, count * sizeof(KVcmLightPath),
+                                  paths.data());
+    double cut = 0;
+    for (const KVcmLightPath& p : paths) cut += p.cut;
+    return cut;
+  }
 
   // The first radius: one pixel's footprint at the distance a camera path typically travels to
   // its merging vertex (merging_distance.h), else at the centre of the scene's bounds; --radius
@@ -359,61 +428,61 @@ class VcmIntegrator : public KernelIntegrator {
 
   // Light subpaths [first, first + count) of the iteration into the emptied store, splatting to
   // the light paths' film. A store too small for them grows (within the budget) and the chunk
-  // runs again with the same random numbers, its splats taken back; nothing: the chunk does not
-  // fit the budget. Returns the vertices stored.
-  std::optional<size_t> trace_chunk(int pass, const Radius& radius, size_t first, size_t count) {
+  // runs again with the same random numbers, its splats taken back; too_big: the chunk does not
+  // fit the budget. A chunk is cut as soon as the store overflows (the rest could not fit either)
+  // and at Ctrl-C, between launches.
+  Chunk trace_chunk(int pass, const Radius& radius, size_t first, size_t count) {
     cl_.queue().enqueueCopyBuffer(fixed_, fixed_before_, 0, 0, cells() * 2 * sizeof(cl_ulong));
-    cl_int overflow_before = 0;
-    cl_.queue().enqueueReadBuffer(overflow_, CL_TRUE, 0, sizeof(cl_int), &overflow_before);
     for (;;) {
-      cl_.queue().enqueueFillBuffer(stored_, cl_int(0), 0, sizeof(cl_int));
+      const KVcmIteration it = iteration(pass, radius, first, first + count);
+      KVcmCounters counters{0, 0};
+      cl_.queue().enqueueWriteBuffer(counters_, CL_TRUE, 0, sizeof counters, &counters);
       size_t done = 0;
-      while (done < count) {
+      while (done < count && fits(counters)) {
+        if (interrupt_requested()) return Chunk{Chunk::interrupted, 0};
         const size_t n = light_pacer_.next(count - done);
         const auto t = std::chrono::steady_clock::now();
-        launch_range(light_kernel_, first + done, n, static_cast<cl_int>(paths_),
-                     static_cast<cl_float>(radius.eta_unit), static_cast<cl_float>(radius.radius),
-                     static_cast<cl_float>(radius.per_unit), store_, stored_,
-                     static_cast<cl_int>(capacity_), path_last_, fixed_,
-                     static_cast<cl_int>(film_shift_), overflow_, light_cut_,
-                     static_cast<cl_int>(spp_), seed_, static_cast<cl_uint>(pass));
+        launch_range(light_kernel_, first + done, n, it, store_, counters_, light_paths_, fixed_);
         light_pacer_.record(n, seconds_since(t));
         done += n;
+        cl_.queue().enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof counters, &counters);
         control_.report(0.5 * static_cast<double>(first + done) / paths_);
       }
-      cl_int stored = 0;
-      cl_.queue().enqueueReadBuffer(stored_, CL_TRUE, 0, sizeof(cl_int), &stored);
-      if (stored >= 0 && static_cast<size_t>(stored) <= capacity_)
-        return static_cast<size_t>(stored);
-      // The retried chunk's splats and rejected splats are taken back.
+      if (fits(counters)) {
+        overflow_ += counters.overflow;
+        return Chunk{Chunk::stored_whole, static_cast<size_t>(counters.stored)};
+      }
+      // The retried chunk's splats are taken back.
       cl_.queue().enqueueCopyBuffer(fixed_before_, fixed_, 0, 0, cells() * 2 * sizeof(cl_ulong));
-      cl_.queue().enqueueWriteBuffer(overflow_, CL_TRUE, 0, sizeof(cl_int), &overflow_before);
-      const size_t wanted = stored < 0 ? SIZE_MAX / 2 : static_cast<size_t>(stored);
-      if (!allocate_store(wanted + wanted / 4)) return std::nullopt;
+      const size_t wanted = counters.stored < 0 ? SIZE_MAX / 2 : static_cast<size_t>(counters.stored);
+      if (!allocate_store(wanted + wanted / 4)) return Chunk{Chunk::too_big, 0};
     }
   }
 
+  bool fits(const KVcmCounters& c) const {
+    return c.stored >= 0 && static_cast<size_t>(c.stored) <= capacity_;
+  }
+
   // The camera pass with the store's chunk [first, end) of light subpaths; returns the pixels
-  // done. Only the last chunk's pass may stop early (a deadline, Ctrl-C): every pixel it reached
-  // has met every chunk.
+  // done. Only the last chunk's pass may stop early at a deadline: every pixel it reached has met
+  // every chunk. Ctrl-C stops any chunk's.
   size_t camera_pass(int pass, const Radius& radius, size_t first, size_t end, bool last) {
     const size_t pixels = film_.pixels();
+    const KVcmIteration it = iteration(pass, radius, first, end);
     size_t done = 0;
     while (done < pixels) {
       // A deadline stops an iteration only once one has run whole (the first compiles the
       // kernels at its first launches: cut there, most pixels would have no sample at all).
       if (last && done > 0 && (whole_ > 0 || interrupt_requested()) && control_.stop_now()) break;
+      if (!last && interrupt_requested()) break;
       const size_t n = camera_pacer_.next(pixels - done);
       const auto t = std::chrono::steady_clock::now();
-      launch_range(camera_kernel_, done, n, static_cast<cl_int>(paths_), static_cast<cl_int>(first),
-                   static_cast<cl_int>(end), static_cast<cl_float>(radius.eta_unit),
-                   static_cast<cl_float>(radius.radius), static_cast<cl_float>(radius.per_unit),
-                   store_, path_last_, grid_ ? grid_->placed() : path_last_,
-                   grid_ ? grid_->cell_count() : path_last_, grid_ ? grid_->cell_end() : path_last_,
-                   static_cast<cl_float>(1 / radius.cell()), grid_ ? grid_->mask() : 0u, spectra_,
-                   film_.pixel_sums(), rejected_, camera_cut_, static_cast<cl_int>(spp_),
-                   seen_pixels_, static_cast<cl_int>(kSeenLightSamples), seed_,
-                   static_cast<cl_uint>(pass));
+      if (grid_)
+        launch_range(camera_kernel_, done, n, it, store_, light_paths_, grid_->placed(),
+                     grid_->cell_count(), grid_->cell_end(), spectra_, film_.pixel_sums(), pixels_);
+      else
+        launch_range(camera_kernel_, done, n, it, store_, light_paths_, spectra_,
+                     film_.pixel_sums(), pixels_);
       camera_pacer_.record(n, seconds_since(t));
       done += n;
       if (last) control_.report(0.5 + 0.5 * static_cast<double>(done) / pixels);
@@ -422,9 +491,11 @@ class VcmIntegrator : public KernelIntegrator {
     return done;
   }
 
-  size_t no_light_paths() {
-    cl_.queue().enqueueFillBuffer(path_last_, cl_int(-1), 0, paths_ * sizeof(cl_int));
-    return 0;
+  // Path tracing alone (a test hook): the chunk's subpaths store nothing.
+  Chunk no_light_paths(size_t count) {
+    cl_.queue().enqueueFillBuffer(light_paths_, KVcmLightPath{-1, 0.0f}, 0,
+                                  count * sizeof(KVcmLightPath));
+    return Chunk{Chunk::stored_whole, 0};
   }
 
   double alpha_;
@@ -435,17 +506,19 @@ class VcmIntegrator : public KernelIntegrator {
   size_t paths_;   // light subpaths per iteration: pixel p's camera path connects to the p-th
   size_t record_floats_;
   size_t bins_;
-  size_t spectra_floats_ = 0;  // a camera path's spectra (kernels/vcm.cl, VCM_SPECTRA)
+  size_t spectra_floats_ = 0;  // a camera path's spectra (kernels/vcm/vcm_modes.h, VCM_SPECTRA)
   size_t budget_ = 0, capacity_ = 0;
+  size_t chunk_paths_ = 0;   // the most light subpaths a chunk holds (its KVcmLightPath table)
   double first_radius_ = 0;  // the global radius, or (per_path_) the per-path radii's cap
   double footprint_ = 0;     // a pixel's footprint per unit of distance
   bool per_path_ = false;    // each camera path's radius from its distance (Radius::per_unit)
   int film_shift_ = 0;
+  double overflow_ = 0;                  // the pass's splats the light paths' film rejected
+  std::vector<KVcmPixel> pixel_start_;  // each pixel's record at a pass's start
   // Camera launches of 0.05 s: a deadline cuts an iteration at a finer grain of pixels.
   LaunchPacer light_pacer_{0.2, 256}, camera_pacer_{0.05, 256};
   cl::Kernel light_kernel_, camera_kernel_;
-  cl::Buffer store_, fixed_, fixed_before_, stored_, overflow_, path_last_, light_cut_, camera_cut_,
-      rejected_, spectra_, cell_, seen_pixels_;
+  cl::Buffer store_, fixed_, fixed_before_, counters_, light_paths_, pixels_, spectra_, cell_;
   std::optional<HashGrid> grid_;
 };
 

@@ -1,0 +1,178 @@
+/* A camera path of the camera pass (SmallVCM's camera subpath loop in RunIteration): from the
+ * camera, at each vertex the emission it hits, then at a vertex with a non-delta part its
+ * techniques — next-event estimation, connections to its light subpath and merges with the stored
+ * light vertices — each MIS-weighted, then the bounce, its partial weights kept as SmallVCM keeps
+ * them. */
+
+/* The camera's density of the direction `dir` per solid angle, for one of the pixel's spp samples:
+ * a camera path's dVCM at its start (light subpaths over camera paths, as SmallVCM's with one
+ * camera path a pixel). */
+inline void vcm_camera_start(const SceneView* s, float3 dir, float paths, int spp, VcmCamera* c) {
+  const KCamera* k = &s->camera;
+  float3 forward = normalize((float3)(k->forward[0], k->forward[1], k->forward[2]));
+  float pixel_area = 4.0f * length((float3)(k->right[0], k->right[1], k->right[2])) *
+                     length((float3)(k->up[0], k->up[1], k->up[2])) / (float)(k->width * k->height);
+  float cos_c = dot(dir, forward);
+  c->dvcm = KASHA_VCM_TRACING_SHARE * paths / spp * pixel_area * cos_c * cos_c * cos_c;
+  c->dvc = c->dvm = c->dvc_merge = 0.0f;
+}
+
+/* What the camera vertex's techniques share (VcmVertex). Merging here: a vertex whose material
+ * merges and (--merges first) no vertex before it that is not delta, *met (ppm merges once, at
+ * the first that merges). */
+inline VcmVertex vcm_camera_vertex(const CameraVertex* v, bool* met) {
+  VcmVertex cv;
+  cv.ns = v->h.ns;
+  cv.nf = hit_front(&v->h);
+  cv.ng = hit_ng(&v->h);
+  cv.lambert = vcm_lambert_mean(&v->surf);
+  if (KASHA_VCM_MERGE_EVERY || !KASHA_VCM_CONNECT)
+    cv.merges = vcm_mergeable(&v->surf);
+  else
+    cv.merges = vcm_mergeable(&v->surf) && !*met;
+  *met = *met || vcm_connectible(&v->surf);
+  cv.eta = 1.0f;
+  return cv;
+}
+
+/* The techniques at a camera vertex with a non-delta part, its merging radius r_merge and
+ * factors vm, vc. In vcm and bpt: next-event estimation and connections where the light
+ * subpath is the chunk's, merges (vcm) with every chunk. In ppm the first vertex that merges
+ * merges all of it, unless a mirror lobe chosen by its probability carries the path on: false
+ * then, the path ends. */
+inline bool vcm_camera_techniques(const VcmCamera* c, const SceneView* s, const FilmView* f, const CameraVertex* v,
+                                  const VcmVertex* cv, const VcmCameraInputs* in, float r_merge, float vm, float vc,
+                                  float* rows) {
+  const KVcmIteration* it = in->it;
+  float scale = KASHA_INV_PI / (r_merge * r_merge * s->bin_nm);
+  if (KASHA_VCM_CONNECT) {
+    if (in->own) {
+      if (VCM_LENGTH_COUNTS(c->w.depth + 2)) vcm_next_event(c, s, f, v, cv, vm, rows);
+      uint seed = hash_combine(it->seed ^ 0x2545f491u, it->pass);
+      vcm_connect(c, s, f, v, cv, vm, (float)it->paths, in->store, in->light_paths[in->partner - it->chunk_first].last,
+                  hash_combine(hash_combine(seed, (uint)in->partner), (uint)c->w.depth), in->out, rows);
+    }
+#if KASHA_VCM_MERGE
+    if (cv->merges) vcm_merge(c, s, f, v, cv, vc, r_merge, scale, in->store, in->grid, it->inv_cell, it->mask, rows);
+#endif
+    return true;
+  }
+  float p_mirror = v->surf.mirror && !surface_specular(&v->surf) ? v->probs.x : 0.0f;
+  if (cv->merges && !(v->u_choice.x < p_mirror)) {
+    vcm_merge(c, s, f, v, cv, vc, r_merge, scale / (1.0f - p_mirror), in->store, in->grid, it->inv_cell, it->mask,
+              rows);
+    return false;
+  }
+  return true;
+}
+
+/* The bounce at a vertex with a non-delta part, by the branch its probabilities choose (a rough
+ * interface: its direction from the visible normals, walk_rough_scatter). False: the path ends. */
+inline bool vcm_camera_bounce(VcmCamera* c, const SceneView* s, const FilmView* f, CameraVertex* v, float eta,
+                              Sampler* sampler) {
+#if KASHA_ROUGH
+  if (surface_rough(&v->surf)) return walk_rough_scatter(&c->w, v, eta);
+#endif
+  float3 probs = v->probs;
+  float choice = v->u_choice.x;
+  if (choice < probs.x) return walk_gloss(&c->w, s, v, sampler);
+  if (choice < probs.x + probs.y || probs.z <= 0.0f) {
+    lambert_bounce(&c->w, v, probs.y);
+    pw_scatter_diagonal(&c->w.p, v->surf.rho, lambert_weight(&c->w, v) / probs.y);
+    return true;
+  }
+#if KASHA_FLUORESCENCE
+  lambert_bounce(&c->w, v, probs.z);
+  pw_scatter_fluorescent(&c->w.p, f, v->surf.ehat, v->surf.a, lambert_weight(&c->w, v) / probs.z);
+#if KASHA_DISPERSION
+  c->w.bin = -1; /* re-emission spreads the path over the excitation spectrum again */
+#endif
+#endif
+  return true;
+}
+
+/* One camera path of the iteration, one of the `spp` the pixel has, with its light subpath
+ * in->partner (VcmCameraInputs). Returns what it still carried (relative to its start) if the
+ * depth guard cut it. */
+inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, Sampler* sampler,
+                             const VcmCameraInputs* in, float* rows) {
+  const KVcmRadius* radius = &in->it->radius;
+  const bool own = in->own, seen_apart = in->seen_apart;
+  /* The factors of the global radius; where the radius is the path's, of its merging vertex's. */
+  float r_merge = radius->radius;
+  float vm = vcm_merge_factor(vcm_eta_at(radius, r_merge)), vc = vcm_connect_factor(vcm_eta_at(radius, r_merge));
+  float travelled = 0.0f;
+  VcmCamera c;
+  float3 dir = camera_sample(&s->camera, pixel, sample_2d(sampler));
+  walk_start(&c.w, f, camera_position(&s->camera), dir);
+  vcm_camera_start(s, dir, (float)in->it->paths, in->it->spp, &c);
+  CameraVertex v;
+  bool met = false;       /* a vertex that is not delta is behind */
+  bool delta_only = true; /* every bounce so far was delta (vcm_seen_light's paths) */
+  while (c.w.depth < KASHA_MAX_PATH_DEPTH) {
+    HitPoint* h = &v.h;
+    if (!intersect_scene(s, c.w.org, c.w.dir, h)) {
+#if KASHA_INFINITE_LIGHTS
+      if (own && !(seen_apart && delta_only)) vcm_escaped(&c, s, f, rows);
+#endif
+      return 0.0f;
+    }
+    vcm_arrived(h->t, fabs(dot(h->n, c.w.dir)), &c.dvcm, &c.dvc, &c.dvm, &c.dvc_merge);
+    travelled += h->t;
+    if (own && h->emitter >= 0 && h->front && !(seen_apart && delta_only)) {
+      float weight = vcm_emission_weight(&c, s, h);
+#if KASHA_EMISSION_TEXTURES
+      weight *= emission_factor(s, h->tri, h->b.x, h->b.y);
+#endif
+      pw_add(&c.w.p, f, emitter_spectrum(s, h->emitter), 0, weight, rows);
+    }
+#if KASHA_SHADING_NORMALS
+    /* Seen from below the shading normal's hemisphere, the surface scatters nothing (hit_seen). */
+    if (!hit_seen(h, c.w.dir)) return 0.0f;
+#endif
+    load_surface_at(s, h, &v.surf);
+    v.probs = surface_specular(&v.surf) ? (float3)(1.0f, 0.0f, 0.0f) : branch_probabilities(&c.w.p, f, &v.surf);
+    if (v.probs.x + v.probs.y + v.probs.z <= 0.0f) return 0.0f;
+    sampler_at(sampler, 1 + c.w.depth * KASHA_CAMERA_PAIRS_PER_VERTEX);
+    v.u_choice = sample_2d(sampler);
+    v.u_light = sample_2d(sampler);
+    v.u_dir = sample_2d(sampler);
+    float3 eye = -c.w.dir;
+    VcmVertex cv = vcm_camera_vertex(&v, &met);
+    if (cv.merges && radius->per_unit > 0.0f) {
+      r_merge = vcm_radius_at(radius, travelled);
+      vm = vcm_merge_factor(vcm_eta_at(radius, r_merge));
+      vc = vcm_connect_factor(vcm_eta_at(radius, r_merge));
+    }
+    bool rough = surface_rough(&v.surf);
+#if KASHA_ROUGH && KASHA_DIELECTRIC
+    /* A rough dielectric's index, a dispersive one's at the path's bin (chosen here on the
+     * vertex's fourth sample pair if the path has none, as walk_rough does). */
+    if (rough && v.surf.kind == KASHA_KIND_DIELECTRIC) {
+      cv.eta = walk_eta(&c.w, f, &v.surf, sample_2d(sampler).x);
+      if (cv.eta < 0.0f) return 0.0f;
+    }
+#endif
+#if KASHA_DIELECTRIC || KASHA_CONDUCTOR
+    if (surface_specular(&v.surf) && !rough) {
+      if (!walk_specular(&c.w, f, &v)) return 0.0f;
+      vcm_camera_decide(&c, true);
+      vcm_scattered(s, &v.surf, 0.0f, h->ns, cv.nf, cv.ng, eye, c.w.dir, true, false, vm, vc, &c.dvcm, &c.dvc,
+                    &c.dvm, &c.dvc_merge);
+      if (!walk_on(&c.w, f, &v)) return 0.0f;
+      continue;
+    }
+#endif
+    if (vcm_connectible(&v.surf) && !KASHA_VCM_EMISSION_ONLY &&
+        !vcm_camera_techniques(&c, s, f, &v, &cv, in, r_merge, vm, vc, rows))
+      return 0.0f;
+    if (!vcm_camera_bounce(&c, s, f, &v, cv.eta, sampler)) return 0.0f;
+    vcm_camera_decide(&c, c.w.specular);
+    if (!vcm_scattered(s, &v.surf, cv.lambert, h->ns, cv.nf, cv.ng, eye, c.w.dir, c.w.specular, cv.merges, vm, vc,
+                       &c.dvcm, &c.dvc, &c.dvm, &c.dvc_merge))
+      return 0.0f;
+    delta_only = delta_only && c.w.specular;
+    if (!walk_on(&c.w, f, &v)) return 0.0f;
+  }
+  return walk_cut(&c.w, f);
+}

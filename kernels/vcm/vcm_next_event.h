@@ -1,0 +1,48 @@
+/* Next-event estimation at a camera vertex (SmallVCM's DirectIllumination): one light point as
+ * next_event.h samples it, weighed against the camera path hitting it and against every
+ * technique that reaches it from the light's side. A rough dielectric takes light from either
+ * side. */
+inline void vcm_next_event(const VcmCamera* c, const SceneView* s, const FilmView* f, const CameraVertex* v,
+                           const VcmVertex* cv, float vm, float* rows) {
+  if (s->light_count == 0) return;
+  const Surface* surf = &v->surf;
+  float3 x = v->h.x, ns = cv->ns, eye = -c->w.dir;
+  float pdf_light;
+  LightPoint lp = sample_light_from(s, x, v->u_light, &pdf_light);
+  if (!(pdf_light > 0.0f)) return;
+  float3 to = lp.position - x;
+  float dist = length(to);
+  if (!(dist > v->h.eps + lp.eps)) return;
+  float3 wi = to / dist;
+  float cos_x = fabs(dot(ns, wi)), cos_g = fabs(dot(cv->ng, wi)), cos_l = -dot(lp.normal, wi);
+  if (cos_x <= 0.0f || cos_l <= 0.0f || !hit_no_leak(&v->h, wi)) return;
+  VcmF fv = vcm_eval(s, surf, ns, cv->nf, eye, wi, wi, cv->eta);
+  if (!vcm_f_nonzero(&fv)) return;
+  float w_light, direct, emission;
+#if KASHA_LIGHT_SOURCES
+  if (lp.source) {
+    /* cos_l is 1; a point or spot's direct density per solid angle is d² (its 1/d² in the
+     * contribution); a delta light is found by nothing else. */
+    const __global KLight* l = lp.source;
+    emission = vcm_source_emission(s, l, -wi, &direct);
+    if (vcm_source_finite(l)) direct *= dist * dist;
+    w_light = lp.delta ? 0.0f : vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, wi) / (l->pick * direct);
+  } else
+#endif
+  {
+    /* The density it was sampled with (per solid angle), as the weights at the lamp's hits. */
+    direct = pdf_light, emission = s->emitter_area_pdf[lp.emitter] * cos_l * KASHA_INV_PI;
+    w_light = vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, wi) / direct;
+  }
+  /* The light part is the light point: with caustic merges no merge here or behind makes it. */
+  float w_camera = emission * cos_g / (direct * cos_l) *
+                   ((cv->merges && !KASHA_VCM_MERGE_CAUSTIC ? vm : 0.0f) + c->dvcm +
+                    vcm_camera_dvc(c) * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, wi, eye));
+  float weight = 1.0f / (w_light + 1.0f + w_camera);
+  if (segment_occluded(s, x, vcm_toward(cv->ng, wi), v->h.eps, wi, dist, lp.eps / cos_l)) return;
+  float scale = cos_x / pdf_light * weight;
+#if KASHA_LIGHT_SOURCES || KASHA_EMISSION_TEXTURES
+  scale *= lp.scale;
+#endif
+  vcm_camera_apply(&c->w.p, f, surf, fv, light_point_spectrum(s, &lp), scale, rows);
+}
