@@ -211,11 +211,7 @@ inline float walk_eta(CameraWalk* w, const FilmView* f, const Surface* surf, flo
     return w->bin < 0 ? -1.0f : surf->eta_bins[w->bin];
   }
 #endif
-#if KASHA_DIELECTRIC
-  return surf->eta;
-#else
-  return 1.0f;
-#endif
+  return surface_eta(surf);
 }
 
 /* Next-event estimation at a rough interface (rough_interface.h): one light point, on either side

@@ -231,6 +231,47 @@ inline int scatter_specular(Photon* p, const Surface* s, float3 x, float3 ns, bo
 }
 #endif
 
+/* The gloss branch's direction is chosen before the tabulated lobe: a mirror's, or a rough coat's
+ * lobe's (sampled in scatter_gloss). */
+inline bool gloss_direction_chosen(const Surface* s) {
+#if KASHA_COATED
+  return s->mirror || surface_coat_lobe(s);
+#else
+  return s->mirror;
+#endif
+}
+
+/* The gloss branch of scatter_photon_about at normal ns: a mirror, a rough coat's GGX lobe (coat.h:
+ * F G / G1 over the branch's probability, `per_pg` = sum / pg) or a tabulated lobe, the power
+ * scaled by `k` = sum / total and the lobe's weight. False: the photon is absorbed. */
+inline bool scatter_gloss(Photon* p, const Surface* s, const SceneView* scene, float3 ns, float k, float per_pg,
+                          float2 u_dir, Sampler* sampler) {
+  float3 d_in = p->direction;
+  float3 mirror = reflect_dir(d_in, ns);
+#if KASHA_COATED
+  if (surface_coat_lobe(s)) {
+    Frame fr = frame_of(ns);
+    float3 wi;
+    float weight, pdf;
+    if (!coat_lobe_sample(s, to_local(&fr, -d_in), u_dir, &wi, &weight, &pdf)) return false;
+    k = per_pg * weight;
+    mirror = to_world(&fr, wi);
+  }
+#endif
+  if (gloss_direction_chosen(s)) {
+    p->direction = mirror;
+  } else {
+    float pdf;
+    float3 wo = sample_lobe(s->m, scene->lobes, mirror, u_dir.x, u_dir.y, sample_2d(sampler).x, &pdf);
+    float co = dot(wo, ns), ci = -dot(d_in, ns);
+    if (co <= 0.0f) return false;
+    k *= 2.0f * co / (ci + co);
+    p->direction = wo;
+  }
+  for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= k;
+  return true;
+}
+
 /* Scatters the photon at its depth-th hit x (ns: the normal on the side it arrived from, front:
  * that side is the front, eps: the hit's offset, HitPoint::eps).
  * Chooses gloss, passive or fluorescent re-emission with probability P_k / ΣP, P_g = g ΣΦ,
@@ -264,32 +305,7 @@ inline int scatter_photon_about(Photon* p, const Surface* s, const SceneView* sc
   float3 d_in = p->direction;
   int branch;
   if (xi < pg) {
-    float3 mirror = reflect_dir(d_in, ns);
-    float k = sum / total;
-#if KASHA_COATED
-    if (surface_coat_lobe(s)) {
-      /* A rough coat's GGX lobe (coat.h): F G / G1 over the branch's probability pg / sum. */
-      Frame fr = frame_of(ns);
-      float3 wi;
-      float weight, pdf;
-      if (!coat_lobe_sample(s, to_local(&fr, -d_in), u_dir, &wi, &weight, &pdf)) return BRANCH_ABSORBED;
-      k = sum / pg * weight;
-      mirror = to_world(&fr, wi);
-    }
-    if (s->mirror || surface_coat_lobe(s)) {
-#else
-    if (s->mirror) {
-#endif
-      p->direction = mirror;
-    } else {
-      float pdf;
-      float3 wo = sample_lobe(s->m, scene->lobes, mirror, u_dir.x, u_dir.y, sample_2d(sampler).x, &pdf);
-      float co = dot(wo, ns), ci = -dot(d_in, ns);
-      if (co <= 0.0f) return BRANCH_ABSORBED;
-      k *= 2.0f * co / (ci + co);
-      p->direction = wo;
-    }
-    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= k;
+    if (!scatter_gloss(p, s, scene, ns, sum / total, sum / pg, u_dir, sampler)) return BRANCH_ABSORBED;
     branch = BRANCH_GLOSS;
   } else if (xi < pg + pp || pf <= 0.0f) {
     float k = sum / pp;

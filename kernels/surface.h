@@ -116,4 +116,13 @@ inline bool surface_has_lambert(const Surface* s) {
 #endif
 }
 
+/* A dielectric's index where the scene has dielectrics, else 1. */
+inline float surface_eta(const Surface* s) {
+#if KASHA_DIELECTRIC
+  return s->eta;
+#else
+  return 1.0f;
+#endif
+}
+
 #endif

@@ -14,7 +14,8 @@ case "${1:-}" in
 render)
   kasha=$(realpath "$2"); out=$3; mkdir -p "$out"
   export POCL_CACHE_DIR=${POCL_CACHE_DIR:-$PWD/build/kernel-cache}
-  r() { local name=$1; shift; echo "== $name: kasha render $*" >&2
+  # An image already in OUT_DIR is kept: a set cut short resumes where it stopped.
+  r() { local name=$1; shift; [ -f "$out/$name.exr" ] && return 0; echo "== $name: kasha render $*" >&2
         "$kasha" render "$@" -o "$out/$name.exr" 2>>"$out/log.txt"; }
   r demo $scenes/cornell_box.json --passes 40
   for i in backward forward photon debug; do
@@ -25,7 +26,7 @@ render)
   r mirror_backward $scenes/mirror_caustic.json --integrator backward --passes 2
   r glossy_photon $scenes/glossy_cornell_box.json --integrator photon --passes 2
   r glossy_backward $scenes/glossy_cornell_box.json --integrator backward --passes 2 --spectral
-  r cornell_host_gather $scenes/cornell_box.json --gather host --passes 2
+  r cornell_host_gather $scenes/cornell_box.json --integrator photon --gather host --passes 2
   r cornell_independent $scenes/cornell_box.json --integrator backward --sampler independent --passes 2
   r cornell_two_queues $scenes/cornell_box.json --device 0,0 --passes 3
   r cornell_forward_two_queues $scenes/cornell_box.json --integrator forward --device 0,0 --passes 3

@@ -1,3 +1,6 @@
+/* f at a vertex (SmallVCM's BSDF Evaluate), split by how each part colours, and its product with
+ * a light subpath's spectrum or a camera path's colour. */
+
 /* f(wo, wi) of a vertex's non-delta parts for radiance going from wi to wo (both away from the
  * surface; ns on the side it was met from, nf the front), split by how each part colours: the
  * Lambert parts' factor (1/π, times a coat's t t / η² with `other` the direction it was not met
@@ -74,11 +77,7 @@ inline float vcm_light_eta(const Surface* surf) {
 #if KASHA_DISPERSION
   if (surf->dispersive) return -1.0f;
 #endif
-#if KASHA_DIELECTRIC
-  return surf->eta;
-#else
-  return 1.0f;
-#endif
+  return surface_eta(surf);
 }
 
 /* out = f·phi at a light vertex (vcm_eval's parts applied to the light's spectrum: ρ∘Φ, the

@@ -64,11 +64,7 @@ inline float vcm_connect_factor(float eta) { return KASHA_VCM_CONNECT ? 1.0f / e
  * --sampler independent, where the heuristic's assumption holds (docs/integrators.md). Light
  * tracing keeps the whole weight where no camera technique reaches a path; both subpaths use the
  * same ν, so every path's weights still sum to one. */
-#if KASHA_SOBOL
-#define KASHA_VCM_TRACING_SHARE 0.1f
-#else
-#define KASHA_VCM_TRACING_SHARE 1.0f
-#endif
+#define KASHA_VCM_TRACING_SHARE (KASHA_SOBOL ? 0.1f : 1.0f)
 
 /* The merging radius where a camera path that travelled `travelled` merges (KVcmRadius,
  * vcm_records.h). Either subpath finds the radius of a vertex where the camera path would merge

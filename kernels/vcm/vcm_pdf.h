@@ -1,3 +1,6 @@
+/* The pseudo-densities the MIS weights use (SmallVCM's BSDF Pdf): functions of the material and
+ * the two directions alone, so both subpaths evaluate them alike. */
+
 /* A vertex connects where its surface has a non-delta part: a Lambert part (bare or under a
  * coat), a tabulated gloss lobe, a rough coat's lobe, or a rough dielectric or conductor. It
  * merges where it has a Lambert part or a tabulated lobe: a rough interface only connects, a

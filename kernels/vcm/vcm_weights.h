@@ -1,3 +1,6 @@
+/* Georgiev's recursive partial weights dVCM, dVC, dVM (SmallVCM's names): their update at a
+ * bounce and at a hit, and the densities of emission and next-event estimation they start from. */
+
 /* A subpath's partial MIS weights after its vertex scattered it from `from` to `to` (SmallVCM's
  * SampleScattering): a delta bounce keeps them but for the cosine; any other divides by the
  * pseudo-density of the direction and carries the reverse one, with the vertex's own connection

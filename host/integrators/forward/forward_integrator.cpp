@@ -1,13 +1,13 @@
 // `--integrator forward`: light tracing of kernels/forward.cl (docs/design.md#forward-transport). A
 // pass traces `photons` photons carrying the lights' total power; their splats, added in 128-bit
-// fixed point (integrators/forward/fixed_point_film.h: exact, so independent of the order work
+// fixed point (render/fixed_point_film.h: exact, so independent of the order work
 // items run in), are one estimate of the image.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "core/error.h"
-#include "integrators/forward/fixed_point_film.h"
+#include "render/fixed_point_film.h"
 #include "opencl/device_buffer.h"
 #include "render/kernel_integrator.h"
 #include "render/launch_pacer.h"

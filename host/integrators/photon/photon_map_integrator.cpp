@@ -7,7 +7,6 @@
 // store is full and at the end, through the hashed grid (photon_grid.h) or, with `--gather host`,
 // a k-d tree on the host (photon_host_gather.h); then the per-pixel SPPM statistics are updated
 // on the device. Only the image crosses to the host, when it is wanted.
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -25,6 +24,7 @@
 #include "opencl/device_buffer.h"
 #include "render/kernel_integrator.h"
 #include "render/launch_pacer.h"
+#include "render/merge_radius.h"
 #include "render/pass_chunks.h"
 
 namespace kasha {
@@ -162,20 +162,12 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
     image_ = device_buffer(cl_, pixels * rows * sizeof(cl_float), "photon: the image");
   }
 
-  // The pixel footprint that sets the first radii, and the largest radius: within a fiftieth of
-  // the scene's diagonal, as one pixel of a tiny image would otherwise gather over whole walls,
-  // biasing SPPM far beyond its first passes.
+  // The pixel footprint that sets the first radii, and the largest radius (render/merge_radius.h).
   void set_radius_bounds(const Scene& scene) {
-    const KCamera& c = scene_.data().camera;
-    footprint_ =
-        2.0 * std::sqrt(c.up[0] * c.up[0] + c.up[1] * c.up[1] + c.up[2] * c.up[2]) / c.height;
-    Eigen::AlignedBox3d box;
-    for (const KTriangle& t : scene.triangles)
-      for (const float* v : {t.v0, t.v1, t.v2}) box.extend(Eigen::Vector3d(v[0], v[1], v[2]));
-    max_radius_ = box.diagonal().norm() / 50;
-    if (radius_ > max_radius_)
-      warn("--radius " + std::to_string(radius_) +
-           " is beyond 1/50 of the scene's diagonal; using " + std::to_string(max_radius_));
+    const MergeRadiusBounds bounds = merge_radius_bounds(scene, scene_.data().camera);
+    footprint_ = bounds.footprint;
+    max_radius_ = bounds.largest;
+    if (radius_ > max_radius_) warn_radius_beyond(radius_, bounds);
   }
 
   // The SPPM statistics after the pass's gathers, with the edge probes first.

@@ -7,7 +7,6 @@
 // follows a global schedule r_i = r_1 · i^((α−1)/2), so an iteration depends on nothing but its
 // index and the seed: iterations are passes the ordered scheduler hands to any device or MPI rank,
 // and the image is the same bit for bit however they are shared (docs/integrators.md).
-#include <Eigen/Geometry>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,13 +16,14 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/warning.h"
-#include "integrators/forward/fixed_point_film.h"
+#include "render/fixed_point_film.h"
 #include "integrators/vcm/merging_distance.h"
 #include "integrators/vcm/seen_light.h"
 #include "opencl/device_buffer.h"
 #include "render/hash_grid.h"
 #include "render/kernel_integrator.h"
 #include "render/launch_pacer.h"
+#include "render/merge_radius.h"
 #include "vcm/vcm_records.h"
 
 namespace kasha {
@@ -385,26 +385,18 @@ class VcmIntegrator : public KernelIntegrator {
   // The first radius: one pixel's footprint at the distance a camera path typically travels to
   // its merging vertex (merging_distance.h), else at the centre of the scene's bounds; --radius
   // sets it. `per_path` (without --radius): each camera path's radius is the footprint at its own
-  // distance, capped at twice the typical one (first_radius_ is the cap then). Within a fiftieth
-  // of the scene's diagonal as photon mapping's.
+  // distance, capped at twice the typical one (first_radius_ is the cap then). Within the bounds
+  // photon mapping keeps (render/merge_radius.h).
   void set_first_radius(const Scene& scene, double distance, double radius, bool per_path) {
-    const KCamera& c = scene_.data().camera;
-    const double footprint =
-        2.0 * std::sqrt(c.up[0] * c.up[0] + c.up[1] * c.up[1] + c.up[2] * c.up[2]) / c.height;
-    Eigen::AlignedBox3d box;
-    for (const KTriangle& t : scene.triangles)
-      for (const float* v : {t.v0, t.v1, t.v2}) box.extend(Eigen::Vector3d(v[0], v[1], v[2]));
-    const Eigen::Vector3d eye(c.position[0], c.position[1], c.position[2]);
-    const double largest = box.diagonal().norm() / 50;
+    const MergeRadiusBounds bounds = merge_radius_bounds(scene, scene_.data().camera);
+    const double largest = bounds.largest;
     if (radius > 0) distance = 0;
-    if (!(distance > 0)) distance = (box.center() - eye).norm();
+    if (!(distance > 0)) distance = bounds.centre_distance;
     per_path_ = per_path && radius <= 0;
-    footprint_ = footprint;
-    first_radius_ = radius > 0 ? radius : footprint * distance * (per_path_ ? 2 : 1);
+    footprint_ = bounds.footprint;
+    first_radius_ = radius > 0 ? radius : footprint_ * distance * (per_path_ ? 2 : 1);
     if (first_radius_ > largest) {
-      if (radius > 0)
-        warn("--radius " + std::to_string(radius) +
-             " is beyond 1/50 of the scene's diagonal; using " + std::to_string(largest));
+      if (radius > 0) warn_radius_beyond(radius, bounds);
       first_radius_ = largest;
     }
     if (!(first_radius_ > 0)) first_radius_ = largest > 0 ? largest : 1;

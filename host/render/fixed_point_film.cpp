@@ -1,4 +1,4 @@
-#include "integrators/forward/fixed_point_film.h"
+#include "render/fixed_point_film.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
