@@ -25,7 +25,7 @@ TEST(Backward, RankOneAlgebraMatchesTheFullMatrixReference) {
     s.passes = 32;
     s.integrator_settings.spp = 64;
     RenderResult rank1 = render_scene(path, s);
-    s.integrator_settings.full_matrix = true;
+    s.hooks.full_matrix = true;
     s.integrator_settings.seed = 2;
     RenderResult full = render_scene(path, s);
     // Whole image and its four quadrants, X, Y and Z.
@@ -75,7 +75,8 @@ TEST(Backward, ErrorFallsAsTheInverseSquareRootOfSamples) {
   RenderSettings s;
   s.spectral = false;
   s.integrator_settings.spp = 2;
-  s.integrator_settings.sampler = "independent";  // Monte Carlo's rate; Sobol points may do better
+  s.integrator_settings.sampler =
+      Sampler::independent;  // Monte Carlo's rate; Sobol points may do better
   std::vector<double> x, y;
   for (int passes : {1, 2, 4, 8, 16, 32, 64}) {
     s.passes = passes;

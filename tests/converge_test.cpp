@@ -35,7 +35,8 @@ TEST(Converge, FurnaceSlopesMatchTheory) {
   StudyOptions o;
   o.passes = 64;
   o.reference = "furnace";
-  o.settings.sampler = "independent";  // the theory is Monte Carlo's; Sobol points may do better
+  o.settings.sampler =
+      Sampler::independent;  // the theory is Monte Carlo's; Sobol points may do better
   o.settings.spp = 4;
   o.settings.photons = 1 << 14;
   o.out_dir = (scratch_dir() / "study").string();

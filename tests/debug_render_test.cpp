@@ -39,7 +39,7 @@ Rendered render(bool facing_camera, bool spectral, int passes) {
   ClContext cl(0);
   DeviceScene ds(cl, r.scene);
   IntegratorSettings settings;
-  settings.view = "emission";
+  settings.view = DebugView::emission;
   settings.spp = 16;
   settings.seed = 7;
   RenderJob job(cl, r.scene, ds, "debug", settings, spectral);

@@ -51,7 +51,7 @@ TEST(Forward, ImageDoesNotDependOnHowWorkIsSplit) {
   a.integrator_settings.photons = 40000;
   std::vector<float> reference;
   for (int per_item : {64, 7, 1}) {
-    a.integrator_settings.photons_per_item = per_item;
+    a.hooks.photons_per_item = per_item;
     RenderResult r = render_scene(source_path("scenes/furnace_fluorescent.json"), a);
     if (reference.empty()) reference = r.image.xyz;
     EXPECT_EQ(r.image.xyz, reference) << per_item << " photons per work item";
@@ -305,7 +305,7 @@ TEST(ForwardFilm, SpectralImageDoesNotDependOnHowWorkIsSplit) {
     a.integrator_settings.photons = 20000;
     std::vector<float> reference;
     for (int per_item : {64, 7, 1}) {
-      a.integrator_settings.photons_per_item = per_item;
+      a.hooks.photons_per_item = per_item;
       RenderResult r = render_scene(scene, a);
       EXPECT_EQ(r.rejected, 0);
       if (reference.empty()) reference = r.image.spectral;

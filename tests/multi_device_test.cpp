@@ -77,16 +77,15 @@ INSTANTIATE_TEST_SUITE_P(EveryIntegrator, TwoQueues,
 // furnace of albedo 0.95 stores ~20 records a photon), that chunks overflow and are traced again
 // in halves; and the host's gather — each the same twice on one queue and on three.
 TEST(TwoQueues, PhotonMappingChunksSplitsAndHostGatherAreDeterministic) {
-  const std::string path = test::write_file(
-      "furnace_095.json",
-      R"({"kasha_scene": 1,
+  const std::string path = test::write_file("furnace_095.json",
+                                            R"({"kasha_scene": 1,
   "camera": {"position": [0.2, -0.1, 0.3], "look_at": [1, 0.3, -0.5], "fov_deg": 60, "width": 24, "height": 24},
   "materials": {"white": {"passive": {"reflectance": 0.95}}},
   "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 2, "material": "white", "inward": true,
               "emission": {"blackbody_K": 5000, "scale": 1}}]})");
   Scene scene = load_scene(path);
-  for (std::string gather : {"device", "host"}) {
-    SCOPED_TRACE("--gather " + gather);
+  for (Gather gather : {Gather::device, Gather::host}) {
+    SCOPED_TRACE("--gather " + choice_name(gather));
     IntegratorSettings s;
     s.photons = 8000;
     s.spp = 2;

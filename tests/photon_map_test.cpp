@@ -80,9 +80,9 @@ TEST(Photon, DeviceGatherEqualsNanoflannGather) {
     s.passes = 3;
     s.integrator_settings.photons = 1 << 14;
     s.integrator_settings.memory = 40000 * photon_record_bytes(scene);  // several batches a pass
-    s.integrator_settings.gather = "device";
+    s.integrator_settings.gather = Gather::device;
     Image device = render_scene(source_path(c.scene), s).image;
-    s.integrator_settings.gather = "host";
+    s.integrator_settings.gather = Gather::host;
     Image host = render_scene(source_path(c.scene), s).image;
     ASSERT_EQ(device.xyz.size(), host.xyz.size());
     double peak = 0, worst = 0, total = 0;

@@ -21,7 +21,7 @@ RenderResult render_scene(const std::string& path, const RenderSettings& s) {
   r.scene = load_scene(path, s.grid);
   if (s.camera) r.scene.camera = *s.camera;
   DeviceScene ds(cl, r.scene);
-  RenderJob job(cl, r.scene, ds, s.integrator, s.integrator_settings, s.spectral);
+  RenderJob job(cl, r.scene, ds, s.integrator, s.integrator_settings, s.spectral, s.hooks);
   job.integrator().set_control(s.control);
   for (int p = 0; p < s.passes; ++p) {
     job.pass(p);

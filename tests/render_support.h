@@ -31,6 +31,7 @@ struct RenderSettings {
   int passes = 4;
   bool spectral = true;
   IntegratorSettings integrator_settings;  // spp, photons, seed and the rest, by name
+  IntegratorTestHooks hooks;
   // Called after every pass with the pass count and the film's image (photon: error over passes).
   std::function<void(int, const Image&)> after_pass;
   // Called after every pass too: rendering stops early once it returns true.

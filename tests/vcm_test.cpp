@@ -45,12 +45,12 @@ std::string lamp_box(bool mirror = false) {
 
 RenderResult render_length(const std::string& integrator, int length, int passes,
                            bool emission_only, bool drop_density = false, int spp = 0,
-                           const std::string& merges = "first", bool mirror = false,
-                           const std::string& sampler = "sobol") {
+                           Merges merges = Merges::first, bool mirror = false,
+                           Sampler sampler = Sampler::sobol) {
   RenderSettings s;
   // The plain estimate takes the light seen through delta bounces from its camera paths alone,
   // so the weighted ones' extra samples of it (kernels/vcm/vcm_seen_light.h) are checked too.
-  s.integrator_settings.vcm_no_seen_light = emission_only;
+  s.hooks.vcm_no_seen_light = emission_only;
   s.integrator_settings.sampler = sampler;
   // The mirror box's tests take one radius for all, large enough that merges weigh much.
   if (mirror) s.integrator_settings.radius = 0.06;
@@ -59,9 +59,9 @@ RenderResult render_length(const std::string& integrator, int length, int passes
   s.integrator_settings.spp = spp;
   s.integrator_settings.merges = merges;
   s.spectral = false;
-  s.integrator_settings.vcm_length = length;
-  s.integrator_settings.vcm_emission_only = emission_only;
-  s.integrator_settings.vcm_drop_density = drop_density;
+  s.hooks.vcm_length = length;
+  s.hooks.vcm_emission_only = emission_only;
+  s.hooks.vcm_drop_density = drop_density;
   return render_scene(lamp_box(mirror), s);
 }
 
@@ -83,10 +83,11 @@ const Image& plain(int length, bool mirror = false) {
   static std::map<std::pair<int, bool>, Image> images;
   auto it = images.find({length, mirror});
   if (it == images.end())
-    it = images
-             .emplace(std::make_pair(length, mirror),
-                      render_length("bpt", length, 128, true, false, 0, "first", mirror).image)
-             .first;
+    it =
+        images
+            .emplace(std::make_pair(length, mirror),
+                     render_length("bpt", length, 128, true, false, 0, Merges::first, mirror).image)
+            .first;
   return it->second;
 }
 
@@ -96,16 +97,16 @@ const Image& plain(int length, bool mirror = false) {
 // XYZ row, and the relative differences in *relative.
 std::array<double, 3> against_plain(const std::string& integrator, int length,
                                     std::array<double, 3>* relative, int spp = 0,
-                                    const std::string& merges = "first", bool mirror = false,
-                                    const std::string& sampler = "sobol") {
+                                    Merges merges = Merges::first, bool mirror = false,
+                                    Sampler sampler = Sampler::sobol) {
   RenderResult weighted =
       render_length(integrator, length, 16, false, false, spp, merges, mirror, sampler);
   std::array<double, 3> z = z_scores(weighted.image, plain(length, mirror), relative);
   std::printf(
       "  length %d, %d camera paths a pixel, merges %s%s, %s: %s / plain - 1 = %+.2f %% (Y, "
       "%+.1f standard errors)\n",
-      length, spp, merges.c_str(), mirror ? ", mirror" : "", sampler.c_str(), integrator.c_str(),
-      100 * (*relative)[1], z[1]);
+      length, spp, choice_name(merges).c_str(), mirror ? ", mirror" : "",
+      choice_name(sampler).c_str(), integrator.c_str(), 100 * (*relative)[1], z[1]);
   return z;
 }
 
@@ -131,7 +132,7 @@ TEST(Vcm, BptWeightsSumToOnePerPathLength) {
   for (int length : {2, 3}) {
     std::array<double, 3> relative;
     std::array<double, 3> z =
-        against_plain("bpt", length, &relative, 3, "first", false, "independent");
+        against_plain("bpt", length, &relative, 3, Merges::first, false, Sampler::independent);
     for (int k = 0; k < 3; ++k)
       EXPECT_LT(std::abs(z[k]), 4.0) << "length " << length << " row " << k;
   }
@@ -141,14 +142,15 @@ TEST(Vcm, BptWeightsSumToOnePerPathLength) {
 // same path, so the sum holds within merging's bias at this radius (1 % here) — merging all light
 // at the camera path's first vertex, at every vertex, and with three camera paths a pixel.
 TEST(Vcm, VcmWeightsSumToOnePerPathLength) {
-  for (const auto& [merges, spp] :
-       std::vector<std::pair<std::string, int>>{{"first", 0}, {"every", 0}, {"first", 3}})
+  for (const auto& [merges, spp] : std::vector<std::pair<Merges, int>>{
+           {Merges::first, 0}, {Merges::every, 0}, {Merges::first, 3}})
     for (int length : {2, 3}) {
       std::array<double, 3> relative;
       std::array<double, 3> z = against_plain("vcm", length, &relative, spp, merges);
       for (int k = 0; k < 3; ++k)
         EXPECT_TRUE(std::abs(z[k]) < 4.0 || std::abs(relative[k]) < 0.01)
-            << "length " << length << " merges " << merges << " spp " << spp << " row " << k;
+            << "length " << length << " merges " << choice_name(merges) << " spp " << spp << " row "
+            << k;
     }
 }
 
@@ -164,7 +166,7 @@ TEST(Vcm, VcmWeightsSumToOnePerPathLength) {
 TEST(Vcm, CausticMergesWeightsSumToOnePerPathLength) {
   for (int length : {2, 3, 4}) {
     std::array<double, 3> relative;
-    std::array<double, 3> z = against_plain("vcm", length, &relative, 0, "caustic", true);
+    std::array<double, 3> z = against_plain("vcm", length, &relative, 0, Merges::caustic, true);
     for (int k = 0; k < 3; ++k)
       EXPECT_TRUE(std::abs(z[k]) < 4.0 || std::abs(relative[k]) < 0.01)
           << "length " << length << " row " << k;
@@ -176,7 +178,8 @@ TEST(Vcm, CausticMergesWeightsSumToOnePerPathLength) {
 // samples, where light tracing counts fully (with Sobol points and its share of 1/10 the same
 // error is +6 %, 3 standard errors).
 TEST(Vcm, AWeightWithADensityDroppedFails) {
-  RenderResult wrong = render_length("bpt", 2, 16, false, true, 0, "first", false, "independent");
+  RenderResult wrong =
+      render_length("bpt", 2, 16, false, true, 0, Merges::first, false, Sampler::independent);
   std::array<double, 3> relative;
   std::array<double, 3> z = z_scores(wrong.image, plain(2), &relative);
   std::printf(

@@ -7,8 +7,8 @@ namespace kasha::cli {
 
 namespace {
 
-CLI::Validator check_for(const RenderSetting& s) {
-  using V = RenderSetting::Value;
+CLI::Validator check_for(const IntegratorOption& s) {
+  using V = IntegratorOption::Value;
   switch (s.value) {
     case V::integer:
     case V::bytes:
@@ -18,27 +18,43 @@ CLI::Validator check_for(const RenderSetting& s) {
     case V::positive:
       return positive_number(s.hi);
     case V::choice:
-      return one_of(s.choices);
     case V::flag:
       break;
   }
   return CLI::Validator();
 }
 
+// An enumerated setting: its name checked, then stored once as the enum's value.
+CLI::Option* add_choice(CLI::App& app, const IntegratorOption& s, const ChoiceField& field) {
+  const std::vector<std::string>& names = *field.names;
+  return app
+      .add_option_function<std::string>(
+          s.name,
+          [field, names](const std::string& v) {
+            field.set(
+                static_cast<size_t>(std::find(names.begin(), names.end(), v) - names.begin()));
+          },
+          s.help)
+      ->check(one_of(names));
+}
+
 }  // namespace
 
 void add_setting_options(CLI::App& app, IntegratorSettings& settings,
                          const std::vector<std::string>& names) {
-  for (const RenderSetting& s : render_settings()) {
+  for (const RenderOption& o : render_options()) {
+    const IntegratorOption& s = o.option;
     if (!names.empty() && std::find(names.begin(), names.end(), s.name) == names.end()) continue;
     std::visit(
-        [&](auto* field) {
-          using T = std::remove_pointer_t<decltype(field)>;
-          if constexpr (std::is_same_v<T, bool>) {
+        [&](const auto& field) {
+          using T = std::decay_t<decltype(field)>;
+          if constexpr (std::is_same_v<T, ChoiceField>) {
+            add_choice(app, s, field);
+          } else if constexpr (std::is_same_v<T, bool*>) {
             app.add_flag(s.name, *field, s.help);
           } else {
             CLI::Option* option = app.add_option(s.name, *field, s.help);
-            if (s.value == RenderSetting::Value::bytes) option->transform(byte_size());
+            if (s.value == IntegratorOption::Value::bytes) option->transform(byte_size());
             option->check(check_for(s));
           }
         },
@@ -48,8 +64,8 @@ void add_setting_options(CLI::App& app, IntegratorSettings& settings,
 
 std::vector<std::string> integrator_options_given(const CLI::App& app) {
   std::vector<std::string> given;
-  for (const RenderSetting& s : render_settings())
-    if (!s.common && app.count(s.name) > 0) given.push_back(s.name);
+  for (const RenderOption& o : render_options())
+    if (!o.common() && app.count(o.option.name) > 0) given.push_back(o.option.name);
   return given;
 }
 

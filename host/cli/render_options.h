@@ -1,11 +1,12 @@
 #pragma once
 // The command-line options several commands share, declared in one place: the render settings
-// from their one description (render/render_settings.h), --device, and the bound on seconds.
+// gathered from the integrators' declarations (render/option_table.h), --device, and the bound on
+// seconds.
 #include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
-#include "render/render_settings.h"
+#include "render/option_table.h"
 #include "scene/pbrt/pbrt_import.h"
 
 namespace kasha::cli {

@@ -13,11 +13,16 @@ std::vector<IntegratorInfo>& IntegratorRegistry::entries() {
 }
 
 IntegratorRegistry::Registrar::Registrar(IntegratorInfo info) {
-  // The options it takes are render settings of its own (render/render_settings.h), or the
-  // command line would not declare them.
-  for (const std::string& option : info.options)
-    if (render_setting(option).common)
-      throw std::logic_error(info.name + ": " + option + " is every integrator's");
+  // Its own options, each once: a common one is declared once for all (render/render_settings.h).
+  for (size_t i = 0; i < info.options.size(); ++i) {
+    const std::string& option = info.options[i].name;
+    for (const IntegratorOption& common : common_options())
+      if (common.name == option)
+        throw std::logic_error(info.name + ": " + option + " is every integrator's");
+    for (size_t j = 0; j < i; ++j)
+      if (info.options[j].name == option)
+        throw std::logic_error(info.name + ": " + option + " is declared twice");
+  }
   auto& e = entries();
   e.insert(std::upper_bound(
                e.begin(), e.end(), info,
@@ -64,11 +69,13 @@ std::unique_ptr<Integrator> IntegratorRegistry::make(const std::string& name,
 void IntegratorRegistry::check_options(const std::string& name,
                                        const std::vector<std::string>& given) {
   const IntegratorInfo& info = find(name);
+  std::vector<std::string> takes;
+  for (const IntegratorOption& option : info.options) takes.push_back(option.name);
   for (const std::string& option : given)
-    if (std::find(info.options.begin(), info.options.end(), option) == info.options.end())
+    if (std::find(takes.begin(), takes.end(), option) == takes.end())
       throw Error(option + ": the " + name + " integrator does not take this option" +
-                  (info.options.empty() ? std::string(" (it takes none of its own)")
-                                        : " (it takes " + join(info.options) + ")"));
+                  (takes.empty() ? std::string(" (it takes none of its own)")
+                                 : " (it takes " + join(takes) + ")"));
 }
 
 }  // namespace kasha

@@ -1,7 +1,8 @@
 #pragma once
 // Integrators by name (pbrt-v4's creation by name, Mitsuba's one-line registration): each
 // integrator's host file registers itself with one KASHA_REGISTER_INTEGRATOR line giving its name,
-// what it is, the command-line options it takes, its traits and its factory. The command line,
+// what it is, the declarations of the command-line options it takes (render/integrator_option.h),
+// its traits and its factory. The command line,
 // `converge`, `reference` and the tests all read this registry, so a new integrator is its kernel,
 // its host file and that line.
 #include <functional>
@@ -14,13 +15,16 @@
 #include "render/device_film.h"
 #include "render/device_scene.h"
 #include "render/integrator.h"
+#include "render/integrator_option.h"
+#include "render/integrator_test_hooks.h"
 #include "render/render_settings.h"
 #include "shared_types.h"
 
 namespace kasha {
 
 // What an integrator is given: the device, the scene on it, the film's tables on it, the film it
-// will be accumulated into (photon mapping reads its radii there), and its settings.
+// will be accumulated into (photon mapping reads its radii there), its settings and the tests'
+// hooks.
 struct IntegratorSetup {
   ClContext& cl;
   const Scene& scene;
@@ -28,6 +32,7 @@ struct IntegratorSetup {
   DeviceFilm& device_film;
   const Film& film;
   const IntegratorSettings& settings;
+  const IntegratorTestHooks& hooks;
 };
 
 struct IntegratorTraits {
@@ -47,7 +52,7 @@ struct IntegratorTraits {
 
 struct IntegratorInfo {
   std::string name, description;
-  std::vector<std::string> options;  // command-line options it takes besides the common ones
+  std::vector<IntegratorOption> options;  // the options it takes besides the common ones
   IntegratorTraits traits;
   std::function<std::unique_ptr<Integrator>(const IntegratorSetup&)> make;
 };

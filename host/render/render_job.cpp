@@ -16,7 +16,8 @@ static const std::string& lit(const Scene& scene, const DeviceScene& device_scen
 
 RenderJob::RenderJob(const std::vector<RenderLane>& lanes, const Scene& scene,
                      const std::string& integrator, const IntegratorSettings& settings,
-                     bool spectral_film, const std::vector<Integrator*>& remote)
+                     bool spectral_film, const std::vector<Integrator*>& remote,
+                     const IntegratorTestHooks& hooks)
     : film_(scene.camera.width, scene.camera.height, scene.grid, spectral_film),
       remote_(remote.size()) {
   if (lanes.empty()) throw Error("render: no device to render on");
@@ -24,8 +25,8 @@ RenderJob::RenderJob(const std::vector<RenderLane>& lanes, const Scene& scene,
   for (const RenderLane& lane : lanes) {
     device_films_.push_back(std::make_unique<DeviceFilm>(lane.cl, film_));
     integrators_.push_back(IntegratorRegistry::make(
-        integrator,
-        IntegratorSetup{lane.cl, scene, lane.scene, *device_films_.back(), film_, settings}));
+        integrator, IntegratorSetup{lane.cl, scene, lane.scene, *device_films_.back(), film_,
+                                    settings, hooks}));
   }
   if (devices() == 1) return;
   std::vector<Integrator*> others;

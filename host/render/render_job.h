@@ -24,10 +24,12 @@ class RenderJob {
   // `remote`: lanes whose instances live elsewhere (other MPI ranks); they outlive the job.
   RenderJob(const std::vector<RenderLane>& lanes, const Scene& scene, const std::string& integrator,
             const IntegratorSettings& settings, bool spectral_film,
-            const std::vector<Integrator*>& remote = {});
+            const std::vector<Integrator*>& remote = {}, const IntegratorTestHooks& hooks = {});
   RenderJob(ClContext& cl, const Scene& scene, DeviceScene& device_scene,
-            const std::string& integrator, const IntegratorSettings& settings, bool spectral_film)
-      : RenderJob({RenderLane{cl, device_scene}}, scene, integrator, settings, spectral_film) {}
+            const std::string& integrator, const IntegratorSettings& settings, bool spectral_film,
+            const IntegratorTestHooks& hooks = {})
+      : RenderJob({RenderLane{cl, device_scene}}, scene, integrator, settings, spectral_film, {},
+                  hooks) {}
   RenderJob(const RenderJob&) = delete;
   RenderJob& operator=(const RenderJob&) = delete;
 

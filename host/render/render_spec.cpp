@@ -1,5 +1,7 @@
 #include "render/render_spec.h"
 
+#include "render/option_table.h"
+
 namespace kasha {
 
 std::string render_fingerprint(const RenderSpec& spec) {

@@ -10,13 +10,15 @@
 
 namespace kasha {
 
+constexpr int kBackwardSpp = 16;  // camera paths a pixel per pass unless --spp says
+
 class BackwardIntegrator : public KernelIntegrator {
  public:
   explicit BackwardIntegrator(const IntegratorSetup& s)
       : KernelIntegrator(
             s, "backward.cl",
-            s.settings.full_matrix ? KernelDefines{{"KASHA_FULL_MATRIX", "1"}} : KernelDefines{}),
-        spp_(s.settings.spp > 0 ? s.settings.spp : IntegratorSettings::kDefaultSpp),
+            s.hooks.full_matrix ? KernelDefines{{"KASHA_FULL_MATRIX", "1"}} : KernelDefines{}),
+        spp_(s.settings.spp > 0 ? s.settings.spp : kBackwardSpp),
         seed_(s.settings.seed),
         kernel_(program_, "render_backward"),
         rejected_(device_buffer(cl_, film_.pixels() * sizeof(cl_int), "backward: rejected counts")),
@@ -82,7 +84,9 @@ class BackwardIntegrator : public KernelIntegrator {
 
 KASHA_REGISTER_INTEGRATOR(
     BackwardIntegrator, "backward",
-    "camera paths with next-event estimation and MIS, diagonal/rank-1 path colour", {"--spp"},
+    "camera paths with next-event estimation and MIS, diagonal/rank-1 path colour",
+    {{"--spp", IntegratorOption::Value::integer, 1, 1 << 20, "camera samples per pixel per pass",
+      std::to_string(kBackwardSpp), KASHA_SETTING(spp)}},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ true,
                      /*sees camera mirrors*/ true, /*reference*/ true});
 

@@ -7,23 +7,18 @@
 
 namespace kasha {
 
-static int debug_view(const std::string& v) {
-  if (v == "emission") return 0;
-  if (v == "normals") return 1;
-  if (v == "albedo") return 2;
-  throw Error("--view " + v + ": unknown debug view (emission, normals, albedo)");
-}
+constexpr int kDebugSpp = 16;  // samples a pixel per pass unless --spp says
 
 class DebugIntegrator : public KernelIntegrator {
  public:
   explicit DebugIntegrator(const IntegratorSetup& s)
       : KernelIntegrator(s, "debug_render.cl"),
-        view_(debug_view(s.settings.view)),
-        spp_(s.settings.spp > 0 ? s.settings.spp : IntegratorSettings::kDefaultSpp),
+        view_(static_cast<int>(s.settings.view)),  // the kernel's view index: the enum's order
+        spp_(s.settings.spp > 0 ? s.settings.spp : kDebugSpp),
         seed_(s.settings.seed),
         kernel_(program_, "render_debug") {
-    if (film_.spectral() && view_ != 0)
-      throw Error("--spectral: the " + s.settings.view +
+    if (film_.spectral() && s.settings.view != DebugView::emission)
+      throw Error("--spectral: the " + choice_name(s.settings.view) +
                   " view has no spectrum; use --view emission");
   }
 
@@ -49,7 +44,11 @@ class DebugIntegrator : public KernelIntegrator {
 
 KASHA_REGISTER_INTEGRATOR(DebugIntegrator, "debug",
                           "first-hit views of the scene: emission, normals or albedo (--view)",
-                          {"--spp", "--view"},
+                          {{"--spp", IntegratorOption::Value::integer, 1, 1 << 20,
+                            "camera samples per pixel per pass", std::to_string(kDebugSpp),
+                            KASHA_SETTING(spp)},
+                           {"--view", IntegratorOption::Value::choice, 0, 0, "which first-hit view",
+                            choice_name(IntegratorSettings().view), KASHA_SETTING(view)}},
                           IntegratorTraits{/*physical*/ false, /*unbiased*/ false,
                                            /*sees camera mirrors*/ false, /*reference*/ false});
 

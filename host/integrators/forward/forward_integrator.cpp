@@ -14,14 +14,16 @@
 
 namespace kasha {
 
+constexpr long long kForwardPhotons = 1 << 18;  // photons per pass unless --photons says
+
 class ForwardIntegrator : public KernelIntegrator {
  public:
   explicit ForwardIntegrator(const IntegratorSetup& s)
       : KernelIntegrator(s, "forward.cl"),
-        photons_(s.settings.photons > 0 ? s.settings.photons : IntegratorSettings::kDefaultPhotons),
+        photons_(s.settings.photons > 0 ? s.settings.photons : kForwardPhotons),
         seed_(s.settings.seed),
         max_depth_(s.settings.max_depth),
-        photons_per_item_(s.settings.photons_per_item),
+        photons_per_item_(s.hooks.photons_per_item),
         items_((photons_ + photons_per_item_ - 1) / photons_per_item_) {
     if (photons_ > (1LL << 31) - 1) throw Error("--photons: at most 2^31 - 1 photons per pass");
     kernel_ = cl::Kernel(program_, "trace_forward");
@@ -105,7 +107,8 @@ class ForwardIntegrator : public KernelIntegrator {
 KASHA_REGISTER_INTEGRATOR(
     ForwardIntegrator, "forward",
     "light tracing: photons from the lights splatted to the camera, constant-energy branching",
-    {"--photons"},
+    {{"--photons", IntegratorOption::Value::integer, 1, 2147483647, "photons per pass",
+      number_text(kForwardPhotons), KASHA_SETTING(photons)}},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ true,
                      /*sees camera mirrors*/ false, /*reference*/ false});
 

@@ -33,13 +33,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 }  // namespace
 
-// Where a pass's stores are gathered: `--gather device|host`; `auto` is the device on every
-// device type (measured on PoCL's CPU device too: docs/integrators.md).
-bool gather_on_host(const std::string& gather) {
-  if (gather == "host") return true;
-  if (gather == "device" || gather == "auto") return false;
-  throw Error("--gather " + gather + ": unknown (device, host or auto)");
-}
+// Photons per pass unless --photons says.
+constexpr long long kPhotonMapPhotons = 1 << 18;
 
 // Probes per visible point and pass of the edge correction (disc_coverage in photon_gather.cl):
 // few, as their ratio of sums averages over passes.
@@ -53,7 +48,7 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
  public:
   explicit PhotonMapIntegrator(const IntegratorSetup& s)
       : KernelIntegrator(s, "photon_map.cl"),
-        photons_(s.settings.photons > 0 ? s.settings.photons : IntegratorSettings::kDefaultPhotons),
+        photons_(s.settings.photons > 0 ? s.settings.photons : kPhotonMapPhotons),
         spp_(s.settings.spp > 0 ? s.settings.spp : kDefaultCameraSamples),
         alpha_(s.settings.alpha),
         radius_(s.settings.radius),
@@ -68,7 +63,9 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
     update_kernel_ = cl::Kernel(program_, "sppm_update");
     image_kernel_ = cl::Kernel(program_, "sppm_image");
     allocate_pixel_state();
-    const bool host_gather = gather_on_host(s.settings.gather);
+    // `--gather auto` is the device on every device type (measured on PoCL's CPU device too:
+    // docs/integrators.md).
+    const bool host_gather = s.settings.gather == Gather::host;
     KernelLauncher& device = *this;  // the store and the grid launch their kernels through it
     const size_t record = photon_floats_ * sizeof(float) + (host_gather ? 0 : kGridBytesPerRecord);
     store_ = std::make_unique<PhotonStore>(device, program_, photons_, seed_, photon_floats_,
@@ -339,7 +336,25 @@ KASHA_REGISTER_INTEGRATOR(
     "bidirectional photon mapping (SPPM): next-event estimation for direct light, photons for "
     "the rest, gathered at visible points with compact rank-1 factors through a hashed grid on "
     "the device",
-    {"--photons", "--alpha", "--radius", "--memory", "--spp", "--gather", "--edge-correction"},
+    {{"--photons", IntegratorOption::Value::integer, 1, 2147483647, "photons per pass",
+      number_text(kPhotonMapPhotons), KASHA_SETTING(photons)},
+     {"--alpha", IntegratorOption::Value::number, 0.01, 0.99, "SPPM's radius reduction α",
+      number_text(IntegratorSettings::kDefaultAlpha), KASHA_SETTING(alpha)},
+     {"--radius", IntegratorOption::Value::positive, 0, 1e300, "initial gather radius",
+      "from the pixel footprint", KASHA_SETTING(radius)},
+     {"--memory", IntegratorOption::Value::bytes, 1, 1125899906842624.0 /* 2^50 */,
+      "memory for the photon store, bytes with an optional unit (512MiB, 2GB)",
+      "a quarter of the device's memory, an eighth on a CPU", KASHA_SETTING(memory),
+      /*device's own*/ true},
+     {"--spp", IntegratorOption::Value::integer, 1, 1 << 20, "camera samples per pixel per pass",
+      std::to_string(kDefaultCameraSamples), KASHA_SETTING(spp)},
+     {"--gather", IntegratorOption::Value::choice, 0, 0,
+      "gather on the device (a hashed grid) or on the host (nanoflann)", "auto: the device",
+      KASHA_SETTING(gather)},
+     {"--edge-correction", IntegratorOption::Value::flag, 0, 0,
+      "divide the density by the measured fraction of the gather discs on accepted surface "
+      "(--edge-correction=false leaves it out)",
+      "on", KASHA_SETTING(edge_correction)}},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
                      /*reference*/ false});
 

@@ -108,7 +108,7 @@ int default_camera_paths(VcmMode m, const Scene& scene, bool caustic_lit) {
 struct VcmPlan {
   MergingVertices merging;
   bool caustic_lit = false;  // a caustic-lit view merging all light at the first vertex
-  std::string merges;        // --merges, `auto` resolved: caustic, first or every
+  Merges merges;             // --merges, `auto` resolved: caustic, first or every
   std::vector<int> seen;     // per pixel: 1 where that light has an edge
 };
 
@@ -119,26 +119,30 @@ VcmPlan plan_for(VcmMode m, const IntegratorSetup& s) {
   p.merging = probe_merging_vertices(s.scene, embree, camera);
   const bool caustic_lit =
       m == VcmMode::vcm && s.scene.has_delta_surfaces() && p.merging.unlit > kMostlyUnlit;
-  p.merges = s.settings.merges != "auto" ? s.settings.merges : caustic_lit ? "first" : "caustic";
-  p.caustic_lit = caustic_lit && p.merges == "first";  // the counts go with all light merged
-  p.seen = s.settings.vcm_no_seen_light ? std::vector<int>(s.film.pixels(), 0)
-                                        : seen_light_pixels(s.scene, embree, camera);
+  p.merges = s.settings.merges != Merges::automatic ? s.settings.merges
+             : caustic_lit                          ? Merges::first
+                                                    : Merges::caustic;
+  p.caustic_lit = caustic_lit && p.merges == Merges::first;  // the counts go with all light merged
+  p.seen = s.hooks.vcm_no_seen_light ? std::vector<int>(s.film.pixels(), 0)
+                                     : seen_light_pixels(s.scene, embree, camera);
   return p;
 }
 
-KernelDefines mode_defines(VcmMode m, const IntegratorSettings& s, const std::string& merges) {
+KernelDefines mode_defines(VcmMode m, const IntegratorSetup& setup, Merges merges) {
+  const IntegratorSettings& s = setup.settings;
+  const IntegratorTestHooks& h = setup.hooks;
   KernelDefines d{{"KASHA_VCM_CONNECT", m == VcmMode::ppm ? "0" : "1"},
                   {"KASHA_VCM_MERGE", m == VcmMode::bpt ? "0" : "1"}};
-  if (m == VcmMode::vcm && merges == "every") d["KASHA_VCM_MERGE_EVERY"] = "1";
-  if (m == VcmMode::vcm && merges == "caustic") d["KASHA_VCM_MERGE_CAUSTIC"] = "1";
+  if (m == VcmMode::vcm && merges == Merges::every) d["KASHA_VCM_MERGE_EVERY"] = "1";
+  if (m == VcmMode::vcm && merges == Merges::caustic) d["KASHA_VCM_MERGE_CAUSTIC"] = "1";
   if (m != VcmMode::bpt && s.edge_correction) {
     d["KASHA_VCM_EDGE_CORRECTION"] = "1";
     d["KASHA_VCM_COVERAGE_PROBES"] = std::to_string(kCoverageProbes);
   }
   // The test hooks (kernels/vcm/vcm_modes.h), only when set.
-  if (s.vcm_length > 0) d["KASHA_VCM_LENGTH"] = std::to_string(s.vcm_length);
-  if (s.vcm_emission_only) d["KASHA_VCM_EMISSION_ONLY"] = "1";
-  if (s.vcm_drop_density) d["KASHA_VCM_DROP_DENSITY"] = "1";
+  if (h.vcm_length > 0) d["KASHA_VCM_LENGTH"] = std::to_string(h.vcm_length);
+  if (h.vcm_emission_only) d["KASHA_VCM_EMISSION_ONLY"] = "1";
+  if (h.vcm_drop_density) d["KASHA_VCM_DROP_DENSITY"] = "1";
   return d;
 }
 
@@ -151,12 +155,12 @@ class VcmIntegrator : public KernelIntegrator {
 
  private:
   VcmIntegrator(const IntegratorSetup& s, const VcmPlan& plan)
-      : KernelIntegrator(s, "vcm/vcm.cl", mode_defines(Mode, s.settings, plan.merges)),
+      : KernelIntegrator(s, "vcm/vcm.cl", mode_defines(Mode, s, plan.merges)),
         alpha_(s.settings.alpha),
         seed_(s.settings.seed),
         spp_(s.settings.spp > 0 ? s.settings.spp
                                 : default_camera_paths(Mode, s.scene, plan.caustic_lit)),
-        emission_only_(s.settings.vcm_emission_only),
+        emission_only_(s.hooks.vcm_emission_only),
         record_floats_(KASHA_VCM_VERTEX_FLOATS(s.scene.grid.bins)),
         bins_(s.scene.grid.bins),
         light_kernel_(program_, "vcm_light_pass"),
@@ -166,8 +170,9 @@ class VcmIntegrator : public KernelIntegrator {
                                     : default_memory_budget(cl_.info());
     paths_ = s.settings.photons > 0 ? static_cast<size_t>(s.settings.photons)
                                     : default_light_paths(Mode, film_.pixels(), plan.caustic_lit);
-    set_first_radius(s.scene, Mode != VcmMode::bpt ? plan.merging.distance : 0, s.settings.radius,
-                     Mode != VcmMode::bpt && !(Mode == VcmMode::vcm && plan.merges == "every"));
+    set_first_radius(
+        s.scene, Mode != VcmMode::bpt ? plan.merging.distance : 0, s.settings.radius,
+        Mode != VcmMode::bpt && !(Mode == VcmMode::vcm && plan.merges == Merges::every));
     pixel_start_.resize(plan.seen.size());
     for (size_t p = 0; p < pixel_start_.size(); ++p) pixel_start_[p] = KVcmPixel{plan.seen[p], 0, 0};
     film_shift_ = fixed_point_shift(scene_.data(), film_.cmf(), film_.spectral());
@@ -182,7 +187,7 @@ class VcmIntegrator : public KernelIntegrator {
     light_paths_ = device_buffer(cl_, chunk_paths_ * sizeof(KVcmLightPath),
                                  "vcm: the chunk's light subpaths");
     // Connections compute a light vertex's f·Φ into a spectrum of the camera path's own, and
-    // its surface (textured, coated) into scratch of its own (kernels/vcm.cl, VCM_SPECTRA).
+    // its surface (textured, coated) into scratch of its own (kernels/vcm/vcm_modes.h, VCM_SPECTRA).
     spectra_floats_ =
         Mode == VcmMode::ppm ? 0 : bins + static_cast<size_t>(scratch_floats(s.scene));
     spectra_ = device_buffer(cl_, std::max<size_t>(pixels * spectra_floats_, 1) * sizeof(cl_float),
@@ -518,25 +523,70 @@ using VertexConnectionMerging = VcmIntegrator<VcmMode::vcm>;
 using BidirectionalPathTracing = VcmIntegrator<VcmMode::bpt>;
 using ProgressivePhotonMapping = VcmIntegrator<VcmMode::ppm>;
 
+// The options of each mode, their defaults from the constants above; in this order in the
+// registry's refusal ("it takes …").
+static std::vector<IntegratorOption> vcm_options(VcmMode m) {
+  using V = IntegratorOption::Value;
+  const std::string caustic_lit = " where caustics light most of what the camera sees";
+  std::vector<IntegratorOption> o;
+  o.push_back({"--photons", V::integer, 1, 2147483647, "light subpaths per pass",
+               m == VcmMode::ppm ? "one a pixel, at least " + number_text(kLeastPhotonMappingPaths)
+               : m == VcmMode::vcm
+                   ? "one a pixel, " + number_text(kCausticLitLightPaths) + " a pixel" + caustic_lit
+                   : "one a pixel",
+               KASHA_SETTING(photons)});
+  if (m != VcmMode::bpt) {
+    o.push_back({"--alpha", V::number, 0.01, 0.99, "SPPM's radius reduction α",
+                 number_text(IntegratorSettings::kDefaultAlpha), KASHA_SETTING(alpha)});
+    o.push_back({"--radius", V::positive, 0, 1e300, "initial gather radius",
+                 "from the pixel footprint", KASHA_SETTING(radius)});
+  }
+  o.push_back({"--memory", V::bytes, 1, 1125899906842624.0 /* 2^50 */,
+               "memory for the light-vertex store, bytes with an optional unit (512MiB, 2GB)",
+               "a quarter of the device's memory, an eighth on a CPU", KASHA_SETTING(memory),
+               /*device's own*/ true});
+  const std::string spp = std::to_string(kDefaultCameraPaths) + ", " +
+                          std::to_string(kCausticCameraPaths) +
+                          " where mirrors, glass or smooth coats are";
+  o.push_back({"--spp", V::integer, 1, 1 << 20, "camera samples per pixel per pass",
+               m == VcmMode::ppm ? std::to_string(kDefaultPhotonMappingCameraPaths)
+               : m == VcmMode::bpt
+                   ? spp
+                   : spp + ", " + std::to_string(kCausticLitCameraPaths) + caustic_lit,
+               KASHA_SETTING(spp)});
+  if (m == VcmMode::vcm)
+    o.push_back({"--merges", V::choice, 0, 0,
+                 "merge at the first camera vertex that is not delta only the light that came "
+                 "through a mirror or glass (caustic), all light there (first, as SPPM gathers), "
+                 "or all light at every such vertex (every, Georgiev et al.'s VCM)",
+                 "auto: first" + caustic_lit + ", else caustic", KASHA_SETTING(merges)});
+  if (m != VcmMode::bpt)
+    o.push_back({"--edge-correction", V::flag, 0, 0,
+                 "divide the density by the measured fraction of the gather discs on accepted "
+                 "surface (--edge-correction=false leaves it out)",
+                 "on", KASHA_SETTING(edge_correction)});
+  return o;
+}
+
 KASHA_REGISTER_INTEGRATOR(
     VertexConnectionMerging, "vcm",
     "vertex connection and merging: light and camera subpaths joined by connections and merges "
     "under one MIS weight, iterations independent (a global radius schedule)",
-    {"--photons", "--alpha", "--radius", "--memory", "--spp", "--merges", "--edge-correction"},
+    vcm_options(VcmMode::vcm),
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
                      /*reference*/ false, /*direct by merges*/ false, /*samples seen light*/ true});
 KASHA_REGISTER_INTEGRATOR(
     BidirectionalPathTracing, "bpt",
     "bidirectional path tracing: vcm's connections alone (next-event estimation, light "
     "tracing, subpath connections), MIS-weighted",
-    {"--photons", "--memory", "--spp"},
+    vcm_options(VcmMode::bpt),
     IntegratorTraits{/*physical*/ true, /*unbiased*/ true, /*sees camera mirrors*/ true,
                      /*reference*/ false, /*direct by merges*/ false, /*samples seen light*/ true});
 KASHA_REGISTER_INTEGRATOR(
     ProgressivePhotonMapping, "ppm",
     "progressive photon mapping: vcm's merges alone, unweighted, at each camera path's first "
     "non-delta vertex",
-    {"--photons", "--alpha", "--radius", "--memory", "--spp", "--edge-correction"},
+    vcm_options(VcmMode::ppm),
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
                      /*reference*/ false, /*direct by merges*/ true, /*samples seen light*/ true});
 
