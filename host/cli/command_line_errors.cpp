@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -138,102 +139,107 @@ std::string unexpected_argument(const CLI::App& app, const std::string& arg) {
   return printable(arg) + ": unexpected argument to " + where;
 }
 
-// CLI11's messages have a few fixed shapes; each becomes WHERE: what. `at` is the subcommand.
-std::string translate(const CLI::App& root, const CLI::App& at, const CLI::ParseError& e) {
-  const std::string message = e.what();
+// A missing subcommand or required option; nullopt for a message of another shape.
+std::optional<std::string> required_message(const CLI::App& root, const CLI::App& at,
+                                            const std::string& message) {
+  if (&at == &root) {  // no subcommand: none given, or an unknown one
+    const std::vector<std::string> extra = root.remaining();
+    const std::vector<std::string> names = subcommand_names(root);
+    if (extra.empty())
+      return "command line: give a subcommand: " + join(names) + " (see kasha --help)";
+    if (extra[0].size() > 1 && extra[0][0] == '-') return unexpected_argument(root, extra[0]);
+    return printable(extra[0]) + ": unknown subcommand" + suggestion(extra[0], names) +
+           "; the subcommands: " + join(names);
+  }
   std::smatch m;
-  if (dynamic_cast<const CLI::RequiredError*>(&e)) {
-    if (&at == &root) {  // no subcommand: none given, or an unknown one
-      const std::vector<std::string> extra = root.remaining();
-      const std::vector<std::string> names = subcommand_names(root);
-      if (extra.empty())
-        return "command line: give a subcommand: " + join(names) + " (see kasha --help)";
-      if (extra[0].size() > 1 && extra[0][0] == '-') return unexpected_argument(root, extra[0]);
-      return printable(extra[0]) + ": unknown subcommand" + suggestion(extra[0], names) +
-             "; the subcommands: " + join(names);
-    }
-    static const std::regex required(R"(^(\S+) is required$)");
-    if (std::regex_match(message, m, required))
-      return m[1].str() + ": required (see " + command_name(at) + " --help)";
+  static const std::regex required(R"(^(\S+) is required$)");
+  if (std::regex_match(message, m, required))
+    return m[1].str() + ": required (see " + command_name(at) + " --help)";
+  // Subcommand counts and option groups: kasha's commands declare neither, but a CLI11 that
+  // raised them would still be worded as kasha words it.
+  static const std::regex subcommands(
+      R"(^(A subcommand is required|Requires at least \d+ subcommands)$)");
+  static const std::regex exactly(R"(^Exactly 1 option from \[(.*)\].*$)");
+  static const std::regex at_least_one(R"(^At least 1 option from \[(.*)\] is required$)");
+  static const std::regex at_least(R"(^Requires at least (\d+) options .* from \[(.*)\]$)");
+  static const std::regex at_most(R"(^Requires at most (\d+) options .* from \[(.*)\]$)");
+  if (std::regex_match(message, m, subcommands))
+    return command_name(at) + ": give a subcommand (see " + command_name(at) + " --help)";
+  if (std::regex_match(message, m, exactly))
+    return command_name(at) + ": give exactly one of " + m[1].str();
+  if (std::regex_match(message, m, at_least_one))
+    return command_name(at) + ": give at least one of " + m[1].str();
+  if (std::regex_match(message, m, at_least))
+    return command_name(at) + ": give at least " + m[1].str() + " of " + m[2].str();
+  if (std::regex_match(message, m, at_most))
+    return command_name(at) + ": give at most " + m[1].str() + " of " + m[2].str();
+  return std::nullopt;
+}
+
+// Arguments left over: the first one named; nullopt when none can be found.
+std::optional<std::string> extras_message(const CLI::App& root, const CLI::App& at,
+                                          const std::string& message) {
+  if (!at.remaining().empty()) return unexpected_argument(at, at.remaining()[0]);
+  if (!root.remaining(true).empty()) return unexpected_argument(root, root.remaining(true)[0]);
+  std::smatch m;
+  static const std::regex listed(R"(^The following arguments? (was|were) not expected: (\S+).*$)");
+  if (std::regex_match(message, m, listed)) return unexpected_argument(at, m[2].str());
+  return std::nullopt;
+}
+
+// A value that is not of the option's kind, or given to a flag.
+std::optional<std::string> conversion_message(const CLI::App& at, const std::string& message) {
+  std::smatch m;
+  static const std::regex could_not(R"(^Could not convert: (\S+) = (.*)$)");
+  static const std::regex not_allowed(R"(^The value (.*) is not an allowed value for (\S+)$)");
+  static const std::regex flag(R"(^(\S+): (too many inputs for a flag|Should be true/false.*)$)");
+  if (std::regex_match(message, m, could_not)) {
+    const std::string missing = missing_value(m[2], option_names(at));
+    if (!missing.empty()) return m[1].str() + ": " + missing;
+    return m[1].str() + ": " + in_quotes(m[2]) + " is not " + value_kind(find_option(at, m[1]));
   }
-  if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
-    if (!at.remaining().empty()) return unexpected_argument(at, at.remaining()[0]);
-    if (!root.remaining(true).empty()) return unexpected_argument(root, root.remaining(true)[0]);
-  }
-  if (dynamic_cast<const CLI::ConversionError*>(&e)) {
-    static const std::regex could_not(R"(^Could not convert: (\S+) = (.*)$)");
-    static const std::regex not_allowed(R"(^The value (.*) is not an allowed value for (\S+)$)");
-    static const std::regex flag(R"(^(\S+): (too many inputs for a flag|Should be true/false.*)$)");
-    if (std::regex_match(message, m, could_not)) {
-      const std::string missing = missing_value(m[2], option_names(at));
-      if (!missing.empty()) return m[1].str() + ": " + missing;
-      return m[1].str() + ": " + in_quotes(m[2]) + " is not " + value_kind(find_option(at, m[1]));
-    }
-    if (std::regex_match(message, m, not_allowed))
-      return m[2].str() + ": " + in_quotes(m[1]) + " is not " + value_kind(find_option(at, m[2]));
-    if (std::regex_match(message, m, flag)) return m[1].str() + ": a flag takes no value";
-  }
-  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e)) {
-    static const std::regex at_most(R"(^(\S+): At Most (\d+) required but received (\d+)$)");
-    static const std::regex at_least(R"(^(\S+): At least (\d+) required but received (\d+)$)");
-    static const std::regex overridden(R"(^(\S+) was given a disallowed flag override$)");
-    if (std::regex_match(message, m, at_most))
-      return m[1].str() + (m[2] == "1" ? ": given " + m[3].str() + " times; give it once"
-                                       : ": at most " + m[2].str() + " values, got " + m[3].str());
-    if (std::regex_match(message, m, at_least))
-      return m[1].str() + ": at least " + m[2].str() + " values, got " + m[3].str();
-    if (std::regex_match(message, m, overridden)) return m[1].str() + ": a flag takes no value";
-    static const std::regex missing(R"(^(\S+): \d+ required .* missing$)");
-    static const std::regex expected(R"(^Expected .* arguments to (\S+), got \d+$)");
-    static const std::regex named(R"(^(\S+)(: | was given ).*$)");
-    if (std::regex_match(message, m, missing) || std::regex_match(message, m, expected))
-      return m[1].str() + ": a value is required";
-    if (std::regex_match(message, m, named))
-      return m[1].str() + ": " + message.substr(m[1].length() + (m[2] == ": " ? 2 : 1));
-  }
-  if (dynamic_cast<const CLI::ExcludesError*>(&e) || dynamic_cast<const CLI::RequiresError*>(&e)) {
-    static const std::regex relation(R"(^(\S+) (excludes|requires) (\S+)$)");
-    if (std::regex_match(message, m, relation))
-      return m[1].str() + (m[2] == "excludes" ? ": cannot be given with " : ": needs ") +
-             m[3].str();
-  }
-  if (dynamic_cast<const CLI::RequiredError*>(&e)) {
-    // Subcommand counts and option groups: kasha's commands declare neither, but a CLI11 that
-    // raised them would still be worded as kasha words it.
-    static const std::regex subcommands(
-        R"(^(A subcommand is required|Requires at least \d+ subcommands)$)");
-    static const std::regex exactly(R"(^Exactly 1 option from \[(.*)\].*$)");
-    static const std::regex at_least_one(R"(^At least 1 option from \[(.*)\] is required$)");
-    static const std::regex at_least(R"(^Requires at least (\d+) options .* from \[(.*)\]$)");
-    static const std::regex at_most(R"(^Requires at most (\d+) options .* from \[(.*)\]$)");
-    if (std::regex_match(message, m, subcommands))
-      return command_name(at) + ": give a subcommand (see " + command_name(at) + " --help)";
-    if (std::regex_match(message, m, exactly))
-      return command_name(at) + ": give exactly one of " + m[1].str();
-    if (std::regex_match(message, m, at_least_one))
-      return command_name(at) + ": give at least one of " + m[1].str();
-    if (std::regex_match(message, m, at_least))
-      return command_name(at) + ": give at least " + m[1].str() + " of " + m[2].str();
-    if (std::regex_match(message, m, at_most))
-      return command_name(at) + ": give at most " + m[1].str() + " of " + m[2].str();
-  }
-  // Configuration files, runtime and internal errors: kasha reads no CLI11 configuration file and
-  // throws none of these itself, but their words are still not CLI11's.
-  if (dynamic_cast<const CLI::FileError*>(&e) || dynamic_cast<const CLI::ConfigError*>(&e))
-    return command_name(at) +
-           ": a configuration file is not taken (give the options on the "
-           "command line)";
-  if (dynamic_cast<const CLI::InvalidError*>(&e) || dynamic_cast<const CLI::HorribleError*>(&e) ||
-      dynamic_cast<const CLI::RuntimeError*>(&e))
-    return command_name(at) + ": the command line could not be read";
-  if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
-    static const std::regex listed(
-        R"(^The following arguments? (was|were) not expected: (\S+).*$)");
-    if (std::regex_match(message, m, listed)) return unexpected_argument(at, m[2].str());
-  }
-  // Validation errors are already `NAME: what` (our validators word the what). The option's own
-  // checks run before the safety net's, so a missing value is named here rather than as, say,
-  // "" is not a number.
+  if (std::regex_match(message, m, not_allowed))
+    return m[2].str() + ": " + in_quotes(m[1]) + " is not " + value_kind(find_option(at, m[2]));
+  if (std::regex_match(message, m, flag)) return m[1].str() + ": a flag takes no value";
+  return std::nullopt;
+}
+
+// Too many or too few values for an option.
+std::optional<std::string> argument_count_message(const std::string& message) {
+  std::smatch m;
+  static const std::regex at_most(R"(^(\S+): At Most (\d+) required but received (\d+)$)");
+  static const std::regex at_least(R"(^(\S+): At least (\d+) required but received (\d+)$)");
+  static const std::regex overridden(R"(^(\S+) was given a disallowed flag override$)");
+  if (std::regex_match(message, m, at_most))
+    return m[1].str() + (m[2] == "1" ? ": given " + m[3].str() + " times; give it once"
+                                     : ": at most " + m[2].str() + " values, got " + m[3].str());
+  if (std::regex_match(message, m, at_least))
+    return m[1].str() + ": at least " + m[2].str() + " values, got " + m[3].str();
+  if (std::regex_match(message, m, overridden)) return m[1].str() + ": a flag takes no value";
+  static const std::regex missing(R"(^(\S+): \d+ required .* missing$)");
+  static const std::regex expected(R"(^Expected .* arguments to (\S+), got \d+$)");
+  static const std::regex named(R"(^(\S+)(: | was given ).*$)");
+  if (std::regex_match(message, m, missing) || std::regex_match(message, m, expected))
+    return m[1].str() + ": a value is required";
+  if (std::regex_match(message, m, named))
+    return m[1].str() + ": " + message.substr(m[1].length() + (m[2] == ": " ? 2 : 1));
+  return std::nullopt;
+}
+
+// An option given with one it excludes, or without one it needs.
+std::optional<std::string> relation_message(const std::string& message) {
+  std::smatch m;
+  static const std::regex relation(R"(^(\S+) (excludes|requires) (\S+)$)");
+  if (std::regex_match(message, m, relation))
+    return m[1].str() + (m[2] == "excludes" ? ": cannot be given with " : ": needs ") + m[3].str();
+  return std::nullopt;
+}
+
+// Validation errors are already `NAME: what` (our validators word the what). The option's own
+// checks run before the safety net's, so a missing value is named here rather than as, say,
+// "" is not a number. Any other message is the command's, in lower case.
+std::string validation_message(const CLI::App& at, const std::string& message) {
+  std::smatch m;
   static const std::regex named(R"(^(-{0,2}[A-Za-z][\w-]*): (.+)$)");
   if (std::regex_match(message, m, named)) {
     if (const CLI::Option* opt = find_option(at, m[1]))
@@ -246,6 +252,28 @@ std::string translate(const CLI::App& root, const CLI::App& at, const CLI::Parse
   std::string what = message;
   if (!what.empty()) what[0] = static_cast<char>(std::tolower(static_cast<unsigned char>(what[0])));
   return command_name(at) + ": " + what;
+}
+
+// CLI11's messages have a few fixed shapes; each becomes WHERE: what. `at` is the subcommand.
+std::string translate(const CLI::App& root, const CLI::App& at, const CLI::ParseError& e) {
+  const std::string message = e.what();
+  std::optional<std::string> line;
+  if (dynamic_cast<const CLI::RequiredError*>(&e)) line = required_message(root, at, message);
+  if (dynamic_cast<const CLI::ExtrasError*>(&e)) line = extras_message(root, at, message);
+  if (dynamic_cast<const CLI::ConversionError*>(&e)) line = conversion_message(at, message);
+  if (dynamic_cast<const CLI::ArgumentMismatch*>(&e)) line = argument_count_message(message);
+  if (dynamic_cast<const CLI::ExcludesError*>(&e) || dynamic_cast<const CLI::RequiresError*>(&e))
+    line = relation_message(message);
+  // Configuration files, runtime and internal errors: kasha reads no CLI11 configuration file and
+  // throws none of these itself, but their words are still not CLI11's.
+  if (dynamic_cast<const CLI::FileError*>(&e) || dynamic_cast<const CLI::ConfigError*>(&e))
+    line = command_name(at) +
+           ": a configuration file is not taken (give the options on the "
+           "command line)";
+  if (dynamic_cast<const CLI::InvalidError*>(&e) || dynamic_cast<const CLI::HorribleError*>(&e) ||
+      dynamic_cast<const CLI::RuntimeError*>(&e))
+    line = command_name(at) + ": the command line could not be read";
+  return line ? *line : validation_message(at, message);
 }
 
 }  // namespace

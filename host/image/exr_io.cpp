@@ -40,6 +40,10 @@ static Error exr_failure(const std::string& path, const std::exception& e) {
   return Error(printable(path) + ": cannot read EXR: " + printable(cause));
 }
 
+// The channels of the XYZ layer and of linear sRGB, in order.
+static const char* const kXyzNames[3] = {"XYZ.X", "XYZ.Y", "XYZ.Z"};
+static const char* const kRgbNames[3] = {"R", "G", "B"};
+
 std::string spectral_channel_name(double nm) {
   char text[64];
   std::snprintf(text, sizeof text, "%.6f", nm);
@@ -66,10 +70,8 @@ void write_exr(const std::string& path, const Image& image,
       fb.insert(name, Imf::Slice(Imf::FLOAT, (char*)base, sizeof(float) * stride_floats,
                                  sizeof(float) * stride_floats * image.width));
     };
-    const char* rgb_names[3] = {"R", "G", "B"};
-    const char* xyz_names[3] = {"XYZ.X", "XYZ.Y", "XYZ.Z"};
-    for (int k = 0; k < 3; ++k) add(rgb_names[k], rgb.data() + k, 3);
-    for (int k = 0; k < 3; ++k) add(xyz_names[k], image.xyz.data() + k, 3);
+    for (int k = 0; k < 3; ++k) add(kRgbNames[k], rgb.data() + k, 3);
+    for (int k = 0; k < 3; ++k) add(kXyzNames[k], image.xyz.data() + k, 3);
     if (image.has_spectral()) {
       header.insert("spectralLayoutVersion", Imf::StringAttribute("1.0"));
       header.insert("emissiveUnits", Imf::StringAttribute("W.m^-2.sr^-1"));
@@ -143,6 +145,73 @@ void check_finite(const std::string& path, int width, const std::vector<float>& 
 // buffers fit in memory (the file size does not bound them: EXR compresses).
 constexpr double kMaxExrFloats = 1073741824.0;  // 2^30 floats, 4 GiB
 
+// The image's size from its data window, checked before anything is allocated for it.
+void set_size(const std::string& path, const Imath::Box2i& dw, Image& img) {
+  // In 64 bits: a data window from a damaged header can span more than an int.
+  const long long w = 1LL + dw.max.x - dw.min.x, h = 1LL + dw.max.y - dw.min.y;
+  if (w <= 0 || h <= 0 || w > (1 << 20) || h > (1 << 20))
+    throw Error(printable(path) + ": the data window is " + std::to_string(w) + "x" +
+                std::to_string(h) + " pixels");
+  img.width = static_cast<int>(w);
+  img.height = static_cast<int>(h);
+}
+
+// The spectral channels: wavelength -> channel name.
+std::map<double, std::string> spectral_channels(const std::string& path,
+                                                const Imf::ChannelList& channels) {
+  std::map<double, std::string> bins;
+  for (auto it = channels.begin(); it != channels.end(); ++it) {
+    std::string name = it.name();
+    if (name.rfind("S0.", 0) == 0 && name.size() > 5 && name.substr(name.size() - 2) == "nm") {
+      const double nm = channel_wavelength(path, name);
+      if (!bins.emplace(nm, name).second)
+        throw Error(printable(path) + ": channels \"" + printable(bins[nm]) + "\" and \"" +
+                    printable(name) + "\" hold the same wavelength");
+    }
+  }
+  return bins;
+}
+
+// The grid the spectral channels' wavelengths describe: min + bin width, so only evenly spaced
+// channels describe one.
+WavelengthGrid spectral_grid(const std::string& path, const std::map<double, std::string>& bins) {
+  std::vector<double> wl;
+  for (const auto& [nm, name] : bins) wl.push_back(nm);
+  for (size_t k = 2; k < wl.size(); ++k)
+    if (std::abs((wl[k] - wl[k - 1]) - (wl[1] - wl[0])) > 1e-3 * (wl[1] - wl[0]))
+      throw Error(printable(path) + ": spectral channels are not evenly spaced (" +
+                  printable(bins.at(wl[k - 1])) + ", " + printable(bins.at(wl[k])) + ")");
+  WavelengthGrid grid;
+  grid.bins = static_cast<int>(wl.size());
+  grid.bin_nm = wl.size() > 1 ? (wl.back() - wl.front()) / (wl.size() - 1) : 10.0;
+  grid.min_nm = wl.front() - 0.5 * grid.bin_nm;
+  return grid;
+}
+
+// Channel `channel` of `data`, `stride` floats a pixel, as a slice of the file's data window.
+Imf::Slice interleaved_slice(float* data, size_t channel, size_t stride, const Imath::Box2i& dw,
+                             int width) {
+  char* origin = (char*)data - (dw.min.x + dw.min.y * (size_t)width) * stride * sizeof(float);
+  return Imf::Slice(Imf::FLOAT, origin + channel * sizeof(float), stride * sizeof(float),
+                    stride * sizeof(float) * width);
+}
+
+// XYZ from linear sRGB, `width` pixels a row. Checked in double: finite R, G, B near a float's
+// limit can make an XYZ beyond it.
+std::vector<float> xyz_from_rgb(const std::string& path, const std::vector<float>& rgb, int width) {
+  const size_t n = rgb.size() / 3;
+  std::vector<float> xyz(3 * n);
+  for (size_t p = 0; p < n; ++p) {
+    Vec3d c = linear_srgb_to_xyz({rgb[3 * p], rgb[3 * p + 1], rgb[3 * p + 2]});
+    for (int k = 0; k < 3; ++k)
+      if (!(std::abs(c[k]) <= std::numeric_limits<float>::max()))
+        throw Error(printable(path) + ": pixel (" + std::to_string(p % width) + ", " +
+                    std::to_string(p / width) + "): R, G, B give an XYZ beyond a float's range");
+    for (int k = 0; k < 3; ++k) xyz[3 * p + k] = static_cast<float>(c[k]);
+  }
+  return xyz;
+}
+
 }  // namespace
 
 Image read_exr(const std::string& path) {
@@ -152,26 +221,10 @@ Image read_exr(const std::string& path) {
     const Imath::Box2i dw = file.header().dataWindow();
     Image img;
     img.source = path;
-    // In 64 bits: a data window from a damaged header can span more than an int.
-    const long long w = 1LL + dw.max.x - dw.min.x, h = 1LL + dw.max.y - dw.min.y;
-    if (w <= 0 || h <= 0 || w > (1 << 20) || h > (1 << 20))
-      throw Error(printable(path) + ": the data window is " + std::to_string(w) + "x" +
-                  std::to_string(h) + " pixels");
-    img.width = static_cast<int>(w);
-    img.height = static_cast<int>(h);
+    set_size(path, dw, img);
     const size_t n = img.pixels();
     const Imf::ChannelList& channels = file.header().channels();
-
-    std::map<double, std::string> bins;  // wavelength -> channel name
-    for (auto it = channels.begin(); it != channels.end(); ++it) {
-      std::string name = it.name();
-      if (name.rfind("S0.", 0) == 0 && name.size() > 5 && name.substr(name.size() - 2) == "nm") {
-        const double nm = channel_wavelength(path, name);
-        if (!bins.emplace(nm, name).second)
-          throw Error(printable(path) + ": channels \"" + printable(bins[nm]) + "\" and \"" +
-                      printable(name) + "\" hold the same wavelength");
-      }
-    }
+    const std::map<double, std::string> bins = spectral_channels(path, channels);
     if (double(img.width) * img.height * (3 + bins.size()) > kMaxExrFloats)
       throw Error(printable(path) + ": the image is " + std::to_string(img.width) + "x" +
                   std::to_string(img.height) + " with " + std::to_string(3 + bins.size()) +
@@ -182,64 +235,27 @@ Image read_exr(const std::string& path) {
         channels.findChannel("R") && channels.findChannel("G") && channels.findChannel("B");
     if (!has_xyz && !has_rgb)
       throw Error(printable(path) + ": EXR has neither an XYZ layer nor R, G, B channels");
+    const char* const* names = has_xyz ? kXyzNames : kRgbNames;
 
     std::vector<float> three(3 * n, 0.0f);
     Imf::FrameBuffer fb;
-    char* origin =
-        (char*)three.data() - (dw.min.x + dw.min.y * (size_t)img.width) * 3 * sizeof(float);
-    const char* xyz_names[3] = {"XYZ.X", "XYZ.Y", "XYZ.Z"};
-    const char* rgb_names[3] = {"R", "G", "B"};
     for (int k = 0; k < 3; ++k)
-      fb.insert(has_xyz ? xyz_names[k] : rgb_names[k],
-                Imf::Slice(Imf::FLOAT, origin + k * sizeof(float), 3 * sizeof(float),
-                           3 * sizeof(float) * img.width));
+      fb.insert(names[k], interleaved_slice(three.data(), k, 3, dw, img.width));
+    std::vector<std::string> spectral_names;
     if (!bins.empty()) {
-      std::vector<double> wl;
-      for (const auto& [nm, name] : bins) wl.push_back(nm);
-      // The grid is min + bin width: only evenly spaced channels describe one.
-      for (size_t k = 2; k < wl.size(); ++k)
-        if (std::abs((wl[k] - wl[k - 1]) - (wl[1] - wl[0])) > 1e-3 * (wl[1] - wl[0]))
-          throw Error(printable(path) + ": spectral channels are not evenly spaced (" +
-                      printable(bins[wl[k - 1]]) + ", " + printable(bins[wl[k]]) + ")");
-      img.grid.bins = static_cast<int>(wl.size());
-      img.grid.bin_nm = wl.size() > 1 ? (wl.back() - wl.front()) / (wl.size() - 1) : 10.0;
-      img.grid.min_nm = wl.front() - 0.5 * img.grid.bin_nm;
-      img.spectral.assign(n * wl.size(), 0.0f);
-      size_t stride = wl.size();
-      char* sorigin = (char*)img.spectral.data() -
-                      (dw.min.x + dw.min.y * (size_t)img.width) * stride * sizeof(float);
-      int i = 0;
+      img.grid = spectral_grid(path, bins);
+      img.spectral.assign(n * bins.size(), 0.0f);
       for (const auto& [nm, name] : bins) {
-        fb.insert(name, Imf::Slice(Imf::FLOAT, sorigin + i * sizeof(float), stride * sizeof(float),
-                                   stride * sizeof(float) * img.width));
-        ++i;
+        fb.insert(name, interleaved_slice(img.spectral.data(), spectral_names.size(), bins.size(),
+                                          dw, img.width));
+        spectral_names.push_back(name);
       }
     }
     file.setFrameBuffer(fb);
     file.readPixels(dw.min.y, dw.max.y);
-    check_finite(path, img.width, three,
-                 has_xyz ? std::vector<std::string>(xyz_names, xyz_names + 3)
-                         : std::vector<std::string>(rgb_names, rgb_names + 3));
-    if (!bins.empty()) {
-      std::vector<std::string> names;
-      for (const auto& [nm, name] : bins) names.push_back(name);
-      check_finite(path, img.width, img.spectral, names);
-    }
-    if (has_xyz) {
-      img.xyz = std::move(three);
-    } else {
-      img.xyz.resize(3 * n);
-      for (size_t p = 0; p < n; ++p) {
-        Vec3d c = linear_srgb_to_xyz({three[3 * p], three[3 * p + 1], three[3 * p + 2]});
-        // Checked in double: finite R, G, B near a float's limit can make an XYZ beyond it.
-        for (int k = 0; k < 3; ++k)
-          if (!(std::abs(c[k]) <= std::numeric_limits<float>::max()))
-            throw Error(printable(path) + ": pixel (" + std::to_string(p % img.width) + ", " +
-                        std::to_string(p / img.width) +
-                        "): R, G, B give an XYZ beyond a float's range");
-        for (int k = 0; k < 3; ++k) img.xyz[3 * p + k] = static_cast<float>(c[k]);
-      }
-    }
+    check_finite(path, img.width, three, std::vector<std::string>(names, names + 3));
+    if (!bins.empty()) check_finite(path, img.width, img.spectral, spectral_names);
+    img.xyz = has_xyz ? std::move(three) : xyz_from_rgb(path, three, img.width);
     return img;
   } catch (const Error&) {
     throw;

@@ -12,12 +12,7 @@
 namespace kasha {
 
 MeasuredMaterial material_from_bispectral(const ExcitationEmissionMatrix& D, double band_nm) {
-  MeasuredMaterial m;
-  m.source = D.source;
-  m.method = "bispectral";
-  m.ex_nm = D.ex_nm;
-  m.em_nm = D.em_nm;
-  m.raw = D.value;
+  MeasuredMaterial m = measured_from(D, "bispectral");
   m.fluorescence = D.value;
   const Eigen::Index n_o = D.em_nm.size(), n_i = D.ex_nm.size();
   // The diagonal is where λo = λi; those entries hold reflection and fluorescence together. The

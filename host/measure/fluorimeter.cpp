@@ -145,12 +145,7 @@ static BandSums band_sums(const FluorimeterInput& in, const Eigen::MatrixXd& ban
 MeasuredMaterial material_from_fluorimeter(const FluorimeterInput& in) {
   const ExcitationEmissionMatrix &S = in.sample, &E = in.etalon;
   check_same_grid(S, E);
-  MeasuredMaterial m;
-  m.source = S.source;
-  m.method = "fluorimeter";
-  m.ex_nm = S.ex_nm;
-  m.em_nm = S.em_nm;
-  m.raw = S.value;
+  MeasuredMaterial m = measured_from(S, "fluorimeter");
   const Eigen::Index n_o = S.em_nm.size(), n_i = S.ex_nm.size();
   m.band_estimated = in.band_nm <= 0;
   m.band_nm = m.band_estimated ? band_from_etalon(E) : in.band_nm;

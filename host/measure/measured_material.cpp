@@ -8,6 +8,16 @@
 
 namespace kasha {
 
+MeasuredMaterial measured_from(const ExcitationEmissionMatrix& d, const std::string& method) {
+  MeasuredMaterial m;
+  m.source = d.source;
+  m.method = method;
+  m.ex_nm = d.ex_nm;
+  m.em_nm = d.em_nm;
+  m.raw = d.value;
+  return m;
+}
+
 double interpolate(const Tabulated& t, double nm) {
   if (t.nm.empty() || nm < t.nm.front() || nm > t.nm.back()) return 0.0;
   size_t k = std::upper_bound(t.nm.begin(), t.nm.end(), nm) - t.nm.begin();

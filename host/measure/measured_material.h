@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "material/material.h"
+#include "measure/eem.h"
 
 namespace kasha {
 
@@ -45,6 +46,10 @@ void check_energy(MeasuredMaterial& m, bool clip);
 // A sample without fluorescence (nothing off the band, so the fit is zero) has no emission shape
 // to normalize: its fluorescence part is dropped, with a note, and the material is passive only.
 void drop_zero_fluorescence(MeasuredMaterial& m);
+
+// A material measured from the matrix `d` by `method`: its source, wavelengths and raw matrix set,
+// its parts still to be found.
+MeasuredMaterial measured_from(const ExcitationEmissionMatrix& d, const std::string& method);
 
 // Linear interpolation in a tabulated function, zero outside.
 double interpolate(const Tabulated& t, double nm);

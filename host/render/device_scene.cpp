@@ -168,120 +168,101 @@ KernelSceneData::KernelSceneData(const Scene& scene)
   BinnedObserver obs(scene.grid);
   // The zero spectrum that kernels read in place of a material's absent part (offset 0).
   spectra.assign(scene.grid.bins, 0.0f);
-  for (const Material& m : scene.materials) {
-    KMaterial k{};
-    k.passive = append(spectra, m.rho);
-    k.excitation = append(spectra, m.a);
-    k.emission = append(spectra, m.e_hat);
-    k.gloss = static_cast<float>(m.gloss_reflectance());
-    k.lobe = -1;
-    if (m.gloss && !m.gloss->mirror) {
-      k.lobe = static_cast<int>(lobes.size());
-      k.cone_rad = static_cast<float>(m.gloss->cone_deg * M_PI / 180.0);
-      std::vector<float> t = gloss_lobe_table(*m.gloss);
-      lobes.insert(lobes.end(), t.begin(), t.end());
-    }
-    for (double a : m.a) k.excitation_sum += static_cast<float>(a);
-    k.kind = m.kind == MaterialKind::dielectric  ? KASHA_KIND_DIELECTRIC
-             : m.kind == MaterialKind::conductor ? KASHA_KIND_CONDUCTOR
-                                                 : KASHA_KIND_MEASURED;
-    k.eta = static_cast<float>(m.eta);
-    k.eta_spectrum = append(spectra, m.kind == MaterialKind::conductor ? m.eta_c : m.eta_bins);
-    k.k_spectrum = append(spectra, m.k_c);
-    if (m.rough()) {
-      k.alpha[0] = static_cast<float>(m.roughness.alpha_x);
-      k.alpha[1] = static_cast<float>(m.roughness.alpha_y);
-    }
-    k.coat_table = -1;
-    if (m.coat) {
-      const CoatDesc& c = *m.coat;
-      k.coat_eta = static_cast<float>(c.eta);
-      k.coat_thickness = static_cast<float>(c.thickness);
-      if (c.rough()) {
-        static_assert(kCoatTableSize == KASHA_COAT_TABLE, "coat table sizes differ");
-        const CoatTables t = rough_coat_tables(c);
-        k.coat_alpha = static_cast<float>(c.alpha);
-        k.coat_table = append(spectra, t.reflect);
-        append(spectra, t.transmit);
-        k.coat_internal = static_cast<float>(t.internal);
-        k.coat_albedo = static_cast<float>(t.mean / (c.eta * c.eta));
-      } else {
-        k.coat_internal = static_cast<float>(coat_internal_reflectance(c));
-        k.coat_albedo = static_cast<float>(coat_mean_transmission(c) / (c.eta * c.eta));
-      }
-    }
-    albedo_xyz(m, scene.grid, obs, k.albedo_xyz);
-    k.reflectance_texture = k.fluorescence_texture = -1;
-    materials.push_back(k);
-  }
+  for (const Material& m : scene.materials) materials.push_back(kernel_material(m, scene, obs));
   if (scene.textured() || scene.emission_textured()) add_textures(scene);
-  if (scene.shading_normals())
-    for (const KTriangle& t : bvh.triangles) {
-      KShadingNormals n{};
-      for (int k = 0; k < 3; ++k)
-        for (int c = 0; c < 3; ++c) n.n[3 * k + c] = static_cast<float>(scene.normals[t.prim][k][c]);
-      normals.push_back(n);
-    }
+  if (scene.shading_normals()) add_shading_normals(scene);
   for (const Emitter& e : scene.emitters) append(emitter_radiance, e.per_bin);
   for (const Light& l : scene.lights) append(emitter_radiance, l.per_bin);
+  add_light_sampling(scene);
+}
 
-  // Lights, in leaf order so kernels index the triangles they traverse.
+// A material in kernel layout, its spectra and gloss lobe appended to `spectra` and `lobes`.
+KMaterial KernelSceneData::kernel_material(const Material& m, const Scene& scene,
+                                           const BinnedObserver& obs) {
+  KMaterial k{};
+  k.passive = append(spectra, m.rho);
+  k.excitation = append(spectra, m.a);
+  k.emission = append(spectra, m.e_hat);
+  k.gloss = static_cast<float>(m.gloss_reflectance());
+  k.lobe = -1;
+  if (m.gloss && !m.gloss->mirror) {
+    k.lobe = static_cast<int>(lobes.size());
+    k.cone_rad = static_cast<float>(m.gloss->cone_deg * M_PI / 180.0);
+    std::vector<float> t = gloss_lobe_table(*m.gloss);
+    lobes.insert(lobes.end(), t.begin(), t.end());
+  }
+  for (double a : m.a) k.excitation_sum += static_cast<float>(a);
+  k.kind = m.kind == MaterialKind::dielectric  ? KASHA_KIND_DIELECTRIC
+           : m.kind == MaterialKind::conductor ? KASHA_KIND_CONDUCTOR
+                                               : KASHA_KIND_MEASURED;
+  k.eta = static_cast<float>(m.eta);
+  k.eta_spectrum = append(spectra, m.kind == MaterialKind::conductor ? m.eta_c : m.eta_bins);
+  k.k_spectrum = append(spectra, m.k_c);
+  if (m.rough()) {
+    k.alpha[0] = static_cast<float>(m.roughness.alpha_x);
+    k.alpha[1] = static_cast<float>(m.roughness.alpha_y);
+  }
+  k.coat_table = -1;
+  if (m.coat) add_coat(*m.coat, k);
+  albedo_xyz(m, scene.grid, obs, k.albedo_xyz);
+  k.reflectance_texture = k.fluorescence_texture = -1;
+  return k;
+}
+
+// A coat's constants in `k`; a rough coat's tables appended to `spectra`.
+void KernelSceneData::add_coat(const CoatDesc& c, KMaterial& k) {
+  k.coat_eta = static_cast<float>(c.eta);
+  k.coat_thickness = static_cast<float>(c.thickness);
+  if (c.rough()) {
+    static_assert(kCoatTableSize == KASHA_COAT_TABLE, "coat table sizes differ");
+    const CoatTables t = rough_coat_tables(c);
+    k.coat_alpha = static_cast<float>(c.alpha);
+    k.coat_table = append(spectra, t.reflect);
+    append(spectra, t.transmit);
+    k.coat_internal = static_cast<float>(t.internal);
+    k.coat_albedo = static_cast<float>(t.mean / (c.eta * c.eta));
+  } else {
+    k.coat_internal = static_cast<float>(coat_internal_reflectance(c));
+    k.coat_albedo = static_cast<float>(coat_mean_transmission(c) / (c.eta * c.eta));
+  }
+}
+
+void KernelSceneData::add_shading_normals(const Scene& scene) {
+  for (const KTriangle& t : bvh.triangles) {
+    KShadingNormals n{};
+    for (int k = 0; k < 3; ++k)
+      for (int c = 0; c < 3; ++c) n.n[3 * k + c] = static_cast<float>(scene.normals[t.prim][k][c]);
+    normals.push_back(n);
+  }
+}
+
+// Lights, in leaf order so kernels index the triangles they traverse: the emitting triangles,
+// then the lights that are not triangles, each picked in proportion to its power.
+void KernelSceneData::add_light_sampling(const Scene& scene) {
+  std::vector<double> power;
+  const auto sample = [&](int light, double p) {
+    light_tri.push_back(light);
+    power.push_back(p);
+    total_power += p;
+  };
   std::vector<double> radiance_sum;
   for (const Emitter& e : scene.emitters)
     radiance_sum.push_back(e.integrated_radiance(scene.grid.bin_nm));
-  std::vector<double> power;
   for (size_t i = 0; i < bvh.triangles.size(); ++i) {
     const KTriangle& t = bvh.triangles[i];
     if (t.emitter < 0) continue;
     double p = emitted_power(t, radiance_sum[t.emitter]) * scene.emitters[t.emitter].texture_mean;
-    if (!(p > 0)) continue;
-    light_tri.push_back(static_cast<int>(i));
-    power.push_back(p);
-    total_power += p;
+    if (p > 0) sample(static_cast<int>(i), p);
   }
   Eigen::Vector3d centre;
   double radius;
   scene.bounding_sphere(centre, radius);
   for (size_t k = 0; k < scene.lights.size(); ++k) {
     const Light& l = scene.lights[k];
-    KLight kl{};
-    kl.type = l.type == LightType::point     ? KASHA_LIGHT_POINT
-              : l.type == LightType::spot    ? KASHA_LIGHT_SPOT
-              : l.type == LightType::distant ? KASHA_LIGHT_DISTANT
-                                             : KASHA_LIGHT_INFINITE;
-    kl.spectrum = static_cast<int>(scene.emitters.size() + k);
-    kl.image = kl.distribution = -1;
-    const bool far = l.type == LightType::distant || l.type == LightType::infinite;
-    const Eigen::Vector3d at = far ? centre : l.position;
-    for (int c = 0; c < 3; ++c) {
-      kl.position[c] = static_cast<float>(at[c]);
-      kl.axis[c] = static_cast<float>(l.direction[c]);
-    }
-    kl.radius = static_cast<float>(radius);
-    kl.cos_total = static_cast<float>(l.cos_total());
-    kl.cos_falloff = static_cast<float>(l.cos_falloff());
-    kl.lambda = -1;
-    if (l.environment) {
-      const EnvironmentImage& env = *l.environment;
-      const EnvironmentData& d = *l.environment_data;
-      kl.width = env.image.width;
-      kl.height = env.image.height;
-      kl.mapping = env.mapping == EnvironmentMapping::equal_area ? KASHA_MAPPING_EQUAL_AREA
-                                                                 : KASHA_MAPPING_LATLONG;
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) kl.to_light[3 * r + c] = static_cast<float>(env.to_light(r, c));
-      kl.image = static_cast<int>(spectra.size());
-      spectra.insert(spectra.end(), d.texels.begin(), d.texels.end());
-      kl.distribution = static_cast<int>(spectra.size());
-      spectra.insert(spectra.end(), d.distribution.begin(), d.distribution.end());
-      kl.lambda = bin_centres(scene);
-    }
-    lights.push_back(kl);
+    lights.push_back(kernel_light(l, static_cast<int>(scene.emitters.size() + k), centre, radius));
+    if (l.environment) add_environment(l, scene, lights.back());
     double p = l.power(scene.grid.bin_nm, radius);
-    if (!(p > 0)) continue;
-    light_tri.push_back(~static_cast<int>(k));
-    power.push_back(p);
-    total_power += p;
+    if (p > 0) sample(~static_cast<int>(k), p);
   }
   double cdf = 0;
   for (size_t j = 0; j < power.size(); ++j) {
@@ -295,6 +276,47 @@ KernelSceneData::KernelSceneData(const Scene& scene)
                                                                     scene.emitters[e].texture_mean /
                                                                     total_power)
                                                : 0.0f);
+}
+
+// A light that is not a triangle in kernel layout; a distant or infinite one is placed at the
+// centre of the scene's bounding sphere.
+KLight KernelSceneData::kernel_light(const Light& l, int spectrum, const Eigen::Vector3d& centre,
+                                     double radius) {
+  KLight kl{};
+  kl.type = l.type == LightType::point     ? KASHA_LIGHT_POINT
+            : l.type == LightType::spot    ? KASHA_LIGHT_SPOT
+            : l.type == LightType::distant ? KASHA_LIGHT_DISTANT
+                                           : KASHA_LIGHT_INFINITE;
+  kl.spectrum = spectrum;
+  kl.image = kl.distribution = -1;
+  const bool far = l.type == LightType::distant || l.type == LightType::infinite;
+  const Eigen::Vector3d at = far ? centre : l.position;
+  for (int c = 0; c < 3; ++c) {
+    kl.position[c] = static_cast<float>(at[c]);
+    kl.axis[c] = static_cast<float>(l.direction[c]);
+  }
+  kl.radius = static_cast<float>(radius);
+  kl.cos_total = static_cast<float>(l.cos_total());
+  kl.cos_falloff = static_cast<float>(l.cos_falloff());
+  kl.lambda = -1;
+  return kl;
+}
+
+// An environment light's image and its sampling distribution, appended to `spectra`.
+void KernelSceneData::add_environment(const Light& l, const Scene& scene, KLight& kl) {
+  const EnvironmentImage& env = *l.environment;
+  const EnvironmentData& d = *l.environment_data;
+  kl.width = env.image.width;
+  kl.height = env.image.height;
+  kl.mapping = env.mapping == EnvironmentMapping::equal_area ? KASHA_MAPPING_EQUAL_AREA
+                                                             : KASHA_MAPPING_LATLONG;
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) kl.to_light[3 * r + c] = static_cast<float>(env.to_light(r, c));
+  kl.image = static_cast<int>(spectra.size());
+  spectra.insert(spectra.end(), d.texels.begin(), d.texels.end());
+  kl.distribution = static_cast<int>(spectra.size());
+  spectra.insert(spectra.end(), d.distribution.begin(), d.distribution.end());
+  kl.lambda = bin_centres(scene);
 }
 
 size_t KernelSceneData::bytes() const {

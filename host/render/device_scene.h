@@ -11,18 +11,20 @@
 
 namespace kasha {
 
+struct BinnedObserver;
+
 // Host-side arrays in kernel layout; cheap to build, so `kasha info` uses them for its figures.
 struct KernelSceneData {
   FlatBvh bvh;
   KCamera camera;
   float bin_nm;
   std::vector<KMaterial> materials;
-  std::vector<float> spectra;           // N zeros, then material spectra at KMaterial offsets
-  std::vector<float> lobes;             // gloss lobe tables at KMaterial::lobe
-  std::vector<float> emitter_radiance;  // emitters x N, then the lights' spectra x N
-  std::vector<KLight> lights;           // the lights that are not triangles
-  std::vector<KTexture> textures;       // per texture and use (kernels/texture.h)
-  std::vector<KTexcoords> texcoords;    // per leaf triangle, when the scene has textures
+  std::vector<float> spectra;            // N zeros, then material spectra at KMaterial offsets
+  std::vector<float> lobes;              // gloss lobe tables at KMaterial::lobe
+  std::vector<float> emitter_radiance;   // emitters x N, then the lights' spectra x N
+  std::vector<KLight> lights;            // the lights that are not triangles
+  std::vector<KTexture> textures;        // per texture and use (kernels/texture.h)
+  std::vector<KTexcoords> texcoords;     // per leaf triangle, when the scene has textures
   std::vector<KShadingNormals> normals;  // per leaf triangle, when some shape has shading normals
   // Light sampling: emitting triangles (leaf order), then the other lights (~index into
   // `lights`), with the CDF of their power, and per emitter the area density
@@ -36,7 +38,14 @@ struct KernelSceneData {
   size_t bytes() const;
 
  private:
+  KMaterial kernel_material(const Material& m, const Scene& scene, const BinnedObserver& obs);
+  void add_coat(const CoatDesc& coat, KMaterial& k);
   void add_textures(const Scene& scene);
+  void add_shading_normals(const Scene& scene);
+  void add_light_sampling(const Scene& scene);
+  static KLight kernel_light(const Light& l, int spectrum, const Eigen::Vector3d& centre,
+                             double radius);
+  void add_environment(const Light& l, const Scene& scene, KLight& kl);
   int bin_centres(const Scene& scene);
   int lambda_ = -1;
 };

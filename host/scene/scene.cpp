@@ -302,7 +302,8 @@ static ShapeMesh indexed_triangles(const JsonNode& shape) {
       const size_t v = at(t, k);
       tri[k] = {p[3 * v], p[3 * v + 1], p[3 * v + 2]};
       // pbrt-v4's (0, 0), (1, 0), (1, 1) without "uvs".
-      tuv[k] = uv.empty() ? Eigen::Vector2d(k > 0, k > 1) : Eigen::Vector2d(uv[2 * v], uv[2 * v + 1]);
+      tuv[k] =
+          uv.empty() ? Eigen::Vector2d(k > 0, k > 1) : Eigen::Vector2d(uv[2 * v], uv[2 * v + 1]);
       if (shaded) {
         const Eigen::Vector3d nv(n[3 * v], n[3 * v + 1], n[3 * v + 2]);
         shaded = nv.norm() > 0 && nv.allFinite();
@@ -530,8 +531,7 @@ static void append_triangles(const ShapeMesh& mesh, int material, int emitter, S
     k.material = material;
     k.emitter = emitter;
     k.prim = static_cast<int>(scene.triangles.size());
-    if (normals)
-      scene.normals.push_back(mesh.normals.empty() ? flat_normals(k) : mesh.normals[i]);
+    if (normals) scene.normals.push_back(mesh.normals.empty() ? flat_normals(k) : mesh.normals[i]);
     scene.triangles.push_back(k);
   }
 }
@@ -555,99 +555,94 @@ static JsonNode read_scene_document(const std::string& path,
   return JsonNode::from_json(std::move(document), path);
 }
 
-Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid,
-                 const std::string& lamp, const std::vector<MaterialOverride>& materials) {
-  JsonNode root = read_scene_document(path, materials);
-  if (!root.is_object()) root.fail("expected a scene object");
-  Scene scene;
-  scene.file = path;
-  if (root.at("kasha_scene").integer_in(0, 1000) != 1)
-    root.at("kasha_scene").fail("unsupported scene version");
-
-  GridRequest request;
-  if (auto w = root.find("wavelengths")) request = parse_grid_request(*w);
-  if (grid) request = *grid;
-  scene.camera = parse_camera(root.at("camera"));
-  const LampChoice lamp_on = choose_lamp(root, lamp, scene);
-  bool lamp_used = false;
-
+static void parse_textures(const JsonNode& root, Scene& scene) {
   if (auto textures = root.find("textures")) {
     if (!textures->is_object()) textures->fail("expected an object of named textures");
     for (const std::string& name : textures->keys())
       scene.textures.push_back(parse_texture(textures->at(name), name));
   }
-  parse_materials(root.at("materials"), scene);
+}
 
+static void parse_lights(const JsonNode& root, Scene& scene) {
   if (auto lights = root.find("lights")) {
     if (!lights->is_array()) lights->fail("expected an array of lights");
     for (size_t i = 0; i < lights->size(); ++i) scene.lights.push_back(parse_light((*lights)[i]));
   }
+}
 
-  JsonNode shapes = root.at("shapes");
-  TriangleKeys seen_triangles;
-  std::vector<bool> material_used(scene.material_descs.size(), false);
-  for (size_t s = 0; s < shapes.size(); ++s) {
-    JsonNode shape = shapes[s];
-    if (!shape.is_object()) shape.fail("expected a shape object");
-    std::string type = shape.at("type").string();
-    std::string material_name = shape.at("material").string();
-    int material = scene.material_index(material_name);
-    if (material < 0) shape.at("material").fail("no material named \"" + material_name + "\"");
-    material_used[material] = true;
-    ShapeMesh mesh = shape_triangles(shape, type);
-    const std::vector<Triangle>& tris = mesh.tris;
-    check_vertices(tris, shape);
-    drop_duplicate_triangles(mesh, seen_triangles, shape);
+// What the shapes use of what the scene declares: the materials (by index) and the lamp.
+struct ShapeUses {
+  std::vector<bool> materials;
+  bool lamp = false;
+};
 
-    int emitter = -1;
-    auto emission = shape.find("emission");
-    bool emits_lamp = false;
-    if (auto is_lamp = shape.find("lamp")) {
-      if (emission) is_lamp->fail("a shape takes \"emission\" or \"lamp\", not both");
-      if (!lamp_on.spectrum) is_lamp->fail("\"lamp\" needs the scene's \"lamps\"");
-      if (!is_lamp->boolean())
-        is_lamp->fail("expected true (a shape that emits the lamp that is on)");
-      emits_lamp = lamp_used = true;
-    }
-    if (shape.has("emission_texture") && !emission && !emits_lamp)
-      shape.at("emission_texture")
-          .fail("an emission texture needs the shape's \"emission\" or \"lamp\"");
-    if (emission || emits_lamp) {
-      Emitter e;
-      if (emission) {
-        e.where = emission->file() + ": " + emission->path();
-        e.radiance = parse_spectrum(*emission);
-      } else {
-        e.where = lamp_on.where;
-        e.radiance = lamp_on.spectrum;
-      }
-      e.first_triangle = static_cast<int>(scene.triangles.size());
-      e.triangle_count = static_cast<int>(tris.size());
-      if (auto tex = shape.find("emission_texture")) {
-        const std::string name = tex->string();
-        for (size_t i = 0; i < scene.textures.size(); ++i)
-          if (scene.textures[i].name == name) e.texture = static_cast<int>(i);
-        if (e.texture < 0)
-          tex->fail("no texture named \"" + name + "\" in the scene's \"textures\"");
-        e.texture_mean = texture_mean(scene.textures[e.texture], *tex);
-      }
-      emitter = static_cast<int>(scene.emitters.size());
-      scene.emitters.push_back(e);
-    }
-    bool inward = false;
-    if (auto in = shape.find("inward")) inward = in->boolean();
-    shape.finish();
-    scene.shapes.push_back(ShapeInfo{type, inward, material, emitter,
-                                     static_cast<int>(scene.triangles.size()),
-                                     static_cast<int>(tris.size())});
-    append_triangles(mesh, material, emitter, scene);
+// An emitter's "emission_texture": the texture it names, and its mean.
+static void parse_emission_texture(const JsonNode& tex, const Scene& scene, Emitter& e) {
+  const std::string name = tex.string();
+  for (size_t i = 0; i < scene.textures.size(); ++i)
+    if (scene.textures[i].name == name) e.texture = static_cast<int>(i);
+  if (e.texture < 0) tex.fail("no texture named \"" + name + "\" in the scene's \"textures\"");
+  e.texture_mean = texture_mean(scene.textures[e.texture], tex);
+}
+
+// The emitter of a shape that gives "emission" or "lamp" (the index of the one added to the
+// scene), else -1. `triangles`: how many the shape adds.
+static int parse_shape_emitter(const JsonNode& shape, size_t triangles, const LampChoice& lamp_on,
+                               ShapeUses& uses, Scene& scene) {
+  auto emission = shape.find("emission");
+  bool emits_lamp = false;
+  if (auto is_lamp = shape.find("lamp")) {
+    if (emission) is_lamp->fail("a shape takes \"emission\" or \"lamp\", not both");
+    if (!lamp_on.spectrum) is_lamp->fail("\"lamp\" needs the scene's \"lamps\"");
+    if (!is_lamp->boolean())
+      is_lamp->fail("expected true (a shape that emits the lamp that is on)");
+    emits_lamp = uses.lamp = true;
   }
-  root.finish();
-  if (scene.triangles.empty()) root.fail("the scene has no shapes");
-  if (lamp_on.spectrum && !lamp_used)
-    root.at("lamps").fail("no shape emits the lamps (give one \"lamp\": true)");
+  if (shape.has("emission_texture") && !emission && !emits_lamp)
+    shape.at("emission_texture")
+        .fail("an emission texture needs the shape's \"emission\" or \"lamp\"");
+  if (!emission && !emits_lamp) return -1;
+  Emitter e;
+  if (emission) {
+    e.where = emission->file() + ": " + emission->path();
+    e.radiance = parse_spectrum(*emission);
+  } else {
+    e.where = lamp_on.where;
+    e.radiance = lamp_on.spectrum;
+  }
+  e.first_triangle = static_cast<int>(scene.triangles.size());
+  e.triangle_count = static_cast<int>(triangles);
+  if (auto tex = shape.find("emission_texture")) parse_emission_texture(*tex, scene, e);
+  scene.emitters.push_back(e);
+  return static_cast<int>(scene.emitters.size()) - 1;
+}
 
-  // The grid covers what the emitters and the materials in use need.
+// One shape of the scene's "shapes": its triangles, material and emission added to the scene.
+static void parse_shape(const JsonNode& shape, const LampChoice& lamp_on,
+                        TriangleKeys& seen_triangles, ShapeUses& uses, Scene& scene) {
+  if (!shape.is_object()) shape.fail("expected a shape object");
+  std::string type = shape.at("type").string();
+  std::string material_name = shape.at("material").string();
+  int material = scene.material_index(material_name);
+  if (material < 0) shape.at("material").fail("no material named \"" + material_name + "\"");
+  uses.materials[material] = true;
+  ShapeMesh mesh = shape_triangles(shape, type);
+  check_vertices(mesh.tris, shape);
+  drop_duplicate_triangles(mesh, seen_triangles, shape);
+  const int emitter = parse_shape_emitter(shape, mesh.tris.size(), lamp_on, uses, scene);
+  bool inward = false;
+  if (auto in = shape.find("inward")) inward = in->boolean();
+  shape.finish();
+  scene.shapes.push_back(ShapeInfo{type, inward, material, emitter,
+                                   static_cast<int>(scene.triangles.size()),
+                                   static_cast<int>(mesh.tris.size())});
+  append_triangles(mesh, material, emitter, scene);
+}
+
+// The grid covers what the emitters and the materials in use need; materials, emitters and
+// lights are then sampled on it.
+static void discretize(const GridRequest& request, const std::vector<bool>& material_used,
+                       Scene& scene) {
   std::vector<SpectralSupport> emitting, exciting;
   for (const Emitter& e : scene.emitters) emitting.push_back(e.radiance->support());
   for (const Light& l : scene.lights) emitting.push_back(l.spectrum->support());
@@ -666,6 +661,38 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
       l.environment_data = std::make_shared<const EnvironmentData>(
           environment_data(*l.environment, l.per_bin, scene.grid));
   }
+}
+
+Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid,
+                 const std::string& lamp, const std::vector<MaterialOverride>& materials) {
+  JsonNode root = read_scene_document(path, materials);
+  if (!root.is_object()) root.fail("expected a scene object");
+  Scene scene;
+  scene.file = path;
+  if (root.at("kasha_scene").integer_in(0, 1000) != 1)
+    root.at("kasha_scene").fail("unsupported scene version");
+
+  GridRequest request;
+  if (auto w = root.find("wavelengths")) request = parse_grid_request(*w);
+  if (grid) request = *grid;
+  scene.camera = parse_camera(root.at("camera"));
+  const LampChoice lamp_on = choose_lamp(root, lamp, scene);
+  parse_textures(root, scene);
+  parse_materials(root.at("materials"), scene);
+  parse_lights(root, scene);
+
+  JsonNode shapes = root.at("shapes");
+  TriangleKeys seen_triangles;
+  ShapeUses uses;
+  uses.materials.assign(scene.material_descs.size(), false);
+  for (size_t s = 0; s < shapes.size(); ++s)
+    parse_shape(shapes[s], lamp_on, seen_triangles, uses, scene);
+  root.finish();
+  if (scene.triangles.empty()) root.fail("the scene has no shapes");
+  if (lamp_on.spectrum && !uses.lamp)
+    root.at("lamps").fail("no shape emits the lamps (give one \"lamp\": true)");
+
+  discretize(request, uses.materials, scene);
   check_emitters(scene);
   check_material_textures(scene);
   return scene;

@@ -91,8 +91,7 @@ class Importer {
 
   nlohmann::json run() {
     parse_file(main_file_, main_file_, PbrtLocation{}, 0);
-    if (!stack_.empty())
-      pbrt_fail(stack_.back().where, "AttributeBegin without its AttributeEnd");
+    if (!stack_.empty()) pbrt_fail(stack_.back().where, "AttributeBegin without its AttributeEnd");
     if (object_) pbrt_fail(object_->where, "ObjectBegin without its ObjectEnd");
     if (!camera_seen_) make_camera(Matrix::Identity(), "perspective", PbrtParameters{}, {});
     if (shapes_.empty())
@@ -107,11 +106,10 @@ class Importer {
         throw Error("--material " + printable(name) + "=" + printable(file) + ": " +
                     printable(main_file_) + " has no material or object named " + in_quotes(name));
     }
-    if (uses_default_material_) materials_[kDefaultMaterial] = {{"passive", {{"reflectance", 0.5}}}};
-    nlohmann::json scene = {{"kasha_scene", 1},
-                            {"camera", camera_},
-                            {"materials", materials_},
-                            {"shapes", shapes_}};
+    if (uses_default_material_)
+      materials_[kDefaultMaterial] = {{"passive", {{"reflectance", 0.5}}}};
+    nlohmann::json scene = {
+        {"kasha_scene", 1}, {"camera", camera_}, {"materials", materials_}, {"shapes", shapes_}};
     if (!lights_.empty()) scene["lights"] = lights_;
     if (!textures_.kasha.empty()) scene["textures"] = textures_.kasha;
     return scene;
@@ -149,8 +147,7 @@ class Importer {
   // One argument of a directive.
   std::string string_arg(PbrtTokenizer& tokens, const PbrtToken& d) {
     PbrtToken t = tokens.next();
-    if (t.kind != PbrtToken::kString)
-      pbrt_fail(d.where, d.text + " expects a quoted string");
+    if (t.kind != PbrtToken::kString) pbrt_fail(d.where, d.text + " expects a quoted string");
     return t.text;
   }
 
@@ -178,8 +175,9 @@ class Importer {
 
   void apply(const Matrix& m, const PbrtToken& d) {
     if (end_time_only_) {
-      warn_once(d.where, "motion", "ActiveTransform EndTime: kasha renders the start of the "
-                                   "shutter, so transforms for the end time are ignored");
+      warn_once(d.where, "motion",
+                "ActiveTransform EndTime: kasha renders the start of the "
+                "shutter, so transforms for the end time are ignored");
       return;
     }
     state_.ctm = state_.ctm * m;
@@ -189,7 +187,32 @@ class Importer {
     if (warned_.insert(key).second) pbrt_warn(where, what);
   }
 
+  // A directive's parameters, with what Attribute set for `target` added (pbrt-v4's
+  // Attribute "shape" | "light" | "material" | "medium" | "texture").
+  PbrtParameters read_parameters(PbrtTokenizer& tokens, const std::string& target) {
+    PbrtParameters params = PbrtParameters::read(tokens);
+    params.add_defaults(state_.attributes[target]);
+    return params;
+  }
+
   void directive(const PbrtToken& d, PbrtTokenizer& tokens, int depth) {
+    if (attribute_directive(d, tokens) || transform_directive(d, tokens) ||
+        rendering_option_directive(d, tokens) || scene_element_directive(d, tokens) ||
+        object_directive(d, tokens))
+      return;
+    if (d.text == "Include" || d.text == "Import") {
+      const std::string file = string_arg(tokens, d);
+      std::filesystem::path path(file);
+      if (path.is_relative()) path = base_dir_ / path;
+      parse_file(path.string(), file, d.where, depth + 1);
+      return;
+    }
+    pbrt_fail(d.where, "unknown directive " + in_quotes(d.text));
+  }
+
+  // The graphics state's own directives: its save and restore, attributes, orientation and media.
+  // False for a directive of another kind.
+  bool attribute_directive(const PbrtToken& d, PbrtTokenizer& tokens) {
     const std::string& name = d.text;
     if (name == "AttributeBegin" || name == "TransformBegin") {
       stack_.push_back({state_, name == "TransformBegin", d.where});
@@ -204,13 +227,31 @@ class Importer {
       stack_.pop_back();
     } else if (name == "Attribute") {
       const std::string target = string_arg(tokens, d);
-      if (target != "shape" && target != "light" && target != "material" &&
-          target != "medium" && target != "texture")
+      if (target != "shape" && target != "light" && target != "material" && target != "medium" &&
+          target != "texture")
         pbrt_fail(d.where, "Attribute: unknown target " + in_quotes(target));
-      PbrtParameters params = PbrtParameters::read(tokens);
-      params.add_defaults(state_.attributes[target]);
-      state_.attributes[target] = params;
-    } else if (name == "Identity") {
+      state_.attributes[target] = read_parameters(tokens, target);
+    } else if (name == "ReverseOrientation") {
+      state_.reverse_orientation = !state_.reverse_orientation;
+    } else if (name == "MediumInterface") {
+      state_.inside_medium = string_arg(tokens, d);
+      PbrtToken t = tokens.next();
+      if (t.kind == PbrtToken::kString)
+        state_.outside_medium = t.text;
+      else {
+        state_.outside_medium = state_.inside_medium;
+        tokens.put_back(std::move(t));
+      }
+    } else {
+      return false;
+    }
+    return true;
+  }
+
+  // Directives that change the current transformation matrix or name it; false for others.
+  bool transform_directive(const PbrtToken& d, PbrtTokenizer& tokens) {
+    const std::string& name = d.text;
+    if (name == "Identity") {
       if (!end_time_only_) state_.ctm = Matrix::Identity();
     } else if (name == "Translate") {
       const auto v = number_args(tokens, d, 3);
@@ -250,13 +291,20 @@ class Importer {
                                " (ignored, as pbrt-v4 does)");
       else
         state_.ctm = f->second;
-    } else if (name == "ReverseOrientation") {
-      state_.reverse_orientation = !state_.reverse_orientation;
-    } else if (name == "TransformTimes") {
+    } else {
+      return motion_directive(d, tokens);
+    }
+    return true;
+  }
+
+  // Motion blur's directives: kasha renders the start of the shutter. False for others.
+  bool motion_directive(const PbrtToken& d, PbrtTokenizer& tokens) {
+    if (d.text == "TransformTimes") {
       number_args(tokens, d, 2);
-      warn_once(d.where, "motion", "motion blur is not built in kasha: the scene is rendered "
-                                   "at the start of the shutter");
-    } else if (name == "ActiveTransform") {
+      warn_once(d.where, "motion",
+                "motion blur is not built in kasha: the scene is rendered "
+                "at the start of the shutter");
+    } else if (d.text == "ActiveTransform") {
       PbrtToken which = tokens.next();
       if (which.text == "StartTime" || which.text == "All")
         end_time_only_ = false;
@@ -264,7 +312,24 @@ class Importer {
         end_time_only_ = true;
       else
         pbrt_fail(d.where, "ActiveTransform takes StartTime, EndTime or All");
-    } else if (name == "Option") {
+    } else {
+      return false;
+    }
+    return true;
+  }
+
+  // The name a directive that kasha does not build gives, its parameters read and dropped.
+  std::string skipped_directive(PbrtTokenizer& tokens, const PbrtToken& d) {
+    const std::string type = string_arg(tokens, d);
+    PbrtParameters::read(tokens);
+    return type;
+  }
+
+  // The directives of the options block (camera, film, what kasha's command line decides) and
+  // the start of the world; false for others.
+  bool rendering_option_directive(const PbrtToken& d, PbrtTokenizer& tokens) {
+    const std::string& name = d.text;
+    if (name == "Option") {
       PbrtParameters::read(tokens).warn_unused("Option");
     } else if (name == "ColorSpace") {
       const std::string space = string_arg(tokens, d);
@@ -279,78 +344,80 @@ class Importer {
       film(type, PbrtParameters::read(tokens), d.where);
     } else if (name == "Sampler" || name == "Integrator" || name == "PixelFilter" ||
                name == "Accelerator") {
-      const std::string type = string_arg(tokens, d);
-      PbrtParameters::read(tokens);
-      pbrt_warn(d.where, name + " " + in_quotes(type) + " is ignored: kasha's --integrator, --spp, " +
+      pbrt_warn(d.where, name + " " + in_quotes(skipped_directive(tokens, d)) +
+                             " is ignored: kasha's --integrator, --spp, " +
                              "--passes and box pixel filter decide (docs/pbrt-import.md)");
     } else if (name == "MakeNamedMedium") {
-      const std::string medium = string_arg(tokens, d);
-      PbrtParameters::read(tokens);
-      pbrt_warn(d.where, "MakeNamedMedium " + in_quotes(medium) +
+      pbrt_warn(d.where, "MakeNamedMedium " + in_quotes(skipped_directive(tokens, d)) +
                              ": participating media are not built in kasha");
-    } else if (name == "MediumInterface") {
-      state_.inside_medium = string_arg(tokens, d);
-      PbrtToken t = tokens.next();
-      if (t.kind == PbrtToken::kString)
-        state_.outside_medium = t.text;
-      else {
-        state_.outside_medium = state_.inside_medium;
-        tokens.put_back(std::move(t));
-      }
     } else if (name == "WorldBegin") {
       if (!camera_seen_) make_camera(Matrix::Identity(), "perspective", PbrtParameters{}, d.where);
       state_.ctm = Matrix::Identity();
       named_frames_["world"] = state_.ctm;
     } else if (name == "WorldEnd") {
       pbrt_warn(d.where, "WorldEnd is pbrt-v3's: ignored");
-    } else if (name == "Texture") {
+    } else {
+      return false;
+    }
+    return true;
+  }
+
+  // Textures, materials, lights and shapes; false for other directives.
+  bool scene_element_directive(const PbrtToken& d, PbrtTokenizer& tokens) {
+    const std::string& name = d.text;
+    if (name == "Texture") {
       const std::string tex = string_arg(tokens, d), kind = string_arg(tokens, d),
                         cls = string_arg(tokens, d);
-      PbrtParameters params = PbrtParameters::read(tokens);
-      params.add_defaults(state_.attributes["texture"]);
+      const PbrtParameters params = read_parameters(tokens, "texture");
       pbrt_define_texture(tex, kind, cls, params, d.where, textures_, base_dir_);
     } else if (name == "Material") {
       const std::string type = string_arg(tokens, d);
-      PbrtParameters params = PbrtParameters::read(tokens);
-      params.add_defaults(state_.attributes["material"]);
+      const PbrtParameters params = read_parameters(tokens, "material");
       const std::string key = "pbrt material at " + d.where.str();
       define_material(key, type, params, d.where);
       state_.material = key;
     } else if (name == "MakeNamedMaterial") {
-      const std::string material = string_arg(tokens, d);
-      PbrtParameters params = PbrtParameters::read(tokens);
-      params.add_defaults(state_.attributes["material"]);
-      const std::string type = params.get_string("type", "");
-      if (type.empty()) pbrt_fail(d.where, "MakeNamedMaterial " + in_quotes(material) +
-                                               " has no \"string type\"");
-      if (named_materials_.count(material))
-        pbrt_fail(d.where, "MakeNamedMaterial " + in_quotes(material) + " defined twice");
-      named_materials_.insert(material);
-      define_material(material, type, params, d.where);
+      make_named_material(d, tokens);
     } else if (name == "NamedMaterial") {
       state_.material = string_arg(tokens, d);
       named_material_uses_.emplace(state_.material, d.where);
     } else if (name == "LightSource") {
       const std::string type = string_arg(tokens, d);
-      PbrtParameters params = PbrtParameters::read(tokens);
-      params.add_defaults(state_.attributes["light"]);
-      light(type, params, d.where);
+      light(type, read_parameters(tokens, "light"), d.where);
     } else if (name == "AreaLightSource") {
       auto area = std::make_shared<AreaLight>();
       area->type = string_arg(tokens, d);
-      area->params = PbrtParameters::read(tokens);
-      area->params.add_defaults(state_.attributes["light"]);
+      area->params = read_parameters(tokens, "light");
       area->where = d.where;
       if (area->type != "diffuse")
-        pbrt_fail(d.where, "AreaLightSource " + in_quotes(area->type) +
-                               " is not built in kasha (diffuse)");
+        pbrt_fail(d.where,
+                  "AreaLightSource " + in_quotes(area->type) + " is not built in kasha (diffuse)");
       state_.area_light = area;
     } else if (name == "Shape") {
       const std::string type = string_arg(tokens, d);
-      PbrtParameters params = PbrtParameters::read(tokens);
-      params.add_defaults(state_.attributes["shape"]);
-      shape(type, params, d.where);
-    } else if (name == "ObjectBegin") {
+      shape(type, read_parameters(tokens, "shape"), d.where);
+    } else {
+      return false;
+    }
+    return true;
+  }
+
+  void make_named_material(const PbrtToken& d, PbrtTokenizer& tokens) {
+    const std::string material = string_arg(tokens, d);
+    const PbrtParameters params = read_parameters(tokens, "material");
+    const std::string type = params.get_string("type", "");
+    if (type.empty())
+      pbrt_fail(d.where, "MakeNamedMaterial " + in_quotes(material) + " has no \"string type\"");
+    if (named_materials_.count(material))
+      pbrt_fail(d.where, "MakeNamedMaterial " + in_quotes(material) + " defined twice");
+    named_materials_.insert(material);
+    define_material(material, type, params, d.where);
+  }
+
+  // Object definitions and their instances; false for other directives.
+  bool object_directive(const PbrtToken& d, PbrtTokenizer& tokens) {
+    const std::string& name = d.text;
+    if (name == "ObjectBegin") {
       if (object_) pbrt_fail(d.where, "ObjectBegin inside another object");
       const std::string object = string_arg(tokens, d);
       if (objects_.count(object)) pbrt_fail(d.where, "ObjectBegin " + in_quotes(object) + " twice");
@@ -365,28 +432,29 @@ class Importer {
       state_ = stack_.back().state;
       stack_.pop_back();
     } else if (name == "ObjectInstance") {
-      const std::string object = string_arg(tokens, d);
-      if (object_) pbrt_fail(d.where, "ObjectInstance inside an object definition");
-      auto o = objects_.find(object);
-      if (o == objects_.end()) pbrt_fail(d.where, "ObjectInstance: no object named " + in_quotes(object));
-      std::string material;
-      if (overrides_.count(object)) {
-        material = "pbrt object " + object;
-        materials_[material] = {{"file", absolute(overrides_[object])}};
-        overridden_objects_.insert(object);
-      }
-      for (const DefinedShape& s : o->second.shapes) {
-        nlohmann::json shape = s.shape;
-        if (!material.empty()) shape["material"] = material;
-        place(shape, state_.ctm * s.ctm, d.where);
-      }
-    } else if (name == "Include" || name == "Import") {
-      const std::string file = string_arg(tokens, d);
-      std::filesystem::path path(file);
-      if (path.is_relative()) path = base_dir_ / path;
-      parse_file(path.string(), file, d.where, depth + 1);
+      instance_object(d, tokens);
     } else {
-      pbrt_fail(d.where, "unknown directive " + in_quotes(name));
+      return false;
+    }
+    return true;
+  }
+
+  void instance_object(const PbrtToken& d, PbrtTokenizer& tokens) {
+    const std::string object = string_arg(tokens, d);
+    if (object_) pbrt_fail(d.where, "ObjectInstance inside an object definition");
+    auto o = objects_.find(object);
+    if (o == objects_.end())
+      pbrt_fail(d.where, "ObjectInstance: no object named " + in_quotes(object));
+    std::string material;
+    if (overrides_.count(object)) {
+      material = "pbrt object " + object;
+      materials_[material] = {{"file", absolute(overrides_[object])}};
+      overridden_objects_.insert(object);
+    }
+    for (const DefinedShape& s : o->second.shapes) {
+      nlohmann::json shape = s.shape;
+      if (!material.empty()) shape["material"] = material;
+      place(shape, state_.ctm * s.ctm, d.where);
     }
   }
 
@@ -421,8 +489,9 @@ class Importer {
     const Eigen::Vector3d up = direction(world_from_camera, {0, 1, 0}).normalized();
     const Eigen::Vector3d right = direction(world_from_camera, {1, 0, 0});
     if (std::abs(forward.dot(up)) > 1e-6)
-      pbrt_warn(where, "the camera's transform shears its axes: kasha uses its view direction "
-                       "and up");
+      pbrt_warn(where,
+                "the camera's transform shears its axes: kasha uses its view direction "
+                "and up");
     camera_["position"] = triple(pos);
     camera_["look_at"] = triple(pos + forward);
     camera_["up"] = triple(up);
@@ -465,8 +534,9 @@ class Importer {
     const std::string sensor = params.get_string("sensor", "cie1931");
     const double white = params.get_float("whitebalance", 0);
     if (iso != 100 || sensor != "cie1931" || white != 0)
-      pbrt_warn(where, "the film's sensor settings (iso, sensor, whitebalance) are not built in "
-                       "kasha: it records XYZ as pbrt-v4's default cie1931 sensor at ISO 100");
+      pbrt_warn(where,
+                "the film's sensor settings (iso, sensor, whitebalance) are not built in "
+                "kasha: it records XYZ as pbrt-v4's default cie1931 sensor at ISO 100");
     for (const char* ignored : {"maxcomponentvalue", "diagonal"}) params.get_float(ignored, 0);
     params.get_bool("savefp16", true);
     params.get_bool("writefp16", true);
@@ -529,8 +599,9 @@ class Importer {
         pbrt_warn(where, "portals are not built in kasha: the light is sampled without them");
       const double illuminance = params.get_float("illuminance", -1);
       if (illuminance > 0)
-        pbrt_fail(where, "an infinite light's \"illuminance\" is not built in kasha: give "
-                         "\"scale\"");
+        pbrt_fail(where,
+                  "an infinite light's \"illuminance\" is not built in kasha: give "
+                  "\"scale\"");
       if (L && !file.empty())
         pbrt_fail(where, "an infinite light takes \"L\" or \"filename\", not both");
       l = {{"type", "infinite"}};
@@ -551,8 +622,9 @@ class Importer {
         l["radiance"] = pbrt_light_spectrum(L, scale, base_dir_);
       }
     } else if (type == "goniometric" || type == "projection") {
-      pbrt_fail(where, "LightSource " + in_quotes(type) + " is not built in kasha (point, spot, "
-                       "distant, infinite)");
+      pbrt_fail(where, "LightSource " + in_quotes(type) +
+                           " is not built in kasha (point, spot, "
+                           "distant, infinite)");
     } else {
       pbrt_fail(where, "unknown light type " + in_quotes(type));
     }
@@ -574,18 +646,20 @@ class Importer {
       uses_default_material_ = true;
     }
     if (interfaces_.count(material)) {
-      warn_once(where, "interface", "shapes with material \"interface\" (media boundaries) are "
-                                    "left out: media are not built in kasha");
+      warn_once(where, "interface",
+                "shapes with material \"interface\" (media boundaries) are "
+                "left out: media are not built in kasha");
       return;
     }
     if (!state_.inside_medium.empty() || !state_.outside_medium.empty())
-      pbrt_fail(where, "a shape with a medium (MediumInterface " +
-                           in_quotes(state_.inside_medium) + " " + in_quotes(state_.outside_medium) +
+      pbrt_fail(where, "a shape with a medium (MediumInterface " + in_quotes(state_.inside_medium) +
+                           " " + in_quotes(state_.outside_medium) +
                            "): participating media are not built in kasha");
     s["material"] = material;
     // A mesh's own normals decide its front in pbrt-v4 (pbrt_shapes.cpp turned the winding to
     // them), whatever ReverseOrientation says; every other shape is turned.
-    const bool normals_decide = (type == "trianglemesh" || type == "loopsubdiv") && s.contains("normals");
+    const bool normals_decide =
+        (type == "trianglemesh" || type == "loopsubdiv") && s.contains("normals");
     if (state_.reverse_orientation && !normals_decide)
       s["reverse_orientation"] = !s.value("reverse_orientation", false);
     if (object_) {
