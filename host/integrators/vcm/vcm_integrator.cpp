@@ -264,20 +264,19 @@ class VcmIntegrator : public KernelIntegrator {
       r.pixel_samples.assign(pixels, 0);
       std::fill(r.pixel_samples.begin(), r.pixel_samples.begin() + done, spp_);
     }
-    r.tallies["rejected samples"] =
-        read_sum<cl_int>(rejected_, pixels) + read_sum<cl_int>(overflow_, 1);
-    r.tallies["light vertices stored"] = stored_total;
-    r.tallies["light chunks"] = static_cast<double>(chunks);
-    r.tallies["merging radius"] = per_path_ ? radius.radius / 2 : radius.radius;  // a typical one
-    r.tallies[kDepthGuardCut] = read_sum<cl_float>(light_cut_, paths_);
-    r.tallies[kDepthGuardOf] = static_cast<double>(paths_);
-    r.tallies[kCameraDepthGuardCut] = read_sum<cl_float>(camera_cut_, pixels);
-    r.tallies[kCameraDepthGuardOf] = static_cast<double>(pixels) * spp_;
-    r.tallies["time: light pass (s)"] = light_s;
-    r.tallies["time: grid (s)"] = grid_s;
-    r.tallies["time: camera pass (s)"] = device_seconds_ - device0 - light_s - grid_s;
-    r.tallies["time: host (s)"] = std::max(0.0, seconds_since(t0) - (device_seconds_ - device0));
-    add_ray_tallies(r);
+    PassCounters& c = r.counters;
+    c.rejected_samples = read_sum<cl_int>(rejected_, pixels) + read_sum<cl_int>(overflow_, 1);
+    c.light_vertices_stored = stored_total;
+    c.light_chunks = static_cast<double>(chunks);
+    c.merging_radius = per_path_ ? radius.radius / 2 : radius.radius;  // a typical one
+    c.depth_guard = {read_sum<cl_float>(light_cut_, paths_), static_cast<double>(paths_)};
+    c.camera_depth_guard = {read_sum<cl_float>(camera_cut_, pixels),
+                            static_cast<double>(pixels) * spp_};
+    c.add_stage("light pass", light_s);
+    c.add_stage("grid", grid_s);
+    c.add_stage("camera pass", device_seconds_ - device0 - light_s - grid_s);
+    c.add_stage("host", std::max(0.0, seconds_since(t0) - (device_seconds_ - device0)));
+    add_ray_counts(r);
     return r;
   }
 
