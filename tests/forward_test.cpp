@@ -28,10 +28,8 @@ TEST(Forward, PowerIsConservedInAClosedScene) {
   s.integrator_settings.max_depth = 3;
   for (const char* scene : {"furnace_fluorescent.json", "furnace_mirror.json", "furnace_uv.json"}) {
     RenderResult r = render_scene(source_path(std::string("scenes/") + scene), s);
-    const double emitted = r.tallies.at("power emitted (W)"),
-                 absorbed = r.tallies.at("power absorbed (W)"),
-                 escaped = r.tallies.at("power escaped (W)"),
-                 in_flight = r.tallies.at("power in flight (W)");
+    const double emitted = r.counters.power_emitted_w, absorbed = r.counters.power_absorbed_w,
+                 escaped = r.counters.power_escaped_w, in_flight = r.counters.power_in_flight_w;
     EXPECT_NEAR(absorbed + escaped + in_flight, emitted, 1e-5 * emitted) << scene;
     EXPECT_LT(escaped, 1e-5 * emitted) << scene;
     EXPECT_GT(in_flight, 0.05 * emitted) << scene;  // the cut leaves photons in flight

@@ -127,7 +127,7 @@ TEST(Film, AveragesPassesAndDerivesXyzFromBins) {
   pass.samples = 2;
   pass.sums.assign(2 * 40, 0.0);
   pass.sums[17] = 4.0;  // pixel 0, bin 17: two samples of 2
-  pass.tallies["rejected samples"] = 1;
+  pass.counters.rejected_samples = 1;
   film.accumulate(pass);
   pass.sums.assign(2 * 40, 0.0);
   film.accumulate(pass);
@@ -136,7 +136,7 @@ TEST(Film, AveragesPassesAndDerivesXyzFromBins) {
   BinnedObserver obs(g);
   EXPECT_NEAR(img.xyz[1], obs.y[17] * 10.0, 1e-6);
   EXPECT_EQ(img.xyz[4], 0.0f);
-  EXPECT_EQ(film.tally("rejected samples"), 2.0);
+  EXPECT_EQ(film.counters().rejected_samples, 2.0);
 }
 
 TEST(Film, AddsTheIntegratorsKeptImageToTheSumsMean) {

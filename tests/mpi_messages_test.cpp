@@ -13,6 +13,22 @@ using namespace kasha;
 
 namespace {
 
+// Every counter a value of its own (i + k for field k), two devices' work and two stages.
+PassCounters distinct(double i) {
+  PassCounters c;
+  double k = 0;
+  for (double* v : {&c.rejected_samples, &c.power_emitted_w, &c.power_absorbed_w,
+                    &c.power_escaped_w, &c.power_in_flight_w, &c.depth_guard.cut, &c.depth_guard.of,
+                    &c.camera_depth_guard.cut, &c.camera_depth_guard.of, &c.closest_rays,
+                    &c.shadow_rays, &c.gather_queries, &c.photons_stored, &c.photon_store_overflows,
+                    &c.light_vertices_stored, &c.light_chunks, &c.merging_radius})
+    *v = i + k++;
+  c.device_work = {i + 100, i + 101};
+  c.add_stage("light pass", i + 200);
+  c.add_stage("grid", i + 201);
+  return c;
+}
+
 bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
 }
@@ -29,7 +45,8 @@ TEST(MpiMessages, PassResultKeepsEveryBit) {
   // Values whose decimal printing would lose bits, a denormal and a negative zero.
   p.sums = {0.1, 1.0 / 3.0, std::numeric_limits<double>::denorm_min(), -0.0, 1e300};
   p.fraction = 0.625;
-  p.tallies = {{"rejected samples", 2}, {"time: host (s)", 0.015625}};
+  p.counters.rejected_samples = 2;
+  p.counters.add_stage("host", 0.015625);
   p.kept = [] { return std::vector<float>{1}; };  // stays behind: only rank 0 keeps an image
   const mpi::Reply back = mpi::decode_reply(mpi::encode(reply));
   ASSERT_EQ(back.kind, mpi::Kind::result);
@@ -39,8 +56,43 @@ TEST(MpiMessages, PassResultKeepsEveryBit) {
   EXPECT_TRUE(same_bits(back.result.sums, p.sums));
   EXPECT_TRUE(std::signbit(back.result.sums[3]));
   EXPECT_EQ(back.result.fraction, 0.625);
-  EXPECT_EQ(back.result.tallies, p.tallies);
+  EXPECT_EQ(back.result.counters.rejected_samples, 2);
+  ASSERT_EQ(back.result.counters.stage_seconds.size(), 1u);
+  EXPECT_EQ(back.result.counters.stage_seconds[0].stage, "host");
+  EXPECT_EQ(back.result.counters.stage_seconds[0].seconds, 0.015625);
   EXPECT_FALSE(back.result.kept);
+}
+
+// Each counter travels to rank 0 and adds over passes as its comment in film/pass_counters.h says
+// (every one adds; devices and stages add per device and per stage), none dropped on the way.
+TEST(MpiMessages, PassCountersTravelAndAddFieldByField) {
+  static_assert(sizeof(PassCounters) == 17 * sizeof(double) + 2 * sizeof(std::vector<double>),
+                "a new counter: give it a value in distinct() and check it here");
+  mpi::Reply reply;
+  reply.kind = mpi::Kind::result;
+  reply.result.counters = distinct(1000);
+  PassCounters film = distinct(0);
+  film.device_work.resize(1);  // a device that did no work in the first pass
+  film.stage_seconds.erase(film.stage_seconds.begin());  // "grid" first timed in the second
+  film.add(mpi::decode_reply(mpi::encode(reply)).result.counters);
+  const PassCounters& c = film;
+  double k = 0;
+  for (double v :
+       {c.rejected_samples, c.power_emitted_w, c.power_absorbed_w, c.power_escaped_w,
+        c.power_in_flight_w, c.depth_guard.cut, c.depth_guard.of, c.camera_depth_guard.cut,
+        c.camera_depth_guard.of, c.closest_rays, c.shadow_rays, c.gather_queries, c.photons_stored,
+        c.photon_store_overflows, c.light_vertices_stored, c.light_chunks, c.merging_radius}) {
+    EXPECT_EQ(v, 1000 + 2 * k) << "counter " << k;
+    ++k;
+  }
+  EXPECT_EQ(c.device_work, std::vector<double>({1200, 1101}));
+  ASSERT_EQ(c.stage_seconds.size(), 2u);  // in name order, as `render` prints them
+  EXPECT_EQ(c.stage_seconds[0].stage, "grid");
+  EXPECT_EQ(c.stage_seconds[0].seconds, 1201);
+  EXPECT_EQ(c.stage_seconds[1].stage, "light pass");
+  EXPECT_EQ(c.stage_seconds[1].seconds, 1400);
+  EXPECT_EQ(c.work_of(1), 1101);
+  EXPECT_EQ(c.work_of(2), 0);
 }
 
 TEST(MpiMessages, ChunkResultAndInputsRoundTrip) {
@@ -56,6 +108,7 @@ TEST(MpiMessages, ChunkResultAndInputsRoundTrip) {
   c.gather_s = 0.125;
   c.overflows = 1;
   c.per_photon = 4.5;
+  c.work = {30000, 2768};
   const mpi::Reply back = mpi::decode_reply(mpi::encode(reply));
   ASSERT_EQ(back.kind, mpi::Kind::chunk_result);
   EXPECT_TRUE(same_bits(back.chunk.flux, c.flux));
@@ -64,6 +117,7 @@ TEST(MpiMessages, ChunkResultAndInputsRoundTrip) {
   EXPECT_EQ(back.chunk.records, 131000);
   EXPECT_EQ(back.chunk.per_photon, 4.5);
   EXPECT_EQ(back.chunk.overflows, 1);
+  EXPECT_EQ(back.chunk.work, c.work);
 
   mpi::Request request;
   request.kind = mpi::Kind::inputs;

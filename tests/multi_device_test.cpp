@@ -18,7 +18,7 @@ namespace {
 
 struct Rendered {
   Image image;
-  std::map<std::string, double> tallies;
+  PassCounters counters;
 };
 
 Rendered render_on(const std::vector<int>& devices, const std::string& scene_path,
@@ -33,7 +33,7 @@ Rendered render_on(const std::vector<int>& devices, const std::string& scene_pat
   options.show_progress = false;
   RenderSummary summary = job.run(options);
   EXPECT_EQ(summary.passes, passes);
-  return {job.film().image(), job.film().tallies()};
+  return {job.film().image(), job.film().counters()};
 }
 
 void expect_same_bits(const Image& a, const Image& b) {
@@ -66,7 +66,7 @@ TEST_P(TwoQueues, GiveTheOneDeviceImageBitForBit) {
   expect_same_bits(one.image, two.image);
   // Both queues took part: their work adds up to the whole.
   const double whole = integrator == "photon" ? double(s.photons) * passes : double(passes);
-  EXPECT_DOUBLE_EQ(two.tallies[device_work_tally(0)] + two.tallies[device_work_tally(1)], whole);
+  EXPECT_DOUBLE_EQ(two.counters.work_of(0) + two.counters.work_of(1), whole);
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryIntegrator, TwoQueues,
@@ -96,7 +96,7 @@ TEST(TwoQueues, PhotonMappingChunksSplitsAndHostGatherAreDeterministic) {
     Rendered three = render_on({0, 0, 0}, path, "photon", s, 3, 24);
     expect_same_bits(one.image, again.image);
     expect_same_bits(one.image, three.image);
-    EXPECT_GT(one.tallies["photon store overflows"], 0) << "chunks were traced again in halves";
+    EXPECT_GT(one.counters.photon_store_overflows, 0) << "chunks were traced again in halves";
   }
 }
 

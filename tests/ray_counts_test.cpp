@@ -23,19 +23,14 @@ test::RenderResult render(const std::string& scene, const std::string& integrato
   return render_scene(test::source_path(scene), s);
 }
 
-double tally(const test::RenderResult& r, const char* name) {
-  auto it = r.tallies.find(name);
-  return it == r.tallies.end() ? -1 : it->second;
-}
-
 }  // namespace
 
 // The first-hit views trace one closest-hit ray per camera sample, hit or miss, and no other.
 TEST(RayCounts, DebugCountsOneClosestRayPerCameraSample) {
   test::RenderResult r = render("scenes/cornell_box.json", "debug", 1 << 18);
   const double paths = r.scene.camera.width * r.scene.camera.height * 4.0 * 2;
-  EXPECT_EQ(tally(r, kClosestRays), paths);
-  EXPECT_EQ(tally(r, kShadowRays), 0);
+  EXPECT_EQ(r.counters.closest_rays, paths);
+  EXPECT_EQ(r.counters.shadow_rays, 0);
 }
 
 // Inside a closed furnace every ray hits and no path ends by itself before the depth guard (no
@@ -48,7 +43,7 @@ TEST(RayCounts, BackwardCountsMaxDepthClosestRaysPerPathInAFurnace) {
     for (int depth : {1, 3}) {
       test::RenderResult r = render(scene, "backward", depth);
       const double paths = r.scene.camera.width * r.scene.camera.height * 4.0 * 2;
-      const double closest = tally(r, kClosestRays), shadow = tally(r, kShadowRays);
+      const double closest = r.counters.closest_rays, shadow = r.counters.shadow_rays;
       if (depth == 1) {
         EXPECT_EQ(closest, paths) << scene;
       } else {  // a ray slipping through a crack between the tessellation's triangles ends a path
@@ -76,10 +71,10 @@ TEST(RayCounts, EveryIntegratorCountsItsPaths) {
     const double least = name == "backward"  ? 2 * pixels
                          : name == "forward" ? photons
                                              : 2 * pixels + photons;
-    EXPECT_GE(tally(r, kClosestRays), least) << integrator;
-    EXPECT_GT(tally(r, kShadowRays), 0) << integrator;
+    EXPECT_GE(r.counters.closest_rays, least) << integrator;
+    EXPECT_GT(r.counters.shadow_rays, 0) << integrator;
     if (name == "photon") {
-      EXPECT_GE(tally(r, kGatherQueries), 2 * pixels);
+      EXPECT_GE(r.counters.gather_queries, 2 * pixels);
     }
   }
 }

@@ -29,8 +29,8 @@ RenderResult render_scene(const std::string& path, const RenderSettings& s) {
     if (s.until && s.until(p + 1, job.film().image())) break;
   }
   r.image = job.film().image();
-  r.tallies = job.film().tallies();
-  r.rejected = static_cast<long long>(job.film().tally("rejected samples"));
+  r.counters = job.film().counters();
+  r.rejected = static_cast<long long>(r.counters.rejected_samples);
   r.device_buffers = job.integrator().device_buffers();
   r.work_passes = job.film().work_passes();
   r.passes = job.film().passes();

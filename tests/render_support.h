@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "film/image.h"
+#include "film/pass_counters.h"
 #include "render/integrator_registry.h"
 #include "scene/scene.h"
 
@@ -19,7 +20,7 @@ struct RenderResult {
   Scene scene;
   Image image;
   long long rejected = 0;
-  std::map<std::string, double> tallies;         // the film's counters (PassResult::tallies)
+  PassCounters counters;                         // the film's (every pass's, added)
   std::map<std::string, size_t> device_buffers;  // the integrator's
   double work_passes = 0;                        // passes, a cut-short one counted by its fraction
   int passes = 0;

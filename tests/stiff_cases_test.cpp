@@ -416,11 +416,10 @@ class StiffCases : public ::testing::TestWithParam<StiffCase> {
   // Finite pixels, no rejected sample, no depth-guard cut beyond 1e-4 of the weight.
   static void expect_healthy(const RenderResult& r, const std::string& label) {
     EXPECT_EQ(r.rejected, 0) << label;
-    for (const auto& [cut, of] : {std::pair{kDepthGuardCut, kDepthGuardOf},
-                                  std::pair{kCameraDepthGuardCut, kCameraDepthGuardOf}}) {
-      auto c = r.tallies.find(cut), o = r.tallies.find(of);
-      if (c != r.tallies.end() && o != r.tallies.end() && o->second > 0) {
-        EXPECT_LE(c->second / o->second, 1e-4) << label << ": " << cut;
+    for (const auto& [guard, what] : {std::pair{r.counters.depth_guard, "depth guard"},
+                                      std::pair{r.counters.camera_depth_guard, "camera paths"}}) {
+      if (guard.of > 0) {
+        EXPECT_LE(guard.cut / guard.of, 1e-4) << label << ": " << what;
       }
     }
     for (float v : r.image.xyz) ASSERT_TRUE(std::isfinite(v)) << label;

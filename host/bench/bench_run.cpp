@@ -63,9 +63,9 @@ BenchRun bench_on_devices(const LoadedBenchScene& s, const std::string& integrat
   run.startup_seconds = startup_seconds(log.rows());
   run.camera_paths = static_cast<double>(in.camera_paths_per_pass()) * film.work_passes();
   run.photons = static_cast<double>(in.photons_per_pass()) * film.work_passes();
-  run.closest_rays = film.tally(kClosestRays);
-  run.shadow_rays = film.tally(kShadowRays);
-  run.gather_queries = film.tally(kGatherQueries);
+  run.closest_rays = film.counters().closest_rays;
+  run.shadow_rays = film.counters().shadow_rays;
+  run.gather_queries = film.counters().gather_queries;
   // Device time and memory add over the devices (launches overlap in time across devices).
   for (size_t d = 0; d < job.local_devices(); ++d) {
     Integrator& lane = job.integrator(d);

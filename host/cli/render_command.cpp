@@ -37,33 +37,31 @@ struct RenderArgs {
 // What the render's passes went to: stage shares, devices' shares, the depth guard, rejections.
 void report_render(const RenderArgs& a, const RenderJob& job,
                    const std::vector<std::string>& names) {
-  const Film& film = job.film();
-  // Where a pass's time went, for integrators that time their stages ("time: <stage> (s)").
+  const PassCounters& counters = job.film().counters();
+  // Where a pass's time went, for integrators that time their stages.
   double total = 0;
   std::string shares;
-  for (const auto& [name, value] : film.tallies())
-    if (name.rfind("time: ", 0) == 0) total += value;
-  for (const auto& [name, value] : film.tallies())
-    if (name.rfind("time: ", 0) == 0 && total > 0)
-      shares += (shares.empty() ? "" : ", ") + name.substr(6, name.size() - 10) + " " +
-                std::to_string(static_cast<int>(std::lround(100 * value / total))) + " %";
+  for (const StageTime& s : counters.stage_seconds) total += s.seconds;
+  for (const StageTime& s : counters.stage_seconds)
+    if (total > 0)
+      shares += (shares.empty() ? "" : ", ") + s.stage + " " +
+                std::to_string(static_cast<int>(std::lround(100 * s.seconds / total))) + " %";
   if (!shares.empty())
     std::fprintf(stderr, "%s time: %s\n", a.spec.integrator.c_str(), shares.c_str());
   if (job.devices() > 1) {
     double work = 0;
-    for (size_t d = 0; d < job.devices(); ++d) work += film.tally(device_work_tally(d));
+    for (size_t d = 0; d < job.devices(); ++d) work += counters.work_of(d);
     std::string each;
     for (size_t d = 0; d < job.devices(); ++d)
       each += (d ? ", " : "") + std::to_string(d) + " (" + names[d] + ") " +
               std::to_string(static_cast<int>(
-                  std::lround(100 * film.tally(device_work_tally(d)) / std::max(work, 1e-300)))) +
+                  std::lround(100 * counters.work_of(d) / std::max(work, 1e-300)))) +
               " %";
     std::fprintf(stderr, "work per device: %s\n", each.c_str());
   }
   double cut_share = 0;
-  for (auto [cut, of] : {std::pair{kDepthGuardCut, kDepthGuardOf},
-                         std::pair{kCameraDepthGuardCut, kCameraDepthGuardOf}})
-    if (film.tally(of) > 0) cut_share = std::max(cut_share, film.tally(cut) / film.tally(of));
+  for (const DepthGuardTally& guard : {counters.depth_guard, counters.camera_depth_guard})
+    if (guard.of > 0) cut_share = std::max(cut_share, guard.cut / guard.of);
   if (cut_share > 1e-4)
     std::fprintf(
         stderr,
@@ -71,9 +69,9 @@ void report_render(const RenderArgs& a, const RenderJob& job,
         "of the weight they started with; the image lacks what they would have added (too "
         "dark: the scene keeps nearly all its light)\n",
         a.spec.settings.max_depth, cut_share);
-  if (film.tally("rejected samples") > 0)
+  if (counters.rejected_samples > 0)
     std::fprintf(stderr, "kasha: warning: %.0f samples were not finite and were left out\n",
-                 film.tally("rejected samples"));
+                 counters.rejected_samples);
 }
 
 int run_render(const RenderArgs& a) {

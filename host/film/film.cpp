@@ -30,13 +30,8 @@ void Film::accumulate(const PassResult& pass) {
       pixel_samples_.empty() ? 0 : *std::min_element(pixel_samples_.begin(), pixel_samples_.end());
   ++passes_;
   work_ += pass.fraction;
-  for (const auto& [name, value] : pass.tallies) tallies_[name] += value;
+  counters_.add(pass.counters);
   if (pass.kept) kept_ = pass.kept;
-}
-
-double Film::tally(const std::string& name) const {
-  auto it = tallies_.find(name);
-  return it == tallies_.end() ? 0.0 : it->second;
 }
 
 Image Film::image() const {

@@ -3,8 +3,6 @@
 // of a spectral film (XYZ is then derived from the bins on output). Every integrator's pass
 // arrives as a PassResult and is accumulated the same way: sums add up, counters add up, and
 // photon mapping's gathers update the SPPM statistics that the image adds to the sums' mean.
-#include <map>
-#include <string>
 #include <vector>
 
 #include "color/cie_observer.h"
@@ -30,9 +28,8 @@ class Film {
   long long samples_per_pixel() const { return samples_; }
   double work_passes() const { return work_; }  // passes, counting a cut-short one by its fraction
   int passes() const { return passes_; }
-  // Sums of every pass's counters, by name (PassResult::tallies).
-  const std::map<std::string, double>& tallies() const { return tallies_; }
-  double tally(const std::string& name) const;
+  // Every pass's counters, added (PassCounters::add).
+  const PassCounters& counters() const { return counters_; }
 
   Image image() const;  // the current estimate
 
@@ -46,7 +43,7 @@ class Film {
   long long samples_ = 0;
   double work_ = 0;
   int passes_ = 0;
-  std::map<std::string, double> tallies_;
+  PassCounters counters_;
   KeptImage kept_;
 };
 

@@ -17,12 +17,6 @@ MessageWriter& MessageWriter::put(const std::string& text) {
   return *this;
 }
 
-MessageWriter& MessageWriter::put(const std::map<std::string, double>& tallies) {
-  put<uint64_t>(tallies.size());
-  for (const auto& [name, value] : tallies) put(name).put(value);
-  return *this;
-}
-
 void MessageReader::copy(void* out, size_t size) {
   if (size > bytes_.size() - at_) truncated();
   if (size > 0) std::memcpy(out, bytes_.data() + at_, size);
@@ -40,15 +34,6 @@ std::string MessageReader::get_string() {
   std::string text(bytes_.data() + at_, n);
   at_ += n;
   return text;
-}
-
-std::map<std::string, double> MessageReader::get_tallies() {
-  std::map<std::string, double> tallies;
-  for (uint64_t n = get<uint64_t>(); n > 0; --n) {
-    std::string name = get_string();
-    tallies[name] = get<double>();
-  }
-  return tallies;
 }
 
 void MessageReader::end() const {

@@ -5,7 +5,6 @@
 // bit. A reader throws kasha::Error on a message shorter than what is read from it.
 #include <cstdint>
 #include <cstring>
-#include <map>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -28,7 +27,6 @@ class MessageWriter {
     return *this;
   }
   MessageWriter& put(const std::string& text);
-  MessageWriter& put(const std::map<std::string, double>& tallies);
 
   const std::vector<char>& bytes() const { return bytes_; }
   std::vector<char> take() { return std::move(bytes_); }
@@ -59,7 +57,6 @@ class MessageReader {
     return values;
   }
   std::string get_string();
-  std::map<std::string, double> get_tallies();
 
   // Throws unless every byte was read: a reader and a writer that disagree fail loudly.
   void end() const;

@@ -14,6 +14,36 @@ Error unexpected(const char* what, Kind kind) {
   return Error(std::string("MPI: a ") + what + " message of unknown kind '" +
                static_cast<char>(kind) + "' (ranks running different kasha builds?)");
 }
+
+// A pass's counters: every number field in declaration order, then the devices' work and the
+// stages' times (get_counters reads them in the same order).
+void put_counters(MessageWriter& out, const PassCounters& c) {
+  out.put(c.rejected_samples).put(c.power_emitted_w).put(c.power_absorbed_w);
+  out.put(c.power_escaped_w).put(c.power_in_flight_w).put(c.depth_guard.cut);
+  out.put(c.depth_guard.of).put(c.camera_depth_guard.cut).put(c.camera_depth_guard.of);
+  out.put(c.closest_rays).put(c.shadow_rays).put(c.gather_queries).put(c.photons_stored);
+  out.put(c.photon_store_overflows).put(c.light_vertices_stored).put(c.light_chunks);
+  out.put(c.merging_radius).put(c.device_work).put<uint64_t>(c.stage_seconds.size());
+  for (const StageTime& s : c.stage_seconds) out.put(s.stage).put(s.seconds);
+}
+
+PassCounters get_counters(MessageReader& in) {
+  PassCounters c;
+  for (double* v : {&c.rejected_samples, &c.power_emitted_w, &c.power_absorbed_w,
+                    &c.power_escaped_w, &c.power_in_flight_w, &c.depth_guard.cut, &c.depth_guard.of,
+                    &c.camera_depth_guard.cut, &c.camera_depth_guard.of, &c.closest_rays,
+                    &c.shadow_rays, &c.gather_queries, &c.photons_stored, &c.photon_store_overflows,
+                    &c.light_vertices_stored, &c.light_chunks, &c.merging_radius})
+    *v = in.get<double>();
+  c.device_work = in.get_vector<double>();
+  for (uint64_t n = in.get<uint64_t>(); n > 0; --n) {
+    StageTime s;
+    s.stage = in.get_string();
+    s.seconds = in.get<double>();
+    c.stage_seconds.push_back(s);
+  }
+  return c;
+}
 }  // namespace
 
 std::vector<char> encode(const Request& r) {
@@ -52,7 +82,7 @@ std::vector<char> encode(const Reply& r) {
     case Kind::result: {
       const PassResult& p = r.result;
       out.put(p.pass).put(p.samples).put(p.pixel_samples).put(p.sums).put(p.fraction);
-      out.put(p.tallies);
+      put_counters(out, p.counters);
       break;
     }
     case Kind::chunk_result: {
@@ -80,7 +110,7 @@ Reply decode_reply(const std::vector<char>& bytes) {
       p.pixel_samples = in.get_vector<long long>();
       p.sums = in.get_vector<double>();
       p.fraction = in.get<double>();
-      p.tallies = in.get_tallies();
+      p.counters = get_counters(in);
       break;
     }
     case Kind::chunk_result: {
@@ -90,7 +120,7 @@ Reply decode_reply(const std::vector<char>& bytes) {
       for (double* v : {&c.traced, &c.records, &c.cut, &c.trace_s, &c.gather_s, &c.overflows,
                         &c.per_photon, &c.gathers, &c.closest_rays, &c.shadow_rays})
         *v = in.get<double>();
-      c.work = in.get_tallies();
+      c.work = in.get_vector<double>();
       break;
     }
     case Kind::error:

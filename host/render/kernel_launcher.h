@@ -71,12 +71,12 @@ class KernelLauncher {
     cl_.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, count * sizeof(float), out.data());
   }
 
-  // The rays the pass's launches traced, as tallies (kClosestRays, kShadowRays): every pass
-  // result carries them, read from the job's counters (kernels/hit_point.h, add_ray_counts).
-  void add_ray_tallies(PassResult& result) {
+  // The rays the pass's launches traced, added to its counters: every pass result carries them,
+  // read from the job's counters (kernels/hit_point.h, add_ray_counts).
+  void add_ray_counts(PassResult& result) {
     DeviceFilm::RayCounts rays = film_.take_ray_counts();
-    result.tallies[kClosestRays] += rays.closest;
-    result.tallies[kShadowRays] += rays.shadow;
+    result.counters.closest_rays += rays.closest;
+    result.counters.shadow_rays += rays.shadow;
   }
 
  protected:

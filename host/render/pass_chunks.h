@@ -6,8 +6,6 @@
 // ranks (mpi/remote_lane.h) — and the chunks' gathers add up in chunk order.
 #include <atomic>
 #include <cstddef>
-#include <map>
-#include <string>
 #include <vector>
 
 #include "render/pass_control.h"
@@ -28,8 +26,8 @@ struct ChunkResult {
   double overflows = 0;  // ranges traced again in halves
   double gathers = 0;    // gathers of a store: each queries every visible point
   double closest_rays = 0, shadow_rays = 0;
-  double per_photon = 0;               // the most records a photon of a whole range stored
-  std::map<std::string, double> work;  // photons traced per device, with several
+  double per_photon = 0;     // the most records a photon of a whole range stored
+  std::vector<double> work;  // photons traced per device index, with several
 };
 
 class ChunkWorker {

@@ -44,7 +44,7 @@ PassResult PassScheduler::run_lane(size_t index, int pass) {
   };
   lane.set_control(control);
   PassResult r = lane.render_pass(pass);
-  r.tallies[device_work_tally(index)] = r.fraction;
+  r.counters.set_device_work(index, r.fraction);
   return r;
 }
 

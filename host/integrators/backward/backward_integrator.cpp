@@ -58,10 +58,10 @@ class BackwardIntegrator : public KernelIntegrator {
       r.pixel_samples.assign(pixels, k);
       for (size_t p = 0; p < first; ++p) ++r.pixel_samples[p];
     }
-    r.tallies["rejected samples"] = read_sum<cl_int>(rejected_, film_.pixels());
-    r.tallies[kDepthGuardCut] = read_sum<cl_float>(cut_, film_.pixels());  // relative to a start
-    r.tallies[kDepthGuardOf] = work;
-    add_ray_tallies(r);
+    r.counters.rejected_samples = read_sum<cl_int>(rejected_, film_.pixels());
+    r.counters.depth_guard.cut = read_sum<cl_float>(cut_, film_.pixels());  // relative to a start
+    r.counters.depth_guard.of = work;
+    add_ray_counts(r);
     return r;
   }
 

@@ -27,7 +27,7 @@ class DebugIntegrator : public KernelIntegrator {
     launch(kernel_, film_.pixels(), film_.pixel_sums(), view_, spp_, seed_,
            static_cast<cl_uint>(pass));
     PassResult r{pass, spp_, {}, film_.read_pixel_sums(), 1.0, {}, {}};
-    add_ray_tallies(r);
+    add_ray_counts(r);
     return r;
   }
 

@@ -73,14 +73,14 @@ class ForwardIntegrator : public KernelIntegrator {
     double power[4] = {0, 0, 0, 0};
     for (size_t i = 0; i < items_; ++i)
       for (int k = 0; k < 4; ++k) power[k] += stats[4 * i + k] * scale_up;
-    r.tallies = {{"rejected samples", overflow},
-                 {"power emitted (W)", power[0]},
-                 {"power absorbed (W)", power[1]},
-                 {"power escaped (W)", power[2]},
-                 {"power in flight (W)", power[3]},
-                 {kDepthGuardCut, power[3]},  // photons the depth guard cut, still carrying power
-                 {kDepthGuardOf, power[0]}};
-    add_ray_tallies(r);
+    PassCounters& c = r.counters;
+    c.rejected_samples = overflow;
+    c.power_emitted_w = power[0];
+    c.power_absorbed_w = power[1];
+    c.power_escaped_w = power[2];
+    c.power_in_flight_w = power[3];
+    c.depth_guard = {power[3], power[0]};  // photons the depth guard cut, still carrying power
+    add_ray_counts(r);
     return r;
   }
 

@@ -88,7 +88,7 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
            radius_buf_, static_cast<cl_float>(radius_), static_cast<cl_float>(footprint_),
            static_cast<cl_float>(max_radius_), raised_, spp_, seed_, static_cast<cl_uint>(pass));
     PassResult r{pass, spp_, {}, {}, 1.0, {}, {}};
-    r.tallies["time: camera pass (s)"] = device_seconds_ - device0;
+    r.counters.add_stage("camera pass", device_seconds_ - device0);
     warn_raised_radii();
     if (grid_) grid_->size_cells(vps_, radius_buf_, pixels);
     const ChunkResult gathered = gather_pass(pass);
@@ -103,8 +103,8 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
     update_statistics(pass, r);
     ++passes_;
     r.kept = [this] { return read_image(); };
-    add_pass_tallies(gathered, r);
-    r.tallies["time: host (s)"] = std::max(0.0, seconds_since(t0) - (device_seconds_ - device0));
+    add_pass_counters(gathered, r);
+    r.counters.add_stage("host", std::max(0.0, seconds_since(t0) - (device_seconds_ - device0)));
     return r;
   }
 
@@ -180,28 +180,28 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
     }
     launch_own(update_kernel_, pixels, radius_buf_, count_, tau_, pass_flux_, pass_found_,
                static_cast<cl_float>(alpha_), static_cast<cl_float>(1.0 / r.fraction));
-    r.tallies["time: SPPM update and edge probes (s)"] = device_seconds_ - t;
+    r.counters.add_stage("SPPM update and edge probes", device_seconds_ - t);
   }
 
   // Stage times add over the devices; with several, "host" is what this device's thread spent
   // beyond its own launches (waiting for the others included).
-  void add_pass_tallies(const ChunkResult& gathered, PassResult& r) {
+  void add_pass_counters(const ChunkResult& gathered, PassResult& r) {
     const size_t pixels = film_.pixels();
-    r.tallies["time: photon tracing (s)"] = gathered.trace_s;
-    r.tallies["time: grid and gather (s)"] = gathered.gather_s;
-    r.tallies["photons stored"] = gathered.records;
-    r.tallies["photon store overflows"] = gathered.overflows;
-    r.tallies[kGatherQueries] = gathered.gathers * static_cast<double>(pixels);
+    PassCounters& c = r.counters;
+    c.add_stage("photon tracing", gathered.trace_s);
+    c.add_stage("grid and gather", gathered.gather_s);
+    c.photons_stored = gathered.records;
+    c.photon_store_overflows = gathered.overflows;
+    c.gather_queries = gathered.gathers * static_cast<double>(pixels);
     // The chunks' rays (on whichever device), then this device's camera pass and probes.
-    r.tallies[kClosestRays] = gathered.closest_rays;
-    r.tallies[kShadowRays] = gathered.shadow_rays;
-    add_ray_tallies(r);
-    r.tallies[kDepthGuardCut] = gathered.cut;  // per photon's start
-    r.tallies[kDepthGuardOf] = gathered.traced;
-    r.tallies[kCameraDepthGuardCut] = read_sum<cl_float>(camera_cut_, pixels);
-    r.tallies[kCameraDepthGuardOf] = static_cast<double>(pixels) * spp_;
-    r.tallies["rejected samples"] = read_sum<cl_int>(rejected_, pixels);
-    for (const auto& [name, photons] : gathered.work) r.tallies[name] = photons;
+    c.closest_rays = gathered.closest_rays;
+    c.shadow_rays = gathered.shadow_rays;
+    add_ray_counts(r);
+    c.depth_guard = {gathered.cut, gathered.traced};  // per photon's start
+    c.camera_depth_guard = {read_sum<cl_float>(camera_cut_, pixels),
+                            static_cast<double>(pixels) * spp_};
+    c.rejected_samples = read_sum<cl_int>(rejected_, pixels);
+    c.device_work = gathered.work;
   }
 
   // The image so far: direct light's mean plus the SPPM radiance, per pixel and film row.

@@ -68,8 +68,7 @@ ChunkResult share_pass(int pass, size_t photons, size_t chunk,
   total.flux.assign(flux_size, 0.0);
   total.found.assign(pixels, 0);
   for (size_t c = 0; c < chunks; ++c) add_chunk(total, work.take(static_cast<long long>(c)));
-  if (workers.size() > 1)
-    for (size_t i = 0; i < work_done.size(); ++i) total.work[device_work_tally(i)] = work_done[i];
+  if (workers.size() > 1) total.work = work_done;
   return total;
 }
 

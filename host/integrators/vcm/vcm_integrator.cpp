@@ -265,10 +265,11 @@ class VcmIntegrator : public KernelIntegrator {
       r.pixel_samples.assign(pixels, 0);
       std::fill(r.pixel_samples.begin(), r.pixel_samples.begin() + done, spp_);
     }
-    add_tallies(r, radius, stages, chunks);
-    r.tallies["time: camera pass (s)"] = device_seconds_ - device0 - stages.light - stages.grid;
-    r.tallies["time: host (s)"] = std::max(0.0, seconds_since(t0) - (device_seconds_ - device0));
-    add_ray_tallies(r);
+    add_counters(r, radius, stages, chunks);
+    PassCounters& c = r.counters;
+    c.add_stage("camera pass", device_seconds_ - device0 - stages.light - stages.grid);
+    c.add_stage("host", std::max(0.0, seconds_since(t0) - (device_seconds_ - device0)));
+    add_ray_counts(r);
     return r;
   }
 
@@ -358,23 +359,22 @@ class VcmIntegrator : public KernelIntegrator {
                    fixed_point_value(fixed[2 * i], fixed[2 * i + 1], film_shift_);
   }
 
-  void add_tallies(PassResult& r, const Radius& radius, const Stages& stages, size_t chunks) {
+  void add_counters(PassResult& r, const Radius& radius, const Stages& stages, size_t chunks) {
     const size_t pixels = film_.pixels();
     std::vector<KVcmPixel> px(pixels);
     cl_.queue().enqueueReadBuffer(pixels_, CL_TRUE, 0, pixels * sizeof(KVcmPixel), px.data());
     double rejected = 0, camera_cut = 0;
     for (const KVcmPixel& p : px) rejected += p.rejected;
     for (const KVcmPixel& p : px) camera_cut += p.cut;
-    r.tallies["rejected samples"] = rejected + overflow_;
-    r.tallies["light vertices stored"] = stages.stored;
-    r.tallies["light chunks"] = static_cast<double>(chunks);
-    r.tallies["merging radius"] = per_path_ ? radius.radius / 2 : radius.radius;  // a typical one
-    r.tallies[kDepthGuardCut] = stages.light_cut;
-    r.tallies[kDepthGuardOf] = static_cast<double>(paths_);
-    r.tallies[kCameraDepthGuardCut] = camera_cut;
-    r.tallies[kCameraDepthGuardOf] = static_cast<double>(pixels) * spp_;
-    r.tallies["time: light pass (s)"] = stages.light;
-    r.tallies["time: grid (s)"] = stages.grid;
+    PassCounters& c = r.counters;
+    c.rejected_samples = rejected + overflow_;
+    c.light_vertices_stored = stages.stored;
+    c.light_chunks = static_cast<double>(chunks);
+    c.merging_radius = per_path_ ? radius.radius / 2 : radius.radius;  // a typical one
+    c.depth_guard = {stages.light_cut, static_cast<double>(paths_)};
+    c.camera_depth_guard = {camera_cut, static_cast<double>(pixels) * spp_};
+    c.add_stage("light pass", stages.light);
+    c.add_stage("grid", stages.grid);
   }
 
   // The depth guard's tally over the chunk's `count` light subpaths.
