@@ -16,10 +16,9 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/warning.h"
-#include "render/fixed_point_film.h"
-#include "integrators/vcm/merging_distance.h"
-#include "integrators/vcm/seen_light.h"
+#include "integrators/vcm/vcm_plan.h"
 #include "opencl/device_buffer.h"
+#include "render/fixed_point_film.h"
 #include "render/hash_grid.h"
 #include "render/kernel_integrator.h"
 #include "render/launch_pacer.h"
@@ -30,14 +29,6 @@ namespace kasha {
 
 namespace {
 
-enum class VcmMode { vcm, bpt, ppm };
-
-// Light subpaths per iteration unless --photons says (default_light_paths): one a pixel in vcm
-// and bpt, as SmallVCM (a pixel's camera paths connect to their own; with fewer than pixels ·
-// spp, sample j of pixel p takes (p · spp + j) mod their count). More mostly lengthen the light
-// pass: on the 32² furnaces, 2^14 of them (16 a pixel) left bpt 1.0–1.5 × backward's RMSE at 8 s,
-// one a pixel 0.65–0.8 ×. ppm, merges alone, takes direct light from them too: at least this many.
-constexpr size_t kLeastPhotonMappingPaths = 1 << 16;
 // The merges' share of the MIS weights: η = κ π r² L / spp. Georgiev's η counts a merge as L π r²
 // independent samples of the path's density, but a merge's photons are shared by the camera paths
 // around it and its estimate is a count of a few photons in a disc, so at a diffuse vertex it is
@@ -48,15 +39,7 @@ constexpr size_t kLeastPhotonMappingPaths = 1 << 16;
 // 1): light booth −20 %, Cornell boxes −3 to −4 %, fluorescent furnace −10 %, mirror caustic +3 %,
 // glass caustic +0.5 %; κ = 1/16 took the light booth to −24 % but the mirror caustic to +43 %.
 constexpr double kMergeWeight = 0.25;
-// Camera paths a pixel per iteration unless --spp says: several share an iteration's light pass
-// in vcm and bpt (measured: vcm's RMSE after 20 s on the Cornell box 0.00081 with four against
-// 0.00097 with one, bpt's 0.00074 against 0.00084). Eight where no light bounces off a mirror,
-// glass or a smooth coat — vcm is bpt there, and its light subpaths serve only connections and
-// light tracing (bpt's RMSE after 12 s, 8 against 4: the Cornell box −11 %, the light booth
-// −13 %, a million triangles −6 %); four where caustics are, whose merges and light tracing need
-// fresh photons more than more camera paths (the mirror caustic +28 % with eight). ppm, whose
-// estimate is all merges with the one photon map, gains nothing from more.
-constexpr int kDefaultCameraPaths = 8;
+
 // Samples per camera path of the light seen through delta bounces alone (a lamp, its image in
 // glass, a mirror or a coat; kernels/vcm/vcm_seen_light.h), in the pixels where it has an edge
 // (seen_light.h). Its MIS weight is 1, so any number is unbiased; each costs a ray or a few, a
@@ -64,69 +47,10 @@ constexpr int kDefaultCameraPaths = 8;
 // −54 %, the glass of water −51 %, the glass caustic −46 %, a million triangles −17 %, the Cornell
 // box −7 %; 16 gained 0–6 % more on those, none elsewhere (docs/integrators.md).
 constexpr int kSeenLightSamples = 8;
-constexpr int kCausticCameraPaths = 4;
+
 // Probes of a merge's disc for the edge correction (kernels/disc_coverage.h), once a merge has
 // met a photon; each is a short ray through the gather's slab.
 constexpr int kCoverageProbes = 8;
-constexpr int kDefaultPhotonMappingCameraPaths = 1;
-
-// A caustic-lit view: the scene has delta surfaces and most merging vertices see no lamp
-// (`unlit`, merging_distance.h), so what the camera sees is lit by caustics and the light they
-// bring on, which merges and light tracing alone reach. There vcm runs as photon mapping does —
-// --merges auto merges all light at the first vertex (`first`: next to a wall, the light the
-// wall throws on the floor comes from connections alone under `caustic`, whose 1/d² near the
-// corner leaves it short at 20 s: 0.29 against 0.35) — and with light subpaths for merges before
-// camera paths: 2 camera paths a pixel unless --spp says, and 32 light subpaths a pixel whatever
-// --spp says (capped at 2^31 − 1). bpt, which does not merge, gains nothing from more
-// (the mirror caustic +7 % with 4 a pixel). Measured on the mirror caustic (vcm --merges first,
-// RMSE after 20 s against the mean of 120-s photon-mapping and 300-s vcm renders): 4 camera paths
-// and 4 light subpaths a pixel 0.0139, 4 and 16 0.0104, 4 and 32 0.0097, 4 and 64 0.0095, 2 and
-// 32 0.0092, 2 and 64 0.0093, 1 and 32 0.0104; photon mapping 0.0098. The counts go with `first`:
-// an explicit --merges caustic or every keeps those of other views. Elsewhere more light subpaths
-// lengthen the light pass: the mirror furnace, lit directly everywhere, +9 % with 4 a pixel and +23
-// % with 16.
-constexpr double kMostlyUnlit = 0.5;
-constexpr int kCausticLitCameraPaths = 2;
-constexpr size_t kCausticLitLightPaths = 32;
-
-size_t default_light_paths(VcmMode m, size_t pixels, bool caustic_lit) {
-  if (m == VcmMode::ppm) return std::max<size_t>(pixels, kLeastPhotonMappingPaths);
-  if (m == VcmMode::vcm && caustic_lit)
-    return std::min<size_t>(pixels * kCausticLitLightPaths, (1u << 31) - 1);
-  return pixels;
-}
-
-int default_camera_paths(VcmMode m, const Scene& scene, bool caustic_lit) {
-  if (m == VcmMode::ppm) return kDefaultPhotonMappingCameraPaths;
-  if (m == VcmMode::vcm && caustic_lit) return kCausticLitCameraPaths;
-  return scene.has_delta_surfaces() ? kCausticCameraPaths : kDefaultCameraPaths;
-}
-
-// What vcm takes from camera rays on the host (Embree) before its kernels are built: where
-// camera paths merge, whether the view is caustic-lit, what merges, and the pixels where the
-// light seen through delta bounces alone has an edge (seen_light.h).
-struct VcmPlan {
-  MergingVertices merging;
-  bool caustic_lit = false;  // a caustic-lit view merging all light at the first vertex
-  Merges merges;             // --merges, `auto` resolved: caustic, first or every
-  std::vector<int> seen;     // per pixel: 1 where that light has an edge
-};
-
-VcmPlan plan_for(VcmMode m, const IntegratorSetup& s) {
-  VcmPlan p;
-  const EmbreeScene embree(s.scene.triangles);
-  const KCamera& camera = s.device_scene.data().camera;
-  p.merging = probe_merging_vertices(s.scene, embree, camera);
-  const bool caustic_lit =
-      m == VcmMode::vcm && s.scene.has_delta_surfaces() && p.merging.unlit > kMostlyUnlit;
-  p.merges = s.settings.merges != Merges::automatic ? s.settings.merges
-             : caustic_lit                          ? Merges::first
-                                                    : Merges::caustic;
-  p.caustic_lit = caustic_lit && p.merges == Merges::first;  // the counts go with all light merged
-  p.seen = s.hooks.vcm_no_seen_light ? std::vector<int>(s.film.pixels(), 0)
-                                     : seen_light_pixels(s.scene, embree, camera);
-  return p;
-}
 
 KernelDefines mode_defines(VcmMode m, const IntegratorSetup& setup, Merges merges) {
   const IntegratorSettings& s = setup.settings;
@@ -174,7 +98,8 @@ class VcmIntegrator : public KernelIntegrator {
         s.scene, Mode != VcmMode::bpt ? plan.merging.distance : 0, s.settings.radius,
         Mode != VcmMode::bpt && !(Mode == VcmMode::vcm && plan.merges == Merges::every));
     pixel_start_.resize(plan.seen.size());
-    for (size_t p = 0; p < pixel_start_.size(); ++p) pixel_start_[p] = KVcmPixel{plan.seen[p], 0, 0};
+    for (size_t p = 0; p < pixel_start_.size(); ++p)
+      pixel_start_[p] = KVcmPixel{plan.seen[p], 0, 0};
     film_shift_ = fixed_point_shift(scene_.data(), film_.cmf(), film_.spectral());
     const size_t pixels = film_.pixels(), bins = s.scene.grid.bins;
     if (paths_ > (1u << 31) - 1) throw Error("vcm: at most 2^31 - 1 pixels");
@@ -184,10 +109,11 @@ class VcmIntegrator : public KernelIntegrator {
     // A chunk of light subpaths has a record each (KVcmLightPath): at most as many as the store
     // holds vertices, so that --photons grows no buffer beyond the --memory budget.
     chunk_paths_ = std::max<size_t>(1, std::min(paths_, budget_ / record_bytes()));
-    light_paths_ = device_buffer(cl_, chunk_paths_ * sizeof(KVcmLightPath),
-                                 "vcm: the chunk's light subpaths");
+    light_paths_ =
+        device_buffer(cl_, chunk_paths_ * sizeof(KVcmLightPath), "vcm: the chunk's light subpaths");
     // Connections compute a light vertex's f·Φ into a spectrum of the camera path's own, and
-    // its surface (textured, coated) into scratch of its own (kernels/vcm/vcm_modes.h, VCM_SPECTRA).
+    // its surface (textured, coated) into scratch of its own (kernels/vcm/vcm_modes.h,
+    // VCM_SPECTRA).
     spectra_floats_ =
         Mode == VcmMode::ppm ? 0 : bins + static_cast<size_t>(scratch_floats(s.scene));
     spectra_ = device_buffer(cl_, std::max<size_t>(pixels * spectra_floats_, 1) * sizeof(cl_float),
@@ -225,7 +151,8 @@ class VcmIntegrator : public KernelIntegrator {
       while (count > chunk_paths_) count = (count + 1) / 2;
       double t = device_seconds_;
       // Path tracing alone (a test hook) needs no light subpaths.
-      const Chunk chunk = emission_only_ ? no_light_paths(count) : trace_chunk(pass, radius, first, count);
+      const Chunk chunk =
+          emission_only_ ? no_light_paths(count) : trace_chunk(pass, radius, first, count);
       stages.light += device_seconds_ - t;
       if (chunk.outcome == Chunk::interrupted) {
         interrupted = true;
@@ -451,7 +378,8 @@ class VcmIntegrator : public KernelIntegrator {
       }
       // The retried chunk's splats are taken back.
       cl_.queue().enqueueCopyBuffer(fixed_before_, fixed_, 0, 0, cells() * 2 * sizeof(cl_ulong));
-      const size_t wanted = counters.stored < 0 ? SIZE_MAX / 2 : static_cast<size_t>(counters.stored);
+      const size_t wanted =
+          counters.stored < 0 ? SIZE_MAX / 2 : static_cast<size_t>(counters.stored);
       if (!allocate_store(wanted + wanted / 4)) return Chunk{Chunk::too_big, 0};
     }
   }
@@ -510,7 +438,7 @@ class VcmIntegrator : public KernelIntegrator {
   double footprint_ = 0;     // a pixel's footprint per unit of distance
   bool per_path_ = false;    // each camera path's radius from its distance (Radius::per_unit)
   int film_shift_ = 0;
-  double overflow_ = 0;                  // the pass's splats the light paths' film rejected
+  double overflow_ = 0;                 // the pass's splats the light paths' film rejected
   std::vector<KVcmPixel> pixel_start_;  // each pixel's record at a pass's start
   // Camera launches of 0.05 s: a deadline cuts an iteration at a finer grain of pixels.
   LaunchPacer light_pacer_{0.2, 256}, camera_pacer_{0.05, 256};
