@@ -1117,7 +1117,7 @@ __kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int paths, 
                               int item_end) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
-  int pixel = launch_pixel(&camera, item_end);
+  int pixel = launch_pixel(&s.camera, item_end);
   if (pixel < 0) return;
   /* The pixel's stream: a seed apart from the light subpaths'. */
   Sampler sampler = sampler_start(seed ^ 0x5bd1e995u, (uint)pixel, 0, pass, (uint)pixel);
