@@ -58,9 +58,12 @@ cl::Buffer upload_tables(ClContext& cl, const std::vector<HostTable>& tables) {
   }
   const size_t bytes = std::max<size_t>(end, 1);
   cl::Buffer huge = huge_page_buffer(cl, bytes, [&](unsigned char* to) {
-    std::memset(to, 0, bytes);
-    for (const HostTable& t : tables)
+    size_t filled = 0;  // the padding is zeroed, so no byte of the buffer is left unset
+    for (const HostTable& t : tables) {
+      std::memset(to + filled, 0, *t.offset - filled);
       if (t.bytes) std::memcpy(to + *t.offset, t.data, t.bytes);
+      filled = *t.offset + t.bytes;
+    }
   });
   if (huge()) return huge;
   // Written table by table, so the host holds no second copy of the scene.
