@@ -59,7 +59,7 @@ __kernel void render_backward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
                   int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
-  int pixel = launch_pixel(&camera, item_end);
+  int pixel = launch_pixel(&s.camera, item_end);
   if (pixel < 0) return;
   int bad = 0;
   float guard = 0.0f;
@@ -68,7 +68,7 @@ __kernel void render_backward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
     sampler_next_sample(&sampler, pass * (uint)spp + (uint)k);
     float rows[KASHA_FILM_ROWS];
     film_rows_clear(rows);
-    guard += trace_camera_path(&s, &f, camera_position(&camera), camera_sample(&camera, pixel, sample_2d(&sampler)),
+    guard += trace_camera_path(&s, &f, camera_position(&s.camera), camera_sample(&s.camera, pixel, sample_2d(&sampler)),
                                &sampler, rows);
     if (film_rows_finite(rows))
       film_add(film, pixel, rows);

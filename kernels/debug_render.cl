@@ -26,7 +26,7 @@ __kernel void render_debug(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
                   int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
-  int pixel = launch_pixel(&camera, item_end);
+  int pixel = launch_pixel(&s.camera, item_end);
   if (pixel < 0) return;
   Sampler sampler = sampler_start(seed, (uint)pixel, 0, pass, (uint)pixel);
   float rows[KASHA_FILM_ROWS];
@@ -34,7 +34,7 @@ __kernel void render_debug(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
   for (int k = 0; k < spp; ++k) {
     sampler_next_sample(&sampler, pass * (uint)spp + (uint)k);
     HitPoint h;
-    if (!intersect_scene(&s, camera_position(&camera), camera_sample(&camera, pixel, sample_2d(&sampler)), &h))
+    if (!intersect_scene(&s, camera_position(&s.camera), camera_sample(&s.camera, pixel, sample_2d(&sampler)), &h))
       continue;
     if (view == VIEW_EMISSION) {
       /* Emitters radiate from their front side only. */
@@ -42,7 +42,7 @@ __kernel void render_debug(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
     } else if (view == VIEW_NORMALS) {
       add_rgb_as_xyz(rows, 0.5f * hit_front(&h) + 0.5f);
     } else {
-      const __global KMaterial* m = &materials[h.material];
+      const __global KMaterial* m = &s.materials[h.material];
       for (int c = 0; c < 3; ++c) rows[c] += m->albedo_xyz[c];
     }
   }

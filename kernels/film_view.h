@@ -1,5 +1,5 @@
-/* The film as every kernel sees it: the tables DeviceFilm uploads once (the film rows' weights C
- * and the branch importance u per bin), and the job's ray counters (ray_counts: closest-hit and
+/* The film as every kernel sees it: the tables DeviceFilm uploads once in one buffer (the film
+ * rows' weights C and the branch importance u per bin), and the job's ray counters (ray_counts: closest-hit and
  * shadow rays, two 32-bit words each, added to by add_ray_counts in hit_point.h). Kernels take
  * KASHA_FILM_PARAMS after the scene's and gather the tables into one FilmView with
  * KASHA_FILM_VIEW. Defines: KASHA_BINS, KASHA_FILM_ROWS, KASHA_SPECTRAL_FILM. */
@@ -14,8 +14,9 @@ typedef struct {
   const __global float* importance; /* N: what a bin is worth to the film, for branch choices */
 } FilmView;
 
-#define KASHA_FILM_PARAMS __global const float *cmf, __global const float *importance, __global uint *ray_counts
-#define KASHA_FILM_VIEW(name) FilmView name = {cmf, importance}
+/* film_tables: C (3 × N), then the importance (N). */
+#define KASHA_FILM_PARAMS __global const float *film_tables, __global uint *ray_counts
+#define KASHA_FILM_VIEW(name) FilmView name = {film_tables, film_tables + 3 * KASHA_BINS}
 
 /* rows += scale · C·(x∘y∘z), each factor null for ones (spectral_product.h). */
 inline void film_rows(const FilmView* f, const float* x, const __global float* y, const __global float* z,

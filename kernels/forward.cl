@@ -138,13 +138,13 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
         film_rows_clear(rows);
 #if KASHA_SHADING_NORMALS
         /* Towards a camera below the shading normal's hemisphere the surface sends nothing. */
-        if (!hit_seen(&h, normalize(x - camera_position(&camera)))) k = 0.0f;
+        if (!hit_seen(&h, normalize(x - camera_position(&s.camera)))) k = 0.0f;
         k *= photon_arrival_correction(&h, p.direction);
 #endif
-        float lambert = k * KASHA_INV_PI / bin_nm;
+        float lambert = k * KASHA_INV_PI / s.bin_nm;
 #if KASHA_COATED
         /* Under a coat, t(θi) t(θo) / η² (coat.h). */
-        if (surf.coated) lambert *= surface_lambert_weight(&surf, dot(normalize(camera_position(&camera) - x), h.ns));
+        if (surf.coated) lambert *= surface_lambert_weight(&surf, dot(normalize(camera_position(&s.camera) - x), h.ns));
 #endif
         film_rows(&f, p.power, surf.rho, 0, lambert, rows);
 #if KASHA_FLUORESCENCE
@@ -153,9 +153,9 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
 #if KASHA_GLOSS
         if (glossy) {
           /* A tabulated lobe can be evaluated towards the camera: white, f_g Φ / Δλ. */
-          float3 to_camera = normalize(camera_position(&camera) - x);
-          float fg = surf.g * lobe_brdf(surf.m, lobes, to_camera, -p.direction, h.ns);
-          if (fg > 0.0f) film_rows(&f, p.power, 0, 0, fg * k / bin_nm, rows);
+          float3 to_camera = normalize(camera_position(&s.camera) - x);
+          float fg = surf.g * lobe_brdf(surf.m, s.lobes, to_camera, -p.direction, h.ns);
+          if (fg > 0.0f) film_rows(&f, p.power, 0, 0, fg * k / s.bin_nm, rows);
         }
 #endif
 #if KASHA_COATED
@@ -163,9 +163,9 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
           /* A rough coat's GGX lobe towards the camera (coat.h), white: f Φ / Δλ. */
           Frame fr = frame_of(h.ns);
           float pdf;
-          float fc = coat_lobe_eval(&surf, to_local(&fr, normalize(camera_position(&camera) - x)),
+          float fc = coat_lobe_eval(&surf, to_local(&fr, normalize(camera_position(&s.camera) - x)),
                                     to_local(&fr, -p.direction), &pdf);
-          if (fc > 0.0f) film_rows(&f, p.power, 0, 0, fc * k / bin_nm, rows);
+          if (fc > 0.0f) film_rows(&f, p.power, 0, 0, fc * k / s.bin_nm, rows);
         }
 #endif
         splat_rows(&target, pixel, rows);

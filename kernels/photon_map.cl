@@ -154,7 +154,7 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
                           int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
-  int pixel = launch_pixel(&camera, item_end);
+  int pixel = launch_pixel(&s.camera, item_end);
   if (pixel < 0) return;
   const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
   __global float* vp = visible_points + (long)pixel * vp_floats;

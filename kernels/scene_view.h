@@ -1,6 +1,7 @@
 /* The scene as every kernel sees it: camera, BVH, materials and their spectra, emitters and the
  * light-sampling tables with the lights that are not triangles. Kernels take KASHA_SCENE_PARAMS first (DeviceScene::bind sets them in
- * this order) and gather them into one SceneView with KASHA_SCENE_VIEW, which every routine takes. */
+ * this order) and gather them into one SceneView with KASHA_SCENE_VIEW, which every routine takes:
+ * a kernel body reads the scene only through that view. */
 #ifndef KASHA_SCENE_VIEW_H
 #define KASHA_SCENE_VIEW_H
 
@@ -41,22 +42,33 @@ typedef struct {
   RayCounts* rays; /* private: the work item's own counts */
 } SceneView;
 
-#define KASHA_SCENE_PARAMS                                                                                  \
-  KCamera camera, __global const KBvhNode *nodes, __global const KBvhLeaf *leaves,                          \
-      __global const KTriangle *tris, __global const KMaterial *materials, __global const float *spectra,   \
-      __global const float *lobes, __global const float *emitter_radiance,                                  \
-      __global const float *emitter_area_pdf, __global const int *light_tri,                                \
-      __global const float *light_cdf, int light_count, float bin_nm, __global const KLight *lights,          \
-      int light_sources, __global float *scratch, __global const KTexture *textures,                     \
-      __global const KTexcoords *texcoords, __global const KShadingNormals *normals
+/* The scene's tables lie in one buffer (scene_tables) at the offsets scene_params holds. */
+#define KASHA_SCENE_PARAMS \
+  KSceneParams scene_params, __global const uchar *scene_tables, __global float *scratch
+#define KASHA_SCENE_TABLE(type, table) ((const __global type*)(scene_tables + scene_params.table))
 
-#define KASHA_SCENE_VIEW(name)                                                                              \
-  RayCounts name##_rays = {0u, 0u};                                                                         \
-  SceneView name = {camera,           nodes,     leaves,    tris,        materials, spectra, lobes,         \
-                    emitter_radiance, emitter_area_pdf, light_tri, light_cdf, light_count, bin_nm,        \
-                    lights,           light_sources,                                                   \
+#define KASHA_SCENE_VIEW(name)                                                                     \
+  RayCounts name##_rays = {0u, 0u};                                                                \
+  SceneView name = {scene_params.camera,                                                           \
+                    KASHA_SCENE_TABLE(KBvhNode, nodes),                                            \
+                    KASHA_SCENE_TABLE(KBvhLeaf, leaves),                                           \
+                    KASHA_SCENE_TABLE(KTriangle, tris),                                            \
+                    KASHA_SCENE_TABLE(KMaterial, materials),                                       \
+                    KASHA_SCENE_TABLE(float, spectra),                                             \
+                    KASHA_SCENE_TABLE(float, lobes),                                               \
+                    KASHA_SCENE_TABLE(float, emitter_radiance),                                    \
+                    KASHA_SCENE_TABLE(float, emitter_area_pdf),                                    \
+                    KASHA_SCENE_TABLE(int, light_tri),                                             \
+                    KASHA_SCENE_TABLE(float, light_cdf),                                           \
+                    scene_params.light_count,                                                      \
+                    scene_params.bin_nm,                                                           \
+                    KASHA_SCENE_TABLE(KLight, lights),                                             \
+                    scene_params.light_sources,                                                    \
                     scratch + (get_global_id(0) - get_global_offset(0)) * KASHA_SCRATCH_FLOATS,    \
-                    textures,         texcoords,        normals,          &name##_rays}
+                    KASHA_SCENE_TABLE(KTexture, textures),                                         \
+                    KASHA_SCENE_TABLE(KTexcoords, texcoords),                                      \
+                    KASHA_SCENE_TABLE(KShadingNormals, normals),                                   \
+                    &name##_rays}
 
 /* An emitter's spectral radiance, N values. */
 inline const __global float* emitter_spectrum(const SceneView* s, int emitter) {

@@ -1,6 +1,6 @@
 /* Struct layouts shared by the host (C++) and the kernels (OpenCL C): each layout exists once, here.
- * Only 4-byte scalars and arrays of them, so both compilers lay them out identically without
- * the 16-byte alignment that float3 has in OpenCL. */
+ * Only 4-byte scalars and arrays of them (and 8-byte ulong at multiples of 8), so both compilers
+ * lay them out identically without the 16-byte alignment that float3 has in OpenCL. */
 #ifndef KASHA_SHARED_TYPES_H
 #define KASHA_SHARED_TYPES_H
 
@@ -8,6 +8,7 @@
 #include <cstdint>
 namespace kasha {
 typedef std::uint32_t uint;
+typedef std::uint64_t ulong;
 #define KASHA_STATIC_SIZE(T, bytes) static_assert(sizeof(T) == (bytes), #T " layout changed")
 /* Headers that host and kernels share: global pointers are plain pointers on the host, and sums
  * are carried in double there. */
@@ -108,6 +109,21 @@ typedef struct {
   float pad1;
 } KCamera;
 KASHA_STATIC_SIZE(KCamera, 64);
+
+/* The scene as kernels take it by value, first of KASHA_SCENE_PARAMS (kernels/scene_view.h): the
+ * camera, the light counts and the bin width, and where each of the scene's tables starts in its
+ * one read-only buffer (byte offsets, multiples of 256, set by DeviceScene): one argument for what
+ * were 19, since an OpenCL 1.2 kernel cannot take a struct holding pointers. */
+typedef struct {
+  KCamera camera;
+  ulong nodes, leaves, tris, materials, spectra, lobes, emitter_radiance, emitter_area_pdf, light_tri,
+      light_cdf, lights, textures, texcoords, normals; /* see SceneView */
+  int light_count;   /* entries of light_tri and light_cdf */
+  float bin_nm;
+  int light_sources; /* entries of lights */
+  int pad;
+} KSceneParams;
+KASHA_STATIC_SIZE(KSceneParams, 192);
 
 /* What a material is: the measured model (gloss lobe or mirror, passive and fluorescent Lambert
  * parts), or an ideal specular interface — a dielectric or a conductor (docs/materials.md). */

@@ -4,6 +4,7 @@
 // back.
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "opencl/device.h"
@@ -29,6 +30,8 @@ class TestKernel {
   void input(int index, const std::vector<T>& data) {
     set_buffer(index, upload(cl_, data));
   }
+  // Argument `index`: a buffer made elsewhere (upload_tables' packed tables).
+  void buffer(int index, cl::Buffer buffer) { set_buffer(index, std::move(buffer)); }
   // Argument `index`: a scalar (int, float, ...).
   template <typename T>
   void scalar(int index, T value) {

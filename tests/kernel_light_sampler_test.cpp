@@ -127,7 +127,7 @@ __kernel void light_from(KASHA_SCENE_PARAMS, __global const float* x_in, __globa
   LightPoint p = sample_light_from(&s, x, (float2)(u[3 * i], u[3 * i + 2]), &pdf);
   /* The light it should have picked: the first whose CDF value exceeds u0. */
   int k = 0;
-  while (k < light_count - 1 && light_cdf[k] <= u[3 * i]) ++k;
+  while (k < s.light_count - 1 && s.light_cdf[k] <= u[3 * i]) ++k;
   float3 to_x = x - p.position;
   float cos_light = dot(p.normal, to_x) / length(to_x);
   __global float* o = out + 10 * i;
@@ -136,7 +136,7 @@ __kernel void light_from(KASHA_SCENE_PARAMS, __global const float* x_in, __globa
   o[6] = (float)p.emitter;
   o[7] = pdf;
   o[8] = (float)k;
-  o[9] = light_pdf_from(&s, light_tri[k], x, p.position, cos_light);
+  o[9] = light_pdf_from(&s, s.light_tri[k], x, p.position, cos_light);
 }
 )";
 
@@ -212,27 +212,29 @@ TEST(KernelLightSampler, PointsFollowTheClaimedDensity) {
   light_cdf.back() = 1.0f;
 
   TestKernel kernel(kLightFromSource, "light_from_test.cl", "light_from");
-  kernel.scalar(0, KCamera{});
-  kernel.input(1, std::vector<KBvhNode>(1));
-  kernel.input(2, std::vector<KBvhLeaf>(1));
-  kernel.input(3, tris);
-  kernel.input(4, std::vector<KMaterial>(1));
-  kernel.input(5, std::vector<float>(4, 0.0f));             // spectra
-  kernel.input(6, std::vector<float>(4, 0.0f));             // lobes
-  kernel.input(7, std::vector<float>(4 * lights_n, 1.0f));  // emitter radiance
-  kernel.input(8, emitter_area_pdf);
-  kernel.input(9, light_tri);
-  kernel.input(10, light_cdf);
-  kernel.scalar(11, lights_n);
-  kernel.scalar(12, 1.0f);  // bin_nm
-  kernel.input(13, std::vector<KLight>(1));
-  kernel.scalar(14, 0);                     // no lights but triangles
-  kernel.input(15, std::vector<float>(1));  // scratch
-  kernel.input(16, std::vector<KTexture>(1));
-  kernel.input(17, std::vector<KTexcoords>(1));
-  kernel.input(18, std::vector<KShadingNormals>(1));
-  kernel.input(19, std::vector<float>{float(x.x()), float(x.y()), float(x.z())});
-  const std::vector<float> out = kernel.sample(20, uniforms(3 * kSamples, 11), 21, 10, kSamples);
+  KSceneParams params{};
+  params.light_count = lights_n;
+  params.bin_nm = 1.0f;
+  params.light_sources = 0;  // no lights but triangles
+  const std::vector<float> spectra(4, 0.0f), lobes(4, 0.0f), radiance(4 * lights_n, 1.0f);
+  kernel.buffer(
+      1, upload_tables(
+             test_device(),
+             {host_table(std::vector<KBvhNode>(1), params.nodes),
+              host_table(std::vector<KBvhLeaf>(1), params.leaves), host_table(tris, params.tris),
+              host_table(std::vector<KMaterial>(1), params.materials),
+              host_table(spectra, params.spectra), host_table(lobes, params.lobes),
+              host_table(radiance, params.emitter_radiance),
+              host_table(emitter_area_pdf, params.emitter_area_pdf),
+              host_table(light_tri, params.light_tri), host_table(light_cdf, params.light_cdf),
+              host_table(std::vector<KLight>(1), params.lights),
+              host_table(std::vector<KTexture>(1), params.textures),
+              host_table(std::vector<KTexcoords>(1), params.texcoords),
+              host_table(std::vector<KShadingNormals>(1), params.normals)}));
+  kernel.scalar(0, params);
+  kernel.input(2, std::vector<float>(1));  // scratch
+  kernel.input(3, std::vector<float>{float(x.x()), float(x.y()), float(x.z())});
+  const std::vector<float> out = kernel.sample(4, uniforms(3 * kSamples, 11), 5, 10, kSamples);
 
   // Per light: the selection probability from the CDF the device has, the solid angle, the
   // branch, the cells' shares of its points. The claimed density integrated over a cell: a

@@ -1,7 +1,8 @@
 #pragma once
-// A read-only device buffer holding a host vector. OpenCL rejects zero-sized buffers, so an empty
-// vector gets one element that kernels never read.
+// A read-only device buffer holding a host vector, or several (tables) at aligned offsets. OpenCL
+// rejects zero-sized buffers, so an empty vector gets one element that kernels never read.
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "opencl/device.h"
@@ -19,5 +20,23 @@ cl::Buffer upload(ClContext& cl, const std::vector<T>& v) {
   const std::vector<T>& data = v.empty() ? one : v;
   return upload_bytes(cl, data.data(), data.size() * sizeof(T));
 }
+
+// One host table of a packed upload, and where upload_tables writes its offset in the buffer.
+struct HostTable {
+  const void* data;
+  size_t bytes;
+  std::uint64_t* offset;
+};
+
+template <typename T>
+HostTable host_table(const std::vector<T>& v, std::uint64_t& offset) {
+  return {v.data(), v.size() * sizeof(T), &offset};
+}
+
+// One read-only buffer holding `tables` in order, each at a byte offset that is a multiple of
+// kTableAlign (enough for any kernel type a pointer into it is cast to), written to its `offset`:
+// kernels take one buffer and the offsets in place of a buffer per table. Huge pages as above.
+constexpr size_t kTableAlign = 256;
+cl::Buffer upload_tables(ClContext& cl, const std::vector<HostTable>& tables);
 
 }  // namespace kasha

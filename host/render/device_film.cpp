@@ -23,14 +23,14 @@ DeviceFilm::DeviceFilm(ClContext& cl, const Film& film)
   }
   float peak = *std::max_element(importance_.begin(), importance_.end());
   for (float& v : importance_) v += 0.05f * peak;
-  cmf_buffer_ = upload(cl, cmf_);
-  importance_buffer_ = upload(cl, importance_);
+  std::vector<float> tables = cmf_;
+  tables.insert(tables.end(), importance_.begin(), importance_.end());
+  tables_ = upload(cl, tables);
   ray_counts_ = upload(cl, std::vector<cl_uint>(4, 0));
 }
 
 int DeviceFilm::bind(cl::Kernel& k, int a) const {
-  k.setArg(a++, cmf_buffer_);
-  k.setArg(a++, importance_buffer_);
+  k.setArg(a++, tables_);
   k.setArg(a++, ray_counts_);
   return a;
 }

@@ -1,6 +1,6 @@
 #pragma once
 // The film on a device: the tables every kernel reads (the film rows' weights C and the branch
-// importance per bin), uploaded once and bound in the order of KASHA_FILM_PARAMS
+// importance per bin), uploaded once in one buffer and bound in the order of KASHA_FILM_PARAMS
 // (kernels/film_view.h) with the job's ray counters, and the per-pixel sums buffer of kernels
 // whose work items own a pixel.
 #include <vector>
@@ -19,7 +19,8 @@ class DeviceFilm {
   bool spectral() const { return spectral_; }
   // Per-bin XYZ weights (x̄ȳz̄ times the bin width), 3 × N, as the kernels read them.
   const std::vector<float>& cmf() const { return cmf_; }
-  const cl::Buffer& cmf_buffer() const { return cmf_buffer_; }
+  // The film's tables on the device: C first, so kernels that read only C take this buffer too.
+  const cl::Buffer& cmf_buffer() const { return tables_; }
   // Per bin, what it is worth to the film when a path chooses a branch: x̄ + ȳ + z̄ times the bin
   // width plus 5 % of its peak, so bins no row sees directly (UV feeding fluorescence, a spectral
   // film's edges) keep a chance and the estimator stays unbiased for every row.
@@ -49,7 +50,8 @@ class DeviceFilm {
   int rows_;
   bool spectral_;
   std::vector<float> cmf_, importance_;
-  cl::Buffer cmf_buffer_, importance_buffer_, sums_;
+  cl::Buffer tables_;  // cmf_ then importance_ (KASHA_FILM_PARAMS' film_tables)
+  cl::Buffer sums_;
   cl::Buffer ray_counts_;  // closest, shadow: (low, high) 32-bit words each
 };
 

@@ -379,44 +379,28 @@ int DeviceScene::bind(cl::Kernel& k, int a, size_t items) {
     scratch_ = device_buffer(cl_, need, "the work items' scratch spectra");
     scratch_bytes_ = need;
   }
-  k.setArg(a++, data_.camera);
-  k.setArg(a++, nodes);
-  k.setArg(a++, leaves);
-  k.setArg(a++, triangles);
-  k.setArg(a++, materials);
-  k.setArg(a++, spectra);
-  k.setArg(a++, lobes);
-  k.setArg(a++, emitter_radiance);
-  k.setArg(a++, emitter_area_pdf);
-  k.setArg(a++, light_tri);
-  k.setArg(a++, light_cdf);
-  k.setArg(a++, static_cast<int>(data_.light_tri.size()));
-  k.setArg(a++, data_.bin_nm);
-  k.setArg(a++, lights);
-  k.setArg(a++, static_cast<int>(data_.lights.size()));
+  k.setArg(a++, params_);
+  k.setArg(a++, tables_);
   k.setArg(a++, scratch_);
-  k.setArg(a++, textures);
-  k.setArg(a++, texcoords);
-  k.setArg(a++, normals);
   return a;
 }
 
 DeviceScene::DeviceScene(ClContext& cl, const Scene& scene)
     : data_(scene), cl_(cl), scratch_floats_(scratch_floats(scene)) {
-  nodes = upload(cl, data_.bvh.nodes);
-  leaves = upload(cl, data_.bvh.leaves);
-  triangles = upload(cl, data_.bvh.triangles);
-  materials = upload(cl, data_.materials);
-  spectra = upload(cl, data_.spectra);
-  lobes = upload(cl, data_.lobes);
-  emitter_radiance = upload(cl, data_.emitter_radiance);
-  light_tri = upload(cl, data_.light_tri);
-  light_cdf = upload(cl, data_.light_cdf);
-  emitter_area_pdf = upload(cl, data_.emitter_area_pdf);
-  lights = upload(cl, data_.lights);
-  textures = upload(cl, data_.textures);
-  texcoords = upload(cl, data_.texcoords);
-  normals = upload(cl, data_.normals);
+  KSceneParams& p = params_;
+  p.camera = data_.camera;
+  p.light_count = static_cast<int>(data_.light_tri.size());
+  p.bin_nm = data_.bin_nm;
+  p.light_sources = static_cast<int>(data_.lights.size());
+  tables_ = upload_tables(
+      cl, {host_table(data_.bvh.nodes, p.nodes), host_table(data_.bvh.leaves, p.leaves),
+           host_table(data_.bvh.triangles, p.tris), host_table(data_.materials, p.materials),
+           host_table(data_.spectra, p.spectra), host_table(data_.lobes, p.lobes),
+           host_table(data_.emitter_radiance, p.emitter_radiance),
+           host_table(data_.emitter_area_pdf, p.emitter_area_pdf),
+           host_table(data_.light_tri, p.light_tri), host_table(data_.light_cdf, p.light_cdf),
+           host_table(data_.lights, p.lights), host_table(data_.textures, p.textures),
+           host_table(data_.texcoords, p.texcoords), host_table(data_.normals, p.normals)});
 }
 
 }  // namespace kasha

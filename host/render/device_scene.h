@@ -65,17 +65,16 @@ class DeviceScene {
  public:
   DeviceScene(ClContext& cl, const Scene& scene);
   const KernelSceneData& data() const { return data_; }
-  // Sets the scene's camera, buffers and constants as kernel arguments from `first` on, in the
-  // order of KASHA_SCENE_PARAMS (kernels/scene_view.h), with scratch for `items` work items;
-  // returns the next argument's index.
+  // Sets KASHA_SCENE_PARAMS (kernels/scene_view.h) as kernel arguments from `first` on: the
+  // parameters, the tables buffer, and scratch for `items` work items; returns the next
+  // argument's index.
   int bind(cl::Kernel& kernel, int first, size_t items);
-
-  cl::Buffer nodes, leaves, triangles, materials, spectra, lobes, emitter_radiance, light_tri,
-      light_cdf, emitter_area_pdf, lights, textures, texcoords, normals;
 
  private:
   KernelSceneData data_;
   ClContext& cl_;
+  KSceneParams params_{};  // the camera, counts and each table's offset in tables_
+  cl::Buffer tables_;      // every table of data_, uploaded once
   int scratch_floats_ = 0;
   cl::Buffer scratch_;
   size_t scratch_bytes_ = 0;

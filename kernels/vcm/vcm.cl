@@ -97,7 +97,7 @@ __kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KVcmIterati
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
   VCM_GRID_VIEW(grid);
-  int pixel = launch_pixel(&camera, item_end);
+  int pixel = launch_pixel(&s.camera, item_end);
   if (pixel < 0) return;
   const int spp = it.spp;
   const uint pass = it.pass;
