@@ -7,6 +7,7 @@
  * bounce (walk_specular). Sample values come from sampler.h.
  * One work item renders one pixel's samples of a launch, so the film needs no atomics; a pass is
  * split into launches of pixel ranges and sample ranges (backward_integrator.cpp). */
+#include "launch_records.h"
 #include "camera.h"
 #include "camera_walk.h"
 #include "film_view.h"
@@ -54,11 +55,12 @@ __kernel void render_backward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
                               __global float* film,    /* pixels × KASHA_FILM_ROWS, sums over the pass */
                               __global int* rejected,  /* per pixel: samples that were not finite */
                               __global float* cut,     /* per pixel: weight the depth guard cut */
-                              int spp, int k_first, int k_last, /* this launch: samples [k_first, k_last) */
-                              uint seed, uint pass,
-                  int item_end /* launches are rounded up to whole work-groups */) {
+                              KBackwardLaunch launch,
+                              int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
+  const int spp = launch.spp, k_first = launch.k_first, k_last = launch.k_last;
+  const uint seed = launch.seed, pass = launch.pass;
   int pixel = launch_pixel(&s.camera, item_end);
   if (pixel < 0) return;
   int bad = 0;

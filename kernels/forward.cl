@@ -5,6 +5,7 @@
  * spread over work items. A tabulated gloss lobe is splatted too; ideal mirrors, glass and metal
  * seen by the camera are out of reach of light tracing: a delta lobe never sends a photon into a
  * pinhole, so they show black (the render says so). Photons pass through them as anywhere. */
+#include "launch_records.h"
 #include "camera_splat.h"
 #include "film_view.h"
 #include "hit_point.h"
@@ -68,13 +69,72 @@ inline void splat_rough(const SceneView* s, const FilmView* f, SplatTarget* t, c
 }
 #endif
 
-__kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, int photons_per_item,
-                            int max_depth, __global ulong* film, int film_shift,
+/* The light a photon p brings to a surface it hit, seen by the camera (light tracing): its Lambert
+ * parts, a tabulated lobe and a rough coat's lobe towards the camera, splatted to the pixel. */
+inline void splat_surface(const SceneView* s, const FilmView* f, SplatTarget* target, const Surface* surf,
+                          const HitPoint* h, const Photon* p, float* rows) {
+  int pixel;
+  float k;
+  float3 ns = hit_ng(h), x = h->x;
+#if KASHA_GLOSS
+  bool glossy = surf->g > 0.0f && !surf->mirror;
+#else
+  bool glossy = false;
+#endif
+#if KASHA_COATED
+  bool coat_lobe = surface_coat_lobe(surf);
+  glossy = glossy && !coat_lobe;
+#else
+  const bool coat_lobe = false;
+#endif
+  if ((surface_has_lambert(surf) || glossy || coat_lobe) && camera_connection(s, x, ns, h->eps, &pixel, &k)) {
+    /* Radiance per nm leaving x per unit flux: (ρ_i Φ_i + ê_i (a·Φ)) / (π Δλ). */
+    film_rows_clear(rows);
+#if KASHA_SHADING_NORMALS
+    /* Towards a camera below the shading normal's hemisphere the surface sends nothing. */
+    if (!hit_seen(h, normalize(x - camera_position(&s->camera)))) k = 0.0f;
+    k *= photon_arrival_correction(h, p->direction);
+#endif
+    float lambert = k * KASHA_INV_PI / s->bin_nm;
+#if KASHA_COATED
+    /* Under a coat, t(θi) t(θo) / η² (coat.h). */
+    if (surf->coated) lambert *= surface_lambert_weight(surf, dot(normalize(camera_position(&s->camera) - x), h->ns));
+#endif
+    film_rows(f, p->power, surf->rho, 0, lambert, rows);
+#if KASHA_FLUORESCENCE
+    if (surf->fluorescent) film_rows(f, 0, surf->ehat, 0, spectrum_dot(KASHA_BINS, p->power, surf->a, 0) * lambert, rows);
+#endif
+#if KASHA_GLOSS
+    if (glossy) {
+      /* A tabulated lobe can be evaluated towards the camera: white, f_g Φ / Δλ. */
+      float3 to_camera = normalize(camera_position(&s->camera) - x);
+      float fg = surf->g * lobe_brdf(surf->m, s->lobes, to_camera, -p->direction, h->ns);
+      if (fg > 0.0f) film_rows(f, p->power, 0, 0, fg * k / s->bin_nm, rows);
+    }
+#endif
+#if KASHA_COATED
+    if (coat_lobe) {
+      /* A rough coat's GGX lobe towards the camera (coat.h), white: f Φ / Δλ. */
+      Frame fr = frame_of(h->ns);
+      float pdf;
+      float fc = coat_lobe_eval(surf, to_local(&fr, normalize(camera_position(&s->camera) - x)),
+                                to_local(&fr, -p->direction), &pdf);
+      if (fc > 0.0f) film_rows(f, p->power, 0, 0, fc * k / s->bin_nm, rows);
+    }
+#endif
+    splat_rows(target, pixel, rows);
+  }
+}
+
+__kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunch launch, __global ulong* film,
                             __global float* stats, /* per item: emitted, absorbed, escaped, in flight (W) */
-                            __global int* overflow, uint seed, uint pass,
-                  int item_end /* launches are rounded up to whole work-groups */) {
+                            __global int* overflow,
+                            int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
+  const int photons = launch.photons, photons_per_item = launch.photons_per_item, max_depth = launch.max_depth;
+  const int film_shift = launch.film_shift;
+  const uint seed = launch.seed, pass = launch.pass;
   int item = get_global_id(0);
   if (item >= item_end) return;
   int first = item * photons_per_item, last = min(first + photons_per_item, photons);
@@ -108,7 +168,6 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
         alive = false;
         break;
       }
-      float3 ns = hit_ng(&h), x = h.x;
 #if KASHA_SHADING_NORMALS
       /* From below the shading normal's hemisphere: the surface does not scatter it (hit_seen). */
       if (!hit_seen(&h, p.direction)) {
@@ -119,57 +178,10 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, 
 #endif
       Surface surf;
       load_surface_at(&s, &h, &surf);
-#if KASHA_GLOSS
-      bool glossy = surf.g > 0.0f && !surf.mirror;
-#else
-      bool glossy = false;
-#endif
-#if KASHA_COATED
-      bool coat_lobe = surface_coat_lobe(&surf);
-      glossy = glossy && !coat_lobe;
-#else
-      const bool coat_lobe = false;
-#endif
 #if KASHA_ROUGH
       if (surface_rough(&surf)) splat_rough(&s, &f, &target, &surf, &h, &p, rows);
 #endif
-      if ((surface_has_lambert(&surf) || glossy || coat_lobe) && camera_connection(&s, x, ns, h.eps, &pixel, &k)) {
-        /* Radiance per nm leaving x per unit flux: (ρ_i Φ_i + ê_i (a·Φ)) / (π Δλ). */
-        film_rows_clear(rows);
-#if KASHA_SHADING_NORMALS
-        /* Towards a camera below the shading normal's hemisphere the surface sends nothing. */
-        if (!hit_seen(&h, normalize(x - camera_position(&s.camera)))) k = 0.0f;
-        k *= photon_arrival_correction(&h, p.direction);
-#endif
-        float lambert = k * KASHA_INV_PI / s.bin_nm;
-#if KASHA_COATED
-        /* Under a coat, t(θi) t(θo) / η² (coat.h). */
-        if (surf.coated) lambert *= surface_lambert_weight(&surf, dot(normalize(camera_position(&s.camera) - x), h.ns));
-#endif
-        film_rows(&f, p.power, surf.rho, 0, lambert, rows);
-#if KASHA_FLUORESCENCE
-        if (surf.fluorescent) film_rows(&f, 0, surf.ehat, 0, spectrum_dot(KASHA_BINS, p.power, surf.a, 0) * lambert, rows);
-#endif
-#if KASHA_GLOSS
-        if (glossy) {
-          /* A tabulated lobe can be evaluated towards the camera: white, f_g Φ / Δλ. */
-          float3 to_camera = normalize(camera_position(&s.camera) - x);
-          float fg = surf.g * lobe_brdf(surf.m, s.lobes, to_camera, -p.direction, h.ns);
-          if (fg > 0.0f) film_rows(&f, p.power, 0, 0, fg * k / s.bin_nm, rows);
-        }
-#endif
-#if KASHA_COATED
-        if (coat_lobe) {
-          /* A rough coat's GGX lobe towards the camera (coat.h), white: f Φ / Δλ. */
-          Frame fr = frame_of(h.ns);
-          float pdf;
-          float fc = coat_lobe_eval(&surf, to_local(&fr, normalize(camera_position(&s.camera) - x)),
-                                    to_local(&fr, -p.direction), &pdf);
-          if (fc > 0.0f) film_rows(&f, p.power, 0, 0, fc * k / s.bin_nm, rows);
-        }
-#endif
-        splat_rows(&target, pixel, rows);
-      }
+      splat_surface(&s, &f, &target, &surf, &h, &p, rows);
       /* "Absorbed": the power a hit takes away, absorption and roulette (negative when roulette
        * scales a survivor up), so emitted = absorbed + escaped + in flight exactly. */
       float before = photon_total(&p);

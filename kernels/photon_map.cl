@@ -7,6 +7,7 @@
  * with a Lambert part, with backward's next-event estimation at each vertex (MIS only with the
  * gloss lobe: no path continues from the Lambert part) and emission hit along the way; the first
  * of a pixel's samples stores a visible point with the compact factor K (vertex_factor.h) there. */
+#include "launch_records.h"
 #include "camera.h"
 #include "camera_walk.h"
 #include "film_view.h"
@@ -21,13 +22,14 @@
  * host sees the overflow and traces the launch again into an emptier store. A photon that alone
  * stores more than the store holds is traced again in segments: `skip` of its stores are passed
  * over (launches of one photon only). */
-__kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, int photons, int first_photon, int count,
-                               int photons_per_item, int skip, __global float* store, __global int* stored,
-                               int capacity,
+__kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KPhotonTraceLaunch launch,
+                               __global float* store, __global int* stored,
                                __global float* cut, /* per item: power the depth guard cut, per photon's start */
-                               uint seed, uint pass,
-                  int item_end /* launches are rounded up to whole work-groups */) {
+                               int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
+  const int photons = launch.photons, first_photon = launch.first_photon, count = launch.count;
+  const int photons_per_item = launch.photons_per_item, skip = launch.skip, capacity = launch.capacity;
+  const uint seed = launch.seed, pass = launch.pass;
   int item = get_global_id(0);
   if (item >= item_end) return;
   int first = first_photon + item * photons_per_item;
@@ -149,11 +151,13 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
                           __global int* rejected,       /* per pixel: samples that were not finite, this pass */
                           __global float* cut,          /* per pixel: weight the depth guard cut, this pass */
                           __global float* radius,       /* per pixel: the SPPM radius, 0 before a visible point */
-                          float radius0, float footprint, float max_radius, __global int* raised, int spp,
-                          uint seed, uint pass,
+                          __global int* raised, KPhotonCameraLaunch launch,
                           int item_end /* launches are rounded up to whole work-groups */) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
+  const float radius0 = launch.radius0, footprint = launch.footprint, max_radius = launch.max_radius;
+  const int spp = launch.spp;
+  const uint seed = launch.seed, pass = launch.pass;
   int pixel = launch_pixel(&s.camera, item_end);
   if (pixel < 0) return;
   const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);

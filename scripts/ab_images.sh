@@ -26,6 +26,9 @@ render)
   r mirror_backward $scenes/mirror_caustic.json --integrator backward --passes 2
   r glossy_photon $scenes/glossy_cornell_box.json --integrator photon --passes 2
   r glossy_backward $scenes/glossy_cornell_box.json --integrator backward --passes 2 --spectral
+  r glossy_forward $scenes/glossy_cornell_box.json --integrator forward --passes 2
+  r lacquer_forward $scenes/lacquered_vase.json --integrator forward --passes 2
+  r lacquer_photon $scenes/lacquered_vase.json --integrator photon --passes 2
   r cornell_host_gather $scenes/cornell_box.json --integrator photon --gather host --passes 2
   r cornell_independent $scenes/cornell_box.json --integrator backward --sampler independent --passes 2
   r cornell_two_queues $scenes/cornell_box.json --device 0,0 --passes 3

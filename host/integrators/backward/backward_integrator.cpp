@@ -7,6 +7,7 @@
 #include "opencl/device_buffer.h"
 #include "render/kernel_integrator.h"
 #include "render/launch_pacer.h"
+#include "launch_records.h"
 
 namespace kasha {
 
@@ -45,8 +46,8 @@ class BackwardIntegrator : public KernelIntegrator {
       if (first == 0 && units >= pixels)
         samples = static_cast<int>(std::min<size_t>(units / pixels, spp_ - k));
       auto t0 = std::chrono::steady_clock::now();
-      launch_range(kernel_, first, count, film_.pixel_sums(), rejected_, cut_, spp_, k, k + samples,
-                   seed_, static_cast<cl_uint>(pass));
+      const KBackwardLaunch record{spp_, k, k + samples, seed_, static_cast<uint>(pass)};
+      launch_range(kernel_, first, count, film_.pixel_sums(), rejected_, cut_, record);
       pacer_.record(count * samples, seconds_since(t0));
       work += static_cast<double>(count) * samples;
       first += count;

@@ -11,6 +11,7 @@
 #include "opencl/device_buffer.h"
 #include "render/kernel_integrator.h"
 #include "render/launch_pacer.h"
+#include "launch_records.h"
 
 namespace kasha {
 
@@ -45,9 +46,9 @@ class ForwardIntegrator : public KernelIntegrator {
       if (done > 0 && control_.stop_now()) break;
       size_t n = pacer_.next(items_ - done);
       auto t0 = std::chrono::steady_clock::now();
-      launch_range(kernel_, done, n, static_cast<cl_int>(photons_), photons_per_item_, max_depth_,
-                   fixed_, static_cast<cl_int>(film_shift_), stats_, overflow_, seed_,
-                   static_cast<cl_uint>(pass));
+      const KForwardLaunch record{static_cast<int>(photons_), photons_per_item_, max_depth_,
+                                  static_cast<int>(film_shift_), seed_, static_cast<uint>(pass)};
+      launch_range(kernel_, done, n, record, fixed_, stats_, overflow_);
       pacer_.record(n, seconds_since(t0));
       done += n;
       control_.report(static_cast<double>(done) / items_);

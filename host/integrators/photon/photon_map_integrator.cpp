@@ -26,6 +26,7 @@
 #include "render/launch_pacer.h"
 #include "render/merge_radius.h"
 #include "render/pass_chunks.h"
+#include "launch_records.h"
 
 namespace kasha {
 
@@ -84,9 +85,11 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
     const auto t0 = Clock::now();
     const double device0 = device_seconds_;
     const size_t pixels = film_.pixels();
+    const KPhotonCameraLaunch record{static_cast<float>(radius_), static_cast<float>(footprint_),
+                                     static_cast<float>(max_radius_), spp_, seed_,
+                                     static_cast<uint>(pass)};
     launch(camera_kernel_, pixels, vps_, direct_, direct_carry_, rejected_, camera_cut_,
-           radius_buf_, static_cast<cl_float>(radius_), static_cast<cl_float>(footprint_),
-           static_cast<cl_float>(max_radius_), raised_, spp_, seed_, static_cast<cl_uint>(pass));
+           radius_buf_, raised_, record);
     PassResult r{pass, spp_, {}, {}, 1.0, {}, {}};
     r.counters.add_stage("camera pass", device_seconds_ - device0);
     warn_raised_radii();

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "opencl/device_buffer.h"
+#include "launch_records.h"
 
 namespace kasha {
 
@@ -82,10 +83,12 @@ cl_int PhotonStore::launch_photons(int pass, size_t first, size_t count, int ski
   cl_int start = static_cast<cl_int>(stored);
   device_.cl().queue().enqueueWriteBuffer(counter_, CL_TRUE, 0, sizeof(cl_int), &start);
   const int per_item = count == 1 ? 1 : kPhotonsPerItem;
-  device_.launch_range(kernel_, 0, (count + per_item - 1) / per_item, static_cast<cl_int>(photons_),
-                       static_cast<cl_int>(first), static_cast<cl_int>(count), per_item, skip,
-                       store_, counter_, static_cast<cl_int>(capacity_), cut_, seed_,
-                       static_cast<cl_uint>(pass));
+  const KPhotonTraceLaunch record{static_cast<int>(photons_), static_cast<int>(first),
+                                  static_cast<int>(count),    per_item,
+                                  skip,                       static_cast<int>(capacity_),
+                                  seed_,                      static_cast<uint>(pass)};
+  device_.launch_range(kernel_, 0, (count + per_item - 1) / per_item, record, store_, counter_,
+                       cut_);
   cl_int after = 0;
   device_.cl().queue().enqueueReadBuffer(counter_, CL_TRUE, 0, sizeof(cl_int), &after);
   if (after < 0) return static_cast<cl_int>(capacity_) + 1;  // wrapped: overflowed for sure
