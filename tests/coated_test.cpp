@@ -1,4 +1,4 @@
-// Coated surfaces (kernels/coat.h, docs/materials.md#coated-surfaces): a smooth dielectric coat over
+// Coated surfaces (kernels/materials/coat.h, docs/materials.md#coated-surfaces): a smooth dielectric coat over
 // the seed model's Lambert parts, with every bounce between coat and base summed in closed form.
 // - A white base under a clear coat (ρ = 1, no absorption) loses nothing: in a uniformly emitting
 //   enclosure it shows exactly the enclosure, in every bin, through backward and photon mapping.

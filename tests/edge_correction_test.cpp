@@ -1,4 +1,4 @@
-// The edge correction of merges (kernels/disc_coverage.h, vcm_merge in kernels/vcm/vcm_merge.h): near an
+// The edge correction of merges (kernels/transport/disc_coverage.h, vcm_merge in kernels/vcm/vcm_merge.h): near an
 // edge a merge's disc hangs over it, past a plateau's rim where no light vertex lies, while the
 // estimate divides by the whole disc, so merges come out dark along every outline. The
 // correction divides by the fraction of the disc on surface a merge accepts. Checked with ppm

@@ -227,7 +227,7 @@ struct Cell {
   int rejected = 0;
 };
 Cell splat_all(const std::vector<float>& values, int shift) {
-  static const char* source = R"(#include "film_splat.h"
+  static const char* source = R"(#include "film/film_splat.h"
     __kernel void splat(__global const float* values, int shift, __global ulong* cell,
                         __global int* rejected, int clear) {
       if (clear) {

@@ -1,6 +1,6 @@
-// Device unit tests of next-event estimation from a shading point (kernels/lights.h:
+// Device unit tests of next-event estimation from a shading point (kernels/lights/lights.h:
 // sample_light_from, light_pdf_from, triangle_solid_angle, sample_spherical_triangle) and of the
-// sample generator (kernels/sampler.h: Owen-scrambled Sobol pairs, and the independent PCG32
+// sample generator (kernels/sampling/sampler.h: Owen-scrambled Sobol pairs, and the independent PCG32
 // numbers of KASHA_SOBOL 0). χ² tests as in kernel_sampling_test.cpp: cells expected below 5
 // pooled, a fit fails when p < 1e-4, and each test shows that its samples reject a plausible
 // wrong density.
@@ -18,7 +18,7 @@
 
 #include "chi2.h"
 #include "kernel_harness.h"
-#include "shared_types.h"
+#include "shared/shared_types.h"
 
 using namespace kasha;
 using namespace kasha::test;
@@ -42,7 +42,7 @@ Vector3d vertex(const float (&v)[3]) {
 // The solid angle of a triangle.
 
 const char* const kSolidAngleSource = R"(
-#include "lights.h"
+#include "lights/lights.h"
 __kernel void solid_angle(__global const float* in, __global float* out) {
   size_t i = get_global_id(0);
   __global const float* v = in + 12 * i;
@@ -116,7 +116,7 @@ TEST(KernelLightSampler, SolidAngleMatchesDoublePrecision) {
 // Light points from a shading point: spherical or area sampling per triangle.
 
 const char* const kLightFromSource = R"(
-#include "lights.h"
+#include "lights/lights.h"
 __kernel void light_from(KASHA_SCENE_PARAMS, __global const float* x_in, __global const float* u,
                          __global float* out) {
   KASHA_SCENE_VIEW(s);
@@ -352,7 +352,7 @@ TEST(KernelLightSampler, PointsFollowTheClaimedDensity) {
 // The sampler: Owen-scrambled Sobol pairs, or independent PCG32 numbers.
 
 const char* const kSamplerSource = R"(
-#include "sampler.h"
+#include "sampling/sampler.h"
 /* Work item i: sample first + i of `stream` (the independent sampler: pass `stream`, item i),
  * dimension pairs from .. from + pairs - 1. */
 __kernel void draw(uint seed, uint stream, uint first, uint from, uint pairs, __global float* out) {

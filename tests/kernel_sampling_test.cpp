@@ -33,7 +33,7 @@ double azimuth(const Vector3d& d, const Vector3d& s, const Vector3d& t) {
 // Cosine-weighted hemisphere.
 
 const char* const kCosineSource = R"(
-#include "sampling.h"
+#include "sampling/sampling.h"
 __kernel void cosine(__global const float* n_in, __global const float* u, __global float* out) {
   size_t i = get_global_id(0);
   float3 n = (float3)(n_in[0], n_in[1], n_in[2]);
@@ -90,7 +90,7 @@ TEST(KernelSampling, CosineHemisphereFitsItsDensity) {
 // The tabulated gloss lobe.
 
 const char* const kLobeSource = R"(
-#include "gloss_lobe.h"
+#include "materials/gloss_lobe.h"
 __kernel void lobe(__global const KMaterial* m, __global const float* lobes,
                    __global const float* mirror_in, __global const float* u, __global float* out) {
   size_t i = get_global_id(0);
@@ -203,7 +203,7 @@ TEST(KernelSampling, GlossLobeFitsItsTable) {
 // Uniform points on a triangle.
 
 const char* const kTriangleSource = R"(
-#include "sampling.h"
+#include "sampling/sampling.h"
 __kernel void triangle(__global const float* u, __global float* out) {
   size_t i = get_global_id(0);
   float2 b = sample_triangle(u[2 * i], u[2 * i + 1]);
@@ -258,7 +258,7 @@ TEST(KernelSampling, TriangleIsUniformOverItsArea) {
 // Next-event estimation: a light triangle by power, a uniform point on it.
 
 const char* const kLightSource = R"(
-#include "lights.h"
+#include "lights/lights.h"
 __kernel void light(__global const KTriangle* tris, __global const int* light_tri,
                     __global const float* light_cdf, int light_count,
                     __global const float* emitter_area_pdf, __global const float* x_in,

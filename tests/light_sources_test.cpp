@@ -283,7 +283,7 @@ TEST(AreaLamp, AtGrazingAnglesEveryIntegratorMatchesTheAnalyticFloor) {
 // χ² of the spot cone's photon directions and of the uniform sphere, on the device.
 
 const char* const kSpotSource = R"(
-#include "lights.h"
+#include "lights/lights.h"
 __kernel void spot(__global const KLight* l, __global const float* u, __global float* out) {
   size_t i = get_global_id(0);
   float3 d = sample_spot_cone(l, (float2)(u[2 * i], u[2 * i + 1]));
@@ -359,7 +359,7 @@ TEST(LightSampling, SpotConeAndSphereFitTheirDensities) {
 namespace {
 
 const char* const kEnvironmentSource = R"(
-#include "environment.h"
+#include "lights/environment.h"
 __kernel void env(__global const KLight* l, __global const float* spectra, __global const float* u,
                   __global float* out) {
   size_t i = get_global_id(0);

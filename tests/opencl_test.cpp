@@ -9,13 +9,13 @@
 #include "kernel_harness.h"
 #include "opencl/kernel_program.h"
 #include "opencl/upload.h"
-#include "shared_types.h"
+#include "shared/shared_types.h"
 #include "test_support.h"
 
 using namespace kasha;
 
 TEST(OpenCl, IncludesAreInlinedOnce) {
-  std::string src = assemble_kernel_source("debug_render.cl");
+  std::string src = assemble_kernel_source("debug/debug_render.cl");
   EXPECT_EQ(src.find("#include \""), std::string::npos);
   // shared_types.h, reached through several headers, appears once.
   const std::string node = "typedef struct {\n  float bounds[6][KASHA_BVH_WIDTH];";
@@ -70,7 +70,7 @@ TEST(OpenCl, TablesUploadAtAlignedOffsets) {
 // KSceneParams passed by value reads the same on the device as the host wrote it.
 TEST(OpenCl, SceneParamsLayoutIsTheHosts) {
   test::TestKernel kernel(R"(
-#include "shared_types.h"
+#include "shared/shared_types.h"
 __kernel void params(KSceneParams p, __global float* out) {
   out[0] = (float)sizeof(KSceneParams);
   out[1] = p.camera.up[2];

@@ -15,13 +15,13 @@ using namespace kasha;
 using namespace kasha::test;
 
 TEST(Photon, SppmStatisticsFollowAHandWorkedExample) {
-  // One pixel's statistics on the device (kernels/sppm_statistics.h) against the formulas worked
+  // One pixel's statistics on the device (kernels/photon/sppm_statistics.h) against the formulas worked
   // by hand. Pass 1 finds 4 photons in radius 2, pass 2 none, pass 3 eight with its flux scaled
   // by 2 (a pass cut short at half its photons): n = 4α, R² = 4·4α/4, τ = φ1·R²/4; then
   // n' = 4α + 8α, R'² = R²·n'/(n + 8), τ' = (τ + 2φ3)·R'²/R²; radiance τ'/(3π R'² Δλ).
   const char* source = R"(
-#include "sampling.h"
-#include "sppm_statistics.h"
+#include "sampling/sampling.h"
+#include "photon/sppm_statistics.h"
 __kernel void sppm(__global const float* passes, int count, float alpha, float r0, float bin_nm,
                    __global float* out) {
   if (get_global_id(0) != 0) return;

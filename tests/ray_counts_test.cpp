@@ -1,4 +1,4 @@
-// The rays kernels count (kernels/hit_point.h, add_ray_counts; `kasha bench`'s rays/s): exact
+// The rays kernels count (kernels/geometry/hit_point.h, add_ray_counts; `kasha bench`'s rays/s): exact
 // where the number of rays is known, and 64-bit sums that survive the low word wrapping.
 #include <gtest/gtest.h>
 
@@ -82,7 +82,7 @@ TEST(RayCounts, EveryIntegratorCountsItsPaths) {
 // add_count's (low, high) words: 4096 work items adding 2^21 + 1 each wrap the low word twice.
 TEST(RayCounts, SumsCarryIntoTheHighWord) {
   const char* source = R"(
-#include "hit_point.h"
+#include "geometry/hit_point.h"
 __kernel void count(__global uint* words, uint n) { add_count(words, n); }
 )";
   ClContext& cl = test::test_device();

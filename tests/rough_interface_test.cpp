@@ -1,4 +1,4 @@
-// Rough dielectrics and conductors (GGX microfacets, kernels/rough_interface.h):
+// Rough dielectrics and conductors (GGX microfacets, kernels/materials/rough_interface.h):
 // - χ² tests of their sampling on the device against their own densities, for reflection and
 //   refraction from either side, isotropic and anisotropic roughness; each also rejects the
 //   density of a roughness 15 % off. The sampled pdf and weight agree with the evaluation.
@@ -29,7 +29,7 @@ using Eigen::Vector3d;
 namespace {
 
 const char* const kRoughSource = R"(
-#include "rough_interface.h"
+#include "materials/rough_interface.h"
 /* params: wo (3), eta, alpha_x, alpha_y, kind (0 dielectric, 1 conductor), radiance */
 __kernel void sample_rough(__global const float* q, __global const float* u, __global float* out) {
   size_t i = get_global_id(0);

@@ -1,4 +1,4 @@
-// Shading normals (OBJ `vn`, kernels/hit_point.h, docs/formats.md#shading-normals):
+// Shading normals (OBJ `vn`, kernels/geometry/hit_point.h, docs/formats.md#shading-normals):
 // - A floor whose shading normal leans 20° towards a distant light shows ρ/π·E·cos 25° (the
 //   light's angle to the shading normal, not the 45° to the geometric one) in every integrator:
 //   camera paths evaluate the surface about the shading normal; light tracing needs Veach's

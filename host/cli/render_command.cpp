@@ -21,7 +21,7 @@
 #include "mpi/render_server.h"
 #include "render/render_job.h"
 #include "render/render_spec.h"
-#include "shared_types.h"
+#include "shared/shared_types.h"
 #include "study/convergence_log.h"
 #include "study/reference_image.h"
 

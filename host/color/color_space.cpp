@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "color_constants.h"
+#include "shared/color_constants.h"
 
 namespace kasha {
 

@@ -4,7 +4,7 @@
 // into leaf order.
 #include <vector>
 
-#include "shared_types.h"
+#include "shared/shared_types.h"
 
 namespace kasha {
 

@@ -10,7 +10,7 @@ ClTraversal::ClTraversal(ClContext& cl, const FlatBvh& bvh) : cl_(cl) {
   leaves_ = upload(cl, bvh.leaves);
   triangles_ = upload(cl, bvh.triangles);
   cl::Program program =
-      build_program(cl, assemble_kernel_source("trace_rays.cl"), {}, "trace_rays.cl");
+      build_program(cl, assemble_kernel_source("geometry/trace_rays.cl"), {}, "geometry/trace_rays.cl");
   closest_ = cl::Kernel(program, "trace_closest");
   occluded_ = cl::Kernel(program, "trace_occluded");
 }

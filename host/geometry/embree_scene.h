@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "shared_types.h"
+#include "shared/shared_types.h"
 
 namespace kasha {
 

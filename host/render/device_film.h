@@ -1,7 +1,7 @@
 #pragma once
 // The film on a device: the tables every kernel reads (the film rows' weights C and the branch
 // importance per bin), uploaded once in one buffer and bound in the order of KASHA_FILM_PARAMS
-// (kernels/film_view.h) with the job's ray counters, and the per-pixel sums buffer of kernels
+// (kernels/film/film_view.h) with the job's ray counters, and the per-pixel sums buffer of kernels
 // whose work items own a pixel.
 #include <vector>
 

@@ -87,7 +87,7 @@ int KernelSceneData::bin_centres(const Scene& scene) {
   return lambda_;
 }
 
-// The kernels' view of the scene's textures (kernels/texture.h): one KTexture per texture and
+// The kernels' view of the scene's textures (kernels/materials/texture.h): one KTexture per texture and
 // use (spectral for a reflectance, scalar for a concentration), the texels after the spectra,
 // and each triangle's texture coordinates in leaf order.
 void KernelSceneData::add_textures(const Scene& scene) {
@@ -332,7 +332,7 @@ size_t KernelSceneData::bytes() const {
 
 // Scratch spectra per work item: an environment texel's radiance, then a textured reflectance
 // and a textured excitation, then a coated material's effective reflectance, emission and
-// excitation (kernels/coat.h).
+// excitation (kernels/materials/coat.h).
 static int scratch_texture_offset(const Scene& scene) {
   return scene.has_environment() ? scene.grid.bins : 0;
 }

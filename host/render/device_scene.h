@@ -23,7 +23,7 @@ struct KernelSceneData {
   std::vector<float> lobes;              // gloss lobe tables at KMaterial::lobe
   std::vector<float> emitter_radiance;   // emitters x N, then the lights' spectra x N
   std::vector<KLight> lights;            // the lights that are not triangles
-  std::vector<KTexture> textures;        // per texture and use (kernels/texture.h)
+  std::vector<KTexture> textures;        // per texture and use (kernels/materials/texture.h)
   std::vector<KTexcoords> texcoords;     // per leaf triangle, when the scene has textures
   std::vector<KShadingNormals> normals;  // per leaf triangle, when some shape has shading normals
   // Light sampling: emitting triangles (leaf order), then the other lights (~index into
@@ -65,7 +65,7 @@ class DeviceScene {
  public:
   DeviceScene(ClContext& cl, const Scene& scene);
   const KernelSceneData& data() const { return data_; }
-  // Sets KASHA_SCENE_PARAMS (kernels/scene_view.h) as kernel arguments from `first` on: the
+  // Sets KASHA_SCENE_PARAMS (kernels/geometry/scene_view.h) as kernel arguments from `first` on: the
   // parameters, the tables buffer, and scratch for `items` work items; returns the next
   // argument's index.
   int bind(cl::Kernel& kernel, int first, size_t items);

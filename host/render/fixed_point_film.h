@@ -1,6 +1,6 @@
 #pragma once
 // The light splats' film on the host (forward's, vcm's light tracing's): 128-bit unsigned fixed
-// point per film cell, two 64-bit words (lo, hi) that kernels/film_splat.h adds to exactly, in
+// point per film cell, two 64-bit words (lo, hi) that kernels/film/film_splat.h adds to exactly, in
 // units of 2^-shift of a film value.
 #include <cstdint>
 #include <vector>

@@ -18,7 +18,7 @@
 #include "render/integrator_option.h"
 #include "render/integrator_test_hooks.h"
 #include "render/render_settings.h"
-#include "shared_types.h"
+#include "shared/shared_types.h"
 
 namespace kasha {
 

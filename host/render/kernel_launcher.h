@@ -72,7 +72,7 @@ class KernelLauncher {
   }
 
   // The rays the pass's launches traced, added to its counters: every pass result carries them,
-  // read from the job's counters (kernels/hit_point.h, add_ray_counts).
+  // read from the job's counters (kernels/geometry/hit_point.h, add_ray_counts).
   void add_ray_counts(PassResult& result) {
     DeviceFilm::RayCounts rays = film_.take_ray_counts();
     result.counters.closest_rays += rays.closest;

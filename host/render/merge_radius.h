@@ -4,7 +4,7 @@
 // a tiny image would otherwise gather over whole walls, biasing the estimate far beyond its first
 // passes. A --radius beyond that is said once, in the same words for every integrator.
 #include "scene/scene.h"
-#include "shared_types.h"
+#include "shared/shared_types.h"
 
 namespace kasha {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "shared_types.h"
+#include "shared/shared_types.h"
 
 namespace kasha {
 

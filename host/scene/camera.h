@@ -4,7 +4,7 @@
 #include <array>
 
 #include "core/json_node.h"
-#include "shared_types.h"
+#include "shared/shared_types.h"
 
 namespace kasha {
 

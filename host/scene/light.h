@@ -28,7 +28,7 @@ struct EnvironmentImage {
   Eigen::Matrix3d to_light = Eigen::Matrix3d::Identity();
 };
 
-// What the kernels read of an environment image on the scene's grid (kernels/environment.h):
+// What the kernels read of an environment image on the scene's grid (kernels/lights/environment.h):
 // per texel the sigmoid's coefficients and scale; the sampling distribution (marginal CDF over
 // rows, then each row's CDF), texels weighed by their power (mean RGB times solid angle); and the
 // image's mean over the sphere of ∫L dλ relative to the light's own row (for its power).

@@ -12,7 +12,7 @@
 #include "scene/pbrt/pbrt_import.h"
 #include "scene/shape_mesh.h"
 #include "scene/texture.h"
-#include "shared_types.h"
+#include "shared/shared_types.h"
 #include "spectrum/wavelength_grid.h"
 
 namespace kasha {

@@ -31,7 +31,7 @@
  * vcm_light_path.h (the light pass), vcm_camera.h (a camera subpath's state), then its
  * techniques — vcm_emission.h, vcm_next_event.h, vcm_connect.h, vcm_merge.h, vcm_seen_light.h —
  * and vcm_camera_path.h, which takes them in turn; the two kernels below. */
-#include "vcm/vcm_records.h"
+#include "shared/vcm_records.h"
 
 /* The store's stride, and (hash_grid.cl) the grid holds only the vertices merges may use. */
 #define VCM_FLOATS KASHA_VCM_VERTEX_FLOATS(KASHA_BINS)
@@ -40,12 +40,12 @@
 
 /* Included before the vcm headers: hash_grid.cl turns floating-point contraction off for all
  * that follows it (its gather must round as the host's does), vcm's code included. */
-#include "camera.h"
-#include "camera_splat.h"
-#include "camera_walk.h"
-#include "disc_coverage.h"
-#include "hash_grid.cl"
-#include "photon_transport.h"
+#include "geometry/camera.h"
+#include "film/camera_splat.h"
+#include "transport/camera_walk.h"
+#include "transport/disc_coverage.h"
+#include "transport/hash_grid.cl"
+#include "transport/photon_transport.h"
 
 #include "vcm/vcm_modes.h"
 #include "vcm/vcm_pdf.h"

@@ -1,4 +1,4 @@
-// `--integrator backward`: the OpenCL camera path tracer of kernels/backward.cl
+// `--integrator backward`: the OpenCL camera path tracer of kernels/backward/backward.cl
 // (docs/design.md#backward-transport). A pass is `spp` paths per pixel; the kernel's work items own
 // their pixels and add to the film's per-pixel sums, over launches of bounded work.
 #include <algorithm>
@@ -7,7 +7,7 @@
 #include "opencl/device_buffer.h"
 #include "render/kernel_integrator.h"
 #include "render/launch_pacer.h"
-#include "launch_records.h"
+#include "shared/launch_records.h"
 
 namespace kasha {
 
@@ -17,7 +17,7 @@ class BackwardIntegrator : public KernelIntegrator {
  public:
   explicit BackwardIntegrator(const IntegratorSetup& s)
       : KernelIntegrator(
-            s, "backward.cl",
+            s, "backward/backward.cl",
             s.hooks.full_matrix ? KernelDefines{{"KASHA_FULL_MATRIX", "1"}} : KernelDefines{}),
         spp_(s.settings.spp > 0 ? s.settings.spp : kBackwardSpp),
         seed_(s.settings.seed),

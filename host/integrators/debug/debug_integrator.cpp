@@ -12,7 +12,7 @@ constexpr int kDebugSpp = 16;  // samples a pixel per pass unless --spp says
 class DebugIntegrator : public KernelIntegrator {
  public:
   explicit DebugIntegrator(const IntegratorSetup& s)
-      : KernelIntegrator(s, "debug_render.cl"),
+      : KernelIntegrator(s, "debug/debug_render.cl"),
         view_(static_cast<int>(s.settings.view)),  // the kernel's view index: the enum's order
         spp_(s.settings.spp > 0 ? s.settings.spp : kDebugSpp),
         seed_(s.settings.seed),

@@ -1,4 +1,4 @@
-// `--integrator forward`: light tracing of kernels/forward.cl (docs/design.md#forward-transport). A
+// `--integrator forward`: light tracing of kernels/forward/forward.cl (docs/design.md#forward-transport). A
 // pass traces `photons` photons carrying the lights' total power; their splats, added in 128-bit
 // fixed point (render/fixed_point_film.h: exact, so independent of the order work
 // items run in), are one estimate of the image.
@@ -11,7 +11,7 @@
 #include "opencl/device_buffer.h"
 #include "render/kernel_integrator.h"
 #include "render/launch_pacer.h"
-#include "launch_records.h"
+#include "shared/launch_records.h"
 
 namespace kasha {
 
@@ -20,7 +20,7 @@ constexpr long long kForwardPhotons = 1 << 18;  // photons per pass unless --pho
 class ForwardIntegrator : public KernelIntegrator {
  public:
   explicit ForwardIntegrator(const IntegratorSetup& s)
-      : KernelIntegrator(s, "forward.cl"),
+      : KernelIntegrator(s, "forward/forward.cl"),
         photons_(s.settings.photons > 0 ? s.settings.photons : kForwardPhotons),
         seed_(s.settings.seed),
         max_depth_(s.settings.max_depth),

@@ -1,5 +1,5 @@
 #pragma once
-// Photon mapping's gather on the device (kernels/photon_gather.cl): the hashed grid's cell size
+// Photon mapping's gather on the device (kernels/photon/photon_gather.cl): the hashed grid's cell size
 // from the pass's gather radii, the grid over a full store (render/hash_grid.h), and the gather
 // of every visible point through it.
 #include <cstddef>

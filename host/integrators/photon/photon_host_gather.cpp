@@ -6,7 +6,7 @@
 #include <nanoflann.hpp>
 
 #include "core/parallel_for.h"
-#include "photon_layout.h"
+#include "shared/photon_layout.h"
 
 namespace kasha {
 

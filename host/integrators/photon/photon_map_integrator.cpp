@@ -1,6 +1,6 @@
 // `--integrator photon` (the default): bidirectional photon mapping, progressive as stochastic
 // progressive photon mapping (Hachisuka & Jensen 2009), the whole pass on the device
-// (kernels/photon_map.cl, photon_gather.cl). This file orchestrates a pass: a camera pass —
+// (kernels/photon/photon_map.cl, photon_gather.cl). This file orchestrates a pass: a camera pass —
 // `--spp` paths per pixel with next-event estimation for direct light, the first storing the
 // pixel's visible point — then the pass's photons in chunks (photon_pass_chunks.h), each traced
 // into the photon store (photon_store.h) and gathered at every visible point, each time the
@@ -26,7 +26,7 @@
 #include "render/launch_pacer.h"
 #include "render/merge_radius.h"
 #include "render/pass_chunks.h"
-#include "launch_records.h"
+#include "shared/launch_records.h"
 
 namespace kasha {
 
@@ -48,7 +48,7 @@ constexpr int kDefaultCameraSamples = 8;
 class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
  public:
   explicit PhotonMapIntegrator(const IntegratorSetup& s)
-      : KernelIntegrator(s, "photon_map.cl"),
+      : KernelIntegrator(s, "photon/photon_map.cl"),
         photons_(s.settings.photons > 0 ? s.settings.photons : kPhotonMapPhotons),
         spp_(s.settings.spp > 0 ? s.settings.spp : kDefaultCameraSamples),
         alpha_(s.settings.alpha),

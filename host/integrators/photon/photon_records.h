@@ -1,9 +1,9 @@
 #pragma once
-// Bytes of photon mapping's records for a scene and film (kernels/photon_layout.h): a stored
+// Bytes of photon mapping's records for a scene and film (kernels/shared/photon_layout.h): a stored
 // photon holds (8 + N) floats, a visible point 8 + N, or 8 + 2N + R in a fluorescent scene.
 #include <cstddef>
 
-#include "photon_layout.h"
+#include "shared/photon_layout.h"
 #include "scene/scene.h"
 
 namespace kasha {

@@ -6,7 +6,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "opencl/device_buffer.h"
-#include "launch_records.h"
+#include "shared/launch_records.h"
 
 namespace kasha {
 

@@ -8,7 +8,7 @@
 // weights sum to one whatever the number of light subpaths.
 #include "geometry/embree_scene.h"
 #include "scene/scene.h"
-#include "shared_types.h"
+#include "shared/shared_types.h"
 
 namespace kasha {
 

@@ -56,7 +56,7 @@ bool reaches_light(const Scene& scene, const EmbreeScene& embree, bool infinite,
     if (!has_delta_lobe(m)) continue;
     const Eigen::Vector3f at = p.org + h.t * p.dir;
     if (!scene.normals.empty()) {
-      // The shading normal the kernels bounce about (kernels/hit_point.h).
+      // The shading normal the kernels bounce about (kernels/geometry/hit_point.h).
       const TriangleNormals& sn = scene.normals[h.prim];
       const Eigen::Vector3f s = ((1 - h.u - h.v) * sn[0] + h.u * sn[1] + h.v * sn[2]).cast<float>();
       if (s.norm() > 1e-6f) n = s.dot(n) < 0 ? -s.normalized() : s.normalized();

@@ -9,7 +9,7 @@
 
 #include "geometry/embree_scene.h"
 #include "scene/scene.h"
-#include "shared_types.h"
+#include "shared/shared_types.h"
 
 namespace kasha {
 

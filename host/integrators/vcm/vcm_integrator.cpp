@@ -23,7 +23,7 @@
 #include "render/kernel_integrator.h"
 #include "render/launch_pacer.h"
 #include "render/merge_radius.h"
-#include "vcm/vcm_records.h"
+#include "shared/vcm_records.h"
 
 namespace kasha {
 
@@ -48,7 +48,7 @@ constexpr double kMergeWeight = 0.25;
 // box −7 %; 16 gained 0–6 % more on those, none elsewhere (docs/integrators.md).
 constexpr int kSeenLightSamples = 8;
 
-// Probes of a merge's disc for the edge correction (kernels/disc_coverage.h), once a merge has
+// Probes of a merge's disc for the edge correction (kernels/transport/disc_coverage.h), once a merge has
 // met a photon; each is a short ray through the gather's slab.
 constexpr int kCoverageProbes = 8;
 
@@ -221,7 +221,7 @@ class VcmIntegrator : public KernelIntegrator {
     return record_floats_ * sizeof(float) + (Mode == VcmMode::bpt ? 0 : kPlacedGridBytesPerRecord);
   }
 
-  // An iteration's merging radius (KVcmRadius, kernels/vcm/vcm_records.h), computed in double
+  // An iteration's merging radius (KVcmRadius, kernels/shared/vcm_records.h), computed in double
   // and rounded to float only in the launch's record: η per r² (κ π L over the camera paths a
   // pixel has — their merges at one pixel's vertices meet the same photons, so together they
   // count as one camera path's), the global radius or the per-path radii's cap, and the per-path

@@ -1,0 +1,41 @@
+/* Light paths connected to the pinhole camera and splatted to the film (film_splat.h): light
+ * tracing (forward.cl) and vertex connection and merging's light subpaths (vcm.cl). */
+#ifndef KASHA_CAMERA_SPLAT_H
+#define KASHA_CAMERA_SPLAT_H
+
+#include "film/film_splat.h"
+#include "film/film_view.h"
+#include "geometry/hit_point.h"
+#include "geometry/scene_view.h"
+
+typedef struct {
+  __global ulong* film; /* 2 words (lo, hi) per pixel and row, film_splat.h */
+  int film_shift;       /* a splat of value v adds v · 2^film_shift units */
+  int overflow;
+} SplatTarget;
+
+/* Whether x (normal ns on the lit side) sees the camera: its pixel, and the factor cos·importance
+ * that turns radiance leaving x (per nm, before that factor) into the pixel's average. */
+inline bool camera_connection(const SceneView* s, float3 x, float3 ns, float eps, int* pixel, float* k) {
+  float importance;
+  *pixel = camera_pixel(&s->camera, x, &importance);
+  if (*pixel < 0) return false;
+  float3 to_camera = camera_position(&s->camera) - x;
+  float dist = length(to_camera);
+  float3 dir = to_camera / dist;
+  float cos_x = dot(ns, dir);
+  if (cos_x <= 0.0f) return false;
+  if (dist - eps <= 0.0f) return false;
+  ++s->rays->shadow;
+  if (bvh_occluded(s->nodes, s->leaves, x + ns * eps, dir, 0.0f, dist - eps)) return false;
+  *k = cos_x * importance;
+  return true;
+}
+
+inline void splat_rows(SplatTarget* t, int pixel, const float* rows) {
+  __global ulong* cell = t->film + 2 * (long)pixel * KASHA_FILM_ROWS;
+  for (int r = 0; r < KASHA_FILM_ROWS; ++r)
+    if (rows[r] != 0.0f) splat_fixed(cell + 2 * r, rows[r], t->film_shift, &t->overflow);
+}
+
+#endif

@@ -1,0 +1,203 @@
+/* Forward Monte Carlo ray tracing (docs/design.md#forward-transport) as light tracing: photons leave the lights, branch
+ * at each hit with constant energy (photon_transport.h), and every hit with a Lambert part is
+ * connected to the pinhole camera and splatted to the film (film_splat.h). Each photon draws its
+ * random numbers from a stream of its own index, so the image does not depend on how photons are
+ * spread over work items. A tabulated gloss lobe is splatted too; ideal mirrors, glass and metal
+ * seen by the camera are out of reach of light tracing: a delta lobe never sends a photon into a
+ * pinhole, so they show black (the render says so). Photons pass through them as anywhere. */
+#include "shared/launch_records.h"
+#include "film/camera_splat.h"
+#include "film/film_view.h"
+#include "geometry/hit_point.h"
+#include "transport/photon_transport.h"
+#include "geometry/scene_view.h"
+
+#if KASHA_ROUGH
+/* A photon at a rough interface, connected to the camera on whichever side it is: f(camera,
+ * photon) Φ / Δλ, f evaluated as for radiance towards the camera (rough_interface.h). A
+ * dispersive dielectric is evaluated bin by bin, at each bin's index. */
+inline void splat_rough(const SceneView* s, const FilmView* f, SplatTarget* t, const Surface* surf,
+                        const HitPoint* h, const Photon* p, float* rows) {
+  float3 x = h->x, n = hit_front(h);
+  float3 to_camera = normalize(camera_position(&s->camera) - x);
+  int pixel;
+  float k;
+#if KASHA_SHADING_NORMALS
+  /* The camera on the geometric side the shading normal puts it on (no leak), the connection off
+   * the geometric surface, and the arrival half of the adjoint correction (photon_transport.h). */
+  if ((dot(to_camera, n) > 0.0f) != (dot(to_camera, h->n) > 0.0f)) return;
+  if (!camera_connection(s, x, dot(to_camera, h->n) >= 0.0f ? h->n : -h->n, h->eps, &pixel, &k)) return;
+  k *= photon_arrival_correction(h, p->direction);
+#else
+  if (!camera_connection(s, x, dot(to_camera, n) >= 0.0f ? n : -n, h->eps, &pixel, &k)) return;
+#endif
+  Frame fr = frame_of(n);
+  float3 wo = to_local(&fr, to_camera), wi = to_local(&fr, -p->direction);
+  float pdf, cos_m = 0.0f;
+  film_rows_clear(rows);
+  float scale = k / s->bin_nm;
+#if KASHA_CONDUCTOR
+  if (surf->kind == KASHA_KIND_CONDUCTOR) {
+    float fv = rough_conductor_eval(wo, wi, surf->alpha, &pdf, &cos_m);
+    if (!(fv > 0.0f)) return;
+    film_rows_conductor(f, p->power, 0, surf->eta_c, surf->k_c, cos_m, fv * scale, rows);
+    splat_rows(t, pixel, rows);
+    return;
+  }
+#endif
+#if KASHA_DIELECTRIC
+#if KASHA_DISPERSION
+  if (surf->dispersive) {
+    for (int i = 0; i < KASHA_BINS; ++i) {
+      if (p->power[i] == 0.0f) continue;
+      float v = p->power[i] * scale * rough_dielectric_eval(wo, wi, surf->eta_bins[i], surf->alpha, true, &pdf);
+#if KASHA_SPECTRAL_FILM
+      rows[i] += v;
+#else
+      for (int r = 0; r < 3; ++r) rows[r] += f->cmf[r * KASHA_BINS + i] * v;
+#endif
+    }
+    splat_rows(t, pixel, rows);
+    return;
+  }
+#endif
+  float fv = rough_dielectric_eval(wo, wi, surf->eta, surf->alpha, true, &pdf);
+  if (!(fv > 0.0f)) return;
+  film_rows(f, p->power, 0, 0, fv * scale, rows);
+  splat_rows(t, pixel, rows);
+#endif
+}
+#endif
+
+/* The light a photon p brings to a surface it hit, seen by the camera (light tracing): its Lambert
+ * parts, a tabulated lobe and a rough coat's lobe towards the camera, splatted to the pixel. */
+inline void splat_surface(const SceneView* s, const FilmView* f, SplatTarget* target, const Surface* surf,
+                          const HitPoint* h, const Photon* p, float* rows) {
+  int pixel;
+  float k;
+  float3 ns = hit_ng(h), x = h->x;
+#if KASHA_GLOSS
+  bool glossy = surf->g > 0.0f && !surf->mirror;
+#else
+  bool glossy = false;
+#endif
+#if KASHA_COATED
+  bool coat_lobe = surface_coat_lobe(surf);
+  glossy = glossy && !coat_lobe;
+#else
+  const bool coat_lobe = false;
+#endif
+  if ((surface_has_lambert(surf) || glossy || coat_lobe) && camera_connection(s, x, ns, h->eps, &pixel, &k)) {
+    /* Radiance per nm leaving x per unit flux: (ρ_i Φ_i + ê_i (a·Φ)) / (π Δλ). */
+    film_rows_clear(rows);
+#if KASHA_SHADING_NORMALS
+    /* Towards a camera below the shading normal's hemisphere the surface sends nothing. */
+    if (!hit_seen(h, normalize(x - camera_position(&s->camera)))) k = 0.0f;
+    k *= photon_arrival_correction(h, p->direction);
+#endif
+    float lambert = k * KASHA_INV_PI / s->bin_nm;
+#if KASHA_COATED
+    /* Under a coat, t(θi) t(θo) / η² (coat.h). */
+    if (surf->coated) lambert *= surface_lambert_weight(surf, dot(normalize(camera_position(&s->camera) - x), h->ns));
+#endif
+    film_rows(f, p->power, surf->rho, 0, lambert, rows);
+#if KASHA_FLUORESCENCE
+    if (surf->fluorescent) film_rows(f, 0, surf->ehat, 0, spectrum_dot(KASHA_BINS, p->power, surf->a, 0) * lambert, rows);
+#endif
+#if KASHA_GLOSS
+    if (glossy) {
+      /* A tabulated lobe can be evaluated towards the camera: white, f_g Φ / Δλ. */
+      float3 to_camera = normalize(camera_position(&s->camera) - x);
+      float fg = surf->g * lobe_brdf(surf->m, s->lobes, to_camera, -p->direction, h->ns);
+      if (fg > 0.0f) film_rows(f, p->power, 0, 0, fg * k / s->bin_nm, rows);
+    }
+#endif
+#if KASHA_COATED
+    if (coat_lobe) {
+      /* A rough coat's GGX lobe towards the camera (coat.h), white: f Φ / Δλ. */
+      Frame fr = frame_of(h->ns);
+      float pdf;
+      float fc = coat_lobe_eval(surf, to_local(&fr, normalize(camera_position(&s->camera) - x)),
+                                to_local(&fr, -p->direction), &pdf);
+      if (fc > 0.0f) film_rows(f, p->power, 0, 0, fc * k / s->bin_nm, rows);
+    }
+#endif
+    splat_rows(target, pixel, rows);
+  }
+}
+
+__kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunch launch, __global ulong* film,
+                            __global float* stats, /* per item: emitted, absorbed, escaped, in flight (W) */
+                            __global int* overflow,
+                            int item_end /* launches are rounded up to whole work-groups */) {
+  KASHA_SCENE_VIEW(s);
+  KASHA_FILM_VIEW(f);
+  const int photons = launch.photons, photons_per_item = launch.photons_per_item, max_depth = launch.max_depth;
+  const int film_shift = launch.film_shift;
+  const uint seed = launch.seed, pass = launch.pass;
+  int item = get_global_id(0);
+  if (item >= item_end) return;
+  int first = item * photons_per_item, last = min(first + photons_per_item, photons);
+  if (first >= last) return;
+  SplatTarget target = {film, film_shift, 0};
+  float emitted = 0.0f, absorbed = 0.0f, escaped = 0.0f, in_flight = 0.0f;
+  float rows[KASHA_FILM_ROWS];
+  for (int index = first; index < last; ++index) {
+    Sampler sampler = photon_sampler(seed, pass, photons, index);
+    LightOrigin o;
+    Photon p = emit_photon(&s, (float)photons, &sampler, &o);
+    emitted += photon_total(&p);
+    /* The light point seen directly: Le cos / (p_area · photons). */
+    int pixel;
+    float k;
+    if (camera_connection(&s, p.position, o.normal, o.eps, &pixel, &k)) {
+      film_rows_clear(rows);
+#if KASHA_EMISSION_TEXTURES
+      k *= o.scale;
+#endif
+      film_rows(&f, 0, emitter_spectrum(&s, o.emitter), 0, k / (o.area_pdf * (float)photons), rows);
+      splat_rows(&target, pixel, rows);
+    }
+    p.position += o.normal * o.eps;
+
+    bool alive = true;
+    for (int depth = 0; depth < max_depth && alive; ++depth) {
+      HitPoint h;
+      if (!intersect_scene(&s, p.position, p.direction, &h)) {
+        escaped += photon_total(&p);
+        alive = false;
+        break;
+      }
+#if KASHA_SHADING_NORMALS
+      /* From below the shading normal's hemisphere: the surface does not scatter it (hit_seen). */
+      if (!hit_seen(&h, p.direction)) {
+        absorbed += photon_total(&p);
+        alive = false;
+        break;
+      }
+#endif
+      Surface surf;
+      load_surface_at(&s, &h, &surf);
+#if KASHA_ROUGH
+      if (surface_rough(&surf)) splat_rough(&s, &f, &target, &surf, &h, &p, rows);
+#endif
+      splat_surface(&s, &f, &target, &surf, &h, &p, rows);
+      /* "Absorbed": the power a hit takes away, absorption and roulette (negative when roulette
+       * scales a survivor up), so emitted = absorbed + escaped + in flight exactly. */
+      float before = photon_total(&p);
+      if (scatter_photon(&p, &surf, &s, &h, &sampler, depth) == BRANCH_ABSORBED) {
+        absorbed += before;
+        alive = false;
+      } else {
+        absorbed += before - photon_total(&p);
+      }
+    }
+    if (alive) in_flight += photon_total(&p);
+  }
+  stats[4 * item + 0] = emitted;
+  stats[4 * item + 1] = absorbed;
+  stats[4 * item + 2] = escaped;
+  stats[4 * item + 3] = in_flight;
+  if (target.overflow) atomic_add(overflow, target.overflow);
+  add_ray_counts(&s, ray_counts);
+}

@@ -1,0 +1,78 @@
+/* The scene as every kernel sees it: camera, BVH, materials and their spectra, emitters and the
+ * light-sampling tables with the lights that are not triangles. Kernels take KASHA_SCENE_PARAMS first (DeviceScene::bind sets them in
+ * this order) and gather them into one SceneView with KASHA_SCENE_VIEW, which every routine takes:
+ * a kernel body reads the scene only through that view. */
+#ifndef KASHA_SCENE_VIEW_H
+#define KASHA_SCENE_VIEW_H
+
+#include "shared/shared_types.h"
+
+#ifndef KASHA_SCRATCH_FLOATS
+#define KASHA_SCRATCH_FLOATS 0
+#endif
+
+/* The rays a work item traced, counted in private memory and added to the launch's totals once at
+ * its end (add_ray_counts, hit_point.h): bench's rays/s, at the cost of an increment per ray. */
+typedef struct {
+  uint closest, shadow;
+} RayCounts;
+
+typedef struct {
+  KCamera camera;
+  const __global KBvhNode* nodes;
+  const __global KBvhLeaf* leaves; /* the BVH's triangles, precomputed for its traversal */
+  const __global KTriangle* tris;
+  const __global KMaterial* materials;
+  const __global float* spectra; /* material spectra; the first N values are zeros */
+  const __global float* lobes;
+  const __global float* emitter_radiance; /* emitters × N */
+  const __global float* emitter_area_pdf;
+  const __global int* light_tri;
+  const __global float* light_cdf;
+  int light_count;
+  float bin_nm;
+  const __global KLight* lights; /* the lights that are not triangles (light_tri's ~k) */
+  int light_sources;             /* how many */
+  __global float* scratch; /* the work item's own KASHA_SCRATCH_FLOATS (spectra computed on the
+                            * way: an environment texel's radiance, a textured reflectance), global
+                            * like every spectrum */
+  const __global KTexture* textures;
+  const __global KTexcoords* texcoords; /* per leaf triangle, when textures need them */
+  const __global KShadingNormals* normals; /* per leaf triangle, when some shape has them */
+  RayCounts* rays; /* private: the work item's own counts */
+} SceneView;
+
+/* The scene's tables lie in one buffer (scene_tables) at the offsets scene_params holds. */
+#define KASHA_SCENE_PARAMS \
+  KSceneParams scene_params, __global const uchar *scene_tables, __global float *scratch
+#define KASHA_SCENE_TABLE(type, table) ((const __global type*)(scene_tables + scene_params.table))
+
+#define KASHA_SCENE_VIEW(name)                                                                     \
+  RayCounts name##_rays = {0u, 0u};                                                                \
+  SceneView name = {scene_params.camera,                                                           \
+                    KASHA_SCENE_TABLE(KBvhNode, nodes),                                            \
+                    KASHA_SCENE_TABLE(KBvhLeaf, leaves),                                           \
+                    KASHA_SCENE_TABLE(KTriangle, tris),                                            \
+                    KASHA_SCENE_TABLE(KMaterial, materials),                                       \
+                    KASHA_SCENE_TABLE(float, spectra),                                             \
+                    KASHA_SCENE_TABLE(float, lobes),                                               \
+                    KASHA_SCENE_TABLE(float, emitter_radiance),                                    \
+                    KASHA_SCENE_TABLE(float, emitter_area_pdf),                                    \
+                    KASHA_SCENE_TABLE(int, light_tri),                                             \
+                    KASHA_SCENE_TABLE(float, light_cdf),                                           \
+                    scene_params.light_count,                                                      \
+                    scene_params.bin_nm,                                                           \
+                    KASHA_SCENE_TABLE(KLight, lights),                                             \
+                    scene_params.light_sources,                                                    \
+                    scratch + (get_global_id(0) - get_global_offset(0)) * KASHA_SCRATCH_FLOATS,    \
+                    KASHA_SCENE_TABLE(KTexture, textures),                                         \
+                    KASHA_SCENE_TABLE(KTexcoords, texcoords),                                      \
+                    KASHA_SCENE_TABLE(KShadingNormals, normals),                                   \
+                    &name##_rays}
+
+/* An emitter's spectral radiance, N values. */
+inline const __global float* emitter_spectrum(const SceneView* s, int emitter) {
+  return s->emitter_radiance + emitter * KASHA_BINS;
+}
+
+#endif

@@ -1,0 +1,27 @@
+/* Batch ray queries: what tests compare with Embree and the benchmark times. */
+#include "geometry/bvh_traversal.h"
+
+__kernel void trace_closest(__global const KBvhNode* nodes, __global const KBvhLeaf* leaves,
+                            __global const KTriangle* tris, __global const KRay* rays, __global KHit* hits,
+                            int count) {
+  int i = get_global_id(0);
+  if (i >= count) return;
+  const __global KRay* r = &rays[i];
+  float t, u = 0.0f, v = 0.0f;
+  int leaf = bvh_closest(nodes, leaves, load_float3(r->org), load_float3(r->dir), r->tmin, r->tmax, &t, &u, &v);
+  KHit h;
+  h.t = t;
+  h.prim = leaf >= 0 ? tris[leaf].prim : -1;
+  h.u = u;
+  h.v = v;
+  hits[i] = h;
+}
+
+/* Same parameters as trace_closest (tris unused), so the host sets both alike. */
+__kernel void trace_occluded(__global const KBvhNode* nodes, __global const KBvhLeaf* leaves,
+                             __global const KTriangle* tris, __global const KRay* rays, __global int* occluded, int count) {
+  int i = get_global_id(0);
+  if (i >= count) return;
+  const __global KRay* r = &rays[i];
+  occluded[i] = bvh_occluded(nodes, leaves, load_float3(r->org), load_float3(r->dir), r->tmin, r->tmax) ? 1 : 0;
+}

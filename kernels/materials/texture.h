@@ -1,0 +1,154 @@
+/* Textures at a hit (docs/textures.md): a material's reflectance texture multiplies its passive
+ * reflectance ρ(λ) bin by bin, its fluorescence texture scales its excitation a(λ) (an ink's
+ * concentration). The textured spectra are computed into the work item's scratch spectra, so
+ * the rest of the kernels read them through the Surface's pointers as any other spectrum.
+ * Lookups follow pbrt-v4: (s, t) = (u·uscale + udelta, v·vscale + vdelta); an image's t runs up
+ * from its bottom row; bilinear filtering between texel centres (or the nearest texel); wrap by
+ * repeating, clamping to the edge, or black outside [0, 1)². A checkerboard is even where
+ * ⌊s⌋ + ⌊t⌋ is even. A spectral image blends its four texels' spectra, not their colours. */
+#ifndef KASHA_TEXTURE_H
+#define KASHA_TEXTURE_H
+
+#include "geometry/hit_point.h"
+#include "materials/rgb_spectrum.h"
+#include "materials/surface.h"
+
+#ifndef KASHA_EMISSION_TEXTURES
+#define KASHA_EMISSION_TEXTURES 0 /* some emitter's radiance is multiplied by a texture */
+#endif
+#ifndef KASHA_SCRATCH_TEXTURES
+#define KASHA_SCRATCH_TEXTURES 0 /* where the textured spectra start in the scratch */
+#endif
+
+#if KASHA_TEXTURES
+/* The texture coordinates at barycentrics (b1, b2) of leaf triangle tri. */
+inline float2 triangle_uv(const SceneView* s, int tri, float b1, float b2) {
+  const __global float* t = s->texcoords[tri].uv;
+  float b0 = 1.0f - b1 - b2;
+  return (float2)(b0 * t[0] + b1 * t[2] + b2 * t[4], b0 * t[1] + b1 * t[3] + b2 * t[5]);
+}
+
+inline float2 hit_uv(const SceneView* s, const HitPoint* h) { return triangle_uv(s, h->tri, h->b.x, h->b.y); }
+
+/* The texel (x, y) after wrapping; -1 where a black wrap leaves the image. */
+inline int texel_index(const __global KTexture* t, int x, int y) {
+  int w = t->width, h = t->height;
+  if (t->wrap == KASHA_WRAP_REPEAT) {
+    x %= w;
+    y %= h;
+    if (x < 0) x += w;
+    if (y < 0) y += h;
+  } else if (t->wrap == KASHA_WRAP_CLAMP) {
+    x = clamp(x, 0, w - 1);
+    y = clamp(y, 0, h - 1);
+  } else if (x < 0 || y < 0 || x >= w || y >= h) {
+    return -1;
+  }
+  return y * w + x;
+}
+
+inline float2 texture_st(const __global KTexture* t, float2 uv) {
+  return (float2)(uv.x * t->uscale + t->udelta, uv.y * t->vscale + t->vdelta);
+}
+
+/* The texels an image lookup at st blends and their weights; how many (1 or 4). */
+inline int texture_taps(const __global KTexture* t, float2 st, int* idx, float* w) {
+  /* Image rows run down from the top; t runs up (pbrt-v4's 1 − t). Large s, t stay finite: the
+   * floor is taken in float, then wrapped in int range. */
+  float x = st.x * (float)t->width, y = (1.0f - st.y) * (float)t->height;
+  x = clamp(x, -1e8f, 1e8f);
+  y = clamp(y, -1e8f, 1e8f);
+  if (!t->bilinear) {
+    idx[0] = texel_index(t, (int)floor(x), (int)floor(y));
+    w[0] = 1.0f;
+    return 1;
+  }
+  x -= 0.5f;
+  y -= 0.5f;
+  float fx0 = floor(x), fy0 = floor(y), fx = x - fx0, fy = y - fy0;
+  int x0 = (int)fx0, y0 = (int)fy0;
+  idx[0] = texel_index(t, x0, y0);
+  idx[1] = texel_index(t, x0 + 1, y0);
+  idx[2] = texel_index(t, x0, y0 + 1);
+  idx[3] = texel_index(t, x0 + 1, y0 + 1);
+  w[0] = (1.0f - fx) * (1.0f - fy);
+  w[1] = fx * (1.0f - fy);
+  w[2] = (1.0f - fx) * fy;
+  w[3] = fx * fy;
+  return 4;
+}
+
+inline bool checker_odd(float2 st) {
+  float fs = floor(clamp(st.x, -1e8f, 1e8f)), ft = floor(clamp(st.y, -1e8f, 1e8f));
+  return (((int)fs + (int)ft) & 1) != 0;
+}
+
+/* A scalar texture's value at uv. */
+inline float texture_scalar(const SceneView* s, const __global KTexture* t, float2 uv) {
+  float2 st = texture_st(t, uv);
+  if (t->type == KASHA_TEXTURE_CHECKERBOARD) return checker_odd(st) ? t->odd_value : t->even_value;
+  int idx[4];
+  float w[4], v = 0.0f;
+  int n = texture_taps(t, st, idx, w);
+  for (int k = 0; k < n; ++k)
+    if (idx[k] >= 0) v += w[k] * s->spectra[t->data + idx[k]];
+  return v;
+}
+
+/* out = y ∘ T(uv): a spectral texture applied bin by bin to the spectrum y. */
+inline void texture_multiply(const SceneView* s, const __global KTexture* t, float2 uv, const __global float* y,
+                             __global float* out) {
+  float2 st = texture_st(t, uv);
+  if (t->type == KASHA_TEXTURE_CHECKERBOARD) {
+    const __global float* v = s->spectra + (checker_odd(st) ? t->odd : t->even);
+    for (int i = 0; i < KASHA_BINS; ++i) out[i] = y[i] * v[i];
+    return;
+  }
+  int idx[4];
+  float w[4];
+  int n = texture_taps(t, st, idx, w);
+  for (int i = 0; i < KASHA_BINS; ++i) {
+    float nm = s->spectra[t->lambda + i], v = 0.0f;
+    for (int k = 0; k < n; ++k)
+      if (idx[k] >= 0) v += w[k] * rgb_sigmoid(s->spectra + t->data + 4 * idx[k], nm);
+    out[i] = y[i] * v;
+  }
+}
+
+#if KASHA_EMISSION_TEXTURES
+/* What an emission texture multiplies the emitter's radiance by at barycentrics (b1, b2) of
+ * leaf triangle tri (1 without one). */
+inline float emission_factor(const SceneView* s, int tri, float b1, float b2) {
+  int t = s->texcoords[tri].emission_texture;
+  return t < 0 ? 1.0f : texture_scalar(s, &s->textures[t], triangle_uv(s, tri, b1, b2));
+}
+#endif
+
+/* The hit's surface with its material's textures applied. */
+inline void load_textured_surface(const SceneView* s, const HitPoint* h, Surface* surf) {
+  load_surface(s, h->material, surf);
+  const __global KMaterial* m = surf->m;
+  if (m->reflectance_texture < 0 && m->fluorescence_texture < 0) return;
+  float2 uv = hit_uv(s, h);
+  __global float* slot = s->scratch + KASHA_SCRATCH_TEXTURES;
+  if (m->reflectance_texture >= 0) {
+    texture_multiply(s, &s->textures[m->reflectance_texture], uv, surf->rho, slot);
+    surf->rho = slot;
+  }
+#if KASHA_FLUORESCENCE
+  if (m->fluorescence_texture >= 0) {
+    float k = texture_scalar(s, &s->textures[m->fluorescence_texture], uv);
+    __global float* a = slot + KASHA_BINS;
+    for (int i = 0; i < KASHA_BINS; ++i) a[i] = surf->a[i] * k;
+    surf->a = a;
+    surf->a_sum *= k;
+    /* No ink here: the material's passive part alone, as if it did not fluoresce. */
+    if (!(k > 0.0f)) surf->fluorescent = false;
+  }
+#endif
+}
+#else
+inline void load_textured_surface(const SceneView* s, const HitPoint* h, Surface* surf) { load_surface(s, h->material, surf); }
+#endif
+
+#endif

@@ -1,0 +1,207 @@
+/* Bidirectional photon mapping (docs/design.md#photon-mapping), the two tracing passes; the grid, the gather and the
+ * SPPM statistics are in photon_gather.cl, in the same program.
+ * Photon pass: photons as in forward transport, stored at every hit with a Lambert part (before
+ * they scatter) after their first bounce — direct light at the visible points is next-event
+ * estimation's, so the photon map carries indirect light and caustics (as pbrt-v4's SPPM); gloss
+ * bounces are followed, not stored. Camera pass: paths through gloss bounces to the first vertex
+ * with a Lambert part, with backward's next-event estimation at each vertex (MIS only with the
+ * gloss lobe: no path continues from the Lambert part) and emission hit along the way; the first
+ * of a pixel's samples stores a visible point with the compact factor K (vertex_factor.h) there. */
+#include "shared/launch_records.h"
+#include "geometry/camera.h"
+#include "transport/camera_walk.h"
+#include "film/film_view.h"
+#include "geometry/hit_point.h"
+#include "shared/photon_layout.h"
+#include "transport/photon_transport.h"
+#include "geometry/scene_view.h"
+#include "shared/vertex_factor.h"
+
+/* Photons [first_photon, first_photon + count) of the pass's `photons`, `photons_per_item` per work
+ * item, stored from slot *stored on; a store past `capacity` is counted but not written, so the
+ * host sees the overflow and traces the launch again into an emptier store. A photon that alone
+ * stores more than the store holds is traced again in segments: `skip` of its stores are passed
+ * over (launches of one photon only). */
+__kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KPhotonTraceLaunch launch,
+                               __global float* store, __global int* stored,
+                               __global float* cut, /* per item: power the depth guard cut, per photon's start */
+                               int item_end /* launches are rounded up to whole work-groups */) {
+  KASHA_SCENE_VIEW(s);
+  const int photons = launch.photons, first_photon = launch.first_photon, count = launch.count;
+  const int photons_per_item = launch.photons_per_item, skip = launch.skip, capacity = launch.capacity;
+  const uint seed = launch.seed, pass = launch.pass;
+  int item = get_global_id(0);
+  if (item >= item_end) return;
+  int first = first_photon + item * photons_per_item;
+  int last = min(first + photons_per_item, first_photon + count);
+  float guard = 0.0f;
+  for (int index = first; index < last; ++index) {
+    Sampler sampler = photon_sampler(seed, pass, photons, index);
+    LightOrigin o;
+    Photon p = emit_photon(&s, (float)photons, &sampler, &o);
+    p.position += o.normal * o.eps;
+    int skip_left = skip;
+    for (int depth = 0;; ++depth) {
+      if (depth == KASHA_MAX_PATH_DEPTH) {
+        guard += photon_total(&p) / p.start;
+        break;
+      }
+      HitPoint h;
+      if (!intersect_scene(&s, p.position, p.direction, &h)) break;
+      float3 ns = hit_ng(&h), x = h.x;
+#if KASHA_SHADING_NORMALS
+      /* From below the shading normal's hemisphere: the surface does not scatter it (hit_seen). */
+      if (!hit_seen(&h, p.direction)) break;
+#endif
+      Surface surf;
+      load_surface_at(&s, &h, &surf);
+      if (depth > 0 && surface_has_lambert(&surf)) {
+        if (skip_left > 0) {
+          --skip_left;
+        } else {
+          int slot = atomic_inc(stored);
+          if (slot < capacity) {
+            __global float* rec = store + (long)slot * KASHA_PHOTON_FLOATS(KASHA_BINS);
+            rec[0] = x.x, rec[1] = x.y, rec[2] = x.z;
+            rec[3] = ns.x, rec[4] = ns.y, rec[5] = ns.z;
+            rec[KASHA_PHOTON_INDEX] = as_float(index), rec[KASHA_PHOTON_DEPTH] = as_float(depth);
+#if KASHA_COATED
+            /* Under a coat, the power that reaches the base: t(θi) Φ (coat.h); the visible
+             * point's factor holds the rest. */
+            float through = surf.coated ? coat_transmission(&surf, h.cos_in) : 1.0f;
+#else
+            float through = 1.0f;
+#endif
+#if KASHA_SHADING_NORMALS
+            through *= photon_arrival_correction(&h, p.direction);
+#endif
+#if KASHA_COATED || KASHA_SHADING_NORMALS
+            for (int i = 0; i < KASHA_BINS; ++i) rec[KASHA_PHOTON_POWER + i] = p.power[i] * through;
+#else
+            for (int i = 0; i < KASHA_BINS; ++i) rec[KASHA_PHOTON_POWER + i] = p.power[i];
+#endif
+          }
+        }
+      }
+      if (scatter_photon(&p, &surf, &s, &h, &sampler, depth) == BRANCH_ABSORBED) break;
+    }
+  }
+  if (first < last) cut[item] = guard;
+  add_ray_counts(&s, ray_counts);
+}
+
+/* One camera path of pixel `pixel` (camera_walk.h) through gloss bounces alone, so its weight
+ * stays diagonal; adds emission and next-event estimates to rows. With `vp` (a pixel's first
+ * sample) it stores the visible point where the path ends on a Lambert part. Returns what the
+ * path still carried (relative to its start) if the depth guard cut it. */
+inline float camera_path(const SceneView* s, const FilmView* f, int pixel, Sampler* sampler, __global float* vp,
+                         float* rows) {
+  CameraWalk w;
+  walk_start(&w, f, camera_position(&s->camera), camera_sample(&s->camera, pixel, sample_2d(sampler)));
+  float travelled = 0.0f;
+  CameraVertex v;
+  while (walk_vertex(&w, s, f, sampler, &v, rows)) {
+    travelled += v.h.t;
+#if KASHA_DIELECTRIC || KASHA_CONDUCTOR
+    /* Through glass and metal to the diffuse surface behind: caustics seen through them. */
+    if (surface_specular(&v.surf)) {
+      if (!walk_interface(&w, s, f, &v, sampler, rows)) return 0.0f;
+      continue;
+    }
+#endif
+    /* Gloss or the Lambert parts, by their energies under equal-energy light (as backward). */
+    float p_gloss = v.probs.x;
+    bool lambert = v.probs.y + v.probs.z > 0.0f;
+    walk_next_event(&w, s, f, &v, lambert, (float3)(p_gloss, 0.0f, 0.0f), rows);
+    if (lambert && v.u_choice.x >= p_gloss) {
+      if (vp) {
+        /* The visible point, K over 1 − P_gloss. */
+        float3 x = v.h.x, ns = hit_ng(&v.h);
+        vp[0] = x.x, vp[1] = x.y, vp[2] = x.z;
+        vp[3] = ns.x, vp[4] = ns.y, vp[5] = ns.z;
+        vp[KASHA_VP_VALID] = 1.0f;
+        vp[KASHA_VP_DISTANCE] = travelled;
+        VertexFactorLayout layout = {KASHA_BINS, KASHA_FILM_ROWS, KASHA_SPECTRAL_FILM, KASHA_FLUORESCENCE, f->cmf};
+        float k = KASHA_INV_PI / (1.0f - p_gloss);
+#if KASHA_COATED
+        /* Under a coat, t(θo) / η² towards the viewer; the photons carry their own t(θi). */
+        if (v.surf.coated) k *= v.surf.lambert_out;
+#endif
+#if KASHA_FLUORESCENCE
+        vf_build(layout, vp, w.p.w, v.surf.rho, v.surf.ehat, v.surf.a, k);
+#else
+        vf_build(layout, vp, w.p.w, v.surf.rho, 0, 0, k);
+#endif
+      }
+      return 0.0f;
+    }
+    if (!walk_gloss(&w, s, &v, sampler) || !walk_on(&w, f, &v)) return 0.0f;
+  }
+  return walk_cut(&w, f);
+}
+
+/* `spp` camera samples per pixel: their mean emission and next-event estimate goes to `direct`
+ * (summed over passes, compensated), the first one's Lambert vertex is the pixel's visible point
+ * for this pass. A pixel's first visible point sets its gather radius: `radius0` (> 0: --radius,
+ * kept at least 1/100 of the pixel's footprint) or one pixel's footprint there, within
+ * `max_radius`; pixels where --radius was raised are counted in *raised. */
+__kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float* visible_points,
+                          __global float* direct,       /* pixels × KASHA_FILM_ROWS: Σ over passes of the mean */
+                          __global float* direct_carry, /* the compensation of that sum (Kahan) */
+                          __global int* rejected,       /* per pixel: samples that were not finite, this pass */
+                          __global float* cut,          /* per pixel: weight the depth guard cut, this pass */
+                          __global float* radius,       /* per pixel: the SPPM radius, 0 before a visible point */
+                          __global int* raised, KPhotonCameraLaunch launch,
+                          int item_end /* launches are rounded up to whole work-groups */) {
+  KASHA_SCENE_VIEW(s);
+  KASHA_FILM_VIEW(f);
+  const float radius0 = launch.radius0, footprint = launch.footprint, max_radius = launch.max_radius;
+  const int spp = launch.spp;
+  const uint seed = launch.seed, pass = launch.pass;
+  int pixel = launch_pixel(&s.camera, item_end);
+  if (pixel < 0) return;
+  const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
+  __global float* vp = visible_points + (long)pixel * vp_floats;
+  vp[KASHA_VP_VALID] = 0.0f;
+  float sum[KASHA_FILM_ROWS];
+  film_rows_clear(sum);
+  float guard = 0.0f;
+  int bad = 0;
+  /* The pixel's stream: a seed apart from the photons'. */
+  Sampler sampler = sampler_start(seed ^ 0x5bd1e995u, (uint)pixel, 0, pass, (uint)pixel);
+  for (int k = 0; k < spp; ++k) {
+    sampler_next_sample(&sampler, pass * (uint)spp + (uint)k);
+    float rows[KASHA_FILM_ROWS];
+    film_rows_clear(rows);
+    guard += camera_path(&s, &f, pixel, &sampler, k == 0 ? vp : 0, rows);
+    if (!film_rows_finite(rows)) {
+      ++bad;
+      continue;
+    }
+    for (int r = 0; r < KASHA_FILM_ROWS; ++r) sum[r] += rows[r];
+  }
+  __global float* acc = direct + (long)pixel * KASHA_FILM_ROWS;
+  __global float* carry = direct_carry + (long)pixel * KASHA_FILM_ROWS;
+  for (int r = 0; r < KASHA_FILM_ROWS; ++r) {
+    float y = sum[r] / (float)spp - carry[r], t = acc[r] + y;
+    carry[r] = (t - acc[r]) - y;
+    acc[r] = t;
+  }
+  rejected[pixel] = bad;
+  cut[pixel] = guard;
+  add_ray_counts(&s, ray_counts);
+  if (radius[pixel] == 0.0f && vp[KASHA_VP_VALID] != 0.0f) {
+    float own = footprint * vp[KASHA_VP_DISTANCE], r = own;
+    if (radius0 > 0.0f) {
+      r = radius0;
+      if (radius0 < own / 100.0f) {
+        r = own / 100.0f;
+        atomic_inc(raised);
+      }
+    }
+    r = min(r, max_radius);
+    radius[pixel] = r > 0.0f ? r : max_radius;
+  }
+}
+
+#include "photon/photon_gather.cl"

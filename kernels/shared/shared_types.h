@@ -1,0 +1,253 @@
+/* Struct layouts shared by the host (C++) and the kernels (OpenCL C): each layout exists once, here.
+ * Only 4-byte scalars and arrays of them (and 8-byte ulong at multiples of 8), so both compilers
+ * lay them out identically without the 16-byte alignment that float3 has in OpenCL. */
+#ifndef KASHA_SHARED_TYPES_H
+#define KASHA_SHARED_TYPES_H
+
+#ifndef __OPENCL_VERSION__
+#include <cstdint>
+namespace kasha {
+typedef std::uint32_t uint;
+typedef std::uint64_t ulong;
+#define KASHA_STATIC_SIZE(T, bytes) static_assert(sizeof(T) == (bytes), #T " layout changed")
+/* Headers that host and kernels share: global pointers are plain pointers on the host, and sums
+ * are carried in double there. */
+#define KASHA_GLOBAL
+typedef double kasha_real;
+#else
+#define KASHA_STATIC_SIZE(T, bytes)
+#define KASHA_GLOBAL __global
+typedef float kasha_real;
+#endif
+
+/* Next-event estimation samples a triangle by solid angle between these (steradians), by area
+ * outside: below, Arvo's construction in float lands points up to 1e-4 (barycentric) off small
+ * triangles on some devices (seen at 1.3e-3 sr on an NVIDIA H100) while area sampling is as good
+ * there; above, the triangle nearly fills the hemisphere (pbrt-v4's bound). */
+#define KASHA_MIN_SPHERICAL_SOLID_ANGLE 1e-2f
+#define KASHA_MAX_SPHERICAL_SOLID_ANGLE 6.22f
+
+/* A guard on path length in every kernel, far beyond what Russian roulette reaches (a path of a
+ * scene keeping 99.99 % of its light passes it with probability e^-26); what it cuts is counted
+ * and reported. Kernels are built with the render's --max-depth in its place. */
+#ifndef KASHA_MAX_PATH_DEPTH
+#define KASHA_MAX_PATH_DEPTH (1 << 18)
+#endif
+
+/* The BVH that Embree builds and the OpenCL traversal reads (kernels/geometry/bvh_traversal.h). Children
+ * per node and triangles per leaf: one float8 expression tests all of a node's child boxes, or all
+ * of a leaf's triangles (PoCL keeps float8 arithmetic as AVX instructions). */
+#define KASHA_BVH_WIDTH 8
+#define KASHA_BVH_LEAF_SIZE 8
+/* The deepest BVH the builder may make, in levels of interior nodes (a million triangles take
+ * about 10). A visit pushes at most KASHA_BVH_WIDTH - 1 children: the traversal's stack size. */
+#define KASHA_BVH_MAX_DEPTH 32
+#define KASHA_BVH_STACK ((KASHA_BVH_WIDTH - 1) * KASHA_BVH_MAX_DEPTH + 1)
+
+/* An interior node, its children's boxes stored axis by axis (rows lo x, hi x, lo y, hi y, lo z,
+ * hi z; one float per child) so that one node fetch tests all of them. child[i] >= 0 is an
+ * interior node, < 0 the leaf ~child[i]. An unused slot has the empty box lo = +inf, hi = -inf,
+ * which no ray enters. Node 0 is the root, always an interior node. */
+typedef struct {
+  float bounds[6][KASHA_BVH_WIDTH];
+  int child[KASHA_BVH_WIDTH];
+  int pad[KASHA_BVH_WIDTH]; /* to 256 bytes: a node spans four whole cache lines */
+} KBvhNode;
+KASHA_STATIC_SIZE(KBvhNode, 256);
+
+/* A leaf's triangles, precomputed for Möller–Trumbore and stored coordinate by coordinate: v0,
+ * e1 = v1 - v0, e2 = v2 - v0 (rows x, y, z; one float per triangle). tri[i] is the triangle's
+ * index in leaf order (the KTriangle array), -1 for an unused slot, whose zero edges no ray hits. */
+typedef struct {
+  float v0[3][KASHA_BVH_LEAF_SIZE];
+  float e1[3][KASHA_BVH_LEAF_SIZE];
+  float e2[3][KASHA_BVH_LEAF_SIZE];
+  int tri[KASHA_BVH_LEAF_SIZE];
+} KBvhLeaf;
+KASHA_STATIC_SIZE(KBvhLeaf, 320);
+
+/* A triangle in BVH leaf order. `prim` is its index in scene order (what Embree reports as primID);
+ * `emitter` indexes the emitter table, -1 when the triangle does not emit. */
+typedef struct {
+  float v0[3];
+  float v1[3];
+  float v2[3];
+  int material;
+  int emitter;
+  int prim;
+} KTriangle;
+KASHA_STATIC_SIZE(KTriangle, 48);
+
+/* A ray segment [tmin, tmax]. */
+typedef struct {
+  float org[3];
+  float tmin;
+  float dir[3];
+  float tmax;
+} KRay;
+KASHA_STATIC_SIZE(KRay, 32);
+
+/* Closest hit: prim == -1 for a miss; (u, v) are barycentrics of v1 and v2. */
+typedef struct {
+  float t;
+  int prim;
+  float u;
+  float v;
+} KHit;
+KASHA_STATIC_SIZE(KHit, 16);
+
+/* Pinhole camera: a pixel (px, py), row 0 at the top, looks along
+ * forward + (2 (px + 0.5) / width - 1) * right_scaled + (1 - 2 (py + 0.5) / height) * up_scaled. */
+typedef struct {
+  float position[3];
+  int width;
+  float forward[3];
+  int height;
+  float right[3]; /* already scaled by tan(fov/2) and the aspect ratio */
+  float pad0;
+  float up[3]; /* already scaled by tan(fov/2) */
+  float pad1;
+} KCamera;
+KASHA_STATIC_SIZE(KCamera, 64);
+
+/* The scene as kernels take it by value, first of KASHA_SCENE_PARAMS (kernels/geometry/scene_view.h): the
+ * camera, the light counts and the bin width, and where each of the scene's tables starts in its
+ * one read-only buffer (byte offsets, multiples of 256, set by DeviceScene): one argument for what
+ * were 19, since an OpenCL 1.2 kernel cannot take a struct holding pointers. */
+typedef struct {
+  KCamera camera;
+  ulong nodes, leaves, tris, materials, spectra, lobes, emitter_radiance, emitter_area_pdf, light_tri,
+      light_cdf, lights, textures, texcoords, normals; /* see SceneView */
+  int light_count;   /* entries of light_tri and light_cdf */
+  float bin_nm;
+  int light_sources; /* entries of lights */
+  int pad;
+} KSceneParams;
+KASHA_STATIC_SIZE(KSceneParams, 192);
+
+/* What a material is: the measured model (gloss lobe or mirror, passive and fluorescent Lambert
+ * parts), or an ideal specular interface — a dielectric or a conductor (docs/materials.md). */
+#define KASHA_KIND_MEASURED 0
+#define KASHA_KIND_DIELECTRIC 1
+#define KASHA_KIND_CONDUCTOR 2
+
+/* Per-material data the kernels read; spectra live in one float buffer at the given offsets
+ * (N values each, -1 when the part is absent; the buffer starts with N zeros that kernels read
+ * in place of an absent part). */
+typedef struct {
+  int passive;    /* rho(lambda) */
+  int excitation; /* a(lambda) */
+  int emission;   /* e_hat = e * bin width, sums to 1 */
+  int lobe;       /* gloss lobe table (KASHA_LOBE_CELLS pdf values then as many CDF values), -1: mirror */
+  float gloss;    /* g; 0 without a gloss part */
+  float cone_rad; /* half-angle of the gloss cone */
+  float excitation_sum; /* sum_i a_i, for the branch probabilities */
+  int kind;             /* KASHA_KIND_* */
+  float albedo_xyz[3]; /* colour under equal-energy light, fluorescence included (debug view) */
+  float eta;           /* dielectric: index inside (behind the front side) over outside */
+  int eta_spectrum;    /* conductor: eta(lambda) and k(lambda), the complex index over the outside's;
+                        * a dispersive dielectric: eta(lambda) (-1: eta holds for every bin) */
+  int k_spectrum;
+  float alpha[2]; /* a dielectric's or conductor's GGX roughness (alpha_x, alpha_y); 0: smooth */
+  int reflectance_texture;  /* KTexture multiplying the passive reflectance, -1: none */
+  int fluorescence_texture; /* KTexture scaling the excitation (an ink's concentration), -1: none */
+  float coat_eta;       /* a smooth dielectric coat over the Lambert parts (kernels/materials/coat.h): its
+                         * index; 0: no coat */
+  float coat_thickness; /* its optical depth along the normal */
+  float coat_internal;  /* R̄: of the base's light, the share the coat sends back down */
+  float coat_albedo;    /* τ̄ / η²: the diffuse part's albedo per unit of outgoing transmission */
+  float coat_alpha;     /* a rough coat's GGX roughness; 0: smooth */
+  int coat_table;       /* a rough coat's E(μ) then t(μ), KASHA_COAT_TABLE values each at
+                         * μ = k / (KASHA_COAT_TABLE − 1); -1: smooth */
+} KMaterial;
+KASHA_STATIC_SIZE(KMaterial, 96);
+
+/* Entries of a rough coat's tables (host/material/coat.h's kCoatTableSize). */
+#define KASHA_COAT_TABLE 64
+
+/* A texture as the kernels look it up (docs/textures.md) at a hit's (u, v): an image of texels,
+ * or a checkerboard of two values. Spectral content (a reflectance) is per bin: an image's texel
+ * holds the RGB sigmoid's coefficients (c0, c1, c2, 0; the spectrum S(c0 λ² + c1 λ + c2)), a
+ * checkerboard two spectra; scalar content (a concentration) is one float per texel, or two
+ * numbers. */
+#define KASHA_TEXTURE_IMAGE 0
+#define KASHA_TEXTURE_CHECKERBOARD 1
+#define KASHA_WRAP_REPEAT 0
+#define KASHA_WRAP_CLAMP 1
+#define KASHA_WRAP_BLACK 2
+
+typedef struct {
+  int type;          /* KASHA_TEXTURE_* */
+  int data;          /* image: offset of its texels in the spectra buffer (4 floats each if
+                      * spectral, 1 if scalar), row 0 at the top */
+  int width, height; /* image */
+  int wrap;          /* KASHA_WRAP_* */
+  int bilinear;      /* image: 1 bilinear, 0 nearest */
+  int lambda;        /* spectral image: offset of the bins' centre wavelengths */
+  int spectral;      /* 1: spectral content, 0: scalar */
+  float uscale, vscale, udelta, vdelta; /* (s, t) = (u·uscale + udelta, v·vscale + vdelta) */
+  int even, odd;     /* spectral checkerboard: offsets of its two spectra */
+  float even_value, odd_value; /* scalar checkerboard */
+} KTexture;
+KASHA_STATIC_SIZE(KTexture, 64);
+
+/* A triangle's texture coordinates, in leaf order like KTriangle: (u, v) at v0, v1, v2; and the
+ * texture its emission is multiplied by (-1: none). */
+typedef struct {
+  float uv[6];
+  int emission_texture;
+  float pad;
+} KTexcoords;
+KASHA_STATIC_SIZE(KTexcoords, 32);
+
+/* A triangle's shading normals at v0, v1, v2 (OBJ `vn`), in leaf order like KTriangle; uploaded
+ * only when some shape has them (docs/formats.md#shading-normals). */
+typedef struct {
+  float n[9];
+  float pad[3];
+} KShadingNormals;
+KASHA_STATIC_SIZE(KShadingNormals, 48);
+
+/* Lights that are not emitting triangles (docs/lights.md): a point, a spot (a point whose
+ * intensity falls off to zero at the edge of a cone), a distant light (parallel light of a given
+ * irradiance) and an infinite light (radiance from every direction, constant or an environment
+ * image). Light sampling picks them from the same CDF as the emitting triangles, in proportion to
+ * their power: their entries of light_tri are ~index into the KLight array. */
+#define KASHA_LIGHT_POINT 0
+#define KASHA_LIGHT_SPOT 1
+#define KASHA_LIGHT_DISTANT 2
+#define KASHA_LIGHT_INFINITE 3
+
+typedef struct {
+  int type;         /* KASHA_LIGHT_* */
+  int spectrum;     /* row of emitter_radiance: intensity (point, spot; W sr⁻¹ nm⁻¹), irradiance
+                     * (distant; W m⁻² nm⁻¹), radiance (infinite; W m⁻² sr⁻¹ nm⁻¹) */
+  float pick;       /* the probability that light sampling picks it */
+  int image;        /* infinite: offset of its image in the spectra buffer (4 floats a texel: the
+                     * sigmoid's c0, c1, c2 and a scale, kernels/lights/environment.h), -1: constant */
+  float position[3]; /* point, spot; distant and infinite: the centre of the scene's bounding sphere */
+  float radius;      /* distant, infinite: the radius of the scene's bounding sphere */
+  float axis[3];     /* spot: the cone's axis; distant: the direction the light travels */
+  float cos_total;   /* spot: the cone's edge, where the intensity reaches 0 */
+  float cos_falloff; /* spot: where the falloff begins (full intensity inside) */
+  int width, height; /* infinite: the image's size (its pixels) */
+  int mapping;       /* infinite: KASHA_MAPPING_* */
+  float to_light[9]; /* infinite: the rotation from world to the image's frame, row by row */
+  int distribution;  /* infinite: offset of the image's sampling distribution, -1: uniform sphere */
+  int lambda;        /* infinite with an image: offset of the bins' centre wavelengths (nm) */
+  float pad[5];
+} KLight;
+KASHA_STATIC_SIZE(KLight, 128);
+
+/* How an environment image covers the sphere of directions. */
+#define KASHA_MAPPING_LATLONG 0
+#define KASHA_MAPPING_EQUAL_AREA 1
+
+/* Gloss lobes are tabulated in this many equal rings of angle from the mirror direction. */
+#define KASHA_LOBE_CELLS 64
+
+#ifndef __OPENCL_VERSION__
+}  // namespace kasha
+#endif
+
+#endif
