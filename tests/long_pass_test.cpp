@@ -66,8 +66,9 @@ TEST(LongPass, VcmStopsOnCtrlCWithinItsMemoryBudget) {
   ASSERT_EQ(base.exit_code, 130) << base.err;
   fs::remove(out);
   const Interrupted big = render_and_interrupt(common + " --passes 1 --photons 2147483647", 6);
-  std::printf("base %.0f MiB, 2^31 photons %.0f MiB (--memory 64MiB), stopped %.2f s after Ctrl-C\n",
-              base.peak_bytes / 1048576, big.peak_bytes / 1048576, big.exit_seconds);
+  std::printf(
+      "base %.0f MiB, 2^31 photons %.0f MiB (--memory 64MiB), stopped %.2f s after Ctrl-C\n",
+      base.peak_bytes / 1048576, big.peak_bytes / 1048576, big.exit_seconds);
   EXPECT_EQ(big.exit_code, 130) << big.err;
   EXPECT_NE(big.err.find("interrupted: writing the image after 1 passes"), std::string::npos)
       << big.err;

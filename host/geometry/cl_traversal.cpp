@@ -9,8 +9,8 @@ ClTraversal::ClTraversal(ClContext& cl, const FlatBvh& bvh) : cl_(cl) {
   nodes_ = upload(cl, bvh.nodes);
   leaves_ = upload(cl, bvh.leaves);
   triangles_ = upload(cl, bvh.triangles);
-  cl::Program program =
-      build_program(cl, assemble_kernel_source("geometry/trace_rays.cl"), {}, "geometry/trace_rays.cl");
+  cl::Program program = build_program(cl, assemble_kernel_source("geometry/trace_rays.cl"), {},
+                                      "geometry/trace_rays.cl");
   closest_ = cl::Kernel(program, "trace_closest");
   occluded_ = cl::Kernel(program, "trace_occluded");
 }

@@ -1,7 +1,7 @@
 #pragma once
-// A hashed uniform grid over a store of records on the device (kernels/transport/hash_grid.cl): records
-// counted per cell, each cell's end by a prefix sum, each record's place in its cell's run, each
-// run sorted by the records' keys so that a query sums a cell in one order. Photon mapping's
+// A hashed uniform grid over a store of records on the device (kernels/transport/hash_grid.cl):
+// records counted per cell, each cell's end by a prefix sum, each record's place in its cell's run,
+// each run sorted by the records' keys so that a query sums a cell in one order. Photon mapping's
 // gather and vertex merging build one over their stores.
 #include <cstddef>
 

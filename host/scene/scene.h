@@ -86,7 +86,6 @@ struct Scene {
 // A `.pbrt` path is a pbrt-v4 scene (docs/pbrt-import.md); `materials` replace named materials
 // (--material NAME=FILE).
 Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid = std::nullopt,
-                 const std::string& lamp = "",
-                 const std::vector<MaterialOverride>& materials = {});
+                 const std::string& lamp = "", const std::vector<MaterialOverride>& materials = {});
 
 }  // namespace kasha

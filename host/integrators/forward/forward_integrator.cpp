@@ -1,14 +1,14 @@
-// `--integrator forward`: light tracing of kernels/forward/forward.cl (docs/design.md#forward-transport). A
-// pass traces `photons` photons carrying the lights' total power; their splats, added in 128-bit
-// fixed point (render/fixed_point_film.h: exact, so independent of the order work
-// items run in), are one estimate of the image.
+// `--integrator forward`: light tracing of kernels/forward/forward.cl
+// (docs/design.md#forward-transport). A pass traces `photons` photons carrying the lights' total
+// power; their splats, added in 128-bit fixed point (render/fixed_point_film.h: exact, so
+// independent of the order work items run in), are one estimate of the image.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "core/error.h"
-#include "render/fixed_point_film.h"
 #include "opencl/device_buffer.h"
+#include "render/fixed_point_film.h"
 #include "render/kernel_integrator.h"
 #include "render/launch_pacer.h"
 #include "shared/launch_records.h"
@@ -46,8 +46,12 @@ class ForwardIntegrator : public KernelIntegrator {
       if (done > 0 && control_.stop_now()) break;
       size_t n = pacer_.next(items_ - done);
       auto t0 = std::chrono::steady_clock::now();
-      const KForwardLaunch record{static_cast<int>(photons_), photons_per_item_, max_depth_,
-                                  static_cast<int>(film_shift_), seed_, static_cast<uint>(pass)};
+      const KForwardLaunch record{static_cast<int>(photons_),
+                                  photons_per_item_,
+                                  max_depth_,
+                                  static_cast<int>(film_shift_),
+                                  seed_,
+                                  static_cast<uint>(pass)};
       launch_range(kernel_, done, n, record, fixed_, stats_, overflow_);
       pacer_.record(n, seconds_since(t0));
       done += n;

@@ -1,7 +1,7 @@
 #pragma once
-// Photon mapping's gather on the device (kernels/photon/photon_gather.cl): the hashed grid's cell size
-// from the pass's gather radii, the grid over a full store (render/hash_grid.h), and the gather
-// of every visible point through it.
+// Photon mapping's gather on the device (kernels/photon/photon_gather.cl): the hashed grid's cell
+// size from the pass's gather radii, the grid over a full store (render/hash_grid.h), and the
+// gather of every visible point through it.
 #include <cstddef>
 
 #include "render/hash_grid.h"

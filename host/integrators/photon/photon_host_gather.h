@@ -1,7 +1,7 @@
 #pragma once
 // The gather of photon mapping on the host (`--gather host`): a kd-tree (nanoflann) over a full
-// store's photons, and for each visible point the sum of K·Φ (kernels/shared/vertex_factor.h, the same
-// code the kernels use) over the photons within its radius on the same side of the surface, on
+// store's photons, and for each visible point the sum of K·Φ (kernels/shared/vertex_factor.h, the
+// same code the kernels use) over the photons within its radius on the same side of the surface, on
 // the host's threads.
 #include <cstddef>
 #include <vector>

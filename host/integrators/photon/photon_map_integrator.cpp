@@ -85,8 +85,11 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
     const auto t0 = Clock::now();
     const double device0 = device_seconds_;
     const size_t pixels = film_.pixels();
-    const KPhotonCameraLaunch record{static_cast<float>(radius_), static_cast<float>(footprint_),
-                                     static_cast<float>(max_radius_), spp_, seed_,
+    const KPhotonCameraLaunch record{static_cast<float>(radius_),
+                                     static_cast<float>(footprint_),
+                                     static_cast<float>(max_radius_),
+                                     spp_,
+                                     seed_,
                                      static_cast<uint>(pass)};
     launch(camera_kernel_, pixels, vps_, direct_, direct_carry_, rejected_, camera_cut_,
            radius_buf_, raised_, record);

@@ -3,8 +3,8 @@
 // photon holds (8 + N) floats, a visible point 8 + N, or 8 + 2N + R in a fluorescent scene.
 #include <cstddef>
 
-#include "shared/photon_layout.h"
 #include "scene/scene.h"
+#include "shared/photon_layout.h"
 
 namespace kasha {
 

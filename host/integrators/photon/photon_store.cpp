@@ -83,10 +83,14 @@ cl_int PhotonStore::launch_photons(int pass, size_t first, size_t count, int ski
   cl_int start = static_cast<cl_int>(stored);
   device_.cl().queue().enqueueWriteBuffer(counter_, CL_TRUE, 0, sizeof(cl_int), &start);
   const int per_item = count == 1 ? 1 : kPhotonsPerItem;
-  const KPhotonTraceLaunch record{static_cast<int>(photons_), static_cast<int>(first),
-                                  static_cast<int>(count),    per_item,
-                                  skip,                       static_cast<int>(capacity_),
-                                  seed_,                      static_cast<uint>(pass)};
+  const KPhotonTraceLaunch record{static_cast<int>(photons_),
+                                  static_cast<int>(first),
+                                  static_cast<int>(count),
+                                  per_item,
+                                  skip,
+                                  static_cast<int>(capacity_),
+                                  seed_,
+                                  static_cast<uint>(pass)};
   device_.launch_range(kernel_, 0, (count + per_item - 1) / per_item, record, store_, counter_,
                        cut_);
   cl_int after = 0;

@@ -1,6 +1,7 @@
 #pragma once
 // What vcm's host probes (merging_distance.h, seen_light.h) share: camera rays and triangle
-// normals in float, as the kernels build them (kernels/geometry/camera.h, kernels/geometry/hit_point.h).
+// normals in float, as the kernels build them (kernels/geometry/camera.h,
+// kernels/geometry/hit_point.h).
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 

@@ -48,8 +48,8 @@ constexpr double kMergeWeight = 0.25;
 // box −7 %; 16 gained 0–6 % more on those, none elsewhere (docs/integrators.md).
 constexpr int kSeenLightSamples = 8;
 
-// Probes of a merge's disc for the edge correction (kernels/transport/disc_coverage.h), once a merge has
-// met a photon; each is a short ray through the gather's slab.
+// Probes of a merge's disc for the edge correction (kernels/transport/disc_coverage.h), once a
+// merge has met a photon; each is a short ray through the gather's slab.
 constexpr int kCoverageProbes = 8;
 
 KernelDefines mode_defines(VcmMode m, const IntegratorSetup& setup, Merges merges) {
