@@ -194,10 +194,11 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunc
     }
     if (alive) in_flight += photon_total(&p);
   }
-  stats[4 * item + 0] = emitted;
-  stats[4 * item + 1] = absorbed;
-  stats[4 * item + 2] = escaped;
-  stats[4 * item + 3] = in_flight;
+  __global float* ledger = stats + 4 * (item - get_global_offset(0)); /* the launch's own items */
+  ledger[0] = emitted;
+  ledger[1] = absorbed;
+  ledger[2] = escaped;
+  ledger[3] = in_flight;
   if (target.overflow) atomic_add(overflow, target.overflow);
   add_ray_counts(&s, ray_counts);
 }

@@ -30,21 +30,20 @@ class ForwardIntegrator : public KernelIntegrator {
     kernel_ = cl::Kernel(program_, "trace_forward");
     film_shift_ = fixed_point_shift(scene_.data(), film_.cmf(), film_.spectral());
     fixed_ = device_buffer(cl_, cells() * 2 * sizeof(cl_ulong), "forward: the fixed-point film");
-    stats_ = device_buffer(cl_, items_ * 4 * sizeof(float),
-                           "forward: the power ledger of --photons " + std::to_string(photons_));
+    stats_ = device_buffer(cl_, ledger_items() * 4 * sizeof(float), "forward: the power ledger");
     overflow_ = device_buffer(cl_, sizeof(cl_int), "forward: the rejected-sample counter");
   }
 
   PassResult render_pass(int pass) override {
     cl_.queue().enqueueFillBuffer(fixed_, cl_ulong(0), 0, cells() * 2 * sizeof(cl_ulong));
     cl_.queue().enqueueFillBuffer(overflow_, cl_int(0), 0, sizeof(cl_int));
-    cl_.queue().enqueueFillBuffer(stats_, cl_float(0), 0, items_ * 4 * sizeof(float));
     // Launches of bounded work; a pass cut short (deadline, Ctrl-C) is the estimate of the photons
     // it traced, scaled up to the pass's photons (each carries 1/photons of the power).
     size_t done = 0;
+    double raw[4] = {0, 0, 0, 0};  // the launches' ledgers: emitted, absorbed, escaped, in flight
     while (done < items_) {
       if (done > 0 && control_.stop_now()) break;
-      size_t n = pacer_.next(items_ - done);
+      const size_t n = std::min(pacer_.next(items_ - done), ledger_items());
       auto t0 = std::chrono::steady_clock::now();
       const KForwardLaunch record{static_cast<int>(photons_),
                                   photons_per_item_,
@@ -52,8 +51,10 @@ class ForwardIntegrator : public KernelIntegrator {
                                   static_cast<int>(film_shift_),
                                   seed_,
                                   static_cast<uint>(pass)};
+      cl_.queue().enqueueFillBuffer(stats_, cl_float(0), 0, n * 4 * sizeof(float));
       launch_range(kernel_, done, n, record, fixed_, stats_, overflow_);
       pacer_.record(n, seconds_since(t0));
+      add_ledger(n, raw);
       done += n;
       control_.report(static_cast<double>(done) / items_);
     }
@@ -62,11 +63,9 @@ class ForwardIntegrator : public KernelIntegrator {
     const double scale_up = photons_ / traced;
 
     std::vector<cl_ulong> fixed(2 * cells());  // lo, hi per cell
-    std::vector<float> stats(items_ * 4);
     cl_int overflow = 0;
     cl_.queue().enqueueReadBuffer(fixed_, CL_TRUE, 0, fixed.size() * sizeof(cl_ulong),
                                   fixed.data());
-    cl_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, stats.size() * sizeof(float), stats.data());
     cl_.queue().enqueueReadBuffer(overflow_, CL_TRUE, 0, sizeof(cl_int), &overflow);
     PassResult r;
     r.pass = pass;
@@ -75,9 +74,8 @@ class ForwardIntegrator : public KernelIntegrator {
     r.sums.resize(cells());
     for (size_t i = 0; i < cells(); ++i)
       r.sums[i] = fixed_point_value(fixed[2 * i], fixed[2 * i + 1], film_shift_) * scale_up;
-    double power[4] = {0, 0, 0, 0};
-    for (size_t i = 0; i < items_; ++i)
-      for (int k = 0; k < 4; ++k) power[k] += stats[4 * i + k] * scale_up;
+    double power[4];
+    for (int k = 0; k < 4; ++k) power[k] = raw[k] * scale_up;
     PassCounters& c = r.counters;
     c.rejected_samples = overflow;
     c.power_emitted_w = power[0];
@@ -93,11 +91,23 @@ class ForwardIntegrator : public KernelIntegrator {
   long long photons_per_pass() const override { return photons_; }
   std::map<std::string, size_t> device_buffers() const override {
     return {{"fixed-point film", cells() * 2 * sizeof(cl_ulong)},
-            {"power ledger", items_ * 4 * sizeof(float)}};
+            {"power ledger", ledger_items() * 4 * sizeof(float)}};
   }
 
  private:
   size_t cells() const { return film_.pixels() * film_.rows(); }
+  // Work items a launch has at most: each keeps its power ledger (4 floats) until the launch's are
+  // added up, so the ledger does not grow with --photons (1 MiB, where 2^31 photons took 512).
+  static constexpr size_t kLedgerItems = 1 << 16;
+  size_t ledger_items() const { return std::min<size_t>(items_, kLedgerItems); }
+
+  // Adds the launch's `n` work items' ledgers to `raw`, in item order.
+  void add_ledger(size_t n, double raw[4]) {
+    std::vector<float> stats(n * 4);
+    cl_.queue().enqueueReadBuffer(stats_, CL_TRUE, 0, stats.size() * sizeof(float), stats.data());
+    for (size_t i = 0; i < n; ++i)
+      for (int k = 0; k < 4; ++k) raw[k] += stats[4 * i + k];
+  }
 
   long long photons_;
   unsigned seed_;
