@@ -7,8 +7,8 @@
 #include <cstring>
 
 #include "core/error.h"
-#include "integrators/photon/photon_records.h"
 #include "opencl/device_list.h"
+#include "render/record_bytes.h"
 #include "render/render_job.h"
 #include "test_support.h"
 

@@ -4,9 +4,9 @@
 
 #include <cmath>
 
-#include "integrators/photon/photon_records.h"
 #include "kernel_harness.h"
 #include "render/device_scene.h"
+#include "render/record_bytes.h"
 #include "render_support.h"
 #include "study/furnace.h"
 #include "test_support.h"
@@ -15,10 +15,10 @@ using namespace kasha;
 using namespace kasha::test;
 
 TEST(Photon, SppmStatisticsFollowAHandWorkedExample) {
-  // One pixel's statistics on the device (kernels/photon/sppm_statistics.h) against the formulas worked
-  // by hand. Pass 1 finds 4 photons in radius 2, pass 2 none, pass 3 eight with its flux scaled
-  // by 2 (a pass cut short at half its photons): n = 4α, R² = 4·4α/4, τ = φ1·R²/4; then
-  // n' = 4α + 8α, R'² = R²·n'/(n + 8), τ' = (τ + 2φ3)·R'²/R²; radiance τ'/(3π R'² Δλ).
+  // One pixel's statistics on the device (kernels/photon/sppm_statistics.h) against the formulas
+  // worked by hand. Pass 1 finds 4 photons in radius 2, pass 2 none, pass 3 eight with its flux
+  // scaled by 2 (a pass cut short at half its photons): n = 4α, R² = 4·4α/4, τ = φ1·R²/4; then n' =
+  // 4α + 8α, R'² = R²·n'/(n + 8), τ' = (τ + 2φ3)·R'²/R²; radiance τ'/(3π R'² Δλ).
   const char* source = R"(
 #include "sampling/sampling.h"
 #include "photon/sppm_statistics.h"

@@ -8,9 +8,9 @@
 #include "cli/command_line_errors.h"
 #include "cli/render_options.h"
 #include "core/printable.h"
-#include "integrators/photon/photon_records.h"
 #include "opencl/device.h"
 #include "render/device_scene.h"
+#include "render/record_bytes.h"
 #include "scene/scene.h"
 
 namespace kasha {
@@ -46,7 +46,8 @@ static int run_info(const std::string& scene_path, bool spectral, const std::str
       "coated %s, shading normals %s, textures %s, emission textures %s, environment %s\n",
       yes(scene.fluorescent()), yes(scene.glossy()), yes(scene.uses(MaterialKind::dielectric)),
       yes(scene.uses(MaterialKind::conductor)), yes(scene.dispersive()), yes(scene.rough()),
-      yes(scene.coated()), yes(scene.shading_normals()), yes(scene.textured()), yes(scene.emission_textured()), yes(scene.has_environment()));
+      yes(scene.coated()), yes(scene.shading_normals()), yes(scene.textured()),
+      yes(scene.emission_textured()), yes(scene.has_environment()));
   std::printf("materials: %zu; shapes: %zu; triangles: %zu; emitters: %zu (%d triangles)\n",
               scene.materials.size(), scene.shapes.size(), scene.triangles.size(),
               scene.emitters.size(), emitting_triangles);

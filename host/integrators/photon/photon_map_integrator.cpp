@@ -19,13 +19,13 @@
 #include "integrators/photon/photon_grid.h"
 #include "integrators/photon/photon_host_gather.h"
 #include "integrators/photon/photon_pass_chunks.h"
-#include "integrators/photon/photon_records.h"
 #include "integrators/photon/photon_store.h"
 #include "opencl/device_buffer.h"
 #include "render/kernel_integrator.h"
 #include "render/launch_pacer.h"
 #include "render/merge_radius.h"
 #include "render/pass_chunks.h"
+#include "render/record_bytes.h"
 #include "shared/launch_records.h"
 
 namespace kasha {

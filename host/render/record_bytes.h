@@ -1,6 +1,7 @@
 #pragma once
-// Bytes of photon mapping's records for a scene and film (kernels/shared/photon_layout.h): a stored
-// photon holds (8 + N) floats, a visible point 8 + N, or 8 + 2N + R in a fluorescent scene.
+// Bytes of photon mapping's records for a scene and film, for its stores and `kasha info`
+// (kernels/shared/photon_layout.h): a stored photon holds (8 + N) floats, a visible point 8 + N, or
+// 8 + 2N + R in a fluorescent scene.
 #include <cstddef>
 
 #include "scene/scene.h"
