@@ -79,8 +79,8 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KVcmIteratio
 
 /* The hashed grid's buffers (hash_grid.cl), in the modes that merge. */
 #if KASHA_VCM_MERGE
-#define VCM_GRID_PARAMS , __global const float4 *placed, __global const int *cell_count, __global const int *cell_end
-#define VCM_GRID_VIEW(name) const VcmGrid name = {placed, cell_count, cell_end}
+#define VCM_GRID_PARAMS , __global const float4 *placed, __global const int *cell_end
+#define VCM_GRID_VIEW(name) const VcmGrid name = {placed, cell_end}
 #else
 #define VCM_GRID_PARAMS
 #define VCM_GRID_VIEW(name) const VcmGrid name = {0}

@@ -1,10 +1,11 @@
 /* A camera subpath's state (SmallVCM's SubPathState for the camera side) and what a camera pass
  * gives each of its paths. */
 
-/* The hashed grid over the store's mergeable vertices (hash_grid.cl), in the merging modes. */
+/* The hashed grid over the store's mergeable vertices (hash_grid.cl), in the merging modes. Once
+ * built, cell h's run ends at cell_end[h] and starts where cell h - 1's ends (a prefix sum over
+ * the cells in hash order), so its counts are not needed. */
 typedef struct {
   const __global float4* placed; /* per grid slot: the vertex's position and record */
-  const __global int* cell_count;
   const __global int* cell_end;
 } VcmGrid;
 

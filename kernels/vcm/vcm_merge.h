@@ -70,7 +70,7 @@ inline void vcm_merge(const VcmCamera* c, const SceneView* s, const FilmView* f,
       for (int cx = lo.x; cx <= hi.x; ++cx) {
         uint h = grid_hash((int3)(cx, cy, cz), mask);
         int end = grid->cell_end[h];
-        for (int j = end - grid->cell_count[h]; j < end; ++j) {
+        for (int j = h > 0 ? grid->cell_end[h - 1] : 0; j < end; ++j) {
           /* The distance from the grid's own copy of the positions, in the cell's run; the
            * record only for a vertex within r. */
           float4 place = grid->placed[j];

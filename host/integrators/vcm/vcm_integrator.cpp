@@ -404,7 +404,7 @@ class VcmIntegrator : public KernelIntegrator {
       const auto t = std::chrono::steady_clock::now();
       if (grid_)
         launch_range(camera_kernel_, done, n, it, store_, light_paths_, grid_->placed(),
-                     grid_->cell_count(), grid_->cell_end(), spectra_, film_.pixel_sums(), pixels_);
+                     grid_->cell_end(), spectra_, film_.pixel_sums(), pixels_);
       else
         launch_range(camera_kernel_, done, n, it, store_, light_paths_, spectra_,
                      film_.pixel_sums(), pixels_);
