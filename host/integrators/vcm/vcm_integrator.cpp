@@ -86,7 +86,6 @@ class VcmIntegrator : public KernelIntegrator {
                                 : default_camera_paths(Mode, s.scene, plan.caustic_lit)),
         emission_only_(s.hooks.vcm_emission_only),
         record_floats_(KASHA_VCM_VERTEX_FLOATS(s.scene.grid.bins)),
-        bins_(s.scene.grid.bins),
         light_kernel_(program_, "vcm_light_pass"),
         camera_kernel_(program_, "vcm_camera_pass") {
     if (!(alpha_ > 0 && alpha_ < 1)) throw Error("--alpha must lie in (0, 1)");
@@ -430,7 +429,6 @@ class VcmIntegrator : public KernelIntegrator {
   int whole_ = 0;  // iterations that ran whole
   size_t paths_;   // light subpaths per iteration: pixel p's camera path connects to the p-th
   size_t record_floats_;
-  size_t bins_;
   size_t spectra_floats_ = 0;  // a camera path's spectra (kernels/vcm/vcm_modes.h, VCM_SPECTRA)
   size_t budget_ = 0, capacity_ = 0;
   size_t chunk_paths_ = 0;   // the most light subpaths a chunk holds (its KVcmLightPath table)
