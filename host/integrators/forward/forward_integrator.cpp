@@ -51,7 +51,6 @@ class ForwardIntegrator : public KernelIntegrator {
                                   static_cast<int>(film_shift_),
                                   seed_,
                                   static_cast<uint>(pass)};
-      cl_.queue().enqueueFillBuffer(stats_, cl_float(0), 0, n * 4 * sizeof(float));
       launch_range(kernel_, done, n, record, fixed_, stats_, overflow_);
       pacer_.record(n, seconds_since(t0));
       add_ledger(n, raw);

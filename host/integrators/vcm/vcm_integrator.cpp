@@ -134,7 +134,9 @@ class VcmIntegrator : public KernelIntegrator {
     const size_t pixels = film_.pixels();
     film_.clear_pixel_sums();
     cl_.queue().enqueueFillBuffer(fixed_, cl_ulong(0), 0, cells() * 2 * sizeof(cl_ulong));
-    cl_.queue().enqueueWriteBuffer(pixels_, CL_TRUE, 0, pixels * sizeof(KVcmPixel),
+    // Each pixel's seen-light flag and zero tallies (pixel_start_ lives as long as the queue's
+    // work on it: the write need not wait).
+    cl_.queue().enqueueWriteBuffer(pixels_, CL_FALSE, 0, pixels * sizeof(KVcmPixel),
                                    pixel_start_.data());
     overflow_ = 0;
     // The light subpaths in chunks of path ranges, each traced into the store and met by every
@@ -290,8 +292,7 @@ class VcmIntegrator : public KernelIntegrator {
     std::vector<KVcmPixel> px(pixels);
     cl_.queue().enqueueReadBuffer(pixels_, CL_TRUE, 0, pixels * sizeof(KVcmPixel), px.data());
     double rejected = 0, camera_cut = 0;
-    for (const KVcmPixel& p : px) rejected += p.rejected;
-    for (const KVcmPixel& p : px) camera_cut += p.cut;
+    for (const KVcmPixel& p : px) rejected += p.rejected, camera_cut += p.cut;
     PassCounters& c = r.counters;
     c.rejected_samples = rejected + overflow_;
     c.light_vertices_stored = stages.stored;
