@@ -209,7 +209,8 @@ AttributeEnd
 )");
   const std::string json = write_file("twin.json", std::string(R"({"kasha_scene": 1,
   "camera": {"position": [0, 1, 3], "look_at": [0, 1, 2], "up": [0, 1, 0], "fov_deg": 45,
-             "width": 24, "height": 16, "mirror": true},
+             "width": 24, "height": 16, "mirror": true,
+             "filter": {"type": "gaussian", "radius": [1.5, 1.5], "sigma": 0.5}},
   "materials": {"lamp": {"passive": {"reflectance": 0}},
                 "grey": {"passive": {"reflectance": {"rgb": [0.5, 0.5, 0.5]}}},
                 "red": {"passive": {"reflectance": {"rgb": [0.6, 0.1, 0.1]}}}},

@@ -38,6 +38,7 @@ Camera parse_camera(const JsonNode& node) {
   if (auto w = node.find("width")) c.width = w->integer_in(1, 16384);
   if (auto h = node.find("height")) c.height = h->integer_in(1, 16384);
   if (auto m = node.find("mirror")) c.mirror = m->boolean();
+  if (auto f = node.find("filter")) c.filter = parse_pixel_filter(*f);
   node.finish();
   Eigen::Vector3d forward = vec(c.look_at) - vec(c.position);
   if (forward.norm() == 0) node.fail("\"position\" and \"look_at\" are the same point");
@@ -64,6 +65,7 @@ KCamera Camera::to_kernel() const {
   put(k.up, true_up * sy);
   k.width = width;
   k.height = height;
+  filter.to_kernel(&k);
   return k;
 }
 

@@ -4,6 +4,7 @@
 #include <array>
 
 #include "core/json_node.h"
+#include "scene/pixel_filter.h"
 #include "shared/shared_types.h"
 
 namespace kasha {
@@ -13,6 +14,7 @@ struct Camera {
   double fov_deg = 40;
   int width = 256, height = 256;
   bool mirror = false;  // the image's right is up × forward
+  PixelFilter filter;   // kasha's unit box unless "filter" names one of pbrt-v4's
 
   KCamera to_kernel() const;
 };

@@ -11,7 +11,8 @@
 
 /* Where a point projects on the pinhole camera's film, and the factor that turns flux leaving
  * it towards the camera into the pixel's average radiance: 1 / (r² cos³θc A_pixel), A_pixel
- * the pixel's area on the image plane at unit distance. Returns the pixel, or -1 off the film. */
+ * the pixel's area on the image plane at unit distance, times the pixel filter's splat factor
+ * (geometry/pixel_filter.h). Returns the pixel, or -1 off the film. */
 inline int camera_pixel(const KCamera* c, float3 x, float* importance) {
   float3 forward = (float3)(c->forward[0], c->forward[1], c->forward[2]);
   float3 right = (float3)(c->right[0], c->right[1], c->right[2]);
@@ -22,11 +23,11 @@ inline int camera_pixel(const KCamera* c, float3 x, float* importance) {
   float3 plane = v / depth - forward;
   float sx = dot(plane, right) / dot(right, right), sy = dot(plane, up) / dot(up, up);
   float px = 0.5f * (sx + 1.0f) * c->width, py = 0.5f * (1.0f - sy) * c->height;
-  if (!(px >= 0.0f && px < c->width && py >= 0.0f && py < c->height)) return -1;
+  if (!filter_reaches(c, px, py)) return -1;
   float r2 = dot(v, v), cos_c = depth / sqrt(r2);
   float pixel_area = 4.0f * length(right) * length(up) / (float)(c->width * c->height);
   *importance = 1.0f / (r2 * cos_c * cos_c * cos_c * pixel_area);
-  return min((int)py, c->height - 1) * c->width + min((int)px, c->width - 1);
+  return filter_splat_pixel(c, px, py, importance);
 }
 
 /* Adds value · 2^shift, rounded to an integer, to the 128-bit cell (cell[0] = lo, cell[1] = hi);

@@ -3,6 +3,7 @@
 #define KASHA_CAMERA_H
 
 #include "shared/shared_types.h"
+#include "geometry/pixel_filter.h"
 
 /* Direction through image position (x, y) in pixels, (0, 0) the top-left corner. */
 inline float3 camera_direction(const KCamera* c, float x, float y) {
@@ -18,10 +19,12 @@ inline float3 camera_position(const KCamera* c) {
   return (float3)(c->position[0], c->position[1], c->position[2]);
 }
 
-/* A primary ray direction through the point u ∈ [0,1)² of pixel `pixel` (row-major). */
+/* A primary ray direction for pixel `pixel` (row-major) from u ∈ [0,1)²: the point u of the pixel
+ * for kasha's unit box, else the pixel's centre plus an offset drawn from the pixel filter. */
 inline float3 camera_sample(const KCamera* c, int pixel, float2 u) {
   int px = pixel % c->width, py = pixel / c->width;
-  return camera_direction(c, px + u.x, py + u.y);
+  if (c->filter == KASHA_FILTER_PIXEL) return camera_direction(c, px + u.x, py + u.y);
+  return camera_direction(c, (float)px + 0.5f + filter_offset(c, 0, u.x), (float)py + 0.5f + filter_offset(c, 1, u.y));
 }
 
 /* The pixel a work item renders in a launch of one item per pixel, or -1 for an item past the

@@ -96,6 +96,15 @@ typedef struct {
 } KHit;
 KASHA_STATIC_SIZE(KHit, 16);
 
+/* Pixel filters (geometry/pixel_filter.h): the unit box of kasha's own scenes, then pbrt-v4's box
+ * and triangle of any radius, and the other filters as a table of 16 bins per half axis. */
+#define KASHA_FILTER_PIXEL 0
+#define KASHA_FILTER_BOX 1
+#define KASHA_FILTER_TRIANGLE 2
+#define KASHA_FILTER_TABLE 3
+#define KASHA_FILTER_BINS 16
+#define KASHA_FILTER_MAX_RADIUS 8
+
 /* Pinhole camera: a pixel (px, py), row 0 at the top, looks along
  * forward + (2 (px + 0.5) / width - 1) * right_scaled + (1 - 2 (py + 0.5) / height) * up_scaled. */
 typedef struct {
@@ -107,8 +116,13 @@ typedef struct {
   float pad0;
   float up[3]; /* already scaled by tan(fov/2) */
   float pad1;
+  int filter;             /* the pixel filter, KASHA_FILTER_* (geometry/pixel_filter.h) */
+  float filter_radius[2]; /* in pixels, per axis */
+  float pad2;
+  float filter_cdf[2][KASHA_FILTER_BINS]; /* KASHA_FILTER_TABLE: per axis, the filter's mass on
+                                             the half axis up to each bin's end (the last 1) */
 } KCamera;
-KASHA_STATIC_SIZE(KCamera, 64);
+KASHA_STATIC_SIZE(KCamera, 208);
 
 /* The scene as kernels take it by value, first of KASHA_SCENE_PARAMS (kernels/geometry/scene_view.h): the
  * camera, the light counts and the bin width, and where each of the scene's tables starts in its
@@ -123,7 +137,7 @@ typedef struct {
   int light_sources; /* entries of lights */
   int pad;
 } KSceneParams;
-KASHA_STATIC_SIZE(KSceneParams, 192);
+KASHA_STATIC_SIZE(KSceneParams, 336);
 
 /* What a material is: the measured model (gloss lobe or mirror, passive and fluorescent Lambert
  * parts), or an ideal specular interface — a dielectric or a conductor (docs/materials.md). */

@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/printable.h"
+#include "scene/pixel_filter.h"
 #include "scene/pbrt/pbrt_materials.h"
 #include "scene/pbrt/pbrt_parameters.h"
 #include "scene/pbrt/pbrt_shapes.h"
@@ -108,6 +109,7 @@ class Importer {
     }
     if (uses_default_material_)
       materials_[kDefaultMaterial] = {{"passive", {{"reflectance", 0.5}}}};
+    camera_["filter"] = filter_;
     nlohmann::json scene = {
         {"kasha_scene", 1}, {"camera", camera_}, {"materials", materials_}, {"shapes", shapes_}};
     if (!lights_.empty()) scene["lights"] = lights_;
@@ -342,11 +344,13 @@ class Importer {
     } else if (name == "Film") {
       const std::string type = string_arg(tokens, d);  // before the parameters that follow it
       film(type, PbrtParameters::read(tokens), d.where);
-    } else if (name == "Sampler" || name == "Integrator" || name == "PixelFilter" ||
-               name == "Accelerator") {
+    } else if (name == "PixelFilter") {
+      const std::string type = string_arg(tokens, d);
+      pixel_filter(type, PbrtParameters::read(tokens), d.where);
+    } else if (name == "Sampler" || name == "Integrator" || name == "Accelerator") {
       pbrt_warn(d.where, name + " " + in_quotes(skipped_directive(tokens, d)) +
-                             " is ignored: kasha's --integrator, --spp, " +
-                             "--passes and box pixel filter decide (docs/pbrt-import.md)");
+                             " is ignored: kasha's --integrator, --spp " +
+                             "and --passes decide (docs/pbrt-import.md)");
     } else if (name == "MakeNamedMedium") {
       pbrt_warn(d.where, "MakeNamedMedium " + in_quotes(skipped_directive(tokens, d)) +
                              ": participating media are not built in kasha");
@@ -473,6 +477,33 @@ class Importer {
     world_from_camera.block<3, 1>(0, 2) = z;
     world_from_camera.block<3, 1>(0, 3) = pos;
     return world_from_camera.inverse();
+  }
+
+  // pbrt-v4's PixelFilter, kept with the camera (scene/pixel_filter.h); pbrt-v4's default when a
+  // scene names none is its gaussian, set in run().
+  void pixel_filter(const std::string& type, const PbrtParameters& params,
+                    const PbrtLocation& where) {
+    if (type != "box" && type != "triangle" && type != "gaussian" && type != "mitchell" &&
+        type != "lanczos")
+      pbrt_fail(where, "PixelFilter " + in_quotes(type) + " is not one of pbrt-v4's filters");
+    const PixelFilter defaults = default_pixel_filter(type);
+    const double rx = params.get_float("xradius", defaults.radius[0]);
+    const double ry = params.get_float("yradius", defaults.radius[1]);
+    if (!(rx > 0 && ry > 0 && rx <= KASHA_FILTER_MAX_RADIUS && ry <= KASHA_FILTER_MAX_RADIUS))
+      pbrt_fail(where, "a PixelFilter radius must be above 0 and at most " +
+                           std::to_string(KASHA_FILTER_MAX_RADIUS) + " pixels in kasha");
+    filter_ = {{"type", type}, {"radius", {rx, ry}}};
+    if (type == "gaussian") filter_["sigma"] = params.get_float("sigma", defaults.sigma);
+    if (type == "mitchell") {
+      filter_["B"] = params.get_float("B", defaults.b);
+      filter_["C"] = params.get_float("C", defaults.c);
+    }
+    if (type == "lanczos") filter_["tau"] = params.get_float("tau", defaults.tau);
+    params.warn_unused("PixelFilter " + in_quotes(type));
+    if (defaults.has_negative_lobes())
+      pbrt_warn(where, "PixelFilter " + in_quotes(type) +
+                           ": kasha keeps its positive part (the negative lobes sharpen "
+                           "pbrt-v4's image slightly)");
   }
 
   void make_camera(const Matrix& camera_from_world, const std::string& type,
@@ -707,6 +738,8 @@ class Importer {
   bool end_time_only_ = false;
   bool camera_seen_ = false;
   nlohmann::json camera_ = nlohmann::json::object();
+  // pbrt-v4's default filter (filters.cpp): a gaussian of radius 1.5 and sigma 0.5.
+  nlohmann::json filter_ = {{"type", "gaussian"}, {"radius", {1.5, 1.5}}, {"sigma", 0.5}};
   nlohmann::json materials_ = nlohmann::json::object();
   std::set<std::string> named_materials_, interfaces_;
   std::multimap<std::string, PbrtLocation> named_material_uses_;
