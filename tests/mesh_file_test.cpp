@@ -106,6 +106,11 @@ TEST(MeshFile, BadMeshFilesGetOneLineNamingTheFile) {
       {write_file("nan_vertex.ply", nan_vertex), "not finite"},
       {write_file("outside.gltf", mesh_gltf(kTent, "../outside.bin")), "outside.gltf: names a file outside its folder"},
       {write_file("empty.ply", ""), "empty.ply"},
+      // Assimp's own wording ("OBJ: vertex index out of range", "No suitable reader found") is
+      // put in kasha's.
+      {write_file("bad_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"),
+       "bad_index.obj: cannot read mesh: a face names a vertex the mesh does not have"},
+      {write_file("garbage.glb", "garbage"), "garbage.glb: cannot read mesh: the file is not a mesh in the format"},
       // Assimp looped on this header cut short (kasha's PLY reader refuses it at once).
       {write_file("looping.ply", "ply\nformat binary_little_endian 1.0\neleme"), "looping.ply: cannot read mesh"},
   };
@@ -115,6 +120,8 @@ TEST(MeshFile, BadMeshFilesGetOneLineNamingTheFile) {
     const std::string error = error_of([&] { load_scene(scene); });
     EXPECT_NE(error.find(message), std::string::npos) << file << "\n  gave: " << error;
     EXPECT_EQ(error.find('\n'), std::string::npos) << "one line: " << error;
+    for (const char* library : {"Assimp", "aiMesh", "Validation failed", "OBJ:", "No suitable reader"})
+      EXPECT_EQ(error.find(library), std::string::npos) << "library wording: " << error;
   }
 }
 

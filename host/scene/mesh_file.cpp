@@ -110,6 +110,7 @@ std::string in_kasha_words(const std::string& library_message) {
   auto has = [&](const char* phrase) { return library_message.find(phrase) != std::string::npos; };
   if (has("mIndices") || has("index") || has("Index"))
     return "a face names a vertex the mesh does not have";
+  if (has("no faces")) return "a mesh in the file has no faces";
   if (has("Validation failed")) return "its faces, vertices and buffers do not agree";
   if (has("internal check failed"))
     return "the file is malformed (its reader stopped on an inconsistency)";
