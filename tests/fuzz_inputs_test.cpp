@@ -1,5 +1,6 @@
 // A fuzz harness over kasha's inputs: mutated scene JSON (lights included), material files,
-// spectrum CSVs, environment PNGs, OBJ meshes and reference EXRs (from the shipped ones), loaded
+// spectrum CSVs, environment PNGs, OBJ and PLY meshes (PLY also gzip-compressed) and reference
+// EXRs (from the shipped ones), loaded
 // the way `kasha info` and `render` load them. Every case must either load or fail with one
 // kasha::Error line — no other exception, crash or hang; scenes that load are also rendered at 8×8
 // for one pass by a physical integrator, and the image must be finite. A handful go through the

@@ -6,6 +6,8 @@
 // - texture coordinates under each of pbrt-v4's four pairs of names, and normals;
 // - header claims beyond the file's size, truncated files: one line naming the file;
 // - gzip: a .ply.gz mesh and a .pbrt.gz scene with a .pbrt.gz Include read as their plain twins.
+#include "scene/ply_mesh.h"
+
 #include <gtest/gtest.h>
 #include <zlib.h>
 
@@ -15,7 +17,6 @@
 #include "core/gzip_input.h"
 #include "scene/mesh_file.h"
 #include "scene/pbrt/pbrt_import.h"
-#include "scene/ply_mesh.h"
 #include "test_support.h"
 
 using namespace kasha;
@@ -43,7 +44,8 @@ float newline_float() {
 std::string binary_triangle(const std::string& eol, float x0) {
   std::string s = "ply" + eol + "format binary_little_endian 1.0" + eol + "element vertex 3" + eol +
                   "property float x" + eol + "property float y" + eol + "property float z" + eol +
-                  "element face 1" + eol + "property list uchar int vertex_indices" + eol + "end_header" + eol;
+                  "element face 1" + eol + "property list uchar int vertex_indices" + eol +
+                  "end_header" + eol;
   const float v[3][3] = {{x0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   for (const auto& p : v)
     for (float c : p) put(s, c);
@@ -61,7 +63,8 @@ TEST(PlyMesh, BinaryDataWhoseFirstByteIsANewlineIsReadFromThatByte) {
     EXPECT_EQ(m.tris, (std::vector<int>{0, 1, 2}));
   }
   // Through the scene's route too.
-  const ShapeMesh t = mesh_file_triangles(write_file("newline.ply", binary_triangle("\n", newline_float())));
+  const ShapeMesh t =
+      mesh_file_triangles(write_file("newline.ply", binary_triangle("\n", newline_float())));
   ASSERT_EQ(t.tris.size(), 1u);
   EXPECT_EQ(t.tris[0][0].x(), static_cast<double>(newline_float()));
   EXPECT_TRUE(t.normals.empty());
@@ -69,8 +72,10 @@ TEST(PlyMesh, BinaryDataWhoseFirstByteIsANewlineIsReadFromThatByte) {
 
 TEST(PlyMesh, QuadsSplitAsPbrtV4AndOtherFacesAreLeftOut) {
   const std::string ply =
-      "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
-      "element face 3\nproperty list uchar int vertex_indices\nproperty int face_indices\nend_header\n"
+      "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float "
+      "z\n"
+      "element face 3\nproperty list uchar int vertex_indices\nproperty int "
+      "face_indices\nend_header\n"
       "0 0 0\n1 0 0\n1 1 0\n0 1 0\n2 2 0\n4 0 1 2 3 7\n5 0 1 2 3 4 8\n3 2 3 4 9\n";
   const PlyMesh m = parse_ply(ply, "quad.ply");
   EXPECT_EQ(m.quads, (std::vector<int>{0, 1, 3, 2}));  // pbrt-v4's bilinear patch order
@@ -87,8 +92,9 @@ TEST(PlyMesh, QuadsSplitAsPbrtV4AndOtherFacesAreLeftOut) {
 
 // The triangle of binary_triangle written with `type` for every value and list count.
 std::string typed_triangle(const std::string& type, const std::string& format) {
-  std::string s = "ply\nformat " + format + " 1.0\nelement vertex 3\nproperty " + type + " x\nproperty " + type +
-                  " y\nproperty " + type + " z\nelement face 1\nproperty list " + type + " " + type +
+  std::string s = "ply\nformat " + format + " 1.0\nelement vertex 3\nproperty " + type +
+                  " x\nproperty " + type + " y\nproperty " + type +
+                  " z\nelement face 1\nproperty list " + type + " " + type +
                   " vertex_indices\nend_header\n";
   const int v[3][3] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   const bool big = format == "binary_big_endian";
@@ -98,14 +104,22 @@ std::string typed_triangle(const std::string& type, const std::string& format) {
       return;
     }
     const std::string t = type;
-    if (t == "char" || t == "int8") put<std::int8_t>(s, x, big);
-    else if (t == "uchar" || t == "uint8") put<std::uint8_t>(s, x, big);
-    else if (t == "short" || t == "int16") put<std::int16_t>(s, x, big);
-    else if (t == "ushort" || t == "uint16") put<std::uint16_t>(s, x, big);
-    else if (t == "int" || t == "int32") put<std::int32_t>(s, x, big);
-    else if (t == "uint" || t == "uint32") put<std::uint32_t>(s, x, big);
-    else if (t == "float" || t == "float32") put<float>(s, x, big);
-    else put<double>(s, x, big);
+    if (t == "char" || t == "int8")
+      put<std::int8_t>(s, x, big);
+    else if (t == "uchar" || t == "uint8")
+      put<std::uint8_t>(s, x, big);
+    else if (t == "short" || t == "int16")
+      put<std::int16_t>(s, x, big);
+    else if (t == "ushort" || t == "uint16")
+      put<std::uint16_t>(s, x, big);
+    else if (t == "int" || t == "int32")
+      put<std::int32_t>(s, x, big);
+    else if (t == "uint" || t == "uint32")
+      put<std::uint32_t>(s, x, big);
+    else if (t == "float" || t == "float32")
+      put<float>(s, x, big);
+    else
+      put<double>(s, x, big);
   };
   for (const auto& p : v)
     for (int c : p) value(c);
@@ -114,8 +128,9 @@ std::string typed_triangle(const std::string& type, const std::string& format) {
 }
 
 TEST(PlyMesh, EveryRplyTypeNameReadsInEveryFormat) {
-  for (const char* type : {"char", "uchar", "short", "ushort", "int", "uint", "float", "double", "int8", "uint8",
-                           "int16", "uint16", "int32", "uint32", "float32", "float64"})
+  for (const char* type :
+       {"char", "uchar", "short", "ushort", "int", "uint", "float", "double", "int8", "uint8",
+        "int16", "uint16", "int32", "uint32", "float32", "float64"})
     for (const char* format : {"ascii", "binary_little_endian", "binary_big_endian"}) {
       const PlyMesh m = parse_ply(typed_triangle(type, format), "typed.ply");
       ASSERT_EQ(m.p.size(), 3u) << type << " " << format;
@@ -130,7 +145,9 @@ TEST(PlyMesh, EveryRplyTypeNameReadsInEveryFormat) {
 }
 
 std::string with_vertex_properties(const std::string& names) {
-  std::string s = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n";
+  std::string s =
+      "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float "
+      "z\n";
   std::string values[3];
   std::istringstream in(names);
   std::string name;
@@ -184,7 +201,8 @@ TEST(PlyMesh, ClaimsBeyondTheFileAndTruncatedFilesGetOneLine) {
   index[index.size() - 1] = 9;  // the last index (9 in its top byte): far past 3 vertices
   cases.push_back({index, "names vertex"});
   for (const auto& [bytes, message] : cases) {
-    const std::string error = error_of([&] { mesh_file_triangles(write_file("claim.ply", bytes)); });
+    const std::string error =
+        error_of([&] { mesh_file_triangles(write_file("claim.ply", bytes)); });
     EXPECT_EQ(error.rfind(write_file("claim.ply", bytes) + ": ", 0), 0u) << error;
     EXPECT_NE(error.find(message), std::string::npos) << message << "\n  gave: " << error;
     EXPECT_EQ(error.find('\n'), std::string::npos) << error;
@@ -214,7 +232,8 @@ TEST(GzipInput, CompressedMeshesAndScenesReadAsTheirPlainTwins) {
   // Two gzip members one after another are one file, as gzip reads them.
   EXPECT_EQ(gunzip(gzip("ab") + gzip("cd"), "two.gz", 100), "abcd");
 
-  const std::string shape = "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]\n";
+  const std::string shape =
+      "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2]\n";
   write_file("part.pbrt.gz", gzip(shape));
   const std::string head = "LookAt 0 0 5 0 0 0 0 1 0\nCamera \"perspective\"\nWorldBegin\n";
   const std::string scene = write_file("scene.pbrt.gz", gzip(head + "Include \"part.pbrt.gz\"\n"));
@@ -240,7 +259,8 @@ TEST(GzipInput, BadCompressedDataAndBombsGetOneLine) {
     EXPECT_NE(error.find(message), std::string::npos) << message << "\n  gave: " << error;
   }
   const std::string file = write_file("bad.ply.gz", "not gzip at all");
-  EXPECT_NE(error_of([&] { mesh_file_triangles(file); }).find("bad.ply.gz: is not valid gzip"), std::string::npos);
+  EXPECT_NE(error_of([&] { mesh_file_triangles(file); }).find("bad.ply.gz: is not valid gzip"),
+            std::string::npos);
 }
 
 }  // namespace
