@@ -379,7 +379,9 @@ void read_faces(Cursor& c, Storage storage, const Element& e, PlyMesh& m) {
     read_instance(c, storage, e, "the PLY faces", v, indices, list);
     if (face_index >= 0)
       m.face_indices.push_back(
-          static_cast<int>(std::clamp(v[face_index], -2147483648.0, 2147483647.0)));
+          std::isnan(v[face_index])
+              ? 0
+              : static_cast<int>(std::clamp(v[face_index], -2147483648.0, 2147483647.0)));
     if (list.size() == 3) {
       for (double i : list) m.tris.push_back(vertex_index(c, i, f));
     } else if (list.size() == 4) {
