@@ -1,5 +1,6 @@
 // A fuzz harness over kasha's inputs: mutated scene JSON (lights included), material files,
-// spectrum CSVs, environment PNGs, OBJ meshes and reference EXRs (from the shipped ones), loaded
+// spectrum CSVs, environment PNGs, OBJ and PLY meshes (PLY also gzip-compressed) and reference
+// EXRs (from the shipped ones), loaded
 // the way `kasha info` and `render` load them. Every case must either load or fail with one
 // kasha::Error line — no other exception, crash or hang; scenes that load are also rendered at 8×8
 // for one pass by a physical integrator, and the image must be finite. A handful go through the
@@ -11,6 +12,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <atomic>
@@ -33,11 +35,13 @@
 #include <vector>
 
 #include "cli/command_line.h"
+#include "core/gzip_input.h"
 #include "core/printable.h"
 #include "image/exr_io.h"
 #include "image/png_preview.h"
 #include "render/device_scene.h"
 #include "render/render_job.h"
+#include "scene/ply_mesh.h"
 #include "scene/scene.h"
 #include "mesh_writers.h"
 #include "test_support.h"
@@ -469,6 +473,67 @@ TEST(Fuzz, MutatedReferenceExrsReadOrGiveOneLine) {
     }
   }
   std::printf("  %d EXRs: %d read, %d refused with one line\n", cases, read, refused);
+  EXPECT_GT(refused, 0);
+}
+
+// kasha's PLY reader and gzip inflater (host/scene/ply_mesh.cpp, host/core/gzip_input.cpp), in
+// process: binary and ASCII seeds with quads, normals and texture coordinates, mutated as text
+// and as bytes, and a gzip of one, each read or refused with one kasha::Error line.
+static std::string gzip_bytes(const std::string& data) {
+  uLongf size = compressBound(static_cast<uLong>(data.size())) + 64;
+  std::string out(size, '\0');
+  z_stream z{};
+  deflateInit2(&z, 6, Z_DEFLATED, 16 + 15, 8, Z_DEFAULT_STRATEGY);
+  z.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+  z.avail_in = static_cast<uInt>(data.size());
+  z.next_out = reinterpret_cast<Bytef*>(out.data());
+  z.avail_out = static_cast<uInt>(out.size());
+  deflate(&z, Z_FINISH);
+  out.resize(z.total_out);
+  deflateEnd(&z);
+  return out;
+}
+
+TEST(Fuzz, MutatedPlyAndGzipMeshesReadOrGiveOneLine) {
+  const std::string quads =
+      "ply\nformat ascii 1.0\ncomment quads\nelement vertex 5\nproperty double x\nproperty double y\n"
+      "property double z\nproperty float texture_s\nproperty float texture_t\nproperty short nx\n"
+      "property short ny\nproperty short nz\nelement face 3\nproperty list int uint vertex_indices\n"
+      "property int face_indices\nelement extra 1\nproperty list uchar float values\nend_header\n"
+      "0 0 0 0 0 0 0 1\n1 0 0 1 0 0 0 1\n1 1 0 1 1 0 0 1\n0 1 0 0 1 0 0 1\n2 2 0 1 1 0 0 1\n"
+      "4 0 1 2 3 0\n5 0 1 2 3 4 1\n3 2 3 4 2\n2 0.5 1.5\n";
+  const std::vector<std::string> seeds = {mesh_ply(tent_mesh(), true), mesh_ply(tent_mesh(), false), quads};
+  std::mt19937 rng(11);
+  const int cases = fuzz_cases(400);
+  int read = 0, refused = 0;
+  for (int c = 0; c < cases; ++c) {
+    std::string b = seeds[c % seeds.size()];
+    if (rng() % 2) {
+      b = mutate(b, rng);
+    } else {
+      const int flips = 1 + static_cast<int>(rng() % 8);
+      for (int k = 0; k < flips; ++k) b[rng() % b.size()] ^= static_cast<char>(1 << (rng() % 8));
+      if (rng() % 4 == 0) b.resize(rng() % b.size());
+    }
+    try {
+      if (c % 5 == 4) {  // a gzip of it, cut short or with a flipped byte now and then
+        std::string z = gzip_bytes(b);
+        if (rng() % 2) z[rng() % z.size()] ^= static_cast<char>(1 << (rng() % 8));
+        if (rng() % 3 == 0) z.resize(rng() % z.size());
+        b = gunzip(z, "mutated.ply.gz", std::uint64_t(1) << 20);
+      }
+      const ShapeMesh m = ply_mesh_triangles(parse_ply(b, "mutated.ply"), "mutated.ply");
+      EXPECT_EQ(m.tris.size(), m.uv.size());
+      ++read;
+    } catch (const Error& e) {
+      ++refused;
+      EXPECT_TRUE(one_line(e.what())) << e.what();
+    } catch (const std::exception& e) {
+      ADD_FAILURE() << "case " << c << ": not a kasha::Error: " << e.what();
+    }
+  }
+  std::printf("  %d PLY files: %d read, %d refused with one line\n", cases, read, refused);
+  EXPECT_GT(read, 0);
   EXPECT_GT(refused, 0);
 }
 

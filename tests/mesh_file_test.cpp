@@ -1,4 +1,5 @@
-// Mesh files through Assimp ("type": "mesh", host/scene/mesh_file.cpp, docs/formats.md#mesh-files):
+// Mesh files ("type": "mesh", host/scene/mesh_file.cpp, docs/formats.md#mesh-files): PLY by
+// kasha's own reader, glTF and OBJ through Assimp:
 // - One mesh written by hand as OBJ (read by kasha's own "obj" path), ASCII PLY, binary PLY,
 //   glTF with an embedded buffer, glTF with an external .bin and GLB gives the same triangles,
 //   texture coordinates and shading normals, value for value, and the same image bit for bit.
@@ -97,7 +98,7 @@ TEST(MeshFile, BadMeshFilesGetOneLineNamingTheFile) {
   std::string bad_index = mesh_ply(kTent, false);
   bad_index.replace(bad_index.rfind("3 0 2 3"), 7, "3 0 2 9");
   std::string nan_vertex = mesh_ply(kTent, false);
-  nan_vertex.replace(nan_vertex.find("\n1 0 0 "), 8, "\n1 nan 0 ");
+  nan_vertex.replace(nan_vertex.find("\n1 0 0 "), 7, "\n1 nan 0 ");
   const std::vector<std::pair<std::string, std::string>> cases = {
       {write_file("bad.stl", "solid x\nendsolid x\n"), "not a mesh format kasha reads"},
       {write_file("truncated.ply", truncated), "truncated.ply: cannot read mesh"},
@@ -105,7 +106,12 @@ TEST(MeshFile, BadMeshFilesGetOneLineNamingTheFile) {
       {write_file("nan_vertex.ply", nan_vertex), "not finite"},
       {write_file("outside.gltf", mesh_gltf(kTent, "../outside.bin")), "outside.gltf: names a file outside its folder"},
       {write_file("empty.ply", ""), "empty.ply"},
-      // Assimp loops on this header cut short: the reader is stopped after 2 s.
+      // Assimp's own wording ("OBJ: vertex index out of range", "No suitable reader found") is
+      // put in kasha's.
+      {write_file("bad_index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"),
+       "bad_index.obj: cannot read mesh: a face names a vertex the mesh does not have"},
+      {write_file("garbage.glb", "garbage"), "garbage.glb: cannot read mesh: the file is not a mesh in the format"},
+      // Assimp looped on this header cut short (kasha's PLY reader refuses it at once).
       {write_file("looping.ply", "ply\nformat binary_little_endian 1.0\neleme"), "looping.ply: cannot read mesh"},
   };
   int k = 0;
@@ -114,6 +120,8 @@ TEST(MeshFile, BadMeshFilesGetOneLineNamingTheFile) {
     const std::string error = error_of([&] { load_scene(scene); });
     EXPECT_NE(error.find(message), std::string::npos) << file << "\n  gave: " << error;
     EXPECT_EQ(error.find('\n'), std::string::npos) << "one line: " << error;
+    for (const char* library : {"Assimp", "aiMesh", "Validation failed", "OBJ:", "No suitable reader"})
+      EXPECT_EQ(error.find(library), std::string::npos) << "library wording: " << error;
   }
 }
 

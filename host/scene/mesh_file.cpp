@@ -1,22 +1,21 @@
 #include "scene/mesh_file.h"
 
-#include <assimp/DefaultLogger.hpp>
-#include <assimp/IOSystem.hpp>
-#include <assimp/Importer.hpp>
 #include <assimp/MemoryIOWrapper.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
-
 #include <fcntl.h>
 #include <poll.h>
 #include <spawn.h>
 #include <sys/wait.h>
-#include <csignal>
 #include <unistd.h>
 
 #include <algorithm>
+#include <assimp/DefaultLogger.hpp>
+#include <assimp/IOSystem.hpp>
+#include <assimp/Importer.hpp>
 #include <cerrno>
 #include <cmath>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -27,8 +26,11 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/gzip_input.h"
 #include "core/input_file.h"
 #include "core/printable.h"
+#include "core/warning.h"
+#include "scene/ply_mesh.h"
 
 // Debian's Assimp is built with its internal checks on, and a failed one aborts the process from
 // inside the library (its handler cannot be set through the installed API). This definition takes
@@ -37,7 +39,8 @@
 namespace Assimp {
 void aiAssertViolation(const char* expression, const char* file, int line) {
   throw std::runtime_error(std::string("Assimp's internal check failed (") + expression + " at " +
-                           std::filesystem::path(file).filename().string() + ":" + std::to_string(line) + ")");
+                           std::filesystem::path(file).filename().string() + ":" +
+                           std::to_string(line) + ")");
 }
 }  // namespace Assimp
 
@@ -100,6 +103,26 @@ std::string lower_extension(const std::string& path) {
   return e;
 }
 
+// What Assimp's message (or its internal check, aiAssertViolation above) says, in kasha's words:
+// its own wording ("Validation failed: aiMesh::mFaces[4]::mIndices[0] is out of range") names
+// its data structures, not the file's problem.
+std::string in_kasha_words(const std::string& library_message) {
+  auto has = [&](const char* phrase) { return library_message.find(phrase) != std::string::npos; };
+  if (has("mIndices") || has("index") || has("Index"))
+    return "a face names a vertex the mesh does not have";
+  if (has("no faces")) return "a mesh in the file has no faces";
+  if (has("Validation failed")) return "its faces, vertices and buffers do not agree";
+  if (has("internal check failed"))
+    return "the file is malformed (its reader stopped on an inconsistency)";
+  if (has("nable to open") || has("ailed to open")) return "cannot open the file";
+  if (has("No suitable reader") || has("magic") || has("Magic"))
+    return "the file is not a mesh in the format its name says";
+  if (has("end of file") || has("EOF") || has("truncat") || has("too small") ||
+      has("Unexpected end"))
+    return "the file ends early (truncated?)";
+  return "the file is malformed or uses something its reader does not support";
+}
+
 }  // namespace
 
 // The import itself, in the reading process.
@@ -108,24 +131,24 @@ static ShapeMesh import_mesh(const std::string& path) {
   auto* files = new CheckedFiles(path);
   importer.SetIOHandler(files);  // the importer owns it
   // Points and lines are not surfaces: dropped, not reported as an error.
-  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_PreTransformVertices |
-                         aiProcess_ValidateDataStructure;
+  importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
+                              aiPrimitiveType_POINT | aiPrimitiveType_LINE);
+  const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType |
+                         aiProcess_PreTransformVertices | aiProcess_ValidateDataStructure;
   const aiScene* scene = nullptr;
   try {
     scene = importer.ReadFile(path, flags);
   } catch (const Error&) {
     throw;  // a buffer that kasha's checked route refused names itself
   } catch (const std::exception& e) {
-    throw Error(printable(path) + ": cannot read mesh: " + printable(e.what()));
+    throw Error(printable(path) + ": cannot read mesh: " + in_kasha_words(e.what()));
   }
   if (!files->refused().empty())
-    throw Error(printable(path) + ": names a file outside its folder: " + printable(files->refused()));
+    throw Error(printable(path) +
+                ": names a file outside its folder: " + printable(files->refused()));
   if (!scene || (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) || !scene->mRootNode) {
-    std::string why = importer.GetErrorString();
-    for (char& c : why)
-      if (c == '\n' || c == '\r') c = ' ';
-    throw Error(printable(path) + ": cannot read mesh: " + (why.empty() ? "unknown error" : printable(why)));
+    throw Error(printable(path) +
+                ": cannot read mesh: " + in_kasha_words(importer.GetErrorString()));
   }
   ShapeMesh out;
   bool any_normals = false;
@@ -180,7 +203,9 @@ static ShapeMesh import_mesh(const std::string& path) {
 // (status 0) as counts and floats — Assimp's own precision, so nothing is lost.
 namespace {
 
-void put_bytes(std::string& out, const void* p, size_t n) { out.append(static_cast<const char*>(p), n); }
+void put_bytes(std::string& out, const void* p, size_t n) {
+  out.append(static_cast<const char*>(p), n);
+}
 
 std::string serialize(const ShapeMesh& m) {
   std::string out(1, '\0');
@@ -205,7 +230,9 @@ std::string serialize(const ShapeMesh& m) {
 
 // Throws kasha::Error with the child's message, or returns the mesh.
 ShapeMesh deserialize(const std::string& in, const std::string& path) {
-  auto fail = [&] { throw Error(printable(path) + ": cannot read mesh: the reader's answer is incomplete"); };
+  auto fail = [&] {
+    throw Error(printable(path) + ": cannot read mesh: the reader's answer is incomplete");
+  };
   if (in.empty()) fail();
   if (in[0] != '\0') throw Error(in.substr(1));
   uint64_t n = 0, with_normals = 0;
@@ -228,7 +255,8 @@ ShapeMesh deserialize(const std::string& in, const std::string& path) {
     m.uv.push_back(uv);
     if (with_normals) {
       TriangleNormals nn;
-      for (int k = 0; k < 3; ++k) nn[k] = Eigen::Vector3d(v[15 + 3 * k], v[16 + 3 * k], v[17 + 3 * k]);
+      for (int k = 0; k < 3; ++k)
+        nn[k] = Eigen::Vector3d(v[15 + 3 * k], v[16 + 3 * k], v[17 + 3 * k]);
       m.normals.push_back(nn);
     }
   }
@@ -271,10 +299,22 @@ static const bool kMeshReader = read_mesh_if_asked();
 // is one line naming the file.
 static ShapeMesh read_in_child(const std::string& path);
 
+// A PLY file (or .ply.gz) by kasha's own reader, in this process: it is bounded and fuzzed.
+static ShapeMesh read_ply_file(const std::string& path) {
+  const PlyMesh mesh = parse_ply(read_input_file_inflated(path, kMaxBinaryInputBytes), path);
+  if (mesh.skipped_faces > 0)
+    warn(printable(path) + ": " + std::to_string(mesh.skipped_faces) +
+         " faces of other than 3 or 4 vertices are left out (as pbrt-v4 leaves them out)");
+  return ply_mesh_triangles(mesh, path);
+}
+
 ShapeMesh mesh_file_triangles(const std::string& path) {
   const std::string ext = lower_extension(path);
-  if (ext != ".ply" && ext != ".gltf" && ext != ".glb" && ext != ".obj")
-    throw Error(printable(path) + ": not a mesh format kasha reads (.ply, .gltf, .glb, .obj)");
+  if (ext == ".ply" || (ext == ".gz" && lower_extension(fs::path(path).stem().string()) == ".ply"))
+    return read_ply_file(path);
+  if (ext != ".gltf" && ext != ".glb" && ext != ".obj")
+    throw Error(printable(path) +
+                ": not a mesh format kasha reads (.ply, .ply.gz, .gltf, .glb, .obj)");
   check_input_file(path, kMaxBinaryInputBytes);
   // A small self-contained file read before gives the same triangles: kept (a scene loaded again,
   // the fuzz harness's unchanged seeds), so it is not read by a new process each time. A .gltf
@@ -335,7 +375,8 @@ static ShapeMesh read_in_child(const std::string& path) {
   // loop Assimp: a PLY header cut short does) and is stopped. A million-triangle binary PLY
   // (25 MB) reads in about 1.5 s.
   std::error_code size_error;
-  const double megabytes = static_cast<double>(std::filesystem::file_size(path, size_error)) / (1 << 20);
+  const double megabytes =
+      static_cast<double>(std::filesystem::file_size(path, size_error)) / (1 << 20);
   const int limit_ms = 2000 + static_cast<int>(1000 * (size_error ? 0.0 : megabytes));
   int quiet_ms = 0;
   bool stuck = false;

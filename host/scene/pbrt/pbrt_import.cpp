@@ -8,6 +8,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "core/gzip_input.h"
 #include "core/input_file.h"
 #include "core/printable.h"
 #include "scene/pixel_filter.h"
@@ -20,7 +21,9 @@
 namespace kasha {
 
 bool is_pbrt_scene(const std::string& path) {
-  const std::string ext = std::filesystem::path(path).extension().string();
+  std::filesystem::path p(path);
+  if (is_gzip_name(path)) p = p.stem();  // scene.pbrt.gz, as pbrt-v4 reads it
+  const std::string ext = p.extension().string();
   return ext == ".pbrt" || ext == ".PBRT";
 }
 
@@ -131,7 +134,8 @@ class Importer {
                           " files (a file that includes itself?)");
     std::string text;
     try {
-      text = read_input_file(path, kMaxBinaryInputBytes);
+      // pbrt-v4 inflates any scene or Include whose name ends in .gz (core/gzip_input.h).
+      text = read_input_file_inflated(path, kMaxBinaryInputBytes);
     } catch (const Error& e) {
       if (depth == 0) throw;
       pbrt_fail(from, e.what());

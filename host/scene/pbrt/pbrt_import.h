@@ -15,7 +15,7 @@ struct MaterialOverride {
   std::string name, file;
 };
 
-// Whether `path` names a pbrt-v4 scene (by its extension, .pbrt).
+// Whether `path` names a pbrt-v4 scene (by its extension, .pbrt, or .pbrt.gz compressed).
 bool is_pbrt_scene(const std::string& path);
 
 // The scene as kasha JSON; relative file names in it are relative to the folder of `path`.
