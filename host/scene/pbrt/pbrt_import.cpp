@@ -195,7 +195,27 @@ class Importer {
     return params;
   }
 
+  // pbrt-v4's two blocks (scene.cpp's VERIFY_OPTIONS and VERIFY_WORLD): rendering options before
+  // WorldBegin, the scene's description after it.
+  void check_block(const PbrtToken& d) const {
+    static const std::set<std::string> options_only = {
+        "Camera",      "Film",        "Sampler",        "Integrator",
+        "PixelFilter", "Accelerator", "TransformTimes", "WorldBegin"};
+    static const std::set<std::string> world_only = {
+        "ReverseOrientation", "AttributeBegin",    "AttributeEnd",    "TransformBegin",
+        "TransformEnd",       "LightSource",       "AreaLightSource", "Shape",
+        "ObjectBegin",        "ObjectEnd",         "ObjectInstance",  "Texture",
+        "Material",           "MakeNamedMaterial", "NamedMaterial"};
+    if (world_begun_ && options_only.count(d.text))
+      pbrt_fail(d.where, "options cannot be set inside the world block: " + in_quotes(d.text) +
+                             " after WorldBegin (pbrt-v4 refuses it too)");
+    if (!world_begun_ && world_only.count(d.text))
+      pbrt_fail(d.where, "the scene's description belongs inside the world block: " +
+                             in_quotes(d.text) + " before WorldBegin (pbrt-v4 refuses it too)");
+  }
+
   void directive(const PbrtToken& d, PbrtTokenizer& tokens, int depth) {
+    check_block(d);
     if (attribute_directive(d, tokens) || transform_directive(d, tokens) ||
         rendering_option_directive(d, tokens) || scene_element_directive(d, tokens) ||
         object_directive(d, tokens))
@@ -354,6 +374,7 @@ class Importer {
       if (!camera_seen_) make_camera(Matrix::Identity(), "perspective", PbrtParameters{}, d.where);
       state_.ctm = Matrix::Identity();
       named_frames_["world"] = state_.ctm;
+      world_begun_ = true;
     } else if (name == "WorldEnd") {
       pbrt_warn(d.where, "WorldEnd is pbrt-v3's: ignored");
     } else {
@@ -706,6 +727,7 @@ class Importer {
   std::map<std::string, Matrix> named_frames_;
   bool end_time_only_ = false;
   bool camera_seen_ = false;
+  bool world_begun_ = false;
   nlohmann::json camera_ = nlohmann::json::object();
   nlohmann::json materials_ = nlohmann::json::object();
   std::set<std::string> named_materials_, interfaces_;
