@@ -148,3 +148,24 @@ TEST(PbrtLanguage, OptionsAndWorldBlocksAreKeptAsPbrtV4KeepsThem) {
       "both.pbrt", "ColorSpace \"srgb\"\nAttribute \"texture\" \"float scale\" 2\n" +
                        std::string(kHeader) + "ColorSpace \"srgb\"\nTranslate 0 1 0\n" + kQuad)));
 }
+
+TEST(PbrtLanguage, ErrorsFoundInTheConvertedSceneNameTheStatement) {
+  const std::string h = kHeader;  // four lines: the body starts on line 5
+  // Checked by kasha's scene loader, not the importer: each names the pbrt-v4 statement.
+  EXPECT_EQ(error_tail(h + "\n" + R"(Shape "trianglemesh" "point3 P" [0 0 0 1 0 0 0 1e39 0])"),
+            "blocks.pbrt:6: a vertex at (0, 1e+39, 0) is not finite or beyond ±1e18");
+  EXPECT_EQ(error_tail(h + "Material \"dielectric\" \"float eta\" 0\n" + kQuad),
+            "blocks.pbrt:5: eta must lie in [0.01, 100] (the index behind the surface over the "
+            "one in front)");
+  EXPECT_EQ(error_tail(h +
+                       "AttributeBegin\nAreaLightSource \"diffuse\" \"spectrum L\" "
+                       "[300 1e40 900 1e40]\n" +
+                       kQuad + "\nAttributeEnd"),
+            "blocks.pbrt:6: at 300 nm: a spectrum value of 1e+40 is beyond 1e30");
+  const std::string t =
+      error_tail(h +
+                 "Texture \"t\" \"spectrum\" \"imagemap\" \"string filename\" \"a.gif\"\n"
+                 "Material \"diffuse\" \"texture reflectance\" \"t\"\n" +
+                 kQuad);
+  EXPECT_EQ(t.rfind("blocks.pbrt:5: ", 0), 0u) << t;
+}

@@ -37,6 +37,13 @@ nlohmann::json row_major(const Matrix& m) {
   return out;
 }
 
+// A JSON pointer's segment (RFC 6901: '~' and '/' escaped), as JsonNode writes paths.
+std::string pointer_segment(const std::string& key) {
+  std::string out;
+  for (char c : key) out += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
+  return out;
+}
+
 nlohmann::json triple(const Eigen::Vector3d& v) {
   return {v[0], v[1], v[2]};
 }
@@ -88,6 +95,8 @@ class Importer {
       : main_file_(path), base_dir_(std::filesystem::path(path).parent_path()) {
     for (const MaterialOverride& o : overrides) overrides_[o.name] = o.file;
   }
+
+  const JsonSourceMap& sources() const { return sources_; }
 
   nlohmann::json run() {
     parse_file(main_file_, main_file_, PbrtLocation{}, 0);
@@ -358,10 +367,12 @@ class Importer {
     } else if (name == "Camera") {
       const std::string type = string_arg(tokens, d);
       make_camera(state_.ctm, type, PbrtParameters::read(tokens), d.where);
+      sources_["/camera"] = d.where.str();
       named_frames_["camera"] = state_.ctm.inverse();
     } else if (name == "Film") {
       const std::string type = string_arg(tokens, d);  // before the parameters that follow it
       film(type, PbrtParameters::read(tokens), d.where);
+      sources_["/camera/width"] = sources_["/camera/height"] = d.where.str();
     } else if (name == "Sampler" || name == "Integrator" || name == "PixelFilter" ||
                name == "Accelerator") {
       pbrt_warn(d.where, name + " " + in_quotes(skipped_directive(tokens, d)) +
@@ -391,6 +402,7 @@ class Importer {
                         cls = string_arg(tokens, d);
       const PbrtParameters params = read_parameters(tokens, "texture");
       pbrt_define_texture(tex, kind, cls, params, d.where, textures_, base_dir_);
+      sources_["/textures/" + pointer_segment("pbrt " + kind + " texture " + tex)] = d.where.str();
     } else if (name == "Material") {
       const std::string type = string_arg(tokens, d);
       const PbrtParameters params = read_parameters(tokens, "material");
@@ -567,10 +579,12 @@ class Importer {
   void define_material(const std::string& key, const std::string& type,
                        const PbrtParameters& params, const PbrtLocation& where) {
     nlohmann::json m = pbrt_material(type, params, where, textures_, base_dir_);
-    if (m.is_null())
+    if (m.is_null()) {
       interfaces_.insert(key);
-    else
+    } else {
       materials_[key] = m;
+      sources_["/materials/" + pointer_segment(key)] = where.str();
+    }
   }
 
   void light(const std::string& type, const PbrtParameters& params, const PbrtLocation& where) {
@@ -650,6 +664,7 @@ class Importer {
       pbrt_fail(where, "unknown light type " + in_quotes(type));
     }
     params.warn_unused("LightSource " + in_quotes(type));
+    sources_["/lights/" + std::to_string(lights_.size())] = where.str();
     lights_.push_back(l);
   }
 
@@ -715,6 +730,10 @@ class Importer {
         ctm.row(3) != Eigen::RowVector4d(0, 0, 0, 1) || !ctm.allFinite())
       pbrt_fail(where, "the shape's transform is singular or projective");
     if (!ctm.isIdentity(0)) s["transform"] = {{"matrix", row_major(ctm)}};
+    const std::string at = "/shapes/" + std::to_string(shapes_.size());
+    sources_[at] = where.str();
+    if (s.contains("emission") && state_.area_light)
+      sources_[at + "/emission"] = state_.area_light->where.str();
     shapes_.push_back(std::move(s));
   }
 
@@ -739,13 +758,18 @@ class Importer {
   std::map<std::string, ObjectDefinition> objects_;
   ObjectDefinition* object_ = nullptr;
   std::set<std::string> warned_;
+  JsonSourceMap sources_;  // JSON pointer → FILE:LINE of its statement
 };
 
 }  // namespace
 
 nlohmann::json import_pbrt_scene(const std::string& path,
-                                 const std::vector<MaterialOverride>& overrides) {
-  return Importer(path, overrides).run();
+                                 const std::vector<MaterialOverride>& overrides,
+                                 JsonSourceMap* sources) {
+  Importer importer(path, overrides);
+  nlohmann::json scene = importer.run();
+  if (sources) *sources = importer.sources();
+  return scene;
 }
 
 }  // namespace kasha

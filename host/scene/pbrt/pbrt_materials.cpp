@@ -219,8 +219,9 @@ std::string metal_of(const PbrtParameter* p, const char* suffix) {
 
 // pbrt-v4's artist's metal (ConductorMaterial): η = 1 and k = 2√r / √(1 − r), r the reflectance
 // clamped to [0, 0.9999], wavelength by wavelength — a metal whose normal reflectance is r.
-nlohmann::json artist_k(const nlohmann::json& reflectance, const std::filesystem::path& base_dir) {
-  const SpectrumPtr r = pbrt_parse_spectrum(reflectance, base_dir);
+nlohmann::json artist_k(const nlohmann::json& reflectance, const std::filesystem::path& base_dir,
+                        const PbrtLocation& where) {
+  const SpectrumPtr r = pbrt_parse_spectrum(reflectance, base_dir, where);
   return pbrt_tabulated([&](double nm) {
     const double v = std::clamp(r->value(nm), 0.0, 0.9999);
     return 2 * std::sqrt(v) / std::sqrt(1 - v);
@@ -244,7 +245,8 @@ nlohmann::json conductor(const PbrtParameters& params, const PbrtLocation& where
       pbrt_fail(r->where, in_quotes(r->declaration()) + ": a conductor's reflectance texture is " +
                               "not built in kasha (its η and k take one spectrum each)");
     c["eta"] = 1.0;
-    c["k"] = artist_k(spectrum_value(*r, PbrtSpectrumUse::kAlbedo, textures, base_dir), base_dir);
+    c["k"] = artist_k(spectrum_value(*r, PbrtSpectrumUse::kAlbedo, textures, base_dir), base_dir,
+                      r->where);
   } else if (!eta && !k) {
     c["metal"] = "Cu";  // pbrt-v4's default
   } else if (!me.empty() && me == mk) {

@@ -4,6 +4,7 @@
 #include <map>
 
 #include "color/cie_observer.h"
+#include "core/error.h"
 #include "core/json_node.h"
 #include "core/printable.h"
 #include "spectrum/builtin_spectra.h"
@@ -111,14 +112,23 @@ double photometric_sum(const Spectrum& s) {
 }  // namespace
 
 SpectrumPtr pbrt_parse_spectrum(const nlohmann::json& spectrum,
-                                const std::filesystem::path& base_dir) {
-  return parse_spectrum(JsonNode::parse_text(spectrum.dump(), "a pbrt-v4 spectrum", base_dir));
+                                const std::filesystem::path& base_dir, const PbrtLocation& where) {
+  static const std::string kWhat = "a pbrt-v4 spectrum";
+  try {
+    return parse_spectrum(JsonNode::parse_text(spectrum.dump(), kWhat, base_dir));
+  } catch (const Error& e) {
+    // "a pbrt-v4 spectrum: /PATH: why" names no file: the statement's line does.
+    std::string why = e.what();
+    if (why.rfind(kWhat + ": /", 0) == 0) why = why.substr(why.find(": ", kWhat.size() + 2) + 2);
+    pbrt_fail(where, why);
+  }
 }
 
-double pbrt_photometric(const nlohmann::json& spectrum, const std::filesystem::path& base_dir) {
+double pbrt_photometric(const nlohmann::json& spectrum, const std::filesystem::path& base_dir,
+                        const PbrtLocation& where) {
   // pbrt-v4 normalises an RGB illuminant by its illuminant alone; the RGB's own luminance stays.
   if (spectrum.is_object() && spectrum.contains("rgb_illuminant")) return pbrt_d65_photometric();
-  return photometric_sum(*pbrt_parse_spectrum(spectrum, base_dir));
+  return photometric_sum(*pbrt_parse_spectrum(spectrum, base_dir, where));
 }
 
 double pbrt_d65_photometric() {
@@ -131,7 +141,7 @@ nlohmann::json pbrt_light_spectrum(const PbrtParameter* p, double scale,
                                    const std::filesystem::path& base_dir) {
   nlohmann::json s = p ? pbrt_spectrum(*p, PbrtSpectrumUse::kIlluminant, base_dir)
                        : nlohmann::json{{"rgb_illuminant", {1, 1, 1}}};
-  const double y = pbrt_photometric(s, base_dir);
+  const double y = pbrt_photometric(s, base_dir, p ? p->where : PbrtLocation{});
   if (!(y > 0)) {
     if (p) pbrt_fail(p->where, "\"" + printable(p->declaration()) + "\" emits no visible light");
     return 0;

@@ -31,14 +31,15 @@ nlohmann::json pbrt_rgb_unbounded(const std::array<double, 3>& rgb);
 nlohmann::json pbrt_spectrum(const PbrtParameter& p, PbrtSpectrumUse use,
                              const std::filesystem::path& base_dir);
 
-// A kasha spectrum value the importer made, as a spectrum it can evaluate.
+// A kasha spectrum value the importer made from the statement at `where`, as a spectrum it can
+// evaluate; what is wrong with it is an error at `where`.
 SpectrumPtr pbrt_parse_spectrum(const nlohmann::json& kasha_spectrum,
-                                const std::filesystem::path& base_dir);
+                                const std::filesystem::path& base_dir, const PbrtLocation& where);
 
 // ∫ ȳ(λ) s(λ) dλ as pbrt-v4's SpectrumToPhotometric computes it (1 nm steps over 360–830 nm),
 // for an RGB illuminant of its illuminant alone (D65).
-double pbrt_photometric(const nlohmann::json& kasha_spectrum,
-                        const std::filesystem::path& base_dir);
+double pbrt_photometric(const nlohmann::json& kasha_spectrum, const std::filesystem::path& base_dir,
+                        const PbrtLocation& where);
 
 // A light's spectrum as pbrt-v4 makes it: `p` (or D65 when absent) times `scale`, divided by
 // its photometric integral, so that `scale` is its luminance-like "nits" (docs/pbrt-import.md).
