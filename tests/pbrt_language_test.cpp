@@ -169,3 +169,70 @@ TEST(PbrtLanguage, ErrorsFoundInTheConvertedSceneNameTheStatement) {
                  kQuad);
   EXPECT_EQ(t.rfind("blocks.pbrt:5: ", 0), 0u) << t;
 }
+
+TEST(PbrtLanguage, ColorSpacesGiveTheSameColourInSrgb) {
+  const nlohmann::json s =
+      import_pbrt_scene(write_file("cs.pbrt", std::string(kHeader) + R"(AttributeBegin
+ColorSpace "rec2020"
+MakeNamedMaterial "rec" "string type" "diffuse" "rgb reflectance" [0.3 0.4 0.5]
+LightSource "point" "rgb I" [1 1 1]
+ColorSpace "aces2065-1"
+MakeNamedMaterial "aces" "string type" "diffuse" "rgb reflectance" [0.5 0.5 0.5]
+LightSource "point" "rgb I" [1 1 1]
+AttributeEnd
+MakeNamedMaterial "back" "string type" "diffuse" "rgb reflectance" [0.3 0.4 0.5]
+)" + kQuad),
+                        {});
+  // Rec. 2020 → XYZ (ITU-R BT.2087) and XYZ → sRGB (IEC 61966-2-1): both D65, nothing to adapt.
+  const double to_xyz[3][3] = {{0.636958, 0.144617, 0.168881},
+                               {0.262700, 0.677998, 0.059302},
+                               {0.000000, 0.028073, 1.060985}};
+  const double to_srgb[3][3] = {{3.2406255, -1.5372080, -0.4986286},
+                                {-0.9689307, 1.8757561, 0.0415175},
+                                {0.0557101, -0.2040211, 1.0569959}};
+  const double rgb[3] = {0.3, 0.4, 0.5};
+  double xyz[3] = {0, 0, 0}, want[3] = {0, 0, 0};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) xyz[i] += to_xyz[i][j] * rgb[j];
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) want[i] += to_srgb[i][j] * xyz[j];
+  const auto got = s.at("materials").at("rec").at("passive").at("reflectance").at("rgb");
+  // The published matrices are rounded (and the two standards' D65 whites differ in the 5th
+  // digit): 1e-4 is what they agree to.
+  for (int i = 0; i < 3; ++i) EXPECT_NEAR(got[i].get<double>(), want[i], 1e-4) << i;
+  // AttributeEnd restores sRGB.
+  EXPECT_EQ(s.at("materials").at("back").at("passive").at("reflectance").at("rgb")[0], 0.3);
+  // A grey reflectance stays grey: Bradford carries ACES' D60 white to D65's.
+  for (const auto& v : s.at("materials").at("aces").at("passive").at("reflectance").at("rgb"))
+    EXPECT_NEAR(v.get<double>(), 0.5, 1e-6);
+  // An emitter keeps its colour: Rec. 2020's white is D65's, ACES' white is D60 (x .32168,
+  // y .33767), and its sRGB triple has D60's chromaticity.
+  for (const auto& v : s.at("lights")[0].at("intensity").at("rgb_illuminant"))
+    EXPECT_NEAR(v.get<double>(), 1, 1e-6);
+  const auto d60 = s.at("lights")[1].at("intensity").at("rgb_illuminant");
+  const double from_srgb[3][3] = {{0.4123908, 0.3575843, 0.1804808},
+                                  {0.2126390, 0.7151687, 0.0721923},
+                                  {0.0193308, 0.1191948, 0.9505322}};
+  double w[3] = {0, 0, 0};
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) w[i] += from_srgb[i][j] * d60[j].get<double>();
+  EXPECT_NEAR(w[0] / (w[0] + w[1] + w[2]), 0.32168, 1e-5);
+  EXPECT_NEAR(w[1] / (w[0] + w[1] + w[2]), 0.33767, 1e-5);
+  EXPECT_NEAR(w[1], 1, 1e-6);  // the RGB's luminance: ACES' (1, 1, 1) has Y = 1
+}
+
+TEST(PbrtLanguage, ColorSpaceAndFilmColorspaceNamesAreChecked) {
+  const std::string h = kHeader;
+  EXPECT_EQ(error_tail(h + "ColorSpace \"adobe\"\n" + kQuad),
+            "blocks.pbrt:5: ColorSpace \"adobe\": unknown color space (srgb, rec2020, dci-p3, "
+            "aces2065-1)");
+  EXPECT_EQ(
+      error_tail("Film \"rgb\" \"string colorspace\" \"xyz\"\nWorldBegin\n" + std::string(kQuad)),
+      "blocks.pbrt:1: Film: unknown \"colorspace\" \"xyz\" (srgb, rec2020, dci-p3, "
+      "aces2065-1)");
+  EXPECT_NO_THROW(
+      load_scene(write_file("film.pbrt",
+                            "Film \"rgb\" \"string colorspace\" \"dci-p3\"\nColorSpace \"DCI-P3\"\n"
+                            "WorldBegin\n" +
+                                std::string(kQuad))));
+}

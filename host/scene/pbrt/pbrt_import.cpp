@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/printable.h"
+#include "scene/pbrt/pbrt_color_space.h"
 #include "scene/pbrt/pbrt_materials.h"
 #include "scene/pbrt/pbrt_parameters.h"
 #include "scene/pbrt/pbrt_shapes.h"
@@ -70,6 +71,7 @@ struct GraphicsState {
   std::string material;  // kasha material name; empty: pbrt-v4's default diffuse
   std::shared_ptr<const AreaLight> area_light;
   std::string inside_medium, outside_medium;
+  std::string color_space = "srgb";  // pbrt-v4's ColorSpace, part of its graphics state
   std::map<std::string, PbrtParameters> attributes;  // Attribute "shape" | "light" | …
 };
 
@@ -200,6 +202,7 @@ class Importer {
   // Attribute "shape" | "light" | "material" | "medium" | "texture").
   PbrtParameters read_parameters(PbrtTokenizer& tokens, const std::string& target) {
     PbrtParameters params = PbrtParameters::read(tokens);
+    params.set_color_space(state_.color_space);
     params.add_defaults(state_.attributes[target]);
     return params;
   }
@@ -362,8 +365,11 @@ class Importer {
       PbrtParameters::read(tokens).warn_unused("Option");
     } else if (name == "ColorSpace") {
       const std::string space = string_arg(tokens, d);
-      if (space != "srgb")
-        pbrt_fail(d.where, "ColorSpace " + in_quotes(space) + " is not built in kasha (srgb)");
+      const PbrtColorSpace* known = pbrt_color_space(space);
+      if (!known)
+        pbrt_fail(d.where, "ColorSpace " + in_quotes(space) +
+                               ": unknown color space (srgb, rec2020, dci-p3, aces2065-1)");
+      state_.color_space = known->name;
     } else if (name == "Camera") {
       const std::string type = string_arg(tokens, d);
       make_camera(state_.ctm, type, PbrtParameters::read(tokens), d.where);
@@ -572,6 +578,11 @@ class Importer {
                 "kasha: it records XYZ as pbrt-v4's default cie1931 sensor at ISO 100");
     for (const char* ignored : {"maxcomponentvalue", "diagonal"}) params.get_float(ignored, 0);
     params.get_bool("savefp16", true);
+    // The film's own output space: kasha's film records XYZ and writes its own (formats.md).
+    const std::string space = params.get_string("colorspace", "srgb");
+    if (!pbrt_color_space(space))
+      pbrt_fail(where, "Film: unknown \"colorspace\" " + in_quotes(space) +
+                           " (srgb, rec2020, dci-p3, aces2065-1)");
     params.get_bool("writefp16", true);
     params.warn_unused("Film " + in_quotes(type));
   }

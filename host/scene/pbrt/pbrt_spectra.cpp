@@ -1,5 +1,6 @@
 #include "scene/pbrt/pbrt_spectra.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 
@@ -7,6 +8,7 @@
 #include "core/error.h"
 #include "core/json_node.h"
 #include "core/printable.h"
+#include "scene/pbrt/pbrt_color_space.h"
 #include "spectrum/builtin_spectra.h"
 #include "spectrum/rgb_spectrum.h"
 #include "spectrum/spectrum_parser.h"
@@ -26,6 +28,27 @@ const std::map<std::string, std::string>& named_spectra() {
   return names;
 }
 
+// p's RGB as linear sRGB (kasha's uplift is sRGB's); a colour outside what sRGB holds is brought
+// into it (components clamped to [0, 1] for a reflectance, to ≥ 0 otherwise), with a warning.
+std::array<double, 3> in_srgb(const PbrtParameter& p, PbrtSpectrumUse use) {
+  std::array<double, 3> rgb = {p.numbers[0], p.numbers[1], p.numbers[2]};
+  if (p.color_space == "srgb") return rgb;
+  const PbrtColorSpace* space = pbrt_color_space(p.color_space);
+  if (!space) pbrt_fail(p.where, "unknown color space " + in_quotes(p.color_space));
+  rgb = pbrt_rgb_to_srgb(*space, rgb, use != PbrtSpectrumUse::kIlluminant);
+  const double hi = use == PbrtSpectrumUse::kAlbedo ? 1 : INFINITY;
+  bool clamped = false;
+  for (double& v : rgb) {
+    const double c = std::clamp(v, 0.0, hi);
+    clamped = clamped || std::abs(c - v) > 1e-9;
+    v = c;
+  }
+  if (clamped)
+    pbrt_warn(p.where, in_quotes(p.declaration()) + " in ColorSpace " + in_quotes(space->name) +
+                           " lies outside sRGB, which kasha's RGB uplift covers: clamped into it");
+  return rgb;
+}
+
 }  // namespace
 
 nlohmann::json pbrt_spectrum(const PbrtParameter& p, PbrtSpectrumUse use,
@@ -40,12 +63,14 @@ nlohmann::json pbrt_spectrum(const PbrtParameter& p, PbrtSpectrumUse use,
     if (p.numbers.size() != 3) pbrt_fail(p.where, what + " takes one RGB triple");
     for (double v : p.numbers)
       if (v < 0) pbrt_fail(p.where, what + " has a negative component");
-    const std::array<double, 3> rgb = {p.numbers[0], p.numbers[1], p.numbers[2]};
-    if (use == PbrtSpectrumUse::kIlluminant) return {{"rgb_illuminant", p.numbers}};
+    if (use == PbrtSpectrumUse::kAlbedo)
+      for (double v : p.numbers)
+        if (v > 1) pbrt_fail(p.where, what + " has a component above 1 (a reflectance)");
+    const std::array<double, 3> rgb = in_srgb(p, use);
+    const std::vector<double> triple(rgb.begin(), rgb.end());
+    if (use == PbrtSpectrumUse::kIlluminant) return {{"rgb_illuminant", triple}};
     if (use == PbrtSpectrumUse::kUnbounded) return pbrt_rgb_unbounded(rgb);
-    for (double v : p.numbers)
-      if (v > 1) pbrt_fail(p.where, what + " has a component above 1 (a reflectance)");
-    return {{"rgb", p.numbers}};
+    return {{"rgb", triple}};
   }
   if (p.type == "blackbody") {
     if (p.numbers.size() != 1 || !(p.numbers[0] > 0))
