@@ -9,6 +9,7 @@
 
 #include <cmath>
 
+#include "material/metals.h"
 #include "scene/pbrt/pbrt_import.h"
 #include "scene/scene.h"
 #include "spectrum/rgb_spectrum.h"
@@ -93,6 +94,19 @@ MakeNamedMaterial "tex" "string type" "conductor" "texture reflectance" "r" "flo
   const nlohmann::json& tex = m.at("tex").at("conductor");
   EXPECT_NEAR(value_at(tex.at("k"), 500), 2 * std::sqrt(0.8) / std::sqrt(0.2), 1e-9);
   EXPECT_EQ(tex.at("roughness"), 0.2);
+}
+
+TEST(PbrtLanguage, AConductorGivenEtaOrKAloneTakesCoppersOther) {
+  const nlohmann::json m = materials_of(R"(
+MakeNamedMaterial "eta" "string type" "conductor" "rgb eta" [0.5 0.5 0.5]
+MakeNamedMaterial "k" "string type" "conductor" "spectrum eta" "metal-Au-eta" "float k" 3)");
+  const MetalIndex cu = builtin_metal("Cu"), au = builtin_metal("Au");
+  for (double nm : {400.0, 633.0}) {
+    EXPECT_NEAR(value_at(m.at("eta").at("conductor").at("eta"), nm), 0.5, 1e-9);
+    EXPECT_NEAR(value_at(m.at("eta").at("conductor").at("k"), nm), cu.k->value(nm), 1e-12);
+    EXPECT_NEAR(value_at(m.at("k").at("conductor").at("eta"), nm), au.eta->value(nm), 1e-12);
+  }
+  EXPECT_EQ(m.at("k").at("conductor").at("k"), 3.0);
 }
 
 TEST(PbrtLanguage, FloatTexturesResolveToTheirConstants) {

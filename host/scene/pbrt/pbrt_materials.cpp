@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/printable.h"
+#include "material/metals.h"
 #include "scene/pbrt/pbrt_spectra.h"
 
 namespace kasha {
@@ -228,6 +229,17 @@ nlohmann::json artist_k(const nlohmann::json& reflectance, const std::filesystem
   });
 }
 
+// A conductor's η or k: the parameter's spectrum, a metal-X-eta/-k of kasha's tables (tabulated),
+// or copper's when absent (pbrt-v4's default for each alone).
+nlohmann::json metal_part(const PbrtParameter* p, const char* part, const PbrtTextures& textures,
+                          const std::filesystem::path& base_dir) {
+  const std::string metal = p ? metal_of(p, part) : "Cu";
+  if (metal.empty()) return spectrum_value(*p, PbrtSpectrumUse::kUnbounded, textures, base_dir);
+  const MetalIndex index = builtin_metal(metal);
+  const SpectrumPtr& s = std::string(part) == "eta" ? index.eta : index.k;
+  return pbrt_tabulated([&](double nm) { return s->value(nm); });
+}
+
 nlohmann::json conductor(const PbrtParameters& params, const PbrtLocation& where,
                          const PbrtTextures& textures, const std::filesystem::path& base_dir) {
   nlohmann::json c = nlohmann::json::object();
@@ -252,9 +264,9 @@ nlohmann::json conductor(const PbrtParameters& params, const PbrtLocation& where
   } else if (!me.empty() && me == mk) {
     c["metal"] = me;
   } else {
-    if (!eta || !k) pbrt_fail(where, "conductor: give both \"eta\" and \"k\"");
-    c["eta"] = spectrum_value(*eta, PbrtSpectrumUse::kUnbounded, textures, base_dir);
-    c["k"] = spectrum_value(*k, PbrtSpectrumUse::kUnbounded, textures, base_dir);
+    // One of the two alone: pbrt-v4 takes copper's for the other.
+    c["eta"] = metal_part(eta, "eta", textures, base_dir);
+    c["k"] = metal_part(k, "k", textures, base_dir);
   }
   roughness(params, textures, c);
   return c;
