@@ -114,7 +114,8 @@ TEST(PbrtLanguage, FloatTexturesResolveToTheirConstants) {
 Texture "r" "float" "constant" "float value" 0.3
 Texture "half" "float" "scale" "texture tex" "r" "float scale" 0.5
 MakeNamedMaterial "m" "string type" "dielectric" "texture uroughness" "r" "texture vroughness" "half"
-MakeNamedMaterial "c" "string type" "coateddiffuse" "texture roughness" "half" "texture thickness" "r")");
+MakeNamedMaterial "c" "string type" "coateddiffuse" "texture roughness" "half" "texture thickness" "r"
+    "rgb albedo" [0 0 0])");
   const nlohmann::json& d = m.at("m").at("dielectric");
   EXPECT_NEAR(d.at("uroughness").get<double>(), 0.3, 1e-15);
   EXPECT_NEAR(d.at("vroughness").get<double>(), 0.15, 1e-15);
@@ -134,6 +135,9 @@ TEST(PbrtLanguage, RefusalsOfTypesAndTexturesNameTheirLine) {
                            "Material \"conductor\" \"texture reflectance\" \"c\""),
             "blocks.pbrt:6: \"texture reflectance\": a conductor's reflectance texture is not "
             "built in kasha (its η and k take one spectrum each)");
+  EXPECT_EQ(error_tail(h + "Material \"coateddiffuse\" \"rgb albedo\" [0.2 0 0]"),
+            "blocks.pbrt:5: coateddiffuse: a scattering coat (\"albedo\" > 0) is not built in "
+            "kasha");
   EXPECT_EQ(error_tail(h + "Material \"conductor\" \"rgb reflectance\" [0.5 0.5 0.5] "
                            "\"rgb k\" [1 1 1]"),
             "blocks.pbrt:5: conductor: \"reflectance\" and \"eta\"/\"k\" both given (pbrt-v4 "

@@ -202,6 +202,19 @@ nlohmann::json spectrum_value(const PbrtParameter& p, PbrtSpectrumUse use,
   return pbrt_texture_constant(t, use, base_dir);
 }
 
+// Whether a spectrum value the importer made is zero (0, or an RGB or a table of zeros).
+bool is_black(const nlohmann::json& v) {
+  if (v.is_number()) return v.get<double>() == 0;
+  if (!v.is_object() || v.value("scale", 1.0) == 0) return v.is_object();
+  for (const char* key : {"rgb", "value"})
+    if (v.contains(key)) {
+      for (const auto& x : v[key])
+        if (x.get<double>() != 0) return false;
+      return true;
+    }
+  return false;
+}
+
 nlohmann::json index_of_refraction(const PbrtParameters& params, const PbrtTextures& textures,
                                    const std::filesystem::path& base_dir) {
   const PbrtParameter* eta = params.find("eta", "float rgb spectrum blackbody texture");
@@ -318,7 +331,7 @@ nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& para
     coat["thickness"] = pbrt_float_value(params, "thickness", textures).value_or(0.01);
     roughness(params, textures, coat);
     const PbrtParameter* albedo = params.find("albedo", "float rgb spectrum blackbody texture");
-    if (albedo && !(albedo->type == "float" && albedo->numbers[0] == 0))
+    if (albedo && !is_black(spectrum_value(*albedo, PbrtSpectrumUse::kAlbedo, textures, base_dir)))
       pbrt_fail(albedo->where,
                 "coateddiffuse: a scattering coat (\"albedo\" > 0) is not built "
                 "in kasha");
