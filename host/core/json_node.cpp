@@ -143,9 +143,31 @@ JsonNode JsonNode::from_json(nlohmann::json document, const std::string& file) {
   return JsonNode(root, root.get(), file, base.empty() ? "." : base, "");
 }
 
+JsonNode JsonNode::from_json(nlohmann::json document, const std::string& file,
+                             std::shared_ptr<const JsonSourceMap> sources) {
+  JsonNode node = from_json(std::move(document), file);
+  node.sources_ = std::move(sources);
+  return node;
+}
+
+std::string JsonNode::where() const {
+  return where_at(path_);
+}
+
+std::string JsonNode::where_at(const std::string& path) const {
+  if (sources_) {
+    // The pointer and its parents, deepest first.
+    for (std::string p = path; !p.empty(); p.erase(p.rfind('/'))) {
+      auto s = sources_->find(p);
+      if (s != sources_->end()) return s->second;
+    }
+  }
+  return file_ + ": " + (path.empty() ? "/" : path);
+}
+
 // The whole line is escaped: keys and string values from the document reach `why` and the path.
 void JsonNode::fail(const std::string& why) const {
-  throw Error(printable(file_ + ": " + path() + ": " + why));
+  throw Error(printable(where() + ": " + why));
 }
 
 std::string JsonNode::type_name() const {
@@ -179,7 +201,9 @@ std::optional<JsonNode> JsonNode::find(const std::string& key) const {
   auto it = json_->find(key);
   if (it == json_->end()) return std::nullopt;
   read_keys_->insert(key);
-  return JsonNode(root_, &*it, file_, base_dir_, path_ + "/" + escape_pointer(key));
+  JsonNode child(root_, &*it, file_, base_dir_, path_ + "/" + escape_pointer(key));
+  child.sources_ = sources_;
+  return child;
 }
 
 JsonNode JsonNode::at(const std::string& key) const {
@@ -205,7 +229,9 @@ size_t JsonNode::size() const {
 
 JsonNode JsonNode::operator[](size_t index) const {
   if (index >= size()) fail("index " + std::to_string(index) + " out of range");
-  return JsonNode(root_, &(*json_)[index], file_, base_dir_, path_ + "/" + std::to_string(index));
+  JsonNode child(root_, &(*json_)[index], file_, base_dir_, path_ + "/" + std::to_string(index));
+  child.sources_ = sources_;
+  return child;
 }
 
 double JsonNode::number() const {
@@ -266,8 +292,7 @@ void JsonNode::finish() const {
   expect_object();
   for (auto it = json_->begin(); it != json_->end(); ++it)
     if (!read_keys_->count(it.key()))
-      throw Error(
-          printable(file_ + ": " + path_ + "/" + escape_pointer(it.key()) + ": unknown key"));
+      throw Error(printable(where_at(path_ + "/" + escape_pointer(it.key())) + ": unknown key"));
 }
 
 }  // namespace kasha

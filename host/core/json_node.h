@@ -3,6 +3,7 @@
 // and JSON path, so each error names both; finish() rejects keys nobody asked for.
 #include <array>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -11,6 +12,10 @@
 #include <vector>
 
 namespace kasha {
+
+// Where parts of a document made from another file came from: a JSON pointer ("/shapes/3") to the
+// source's "FILE:LINE" (an imported pbrt-v4 scene's statements).
+using JsonSourceMap = std::map<std::string, std::string>;
 
 class JsonNode {
  public:
@@ -23,6 +28,9 @@ class JsonNode {
                              const std::filesystem::path& base_dir);
   // Wraps an already parsed document (tests); `file` is used in messages.
   static JsonNode from_json(nlohmann::json document, const std::string& file);
+  // The same, with each error under a mapped pointer naming its source's FILE:LINE instead.
+  static JsonNode from_json(nlohmann::json document, const std::string& file,
+                            std::shared_ptr<const JsonSourceMap> sources);
 
   const std::string& file() const { return file_; }
   std::string path() const { return path_.empty() ? "/" : path_; }
@@ -53,13 +61,17 @@ class JsonNode {
 
   // Rejects keys of this object that were never read: "unknown key".
   void finish() const;
-  // Throws kasha::Error "FILE: PATH: why".
+  // "FILE: PATH", or the source's "FILE:LINE" of the deepest mapped pointer above PATH: what
+  // messages about this value start with.
+  std::string where() const;
+  // Throws kasha::Error "FILE: PATH: why" (where(): why).
   [[noreturn]] void fail(const std::string& why) const;
 
  private:
   JsonNode(std::shared_ptr<const nlohmann::json> root, const nlohmann::json* json, std::string file,
            std::filesystem::path base_dir, std::string path);
   void expect_object() const;
+  std::string where_at(const std::string& path) const;
   std::string type_name() const;
 
   std::shared_ptr<const nlohmann::json> root_;  // keeps the document alive
@@ -68,6 +80,7 @@ class JsonNode {
   std::filesystem::path base_dir_;
   std::string path_;
   std::shared_ptr<std::set<std::string>> read_keys_;
+  std::shared_ptr<const JsonSourceMap> sources_;  // null: the document is its own source
 };
 
 }  // namespace kasha

@@ -161,7 +161,7 @@ void apply_coat(MaterialDesc& m, const JsonNode& coat) {
 MaterialDesc parse_material(const JsonNode& node, const std::string& name) {
   MaterialDesc m;
   m.name = name;
-  m.where = node.file() + ": " + node.path();
+  m.where = node.where();
   if (auto version = node.find("kasha_material")) {
     if (version->integer_in(0, 1000) != 1) version->fail("unsupported material version");
   }

@@ -76,7 +76,7 @@ static Eigen::Vector3d from_to(const JsonNode& node, Eigen::Vector3d* from) {
 Light parse_light(const JsonNode& node) {
   if (!node.is_object()) node.fail("expected a light object");
   Light l;
-  l.where = node.file() + ": " + node.path();
+  l.where = node.where();
   const std::string type = node.at("type").string();
   const char* key = nullptr;
   if (type == "point") {

@@ -249,7 +249,7 @@ static void drop_duplicate_triangles(ShapeMesh& mesh, TriangleKeys& seen, const 
     }
   }
   if (kept < tris.size())
-    warn(shape.file() + ": " + shape.path() + ": " + std::to_string(tris.size() - kept) +
+    warn(shape.where() + ": " + std::to_string(tris.size() - kept) +
          " duplicate triangles (the same vertices as earlier ones) left out");
   tris.resize(kept);
   mesh.uv.resize(kept);
@@ -382,7 +382,7 @@ static LampChoice choose_lamp(const JsonNode& root, const std::string& requested
   std::map<std::string, LampChoice> parsed;
   for (const std::string& name : lamps->keys()) {
     JsonNode n = lamps->at(name);
-    parsed[name] = {parse_spectrum(n), n.file() + ": " + n.path()};
+    parsed[name] = {parse_spectrum(n), n.where()};
     scene.lamp_names.push_back(name);
   }
   if (parsed.empty()) lamps->fail("no lamps");
@@ -423,7 +423,7 @@ static MaterialTextures parse_material_textures(const JsonNode& m, const Scene& 
   if (!textures) return mt;
   if (!textures->is_object())
     textures->fail("expected {\"reflectance\": NAME, \"fluorescence\": NAME}");
-  mt.where = textures->file() + ": " + textures->path();
+  mt.where = textures->where();
   auto lookup = [&](const char* key, int& out) {
     if (auto n = textures->find(key)) {
       const std::string name = n->string();
@@ -540,7 +540,11 @@ static void append_triangles(const ShapeMesh& mesh, int material, int emitter, S
 // replacements applied.
 static JsonNode read_scene_document(const std::string& path,
                                     const std::vector<MaterialOverride>& materials) {
-  if (is_pbrt_scene(path)) return JsonNode::from_json(import_pbrt_scene(path, materials), path);
+  if (is_pbrt_scene(path)) {
+    auto sources = std::make_shared<JsonSourceMap>();
+    nlohmann::json scene = import_pbrt_scene(path, materials, sources.get());
+    return JsonNode::from_json(std::move(scene), path, sources);
+  }
   JsonNode checked = JsonNode::load_file(path);  // strict: a key twice, bad syntax
   if (materials.empty()) return checked;
   nlohmann::json document = nlohmann::json::parse(read_input_file(path, kMaxTextInputBytes));
@@ -604,7 +608,7 @@ static int parse_shape_emitter(const JsonNode& shape, size_t triangles, const La
   if (!emission && !emits_lamp) return -1;
   Emitter e;
   if (emission) {
-    e.where = emission->file() + ": " + emission->path();
+    e.where = emission->where();
     e.radiance = parse_spectrum(*emission);
   } else {
     e.where = lamp_on.where;

@@ -11,7 +11,7 @@ Texture parse_texture(const JsonNode& node, const std::string& name) {
   if (!node.is_object()) node.fail("expected a texture object");
   Texture t;
   t.name = name;
-  t.where = node.file() + ": " + node.path();
+  t.where = node.where();
   const std::string type = node.at("type").string();
   if (type == "image") {
     t.type = TextureType::image;

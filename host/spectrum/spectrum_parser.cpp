@@ -108,7 +108,7 @@ SpectrumPtr parse_spectrum(const JsonNode& node) {
   if (!node.is_object()) node.fail("expected a spectrum: a number, a built-in name or an object");
 
   SpectrumPtr s;
-  std::string where = node.file() + ": " + node.path();
+  std::string where = node.where();
   if (auto csv = node.find("csv")) {
     std::filesystem::path file = std::filesystem::path(csv->string());
     // An empty name would resolve to the scene's own folder.

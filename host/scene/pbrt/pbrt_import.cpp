@@ -11,12 +11,13 @@
 #include "core/gzip_input.h"
 #include "core/input_file.h"
 #include "core/printable.h"
-#include "scene/pixel_filter.h"
+#include "scene/pbrt/pbrt_color_space.h"
 #include "scene/pbrt/pbrt_materials.h"
 #include "scene/pbrt/pbrt_parameters.h"
 #include "scene/pbrt/pbrt_shapes.h"
 #include "scene/pbrt/pbrt_spectra.h"
 #include "scene/pbrt/pbrt_tokenizer.h"
+#include "scene/pixel_filter.h"
 
 namespace kasha {
 
@@ -38,6 +39,13 @@ nlohmann::json row_major(const Matrix& m) {
   std::vector<double> out;
   for (int r = 0; r < 4; ++r)
     for (int c = 0; c < 4; ++c) out.push_back(m(r, c));
+  return out;
+}
+
+// A JSON pointer's segment (RFC 6901: '~' and '/' escaped), as JsonNode writes paths.
+std::string pointer_segment(const std::string& key) {
+  std::string out;
+  for (char c : key) out += c == '~' ? "~0" : c == '/' ? "~1" : std::string(1, c);
   return out;
 }
 
@@ -67,6 +75,7 @@ struct GraphicsState {
   std::string material;  // kasha material name; empty: pbrt-v4's default diffuse
   std::shared_ptr<const AreaLight> area_light;
   std::string inside_medium, outside_medium;
+  std::string color_space = "srgb";  // pbrt-v4's ColorSpace, part of its graphics state
   std::map<std::string, PbrtParameters> attributes;  // Attribute "shape" | "light" | …
 };
 
@@ -92,6 +101,8 @@ class Importer {
       : main_file_(path), base_dir_(std::filesystem::path(path).parent_path()) {
     for (const MaterialOverride& o : overrides) overrides_[o.name] = o.file;
   }
+
+  const JsonSourceMap& sources() const { return sources_; }
 
   nlohmann::json run() {
     parse_file(main_file_, main_file_, PbrtLocation{}, 0);
@@ -197,11 +208,32 @@ class Importer {
   // Attribute "shape" | "light" | "material" | "medium" | "texture").
   PbrtParameters read_parameters(PbrtTokenizer& tokens, const std::string& target) {
     PbrtParameters params = PbrtParameters::read(tokens);
+    params.set_color_space(state_.color_space);
     params.add_defaults(state_.attributes[target]);
     return params;
   }
 
+  // pbrt-v4's two blocks (scene.cpp's VERIFY_OPTIONS and VERIFY_WORLD): rendering options before
+  // WorldBegin, the scene's description after it.
+  void check_block(const PbrtToken& d) const {
+    static const std::set<std::string> options_only = {
+        "Camera",      "Film",        "Sampler",        "Integrator",
+        "PixelFilter", "Accelerator", "TransformTimes", "WorldBegin"};
+    static const std::set<std::string> world_only = {
+        "ReverseOrientation", "AttributeBegin",    "AttributeEnd",    "TransformBegin",
+        "TransformEnd",       "LightSource",       "AreaLightSource", "Shape",
+        "ObjectBegin",        "ObjectEnd",         "ObjectInstance",  "Texture",
+        "Material",           "MakeNamedMaterial", "NamedMaterial"};
+    if (world_begun_ && options_only.count(d.text))
+      pbrt_fail(d.where, "options cannot be set inside the world block: " + in_quotes(d.text) +
+                             " after WorldBegin (pbrt-v4 refuses it too)");
+    if (!world_begun_ && world_only.count(d.text))
+      pbrt_fail(d.where, "the scene's description belongs inside the world block: " +
+                             in_quotes(d.text) + " before WorldBegin (pbrt-v4 refuses it too)");
+  }
+
   void directive(const PbrtToken& d, PbrtTokenizer& tokens, int depth) {
+    check_block(d);
     if (attribute_directive(d, tokens) || transform_directive(d, tokens) ||
         rendering_option_directive(d, tokens) || scene_element_directive(d, tokens) ||
         object_directive(d, tokens))
@@ -339,18 +371,24 @@ class Importer {
       PbrtParameters::read(tokens).warn_unused("Option");
     } else if (name == "ColorSpace") {
       const std::string space = string_arg(tokens, d);
-      if (space != "srgb")
-        pbrt_fail(d.where, "ColorSpace " + in_quotes(space) + " is not built in kasha (srgb)");
+      const PbrtColorSpace* known = pbrt_color_space(space);
+      if (!known)
+        pbrt_fail(d.where, "ColorSpace " + in_quotes(space) +
+                               ": unknown color space (srgb, rec2020, dci-p3, aces2065-1)");
+      state_.color_space = known->name;
     } else if (name == "Camera") {
       const std::string type = string_arg(tokens, d);
       make_camera(state_.ctm, type, PbrtParameters::read(tokens), d.where);
+      sources_["/camera"] = d.where.str();
       named_frames_["camera"] = state_.ctm.inverse();
     } else if (name == "Film") {
       const std::string type = string_arg(tokens, d);  // before the parameters that follow it
       film(type, PbrtParameters::read(tokens), d.where);
+      sources_["/camera/width"] = sources_["/camera/height"] = d.where.str();
     } else if (name == "PixelFilter") {
       const std::string type = string_arg(tokens, d);
       pixel_filter(type, PbrtParameters::read(tokens), d.where);
+      sources_["/camera/filter"] = d.where.str();
     } else if (name == "Sampler" || name == "Integrator" || name == "Accelerator") {
       pbrt_warn(d.where, name + " " + in_quotes(skipped_directive(tokens, d)) +
                              " is ignored: kasha's --integrator, --spp " +
@@ -362,6 +400,7 @@ class Importer {
       if (!camera_seen_) make_camera(Matrix::Identity(), "perspective", PbrtParameters{}, d.where);
       state_.ctm = Matrix::Identity();
       named_frames_["world"] = state_.ctm;
+      world_begun_ = true;
     } else if (name == "WorldEnd") {
       pbrt_warn(d.where, "WorldEnd is pbrt-v3's: ignored");
     } else {
@@ -378,6 +417,7 @@ class Importer {
                         cls = string_arg(tokens, d);
       const PbrtParameters params = read_parameters(tokens, "texture");
       pbrt_define_texture(tex, kind, cls, params, d.where, textures_, base_dir_);
+      sources_["/textures/" + pointer_segment("pbrt " + kind + " texture " + tex)] = d.where.str();
     } else if (name == "Material") {
       const std::string type = string_arg(tokens, d);
       const PbrtParameters params = read_parameters(tokens, "material");
@@ -574,6 +614,11 @@ class Importer {
                 "kasha: it records XYZ as pbrt-v4's default cie1931 sensor at ISO 100");
     for (const char* ignored : {"maxcomponentvalue", "diagonal"}) params.get_float(ignored, 0);
     params.get_bool("savefp16", true);
+    // The film's own output space: kasha's film records XYZ and writes its own (formats.md).
+    const std::string space = params.get_string("colorspace", "srgb");
+    if (!pbrt_color_space(space))
+      pbrt_fail(where, "Film: unknown \"colorspace\" " + in_quotes(space) +
+                           " (srgb, rec2020, dci-p3, aces2065-1)");
     params.get_bool("writefp16", true);
     params.warn_unused("Film " + in_quotes(type));
   }
@@ -581,10 +626,12 @@ class Importer {
   void define_material(const std::string& key, const std::string& type,
                        const PbrtParameters& params, const PbrtLocation& where) {
     nlohmann::json m = pbrt_material(type, params, where, textures_, base_dir_);
-    if (m.is_null())
+    if (m.is_null()) {
       interfaces_.insert(key);
-    else
+    } else {
       materials_[key] = m;
+      sources_["/materials/" + pointer_segment(key)] = where.str();
+    }
   }
 
   void light(const std::string& type, const PbrtParameters& params, const PbrtLocation& where) {
@@ -664,6 +711,7 @@ class Importer {
       pbrt_fail(where, "unknown light type " + in_quotes(type));
     }
     params.warn_unused("LightSource " + in_quotes(type));
+    sources_["/lights/" + std::to_string(lights_.size())] = where.str();
     lights_.push_back(l);
   }
 
@@ -729,6 +777,10 @@ class Importer {
         ctm.row(3) != Eigen::RowVector4d(0, 0, 0, 1) || !ctm.allFinite())
       pbrt_fail(where, "the shape's transform is singular or projective");
     if (!ctm.isIdentity(0)) s["transform"] = {{"matrix", row_major(ctm)}};
+    const std::string at = "/shapes/" + std::to_string(shapes_.size());
+    sources_[at] = where.str();
+    if (s.contains("emission") && state_.area_light)
+      sources_[at + "/emission"] = state_.area_light->where.str();
     shapes_.push_back(std::move(s));
   }
 
@@ -741,6 +793,7 @@ class Importer {
   std::map<std::string, Matrix> named_frames_;
   bool end_time_only_ = false;
   bool camera_seen_ = false;
+  bool world_begun_ = false;
   nlohmann::json camera_ = nlohmann::json::object();
   // pbrt-v4's default filter (filters.cpp): a gaussian of radius 1.5 and sigma 0.5.
   nlohmann::json filter_ = {{"type", "gaussian"}, {"radius", {1.5, 1.5}}, {"sigma", 0.5}};
@@ -754,13 +807,18 @@ class Importer {
   std::map<std::string, ObjectDefinition> objects_;
   ObjectDefinition* object_ = nullptr;
   std::set<std::string> warned_;
+  JsonSourceMap sources_;  // JSON pointer → FILE:LINE of its statement
 };
 
 }  // namespace
 
 nlohmann::json import_pbrt_scene(const std::string& path,
-                                 const std::vector<MaterialOverride>& overrides) {
-  return Importer(path, overrides).run();
+                                 const std::vector<MaterialOverride>& overrides,
+                                 JsonSourceMap* sources) {
+  Importer importer(path, overrides);
+  nlohmann::json scene = importer.run();
+  if (sources) *sources = importer.sources();
+  return scene;
 }
 
 }  // namespace kasha

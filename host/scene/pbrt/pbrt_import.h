@@ -7,6 +7,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/json_node.h"
+
 namespace kasha {
 
 // `--material NAME=FILE`: the material named NAME (MakeNamedMaterial), or every shape of the
@@ -19,7 +21,10 @@ struct MaterialOverride {
 bool is_pbrt_scene(const std::string& path);
 
 // The scene as kasha JSON; relative file names in it are relative to the folder of `path`.
+// `sources`, when given, receives the FILE:LINE of the statement behind each shape, material,
+// light, texture and the camera, so that errors found in the JSON name the statement.
 nlohmann::json import_pbrt_scene(const std::string& path,
-                                 const std::vector<MaterialOverride>& overrides = {});
+                                 const std::vector<MaterialOverride>& overrides = {},
+                                 JsonSourceMap* sources = nullptr);
 
 }  // namespace kasha

@@ -1,14 +1,18 @@
 #include "scene/pbrt/pbrt_materials.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/printable.h"
+#include "material/metals.h"
 #include "scene/pbrt/pbrt_spectra.h"
 
 namespace kasha {
 
 namespace {
 
-const PbrtTexture& texture_named(const PbrtParameter& p, const std::map<std::string, PbrtTexture>& in,
-                                 const char* kind) {
+const PbrtTexture& texture_named(const PbrtParameter& p,
+                                 const std::map<std::string, PbrtTexture>& in, const char* kind) {
   if (p.strings.size() != 1) pbrt_fail(p.where, in_quotes(p.declaration()) + " names one texture");
   auto t = in.find(p.strings[0]);
   if (t == in.end())
@@ -21,8 +25,8 @@ const PbrtTexture& texture_named(const PbrtParameter& p, const std::map<std::str
 nlohmann::json checker_value(const PbrtParameters& params, const char* name, double fallback,
                              const std::string& kind, const PbrtTextures& textures,
                              const std::filesystem::path& base_dir) {
-  const PbrtParameter* p = params.find(name, kind == "float" ? "float texture"
-                                                             : "float rgb spectrum texture");
+  const PbrtParameter* p =
+      params.find(name, kind == "float" ? "float texture" : "float rgb spectrum blackbody texture");
   if (!p) return fallback;
   if (p->type == "texture") {
     const PbrtTexture& t =
@@ -31,17 +35,27 @@ nlohmann::json checker_value(const PbrtParameters& params, const char* name, dou
       pbrt_fail(p->where, in_quotes(p->declaration()) +
                               ": a checkerboard of textures is not built in kasha (its squares "
                               "take values)");
-    return t.constant;
+    return pbrt_texture_constant(t, PbrtSpectrumUse::kAlbedo, base_dir);
   }
   return pbrt_spectrum(*p, PbrtSpectrumUse::kAlbedo, base_dir);
+}
+
+// v times f: a number multiplied, a spectrum object given a "scale".
+nlohmann::json scaled(nlohmann::json v, double f, const PbrtLocation& where) {
+  if (f == 1) return v;
+  if (v.is_number()) return v.get<double>() * f;
+  if (!v.is_object())
+    pbrt_fail(where, "a named spectrum scaled by a \"scale\" texture is not built in kasha");
+  v["scale"] = v.value("scale", 1.0) * f;
+  return v;
 }
 
 // The (s, t) mapping parameters shared by pbrt's 2D textures.
 void uv_mapping(const PbrtParameters& params, const PbrtLocation& where, nlohmann::json& out) {
   const std::string mapping = params.get_string("mapping", "uv");
   if (mapping != "uv")
-    pbrt_fail(where, "texture mapping " + in_quotes(mapping) +
-                         " is not built in kasha (only \"uv\")");
+    pbrt_fail(where,
+              "texture mapping " + in_quotes(mapping) + " is not built in kasha (only \"uv\")");
   out["uscale"] = params.get_float("uscale", 1);
   out["vscale"] = params.get_float("vscale", 1);
   out["udelta"] = params.get_float("udelta", 0);
@@ -61,43 +75,26 @@ void pbrt_define_texture(const std::string& name, const std::string& kind, const
   PbrtTexture t;
   const std::string kasha_name = "pbrt " + kind + " texture " + name;
   if (cls == "constant") {
-    const PbrtParameter* v = params.find("value", kind == "float" ? "float" : "float rgb spectrum");
-    t.constant = v ? pbrt_spectrum(*v, PbrtSpectrumUse::kAlbedo, base_dir) : nlohmann::json(1.0);
+    const PbrtParameter* v =
+        params.find("value", kind == "float" ? "float" : "float rgb spectrum blackbody");
+    // pbrt-v4 makes an albedo version of every spectrum texture: an RGB above 1 is refused here.
+    if (v) pbrt_spectrum(*(t.value = *v), PbrtSpectrumUse::kAlbedo, base_dir);
   } else if (cls == "scale") {
     // tex × scale, each a value or a texture; kasha keeps at most one texture times a number.
-    const PbrtParameter* tex = params.find("tex", kind == "float" ? "float texture"
-                                                                  : "float rgb spectrum texture");
-    const PbrtParameter* scale = params.find("scale", "float texture");
-    double factor = 1;
-    if (scale && scale->type == "texture") {
-      const PbrtTexture& s = texture_named(*scale, textures.scalar, "float");
-      if (!s.kasha_name.empty() || !s.constant.is_number())
-        pbrt_fail(scale->where, "a \"scale\" texture's \"scale\" must be a number in kasha");
-      factor = s.constant.get<double>();
-    } else if (scale) {
-      factor = scale->numbers[0];
-    }
+    const PbrtParameter* tex = params.find(
+        "tex", kind == "float" ? "float texture" : "float rgb spectrum blackbody texture");
+    const double factor = pbrt_float_value(params, "scale", textures).value_or(1);
     if (tex && tex->type == "texture") {
       t = texture_named(*tex, table, kind.c_str());
-      if (!t.kasha_name.empty())
-        t.factor *= factor;
-      else if (t.constant.is_number())
-        t.constant = t.constant.get<double>() * factor;
-      else
-        t.constant["scale"] = t.constant.value("scale", 1.0) * factor;
-    } else {
-      nlohmann::json v = tex ? pbrt_spectrum(*tex, PbrtSpectrumUse::kAlbedo, base_dir)
-                             : nlohmann::json(1.0);
-      if (v.is_number())
-        v = v.get<double>() * factor;
-      else
-        v["scale"] = factor;
-      t.constant = v;
+    } else if (tex) {
+      pbrt_spectrum(*(t.value = *tex), PbrtSpectrumUse::kAlbedo, base_dir);
     }
+    t.factor *= factor;
   } else if (cls == "imagemap") {
     nlohmann::json image = {{"type", "image"}};
     const std::string file = params.get_string("filename", "");
-    if (file.empty()) pbrt_fail(where, "imagemap texture " + in_quotes(name) + " has no \"filename\"");
+    if (file.empty())
+      pbrt_fail(where, "imagemap texture " + in_quotes(name) + " has no \"filename\"");
     const std::filesystem::path path(file);
     image["file"] = file;  // relative to the scene's folder, as the scene's JSON resolves it
     const std::string filter = params.get_string("filter", "bilinear");
@@ -153,7 +150,7 @@ namespace {
 // and, for a texture, material["textures"]["reflectance"].
 void reflectance(const PbrtParameters& params, const PbrtTextures& textures,
                  const std::filesystem::path& base_dir, nlohmann::json& material) {
-  const PbrtParameter* p = params.find("reflectance", "float rgb spectrum texture");
+  const PbrtParameter* p = params.find("reflectance", "float rgb spectrum blackbody texture");
   if (!p) {
     material["passive"]["reflectance"] = 0.5;  // pbrt-v4's default
     return;
@@ -164,7 +161,8 @@ void reflectance(const PbrtParameters& params, const PbrtTextures& textures,
   }
   const PbrtTexture& t = texture_named(*p, textures.spectrum, "spectrum");
   if (t.kasha_name.empty()) {
-    material["passive"]["reflectance"] = t.constant;
+    material["passive"]["reflectance"] =
+        pbrt_texture_constant(t, PbrtSpectrumUse::kAlbedo, base_dir);
     return;
   }
   if (t.factor > 1)
@@ -175,15 +173,12 @@ void reflectance(const PbrtParameters& params, const PbrtTextures& textures,
 }
 
 // Roughness as pbrt-v4 names it, into kasha's keys (the same names).
-void roughness(const PbrtParameters& params, nlohmann::json& out) {
-  const PbrtParameter* r = params.find("roughness", "float texture");
-  const PbrtParameter* u = params.find("uroughness", "float texture");
-  const PbrtParameter* v = params.find("vroughness", "float texture");
-  for (const PbrtParameter* p : {r, u, v})
-    if (p && p->type == "texture")
-      pbrt_fail(p->where, in_quotes(p->declaration()) + ": a roughness texture is not built in kasha");
-  const double rough = r ? r->numbers[0] : 0;
-  const double ur = u ? u->numbers[0] : rough, vr = v ? v->numbers[0] : rough;
+void roughness(const PbrtParameters& params, const PbrtTextures& textures, nlohmann::json& out) {
+  const std::optional<double> r = pbrt_float_value(params, "roughness", textures);
+  const std::optional<double> u = pbrt_float_value(params, "uroughness", textures);
+  const std::optional<double> v = pbrt_float_value(params, "vroughness", textures);
+  const double rough = r.value_or(0);
+  const double ur = u.value_or(rough), vr = v.value_or(rough);
   if (ur == vr) {
     if (ur != 0) out["roughness"] = ur;
   } else {
@@ -193,12 +188,38 @@ void roughness(const PbrtParameters& params, nlohmann::json& out) {
   out["remap_roughness"] = params.get_bool("remaproughness", true);
 }
 
-nlohmann::json index_of_refraction(const PbrtParameters& params, const std::filesystem::path& base_dir) {
-  const PbrtParameter* eta = params.find("eta", "float spectrum texture");
+// A spectrum parameter or spectrum texture read as `use`; a varying texture is refused (kasha
+// takes a spectrum there). A float texture's name is taken too where pbrt-v4 takes a number.
+nlohmann::json spectrum_value(const PbrtParameter& p, PbrtSpectrumUse use,
+                              const PbrtTextures& textures, const std::filesystem::path& base_dir) {
+  if (p.type != "texture") return pbrt_spectrum(p, use, base_dir);
+  const bool scalar = p.strings.size() == 1 && textures.scalar.count(p.strings[0]) &&
+                      !textures.spectrum.count(p.strings[0]);
+  const PbrtTexture& t = texture_named(p, scalar ? textures.scalar : textures.spectrum, "spectrum");
+  if (!t.kasha_name.empty())
+    pbrt_fail(p.where, in_quotes(p.declaration()) + ": a texture that varies over the surface " +
+                           "is not built in kasha here (it takes one spectrum)");
+  return pbrt_texture_constant(t, use, base_dir);
+}
+
+// Whether a spectrum value the importer made is zero (0, or an RGB or a table of zeros).
+bool is_black(const nlohmann::json& v) {
+  if (v.is_number()) return v.get<double>() == 0;
+  if (!v.is_object() || v.value("scale", 1.0) == 0) return v.is_object();
+  for (const char* key : {"rgb", "value"})
+    if (v.contains(key)) {
+      for (const auto& x : v[key])
+        if (x.get<double>() != 0) return false;
+      return true;
+    }
+  return false;
+}
+
+nlohmann::json index_of_refraction(const PbrtParameters& params, const PbrtTextures& textures,
+                                   const std::filesystem::path& base_dir) {
+  const PbrtParameter* eta = params.find("eta", "float rgb spectrum blackbody texture");
   if (!eta) return 1.5;
-  if (eta->type == "texture")
-    pbrt_fail(eta->where, in_quotes(eta->declaration()) + ": an index texture is not built in kasha");
-  return pbrt_spectrum(*eta, PbrtSpectrumUse::kUnbounded, base_dir);
+  return spectrum_value(*eta, PbrtSpectrumUse::kUnbounded, textures, base_dir);
 }
 
 // "metal-Au-eta" → "Au" for kasha's built-in tables; empty otherwise.
@@ -210,7 +231,84 @@ std::string metal_of(const PbrtParameter* p, const char* suffix) {
   return "";
 }
 
+// pbrt-v4's artist's metal (ConductorMaterial): η = 1 and k = 2√r / √(1 − r), r the reflectance
+// clamped to [0, 0.9999], wavelength by wavelength — a metal whose normal reflectance is r.
+nlohmann::json artist_k(const nlohmann::json& reflectance, const std::filesystem::path& base_dir,
+                        const PbrtLocation& where) {
+  const SpectrumPtr r = pbrt_parse_spectrum(reflectance, base_dir, where);
+  return pbrt_tabulated([&](double nm) {
+    const double v = std::clamp(r->value(nm), 0.0, 0.9999);
+    return 2 * std::sqrt(v) / std::sqrt(1 - v);
+  });
+}
+
+// A conductor's η or k: the parameter's spectrum, a metal-X-eta/-k of kasha's tables (tabulated),
+// or copper's when absent (pbrt-v4's default for each alone).
+nlohmann::json metal_part(const PbrtParameter* p, const char* part, const PbrtTextures& textures,
+                          const std::filesystem::path& base_dir) {
+  const std::string metal = p ? metal_of(p, part) : "Cu";
+  if (metal.empty()) return spectrum_value(*p, PbrtSpectrumUse::kUnbounded, textures, base_dir);
+  const MetalIndex index = builtin_metal(metal);
+  const SpectrumPtr& s = std::string(part) == "eta" ? index.eta : index.k;
+  return pbrt_tabulated([&](double nm) { return s->value(nm); });
+}
+
+nlohmann::json conductor(const PbrtParameters& params, const PbrtLocation& where,
+                         const PbrtTextures& textures, const std::filesystem::path& base_dir) {
+  nlohmann::json c = nlohmann::json::object();
+  const PbrtParameter* r = params.find("reflectance", "float rgb spectrum blackbody texture");
+  const PbrtParameter* eta = params.find("eta", "float rgb spectrum blackbody texture");
+  const PbrtParameter* k = params.find("k", "float rgb spectrum blackbody texture");
+  const std::string me = metal_of(eta, "eta"), mk = metal_of(k, "k");
+  if (r && (eta || k))
+    pbrt_fail(where,
+              "conductor: \"reflectance\" and \"eta\"/\"k\" both given (pbrt-v4 "
+              "refuses it too)");
+  if (r) {
+    if (r->type == "texture" &&
+        !texture_named(*r, textures.spectrum, "spectrum").kasha_name.empty())
+      pbrt_fail(r->where, in_quotes(r->declaration()) + ": a conductor's reflectance texture is " +
+                              "not built in kasha (its η and k take one spectrum each)");
+    c["eta"] = 1.0;
+    c["k"] = artist_k(spectrum_value(*r, PbrtSpectrumUse::kAlbedo, textures, base_dir), base_dir,
+                      r->where);
+  } else if (!eta && !k) {
+    c["metal"] = "Cu";  // pbrt-v4's default
+  } else if (!me.empty() && me == mk) {
+    c["metal"] = me;
+  } else {
+    // One of the two alone: pbrt-v4 takes copper's for the other.
+    c["eta"] = metal_part(eta, "eta", textures, base_dir);
+    c["k"] = metal_part(k, "k", textures, base_dir);
+  }
+  roughness(params, textures, c);
+  return c;
+}
+
 }  // namespace
+
+nlohmann::json pbrt_texture_constant(const PbrtTexture& t, PbrtSpectrumUse use,
+                                     const std::filesystem::path& base_dir) {
+  const nlohmann::json v = t.value ? pbrt_spectrum(*t.value, use, base_dir) : nlohmann::json(1.0);
+  return scaled(v, t.factor, t.value ? t.value->where : PbrtLocation{});
+}
+
+std::optional<double> pbrt_float_value(const PbrtParameters& params, const std::string& name,
+                                       const PbrtTextures& textures) {
+  const PbrtParameter* p = params.find(name, "float texture");
+  if (!p) return std::nullopt;
+  if (p->type != "texture") {
+    if (p->numbers.size() != 1)
+      pbrt_fail(p->where, in_quotes(p->declaration()) + " takes one value");
+    return p->numbers[0];
+  }
+  const PbrtTexture& t = texture_named(*p, textures.scalar, "float");
+  if (!t.kasha_name.empty())
+    pbrt_fail(p->where, in_quotes(p->declaration()) + ": a texture that varies over the surface " +
+                            "is not built in kasha here (it takes one number)");
+  const double factor = t.factor;
+  return t.value ? t.value->numbers.at(0) * factor : factor;
+}
 
 nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& params,
                              const PbrtLocation& where, const PbrtTextures& textures,
@@ -226,58 +324,41 @@ nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& para
   } else if (type == "coateddiffuse") {
     reflectance(params, textures, base_dir, m);
     nlohmann::json coat = nlohmann::json::object();
-    const nlohmann::json eta = index_of_refraction(params, base_dir);
+    const nlohmann::json eta = index_of_refraction(params, textures, base_dir);
     if (!eta.is_number())
       pbrt_fail(where, "coateddiffuse: a coat's index must be a number in kasha");
     coat["eta"] = eta;
-    coat["thickness"] = params.get_float("thickness", 0.01);
-    roughness(params, coat);
-    const PbrtParameter* albedo = params.find("albedo", "float rgb spectrum texture");
-    if (albedo && !(albedo->type == "float" && albedo->numbers[0] == 0))
-      pbrt_fail(albedo->where, "coateddiffuse: a scattering coat (\"albedo\" > 0) is not built "
-                               "in kasha");
+    coat["thickness"] = pbrt_float_value(params, "thickness", textures).value_or(0.01);
+    roughness(params, textures, coat);
+    const PbrtParameter* albedo = params.find("albedo", "float rgb spectrum blackbody texture");
+    if (albedo && !is_black(spectrum_value(*albedo, PbrtSpectrumUse::kAlbedo, textures, base_dir)))
+      pbrt_fail(albedo->where,
+                "coateddiffuse: a scattering coat (\"albedo\" > 0) is not built "
+                "in kasha");
     // Settings of pbrt-v4's stochastic evaluation, which kasha's closed form does not need
     // (docs/materials.md#coated-surfaces: kasha sums every round trip).
     params.get_int("maxdepth", 10);
     params.get_int("nsamples", 1);
-    params.get_float("g", 0);
+    pbrt_float_value(params, "g", textures);
     m["coat"] = coat;
   } else if (type == "dielectric") {
-    nlohmann::json d = {{"eta", index_of_refraction(params, base_dir)}};
-    roughness(params, d);
+    nlohmann::json d = {{"eta", index_of_refraction(params, textures, base_dir)}};
+    roughness(params, textures, d);
     m["dielectric"] = d;
   } else if (type == "conductor") {
-    nlohmann::json c = nlohmann::json::object();
-    if (const PbrtParameter* r = params.find("reflectance", "float rgb spectrum texture"))
-      pbrt_fail(r->where, "conductor: \"reflectance\" (an artist's metal) is not built in kasha: "
-                          "give \"eta\" and \"k\"");
-    const PbrtParameter* eta = params.find("eta", "float spectrum texture");
-    const PbrtParameter* k = params.find("k", "float spectrum texture");
-    for (const PbrtParameter* p : {eta, k})
-      if (p && p->type == "texture")
-        pbrt_fail(p->where, in_quotes(p->declaration()) + ": a texture is not built in kasha here");
-    const std::string me = metal_of(eta, "eta"), mk = metal_of(k, "k");
-    if (!eta && !k) {
-      c["metal"] = "Cu";  // pbrt-v4's default
-    } else if (!me.empty() && me == mk) {
-      c["metal"] = me;
-    } else {
-      if (!eta || !k) pbrt_fail(where, "conductor: give both \"eta\" and \"k\"");
-      c["eta"] = pbrt_spectrum(*eta, PbrtSpectrumUse::kUnbounded, base_dir);
-      c["k"] = pbrt_spectrum(*k, PbrtSpectrumUse::kUnbounded, base_dir);
-    }
-    roughness(params, c);
-    m["conductor"] = c;
+    m["conductor"] = conductor(params, where, textures, base_dir);
   } else if (type == "kasha") {
-    // A material file kasha measured or wrote (docs/pbrt-import.md#measured-materials-in-pbrt-scenes).
+    // A material file kasha measured or wrote
+    // (docs/pbrt-import.md#measured-materials-in-pbrt-scenes).
     const std::string file = params.get_string("file", "");
     if (file.empty()) pbrt_fail(where, "Material \"kasha\" needs \"string file\"");
     m["file"] = file;
   } else if (type == "thindielectric" || type == "diffusetransmission" || type == "mix" ||
              type == "measured" || type == "hair" || type == "subsurface" ||
              type == "coatedconductor") {
-    pbrt_fail(where, "material " + in_quotes(type) + " is not built in kasha (diffuse, "
-                     "coateddiffuse, dielectric, conductor, kasha)");
+    pbrt_fail(where, "material " + in_quotes(type) +
+                         " is not built in kasha (diffuse, "
+                         "coateddiffuse, dielectric, conductor, kasha)");
   } else {
     pbrt_fail(where, "unknown material type " + in_quotes(type));
   }

@@ -201,6 +201,10 @@ std::vector<double> PbrtParameters::get_numbers(const std::string& name,
   return p ? p->numbers : std::vector<double>{};
 }
 
+void PbrtParameters::set_color_space(const std::string& space) {
+  for (PbrtParameter& p : params_) p.color_space = space;
+}
+
 void PbrtParameters::add_defaults(const PbrtParameters& defaults) {
   for (const PbrtParameter& d : defaults.params_) {
     bool given = false;

@@ -18,6 +18,7 @@ struct PbrtParameter {
   std::vector<std::string> strings;  // string, texture, a spectrum named or in a file
   std::vector<bool> bools;
   PbrtLocation where;
+  std::string color_space = "srgb";  // pbrt-v4's ColorSpace where it was given: its RGB's space
   mutable bool used = false;
 
   std::string declaration() const { return type + " " + name; }  // for messages
@@ -40,6 +41,9 @@ class PbrtParameters {
   std::optional<std::array<double, 3>> get_triple(const std::string& name) const;
   // Numbers of a numeric array parameter (`types` as for find); empty when absent.
   std::vector<double> get_numbers(const std::string& name, const std::string& types) const;
+
+  // Marks every parameter as given in ColorSpace `space` (pbrt_color_space.h).
+  void set_color_space(const std::string& space);
 
   // Adds the parameters of `defaults` that this list does not give (pbrt-v4's Attribute).
   void add_defaults(const PbrtParameters& defaults);
