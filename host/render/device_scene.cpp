@@ -112,9 +112,10 @@ void KernelSceneData::add_textures(const Scene& scene) {
       k.width = t.image.width;
       k.height = t.image.height;
       k.bilinear = t.bilinear;
-      k.wrap = t.wrap == TextureWrap::repeat  ? KASHA_WRAP_REPEAT
-               : t.wrap == TextureWrap::clamp ? KASHA_WRAP_CLAMP
-                                              : KASHA_WRAP_BLACK;
+      k.wrap = t.wrap == TextureWrap::repeat              ? KASHA_WRAP_REPEAT
+               : t.wrap == TextureWrap::clamp             ? KASHA_WRAP_CLAMP
+               : t.wrap == TextureWrap::octahedral_sphere ? KASHA_WRAP_OCTAHEDRAL
+                                                          : KASHA_WRAP_BLACK;
       k.data = static_cast<int>(spectra.size());
       const size_t n = t.image.rgb.size() / 3;
       for (size_t p = 0; p < n; ++p) {

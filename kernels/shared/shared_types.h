@@ -175,6 +175,7 @@ KASHA_STATIC_SIZE(KMaterial, 96);
 #define KASHA_WRAP_REPEAT 0
 #define KASHA_WRAP_CLAMP 1
 #define KASHA_WRAP_BLACK 2
+#define KASHA_WRAP_OCTAHEDRAL 3 /* pbrt-v4's octahedralsphere: mirrored across the edges */
 
 typedef struct {
   int type;          /* KASHA_TEXTURE_* */
