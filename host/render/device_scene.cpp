@@ -87,8 +87,8 @@ int KernelSceneData::bin_centres(const Scene& scene) {
   return lambda_;
 }
 
-// The kernels' view of the scene's textures (kernels/materials/texture.h): one KTexture per texture and
-// use (spectral for a reflectance, scalar for a concentration), the texels after the spectra,
+// The kernels' view of the scene's textures (kernels/materials/texture.h): one KTexture per texture
+// and use (spectral for a reflectance, scalar for a concentration), the texels after the spectra,
 // and each triangle's texture coordinates in leaf order.
 void KernelSceneData::add_textures(const Scene& scene) {
   // What a texture is used as: a reflectance (spectral), a concentration (scalar in [0, 1]) or
@@ -313,6 +313,7 @@ void KernelSceneData::add_environment(const Light& l, const Scene& scene, KLight
                                                              : KASHA_MAPPING_LATLONG;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) kl.to_light[3 * r + c] = static_cast<float>(env.to_light(r, c));
+  kl.general = env.orthogonal ? 0 : 1;
   kl.image = static_cast<int>(spectra.size());
   spectra.insert(spectra.end(), d.texels.begin(), d.texels.end());
   kl.distribution = static_cast<int>(spectra.size());
