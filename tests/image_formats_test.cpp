@@ -26,7 +26,9 @@ double srgb_to_linear(double v) {
   return v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
 }
 
-std::string scratch(const std::string& name) { return (scratch_dir() / name).string(); }
+std::string scratch(const std::string& name) {
+  return (scratch_dir() / name).string();
+}
 
 std::string file_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -40,8 +42,8 @@ void write_bytes(const std::string& path, const std::string& bytes) {
 // A PFM of `values` (row 0 the bottom, as the format stores it) in either byte order.
 std::string pfm(const char* magic, int w, int h, double scale, const std::vector<float>& values,
                 bool little) {
-  std::string out = std::string(magic) + "\n" + std::to_string(w) + " " + std::to_string(h) +
-                    "\n" + std::to_string(little ? -scale : scale) + "\n";
+  std::string out = std::string(magic) + "\n" + std::to_string(w) + " " + std::to_string(h) + "\n" +
+                    std::to_string(little ? -scale : scale) + "\n";
   for (float v : values) {
     unsigned char b[4];
     std::memcpy(b, &v, 4);  // the host is little endian
@@ -143,6 +145,16 @@ TEST(ImageFormats, HostileFilesAreRefusedWithOneLine) {
   const std::string big_tga = scratch("big.tga");
   write_bytes(big_tga, tga + std::string(64, '\x7f'));
   EXPECT_NE(read_error(big_tga).find("pixels"), std::string::npos);
+  // Within the limit but beyond what the file's bytes can hold (stb would fill it with zeros).
+  tga[12] = tga[14] = '\x40';  // 8000 × 8000
+  tga[13] = tga[15] = '\x1f';
+  write_bytes(big_tga, tga + std::string(64, '\x7f'));
+  EXPECT_NE(read_error(big_tga).find("bytes can hold"), std::string::npos) << read_error(big_tga);
+  std::string qoi = "qoif";
+  for (unsigned char c : {0, 0, 0x1f, 0x40, 0, 0, 0x1f, 0x40, 3, 0}) qoi += static_cast<char>(c);
+  const std::string big_qoi = scratch("big.qoi");
+  write_bytes(big_qoi, qoi + std::string(64, '\xfd'));
+  EXPECT_NE(read_error(big_qoi).find("bytes can hold"), std::string::npos) << read_error(big_qoi);
   // Truncated files of every format, and a PFM whose header is not numbers or not finite.
   const unsigned char px[12] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
   const float f[12] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};

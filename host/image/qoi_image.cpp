@@ -25,6 +25,11 @@ RgbImage decode_qoi(const std::string& path, const std::string& bytes) {
     throw Error(printable(path) + ": a QOI of " + std::to_string(width) + "x" +
                 std::to_string(height) + " pixels (1 to 2^27 pixels)");
   if (bytes.size() > 0x7fffffff) throw Error(printable(path) + ": a QOI file beyond 2 GiB");
+  // A run packs at most 62 pixels a byte; past its data the decoder would repeat the last pixel.
+  if (width * height > 62 * bytes.size() + 65536)
+    throw Error(printable(path) + ": its header claims " + std::to_string(width) + "x" +
+                std::to_string(height) + " pixels, more than its " + std::to_string(bytes.size()) +
+                " bytes can hold");
   qoi_desc desc{};
   auto* pixels = static_cast<unsigned char*>(
       qoi_decode(bytes.data(), static_cast<int>(bytes.size()), &desc, 3));

@@ -34,6 +34,11 @@ void check_stb_size(const std::string& path, const std::string& bytes, const cha
     throw Error(printable(path) + ": not a " + format + " image kasha can read");
   if (w < 1 || h < 1 || static_cast<long long>(w) * h > kMaxScenePixels)
     throw Error(printable(path) + ": " + size_text(w, h) + " (1 to 2^27 pixels)");
+  // No format here packs more than ~8k pixels a byte (1-bit PNG, deflated): a header claiming
+  // more than its file can hold would have stb allocate its size and fill it with zeros.
+  if (static_cast<long long>(w) * h > 16384LL * static_cast<long long>(bytes.size()) + 65536)
+    throw Error(printable(path) + ": its header claims " + size_text(w, h) + ", more than its " +
+                std::to_string(bytes.size()) + " bytes can hold");
 }
 
 struct StbFree {

@@ -23,7 +23,8 @@ struct RgbImage {
 // The largest image a scene may read, in pixels (a 16k × 8k environment map).
 constexpr long long kMaxScenePixels = 1LL << 27;
 
-// Errors are kasha::Error "PATH: why"; a size is checked before the pixels are allocated.
+// Errors are kasha::Error "PATH: why"; a size is checked before the pixels are allocated,
+// against the limit and against what the file's bytes can hold.
 RgbImage read_rgb_image(const std::string& path, const ColorEncoding& png_encoding = {});
 
 }  // namespace kasha
