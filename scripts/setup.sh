@@ -7,7 +7,7 @@ packages=(
   build-essential cmake pkg-config git
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libembree-dev libopenexr-dev libnanoflann-dev
-  nlohmann-json3-dev libtinyobjloader-dev libassimp-dev zlib1g-dev libpng-dev libcli11-dev libeigen3-dev
+  nlohmann-json3-dev libtinyobjloader-dev libassimp-dev zlib1g-dev libpng-dev libstb-dev libqoi-dev libcli11-dev libeigen3-dev
   libgtest-dev
   libopenmpi-dev openmpi-bin
   python3-numpy python3-matplotlib

@@ -10,6 +10,8 @@
 // fuzzed in process against the whole contract of docs/commands.md#errors-and-exit-codes.
 #include <fcntl.h>
 #include <gtest/gtest.h>
+#include <qoi.h>
+#include <stb_image_write.h>
 #include <signal.h>
 #include <unistd.h>
 #include <zlib.h>
@@ -19,6 +21,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <array>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -39,6 +42,7 @@
 #include "core/printable.h"
 #include "image/exr_io.h"
 #include "image/png_preview.h"
+#include "image/rgb_image.h"
 #include "render/device_scene.h"
 #include "render/render_job.h"
 #include "scene/ply_mesh.h"
@@ -524,6 +528,48 @@ TEST(Fuzz, MutatedPlyAndGzipMeshesReadOrGiveOneLine) {
       }
       const ShapeMesh m = ply_mesh_triangles(parse_ply(b, "mutated.ply"), "mutated.ply");
       EXPECT_EQ(m.tris.size(), m.uv.size());
+
+// The images scenes read (image/rgb_image.h), each format's seed made here: flipped bytes,
+// cut-short files and headers claiming sizes up to 2^32 must read or give one line, with no
+// image beyond the pixel limit (sizes are checked before the pixels are allocated).
+TEST(Fuzz, MutatedSceneImagesReadOrGiveOneLine) {
+  const fs::path dir = scratch_dir();
+  const unsigned char px[48] = {0, 9, 18, 27, 36, 45, 54, 63, 72, 81, 90, 99, 108, 117, 126, 135,
+                                1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16,
+                                200, 210, 220, 230, 240, 250, 255, 0, 0, 7, 77, 177, 17, 27, 37, 47};
+  std::vector<float> f(px, px + 48);
+  ASSERT_TRUE(stbi_write_png((dir / "seed.png").string().c_str(), 4, 4, 3, px, 12));
+  ASSERT_TRUE(stbi_write_tga((dir / "seed.tga").string().c_str(), 4, 4, 3, px));
+  ASSERT_TRUE(stbi_write_hdr((dir / "seed.hdr").string().c_str(), 4, 4, 3, f.data()));
+  std::string pfm = "PF\n4 4\n-1.0\n";
+  pfm.append(reinterpret_cast<const char*>(f.data()), 4 * f.size());
+  write_text(dir / "seed.pfm", pfm);
+  qoi_desc desc{4, 4, 3, QOI_SRGB};
+  int qoi_size = 0;
+  void* qoi = qoi_encode(px, &desc, &qoi_size);
+  ASSERT_NE(qoi, nullptr);
+  write_text(dir / "seed.qoi", std::string(static_cast<char*>(qoi), qoi_size));
+  std::free(qoi);
+  std::mt19937 rng(41);
+  const int cases = fuzz_cases(400) / 2;
+  int read = 0, refused = 0;
+  for (int c = 0; c < cases; ++c) {
+    const char* ext = std::array<const char*, 5>{"png", "tga", "hdr", "pfm", "qoi"}[c % 5];
+    std::string b = read_text(dir / (std::string("seed.") + ext));
+    const int flips = static_cast<int>(rng() % 6);
+    for (int k = 0; k < flips; ++k) b[rng() % b.size()] ^= static_cast<char>(1 << (rng() % 8));
+    if (rng() % 3 == 0) {  // a size field of the header (where each format keeps it) made huge
+      const size_t at = std::string(ext) == "tga" ? 12 : std::string(ext) == "qoi" ? 4 : 16;
+      for (size_t k = at; k < std::min(b.size(), at + 4); ++k) b[k] = static_cast<char>(rng());
+      if (std::string(ext) == "pfm") b.replace(3, 1, std::to_string(rng()));
+    }
+    if (rng() % 4 == 0) b.resize(rng() % b.size());
+    const fs::path p = dir / (std::string("mutated.") + ext);
+    write_text(p, b);
+    try {
+      RgbImage r = read_rgb_image(p.string());
+      EXPECT_LE(static_cast<long long>(r.width) * r.height, kMaxScenePixels);
+      EXPECT_EQ(r.rgb.size(), 3 * size_t(r.width) * r.height);
       ++read;
     } catch (const Error& e) {
       ++refused;
@@ -533,6 +579,11 @@ TEST(Fuzz, MutatedPlyAndGzipMeshesReadOrGiveOneLine) {
     }
   }
   std::printf("  %d PLY files: %d read, %d refused with one line\n", cases, read, refused);
+
+      ADD_FAILURE() << "case " << c << " (" << ext << "): not a kasha::Error: " << e.what();
+    }
+  }
+  std::printf("  %d images: %d read, %d refused with one line\n", cases, read, refused);
   EXPECT_GT(read, 0);
   EXPECT_GT(refused, 0);
 }

@@ -117,6 +117,11 @@ struct Environment {
   int width, height;
   bool equal_area;
   std::string file;
+  // The file's content: the sky, one grey (a furnace), or the sky with its rows in reverse order
+  // (a latitude-longitude image flipped top to bottom: the sky mirrored in z).
+  enum class Content { sky, grey, flipped_sky } content = Content::sky;
+  // The world's z of a texel's direction: −1 under a light transform that mirrors z.
+  double world_z = 1;
   Vector3d direction(double u, double v) const {
     return equal_area ? equal_area_to_sphere(u, v) : latlong_to_sphere(u, v);
   }
@@ -135,8 +140,11 @@ void write_environment(const Environment& env) {
   img.height = env.height;
   for (int y = 0; y < env.height; ++y)
     for (int x = 0; x < env.width; ++x) {
+      const double row = env.content == Environment::Content::flipped_sky ? env.height - 1 - y : y;
       std::array<double, 3> rgb =
-          sky_rgb(env.direction((x + 0.5) / env.width, (y + 0.5) / env.height));
+          env.content == Environment::Content::grey
+              ? std::array<double, 3>{0.6, 0.6, 0.6}
+              : sky_rgb(env.direction((x + 0.5) / env.width, (row + 0.5) / env.height));
       Vec3d xyz = linear_srgb_to_xyz({rgb[0], rgb[1], rgb[2]});
       for (int k = 0; k < 3; ++k) img.xyz.push_back(static_cast<float>(xyz[k]));
     }
@@ -165,7 +173,7 @@ double environment_irradiance(const Scene& scene, const Environment& env, int bi
           for (int b = 0; b < kSub; ++b) {
             double u = (x + (a + 0.5) / kSub) / env.width, v = (y + (b + 0.5) / kSub) / env.height;
             double jac = env.equal_area ? 4 * M_PI : 2 * M_PI * M_PI * std::sin(v * M_PI);
-            projected += std::max(env.direction(u, v).z(), 0.0) * jac /
+            projected += std::max(env.world_z * env.direction(u, v).z(), 0.0) * jac /
                          (double(env.width) * env.height * kSub * kSub);
           }
         if (scale > 0)
@@ -215,6 +223,28 @@ const std::vector<LightCase>& light_cases() {
                      },
                      [env] { write_environment(env); }});
   }
+  // Under any invertible transform pbrt-v4's way (directions mapped, then normalised): the sky
+  // flipped top to bottom (its sun below the horizon) under a mirror in z renders as the upright
+  // sky does without one (its truth, with the texels' directions mirrored, is sky_latlong's),
+  // and a grey image under a shear and an uneven scale is still a furnace (π·L on the floor).
+  auto add = [](const char* name, Environment env, const std::string& transform) {
+    cases.push_back({name,
+                     std::string(R"({"type": "infinite", "image": ")") + env.file +
+                         R"(", "mapping": ")" + (env.equal_area ? "equal_area" : "latlong") +
+                         R"(", "scale": 0.5, "transform": )" + transform + "}",
+                     [env](const Scene& sc, const Vector3d&, int i) {
+                       return environment_irradiance(sc, env, i);
+                     },
+                     [env] { write_environment(env); }});
+  };
+  Environment mirrored = environment("sky_flipped_mirrored", false);
+  mirrored.content = Environment::Content::flipped_sky;
+  mirrored.world_z = -1;
+  add("sky_flipped_mirrored", mirrored, R"({"scale": [1, 1, -1]})");
+  Environment grey = environment("grey_sheared", true);
+  grey.content = Environment::Content::grey;
+  add("grey_sheared", grey,
+      R"({"matrix": [1, 0.8, 0, 0, 0, 0.5, 0.3, 0, 0.2, 0, 2, 0, 0, 0, 0, 1]})");
   return cases;
 }
 
@@ -238,7 +268,7 @@ TEST_P(LightSources, ForwardMatchesTheAnalyticFloor) {
   expect_lit_floor(c.name, c.light, "forward", c.irradiance, 0, 1 << 18, 2);
 }
 
-INSTANTIATE_TEST_SUITE_P(Lights, LightSources, ::testing::Range(0, 6),
+INSTANTIATE_TEST_SUITE_P(Lights, LightSources, ::testing::Range(0, 8),
                          [](const ::testing::TestParamInfo<int>& info) {
                            return std::string(light_cases()[info.param].name);
                          });
@@ -381,7 +411,8 @@ struct EnvSamples {
 
 // Samples the image rgb (width × height, 3 floats a texel) through the kernel.
 EnvSamples sample_environment(const std::vector<float>& rgb, int width, int height, bool equal_area,
-                              size_t n, std::uint32_t seed) {
+                              size_t n, std::uint32_t seed,
+                              const Eigen::Matrix3d& to_light = Eigen::Matrix3d::Identity()) {
   EnvironmentImage env;
   env.image.width = width;
   env.image.height = height;
@@ -394,7 +425,8 @@ EnvSamples sample_environment(const std::vector<float>& rgb, int width, int heig
   l.width = width;
   l.height = height;
   l.mapping = equal_area ? KASHA_MAPPING_EQUAL_AREA : KASHA_MAPPING_LATLONG;
-  for (int k = 0; k < 9; ++k) l.to_light[k] = k % 4 == 0 ? 1.0f : 0.0f;
+  for (int k = 0; k < 9; ++k) l.to_light[k] = static_cast<float>(to_light(k / 3, k % 3));
+  l.general = to_light.isIdentity() ? 0 : 1;
   l.image = 0;
   std::vector<float> spectra = d.texels;
   l.distribution = static_cast<int>(spectra.size());
@@ -492,6 +524,52 @@ TEST(LightSampling, EnvironmentImagesFitTheirDensities) {
     }
   expect_fits("equal-area square, one colour", observed, expected);
   expect_rejects("equal-area, denser towards +z", observed, wrong);
+}
+
+// Under a general map M (world to the image's frame, normalised after it) one colour is drawn
+// with the density (1/4π)·|det M|/|M w|³ (the solid-angle Jacobian of w ↦ Mw/|Mw|): each sample's
+// reported density and env_pdf's match it, and the directions fit it in cells of cos θ × φ.
+TEST(LightSampling, AGeneralEnvironmentTransformKeepsItsDensityConsistent) {
+  Eigen::Matrix3d m;
+  m << 1, 0.8, 0, 0, 0.5, 0.3, 0.2, 0, 2;
+  const Eigen::Matrix3d to_light = m.inverse();
+  const int W = 8;
+  const size_t n = 200000;
+  EnvSamples s = sample_environment(std::vector<float>(3 * W * W, 0.5f), W, W, true, n, 11, to_light);
+  auto density = [&](const Vector3d& w) {
+    return std::abs(to_light.determinant()) / std::pow((to_light * w).norm(), 3) / (4 * M_PI);
+  };
+  constexpr int kCos = 10, kPhi = 12;
+  std::vector<double> observed(kCos * kPhi, 0), expected(kCos * kPhi, 0), uniform(kCos * kPhi);
+  size_t bad_pdf = 0;
+  for (size_t i = 0; i < n; ++i) {
+    Vector3d w = at(s.out, 5 * i);
+    const double want = density(w);
+    if (std::abs(s.out[5 * i + 3] - want) > 2e-3 * want ||
+        std::abs(s.out[5 * i + 4] - want) > 2e-3 * want)
+      ++bad_pdf;
+    double phi = std::atan2(w.y(), w.x());
+    observed[cell_of(w.z(), -1, 1, kCos) * kPhi +
+             cell_of(phi < 0 ? phi + 2 * M_PI : phi, 0, 2 * M_PI, kPhi)] += 1;
+  }
+  EXPECT_LE(bad_pdf, n / 100000) << "densities off the map's Jacobian";
+  // The expected count of each cell: the density integrated over it (cells are equal in solid
+  // angle, 4π / cells, midpoint rule on 16 × 16 points).
+  constexpr int kSub = 16;
+  for (int a = 0; a < kCos; ++a)
+    for (int b = 0; b < kPhi; ++b) {
+      double sum = 0;
+      for (int i = 0; i < kSub; ++i)
+        for (int j = 0; j < kSub; ++j) {
+          double z = -1 + 2 * (a + (i + 0.5) / kSub) / kCos;
+          double phi = 2 * M_PI * (b + (j + 0.5) / kSub) / kPhi, r = std::sqrt(1 - z * z);
+          sum += density({r * std::cos(phi), r * std::sin(phi), z});
+        }
+      expected[a * kPhi + b] = n * sum / (kSub * kSub) * 4 * M_PI / (kCos * kPhi);
+      uniform[a * kPhi + b] = double(n) / (kCos * kPhi);
+    }
+  expect_fits("general map, one colour", observed, expected);
+  expect_rejects("general map drawn as a rotation would be", observed, uniform);
 }
 
 }  // namespace

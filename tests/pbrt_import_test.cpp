@@ -8,6 +8,7 @@
 // - named spectra, metals and glasses map to kasha's; --material replaces a named material or
 //   an object's; bad input is one line with FILE:LINE, ignored input one warning each.
 #include <gtest/gtest.h>
+#include <stb_image_write.h>
 
 #include <cmath>
 #include <cstdio>
@@ -367,6 +368,55 @@ Material "diffuse" "float sigma" 20
         file + ":3: Sampler \"halton\" is ignored", file + ":4: the film's sensor settings",
         file + ":6: \"float sigma\" of Material \"diffuse\" is ignored by kasha"})
     EXPECT_NE(r.err.find("kasha: warning: " + line), std::string::npos) << line << "\n" << r.err;
+}
+
+// imagemap as pbrt-v4 reads it: its encoding kept for a PNG (pbrt-v4 applies it to PNGs only),
+// octahedralsphere wrap, invert of the scaled value, trilinear and EWA approximated with one
+// warning per scene; an environment image under a mirror and a shear, pbrt-v4's directions.
+TEST(PbrtImport, ImagemapsAndEnvironmentsTakePbrtV4sParameters) {
+  const unsigned char px[12] = {0, 50, 100, 150, 200, 250, 10, 20, 30, 40, 50, 60};
+  ASSERT_TRUE(stbi_write_png((scratch_dir() / "tex.png").string().c_str(), 2, 2, 3, px, 6));
+  ASSERT_TRUE(stbi_write_tga((scratch_dir() / "tex.tga").string().c_str(), 2, 2, 3, px));
+  ASSERT_TRUE(stbi_write_hdr((scratch_dir() / "env.hdr").string().c_str(), 1, 1, 3,
+                             std::vector<float>{1, 2, 3}.data()));
+  const std::string file = write_file("tex.pbrt", scene(std::string(R"(
+Texture "a" "spectrum" "imagemap" "string filename" "tex.png" "string filter" "trilinear"
+  "string encoding" "gamma 2.2" "string wrap" "octahedralsphere"
+Texture "b" "spectrum" "imagemap" "string filename" "tex.tga" "string filter" "ewa"
+  "bool invert" true "float scale" 0.5
+Texture "c" "spectrum" "imagemap" "string filename" "tex.tga" "string filter" "trilinear"
+Material "diffuse" "texture reflectance" "a"
+AttributeBegin
+  Scale 1 1 -1
+  ConcatTransform [1 0 0 0  0.5 1 0 0  0 0 2 0  0 0 0 1]
+  LightSource "infinite" "string filename" "env.hdr"
+AttributeEnd
+)") + kQuad));
+  const nlohmann::json s = import_pbrt_scene(file, {});
+  const nlohmann::json& a = s.at("textures").at("pbrt spectrum texture a");
+  EXPECT_EQ(a.at("encoding"), "gamma 2.2");
+  EXPECT_EQ(a.at("wrap"), "octahedral_sphere");
+  EXPECT_EQ(a.at("filter"), "bilinear");
+  const nlohmann::json& b = s.at("textures").at("pbrt spectrum texture b");
+  EXPECT_FALSE(b.contains("encoding"));
+  EXPECT_EQ(b.at("invert"), true);
+  EXPECT_EQ(b.at("scale"), 0.5);
+  expect_matrix(s.at("lights")[0].at("transform").at("matrix").get<std::vector<double>>(),
+                {1, 0.5, 0, 0, 0, 1, 0, 0, 0, 0, -2, 0, 0, 0, 0, 1}, "mirror and shear");
+  CommandResult r = run_kasha("info " + file);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  size_t warnings = 0;
+  for (size_t at = r.err.find("kasha's bilinear lookup"); at != std::string::npos;
+       at = r.err.find("kasha's bilinear lookup", at + 1))
+    ++warnings;
+  EXPECT_EQ(warnings, 1u) << r.err;
+  const std::string bad = write_file(
+      "enc.pbrt", scene(R"(Texture "d" "spectrum" "imagemap" "string filename" "tex.png"
+  "string encoding" "gamma x")"));
+  r = run_kasha("info " + bad);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(bad + ":5: texture \"d\": unknown color encoding"), std::string::npos)
+      << r.err;
 }
 
 TEST(PbrtImport, MaterialOverrideReplacesANamedMaterialOrAnObjectsMaterial) {

@@ -94,6 +94,57 @@ TEST(Texture, AnImageIsLookedUpBilinearlyWithWrapAndOffset) {
   expect_floor(scene, "forward", radiance, 0, 1 << 18, 2);
 }
 
+// pbrt-v4's invert of the scaled texels (1 − 0.5·texel) and its octahedralsphere wrap
+// (RemapPixelCoords: across a vertical edge mirrored in x and in y about the middle, across a
+// horizontal edge likewise), on lookups half beyond the left edge of an image that brightens
+// to the right (clamping there would give its darkest column).
+TEST(Texture, AnInvertedImageWrapsAsPbrtV4sOctahedralSphere) {
+  Image img;
+  img.width = 4;
+  img.height = 4;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) {
+      Vec3d rgb = {0.05 + 0.3 * x, 0.9 - 0.2 * y, 0.2 + 0.25 * x};
+      Vec3d xyz = linear_srgb_to_xyz(rgb);
+      for (double v : xyz) img.xyz.push_back(static_cast<float>(v));
+    }
+  const std::string png = (scratch_dir() / "octahedral.png").string();
+  write_png_preview(png, img, 1.0);
+  const RgbImage texels = read_rgb_image(png);
+  const std::string textures = R"("textures": {"print": {"type": "image", "file": ")" + png +
+                               R"(", "wrap": "octahedral_sphere", "invert": true, "scale": 0.5,
+      "udelta": -0.5}})";
+  const std::string floor =
+      R"({"passive": {"reflectance": 0.8}, "textures": {"reflectance": "print"}})";
+  const std::string scene = floor_scene("octahedral", floor, kSky, textures);
+  auto remap = [&](int x, int y) {
+    const int w = texels.width, h = texels.height;
+    if (x < 0 || x >= w) x = x < 0 ? -x : 2 * w - 1 - x, y = h - 1 - y;
+    if (y < 0 || y >= h) y = y < 0 ? -y : 2 * h - 1 - y, x = w - 1 - x;
+    return std::pair<int, int>(x, y);
+  };
+  auto radiance = [&](const Scene& sc, const Vector3d& x, int i) {
+    Eigen::Vector2d uv = floor_uv(x);
+    double s = uv.x() - 0.5, t = uv.y();
+    double fx = s * texels.width - 0.5, fy = (1 - t) * texels.height - 0.5;
+    int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+    double wx = fx - x0, wy = fy - y0, v = 0;
+    for (int dy = 0; dy < 2; ++dy)
+      for (int dx = 0; dx < 2; ++dx) {
+        auto [tx, ty] = remap(x0 + dx, y0 + dy);
+        tx = std::clamp(tx, 0, texels.width - 1);
+        ty = std::clamp(ty, 0, texels.height - 1);
+        const float* p = texels.at(tx, ty);
+        std::array<double, 3> inv;
+        for (int k = 0; k < 3; ++k) inv[k] = std::max(0.0, 1 - 0.5 * p[k]);
+        double w = (dx ? wx : 1 - wx) * (dy ? wy : 1 - wy);
+        v += w * sigmoid_spectrum(rgb_sigmoid(inv), sc.grid.center(i));
+      }
+    return 0.8 * v * kL;
+  };
+  expect_floor(scene, "backward", radiance, 16, 0, 1);
+}
+
 // A fluorescent floor under UV and blue light: its excitation at 380–450 nm re-emitted at 550 nm.
 const char* const kFluorescentFloor = R"({"passive": {"reflectance": 0.3},
     "fluorescence": {"excitation": {"nm": [360, 380, 450, 470], "value": [0, 0.5, 0.5, 0]},

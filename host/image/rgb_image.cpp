@@ -1,49 +1,106 @@
 #include "image/rgb_image.h"
 
-#include <png.h>
+#include <stb_image.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <memory>
 
 #include "color/color_space.h"
 #include "core/error.h"
 #include "core/input_file.h"
 #include "core/printable.h"
 #include "image/exr_io.h"
+#include "image/pfm_image.h"
+#include "image/qoi_image.h"
 
 namespace kasha {
 
-static RgbImage read_png(const std::string& path) {
-  const std::string bytes = read_input_file(path, kMaxBinaryInputBytes);
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_memory(&image, bytes.data(), bytes.size()))
-    throw Error(printable(path) + ": not a PNG kasha can read (" + image.message + ")");
-  if (static_cast<long long>(image.width) * image.height > kMaxScenePixels) {
-    png_image_free(&image);
-    throw Error(printable(path) + ": " + std::to_string(image.width) + "x" +
-                std::to_string(image.height) + " pixels, beyond the limit of 2^27");
-  }
-  // libpng's linear format: 16-bit linear RGB, decoded from sRGB (or the file's gamma).
-  image.format = PNG_FORMAT_LINEAR_RGB;
-  std::vector<png_uint_16> pixels(PNG_IMAGE_SIZE(image) / sizeof(png_uint_16));
-  if (!png_image_finish_read(&image, nullptr, pixels.data(), 0, nullptr))
-    throw Error(printable(path) + ": a damaged PNG (" + image.message + ")");
+namespace {
+
+std::string size_text(long long w, long long h) {
+  return std::to_string(w) + "x" + std::to_string(h) + " pixels";
+}
+
+// stb's header check: the size before anything is decoded, within kMaxScenePixels.
+void check_stb_size(const std::string& path, const std::string& bytes, const char* format) {
+  int w = 0, h = 0, n = 0;
+  if (bytes.size() > 0x7fffffff ||
+      !stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()),
+                             static_cast<int>(bytes.size()), &w, &h, &n))
+    throw Error(printable(path) + ": not a " + format + " image kasha can read");
+  if (w < 1 || h < 1 || static_cast<long long>(w) * h > kMaxScenePixels)
+    throw Error(printable(path) + ": " + size_text(w, h) + " (1 to 2^27 pixels)");
+  // No format here packs more than ~8k pixels a byte (1-bit PNG, deflated): a header claiming
+  // more than its file can hold would have stb allocate its size and fill it with zeros.
+  if (static_cast<long long>(w) * h > 16384LL * static_cast<long long>(bytes.size()) + 65536)
+    throw Error(printable(path) + ": its header claims " + size_text(w, h) + ", more than its " +
+                std::to_string(bytes.size()) + " bytes can hold");
+}
+
+struct StbFree {
+  void operator()(void* p) const { stbi_image_free(p); }
+};
+
+// 8- or 16-bit RGB through stb_image, each value decoded by `encoding`.
+RgbImage read_stb_fixed(const std::string& path, const std::string& bytes,
+                        const ColorEncoding& encoding, const char* format) {
+  check_stb_size(path, bytes, format);
+  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+  const int size = static_cast<int>(bytes.size());
+  int w = 0, h = 0, n = 0;
   RgbImage out;
-  out.width = static_cast<int>(image.width);
-  out.height = static_cast<int>(image.height);
-  out.rgb.resize(pixels.size());
-  for (size_t i = 0; i < pixels.size(); ++i) out.rgb[i] = pixels[i] / 65535.0f;
+  if (stbi_is_16_bit_from_memory(data, size)) {
+    std::unique_ptr<stbi_us, StbFree> p(stbi_load_16_from_memory(data, size, &w, &h, &n, 3));
+    if (!p) throw Error(printable(path) + ": a damaged " + format + " image");
+    out.rgb.resize(3 * size_t(w) * h);
+    for (size_t i = 0; i < out.rgb.size(); ++i)
+      out.rgb[i] = static_cast<float>(encoding.to_linear(p.get()[i] / 65535.0));
+  } else {
+    std::unique_ptr<stbi_uc, StbFree> p(stbi_load_from_memory(data, size, &w, &h, &n, 3));
+    if (!p) throw Error(printable(path) + ": a damaged " + format + " image");
+    float table[256];
+    for (int i = 0; i < 256; ++i) table[i] = static_cast<float>(encoding.to_linear(i / 255.0));
+    out.rgb.resize(3 * size_t(w) * h);
+    for (size_t i = 0; i < out.rgb.size(); ++i) out.rgb[i] = table[p.get()[i]];
+  }
+  out.width = w;
+  out.height = h;
   return out;
 }
 
-static RgbImage read_exr_rgb(const std::string& path) {
+// Radiance HDR: stb's linear floats.
+RgbImage read_hdr(const std::string& path, const std::string& bytes) {
+  check_stb_size(path, bytes, "Radiance HDR");
+  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+  if (!stbi_is_hdr_from_memory(data, static_cast<int>(bytes.size())))
+    throw Error(printable(path) + ": not a Radiance HDR image");
+  int w = 0, h = 0, n = 0;
+  std::unique_ptr<float, StbFree> p(
+      stbi_loadf_from_memory(data, static_cast<int>(bytes.size()), &w, &h, &n, 3));
+  if (!p) throw Error(printable(path) + ": a damaged Radiance HDR image");
+  RgbImage out;
+  out.width = w;
+  out.height = h;
+  out.rgb.resize(3 * size_t(w) * h);
+  for (size_t i = 0; i < out.rgb.size(); ++i) {
+    const float v = p.get()[i];
+    if (!std::isfinite(v))
+      throw Error(printable(path) + ": pixel (" + std::to_string(i / 3 % w) + ", " +
+                  std::to_string(i / 3 / w) + ") is not finite");
+    out.rgb[i] = std::max(0.0f, v);
+  }
+  return out;
+}
+
+RgbImage read_exr_rgb(const std::string& path) {
   const Image img = read_exr(path);  // XYZ, finite
   if (static_cast<long long>(img.width) * img.height > kMaxScenePixels)
-    throw Error(printable(path) + ": " + std::to_string(img.width) + "x" +
-                std::to_string(img.height) + " pixels, beyond the limit of 2^27");
+    throw Error(printable(path) + ": " + size_text(img.width, img.height) +
+                ", beyond the limit of 2^27");
   RgbImage out;
   out.width = img.width;
   out.height = img.height;
@@ -55,12 +112,18 @@ static RgbImage read_exr_rgb(const std::string& path) {
   return out;
 }
 
-RgbImage read_rgb_image(const std::string& path) {
+}  // namespace
+
+RgbImage read_rgb_image(const std::string& path, const ColorEncoding& png_encoding) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext == ".png") return read_png(path);
   if (ext == ".exr") return read_exr_rgb(path);
-  throw Error(printable(path) + ": an image must be .png or .exr");
+  const std::string bytes = read_input_file(path, kMaxBinaryInputBytes);
+  if (ext == ".pfm") return decode_pfm(path, bytes);
+  if (ext == ".hdr") return read_hdr(path, bytes);
+  if (ext == ".qoi") return decode_qoi(path, bytes);
+  if (ext == ".png") return read_stb_fixed(path, bytes, png_encoding, "PNG");
+  return read_stb_fixed(path, bytes, ColorEncoding{}, "TGA, JPEG, BMP, GIF or PNM");
 }
 
 }  // namespace kasha

@@ -1,10 +1,15 @@
 #pragma once
-// Images that scenes read — environment maps and textures — as linear sRGB: PNG (8 or 16 bits,
-// grey or colour, with or without alpha, decoded from sRGB or the file's own gamma by libpng) and
-// OpenEXR (its R, G, B channels, or its XYZ layer converted). Negative values (filtering
-// overshoot in EXRs) count as 0; a value that is not finite is an error naming the pixel.
+// Images that scenes read — environment maps and textures — as linear sRGB, by their extension
+// as pbrt-v4 reads them (util/image.cpp Image::Read): OpenEXR (its R, G, B channels, or its XYZ
+// layer converted); PFM (image/pfm_image.h); Radiance HDR (linear floats, via stb_image); QOI
+// (image/qoi_image.h); PNG (8 or 16 bits, decoded by the given encoding, sRGB by default); every
+// other extension through stb_image (TGA, JPEG, BMP, GIF, PNM, 8-bit, always sRGB as in pbrt-v4).
+// Grey is replicated to RGB and alpha dropped. Negative values (filtering overshoot in EXRs)
+// count as 0; a value that is not finite is an error naming the pixel.
 #include <string>
 #include <vector>
+
+#include "image/color_encoding.h"
 
 namespace kasha {
 
@@ -18,7 +23,8 @@ struct RgbImage {
 // The largest image a scene may read, in pixels (a 16k × 8k environment map).
 constexpr long long kMaxScenePixels = 1LL << 27;
 
-// Reads a .png or .exr (by its extension, any case); errors are kasha::Error "PATH: why".
-RgbImage read_rgb_image(const std::string& path);
+// Errors are kasha::Error "PATH: why"; a size is checked before the pixels are allocated,
+// against the limit and against what the file's bytes can hold.
+RgbImage read_rgb_image(const std::string& path, const ColorEncoding& png_encoding = {});
 
 }  // namespace kasha

@@ -87,8 +87,8 @@ int KernelSceneData::bin_centres(const Scene& scene) {
   return lambda_;
 }
 
-// The kernels' view of the scene's textures (kernels/materials/texture.h): one KTexture per texture and
-// use (spectral for a reflectance, scalar for a concentration), the texels after the spectra,
+// The kernels' view of the scene's textures (kernels/materials/texture.h): one KTexture per texture
+// and use (spectral for a reflectance, scalar for a concentration), the texels after the spectra,
 // and each triangle's texture coordinates in leaf order.
 void KernelSceneData::add_textures(const Scene& scene) {
   // What a texture is used as: a reflectance (spectral), a concentration (scalar in [0, 1]) or
@@ -112,9 +112,10 @@ void KernelSceneData::add_textures(const Scene& scene) {
       k.width = t.image.width;
       k.height = t.image.height;
       k.bilinear = t.bilinear;
-      k.wrap = t.wrap == TextureWrap::repeat  ? KASHA_WRAP_REPEAT
-               : t.wrap == TextureWrap::clamp ? KASHA_WRAP_CLAMP
-                                              : KASHA_WRAP_BLACK;
+      k.wrap = t.wrap == TextureWrap::repeat              ? KASHA_WRAP_REPEAT
+               : t.wrap == TextureWrap::clamp             ? KASHA_WRAP_CLAMP
+               : t.wrap == TextureWrap::octahedral_sphere ? KASHA_WRAP_OCTAHEDRAL
+                                                          : KASHA_WRAP_BLACK;
       k.data = static_cast<int>(spectra.size());
       const size_t n = t.image.rgb.size() / 3;
       for (size_t p = 0; p < n; ++p) {
@@ -312,6 +313,7 @@ void KernelSceneData::add_environment(const Light& l, const Scene& scene, KLight
                                                              : KASHA_MAPPING_LATLONG;
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 3; ++c) kl.to_light[3 * r + c] = static_cast<float>(env.to_light(r, c));
+  kl.general = env.orthogonal ? 0 : 1;
   kl.image = static_cast<int>(spectra.size());
   spectra.insert(spectra.end(), d.texels.begin(), d.texels.end());
   kl.distribution = static_cast<int>(spectra.size());

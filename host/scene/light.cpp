@@ -125,11 +125,16 @@ Light parse_light(const JsonNode& node) {
                   "x" + std::to_string(env->image.height));
       }
       if (auto t = node.find("transform")) {
-        Eigen::Matrix3d r = parse_transform(*t).linear();
-        if (!((r.transpose() * r - Eigen::Matrix3d::Identity()).norm() < 1e-6) ||
-            !(r.determinant() > 0))
-          t->fail("an infinite light's transform must be a rotation");
-        env->to_light = r.transpose();
+        const Eigen::Matrix3d r = parse_transform(*t).linear();
+        // Invertible, and not so far from a rotation that float directions lose their meaning.
+        const Eigen::JacobiSVD<Eigen::Matrix3d> svd(r);
+        const Eigen::Vector3d sv = svd.singularValues();
+        if (!(sv[2] > 0) || !(sv[0] / sv[2] < 1e6))
+          t->fail(
+              "an infinite light's transform must be invertible (its directions' map is "
+              "singular or nearly so)");
+        env->orthogonal = (r.transpose() * r - Eigen::Matrix3d::Identity()).norm() < 1e-6;
+        env->to_light = env->orthogonal ? Eigen::Matrix3d(r.transpose()) : r.inverse();
       }
       l.environment = env;
       l.spectrum = d65_luminance_one();

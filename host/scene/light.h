@@ -18,14 +18,16 @@ namespace kasha {
 enum class LightType { point, spot, distant, infinite };
 
 // An infinite light's environment image (docs/lights.md#environment-images): linear sRGB texels,
-// each an RGB illuminant spectrum; how directions map onto it; the rotation from the scene's
-// frame to the image's (+z up).
+// each an RGB illuminant spectrum; how directions map onto it; the linear map from the scene's
+// directions to the image's frame (+z up), directions normalised after it as pbrt-v4 does: the
+// inverse of the light's transform, any invertible one (mirrors, scales, shears).
 enum class EnvironmentMapping { latlong, equal_area };
 struct EnvironmentImage {
   std::string file;
   RgbImage image;
   EnvironmentMapping mapping = EnvironmentMapping::latlong;
   Eigen::Matrix3d to_light = Eigen::Matrix3d::Identity();
+  bool orthogonal = true;  // to_light is a rotation or a mirror: its inverse is its transpose
 };
 
 // What the kernels read of an environment image on the scene's grid (kernels/lights/environment.h):

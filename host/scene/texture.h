@@ -1,7 +1,7 @@
 #pragma once
-// Textures (docs/textures.md): images (PNG, EXR) and checkerboards, looked up at a surface's
-// texture coordinates as pbrt-v4 looks them up, applied to a material's passive reflectance (a
-// print: the texture multiplies ρ(λ)) or to its excitation (an ink's concentration).
+// Textures (docs/textures.md): images (image/rgb_image.h's formats) and checkerboards, looked up at
+// a surface's texture coordinates as pbrt-v4 looks them up, applied to a material's passive
+// reflectance (a print: the texture multiplies ρ(λ)) or to its excitation (an ink's concentration).
 #include <string>
 #include <vector>
 
@@ -12,14 +12,18 @@
 namespace kasha {
 
 enum class TextureType { image, checkerboard };
-enum class TextureWrap { repeat, clamp, black };
+enum class TextureWrap { repeat, clamp, black, octahedral_sphere };
 
 struct Texture {
   std::string name, where;  // where: file: JSON path
   TextureType type = TextureType::image;
-  // An image: linear sRGB texels, row 0 at the top.
+  // An image: linear sRGB texels, row 0 at the top; "scale" and then "invert" (1 − texel, at
+  // least 0) are applied to them as the image is read, as pbrt-v4 applies them to its lookups.
   std::string file;
   RgbImage image;
+  ColorEncoding encoding;  // of a PNG's values (image/color_encoding.h)
+  double scale = 1;
+  bool invert = false;
   bool bilinear = true;
   TextureWrap wrap = TextureWrap::repeat;
   // A checkerboard: its two values, as spectra, and as numbers where they are numbers (-1 not).

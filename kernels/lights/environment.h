@@ -4,7 +4,9 @@
  * scale), S the sigmoid; the texel a direction falls in gives its radiance (no filtering, so the
  * radiance is exactly what the sampling distribution was built from). Directions map to the
  * image by latitude-longitude (+z the top row, φ from +x towards +y) or by Clarberg's equal-area
- * square (pbrt-v4's), in the light's frame (to_light). Sampling is piecewise constant over the
+ * square (pbrt-v4's), in the light's frame (to_light, any invertible map, directions normalised
+ * after it as pbrt-v4 does; a general map's solid-angle Jacobian enters the densities, which
+ * pbrt-v4 leaves out). Sampling is piecewise constant over the
  * texels: a marginal CDF over rows, then a conditional CDF over the row's texels, built on the
  * host from each texel's mean RGB (times sin θ for latitude-longitude). */
 #ifndef KASHA_ENVIRONMENT_H
@@ -52,31 +54,53 @@ inline float2 equal_area_sphere_to_square(float3 d) {
   return (float2)(0.5f * (u + 1.0f), 0.5f * (v + 1.0f));
 }
 
-inline float3 env_to_light(const __global KLight* l, float3 w) {
+/* The image frame's direction for the world direction w; a general map (not a rotation or a
+ * mirror) is normalised after it, and *jacobian is its solid-angle Jacobian
+ * |det M| / |M w|³ (1 for an orthogonal M). */
+inline float3 env_to_light(const __global KLight* l, float3 w, float* jacobian) {
   const __global float* m = l->to_light;
-  return (float3)(m[0] * w.x + m[1] * w.y + m[2] * w.z, m[3] * w.x + m[4] * w.y + m[5] * w.z,
-                  m[6] * w.x + m[7] * w.y + m[8] * w.z);
+  float3 d = (float3)(m[0] * w.x + m[1] * w.y + m[2] * w.z, m[3] * w.x + m[4] * w.y + m[5] * w.z,
+                      m[6] * w.x + m[7] * w.y + m[8] * w.z);
+  *jacobian = 1.0f;
+  if (!l->general) return d;
+  float3 r0 = (float3)(m[0], m[1], m[2]), r1 = (float3)(m[3], m[4], m[5]), r2 = (float3)(m[6], m[7], m[8]);
+  float len = length(d);
+  *jacobian = fabs(dot(r0, cross(r1, r2))) / (len * len * len);
+  return d / len;
 }
 
-inline float3 env_to_world(const __global KLight* l, float3 w) {
-  const __global float* m = l->to_light; /* a rotation: its transpose takes light back to world */
-  return (float3)(m[0] * w.x + m[3] * w.y + m[6] * w.z, m[1] * w.x + m[4] * w.y + m[7] * w.z,
-                  m[2] * w.x + m[5] * w.y + m[8] * w.z);
+/* The world direction for the image frame's unit direction d: M⁻¹ d normalised (the transpose
+ * for an orthogonal M); *jacobian as env_to_light's at that world direction. */
+inline float3 env_to_world(const __global KLight* l, float3 d, float* jacobian) {
+  const __global float* m = l->to_light;
+  *jacobian = 1.0f;
+  if (!l->general)
+    return (float3)(m[0] * d.x + m[3] * d.y + m[6] * d.z, m[1] * d.x + m[4] * d.y + m[7] * d.z,
+                    m[2] * d.x + m[5] * d.y + m[8] * d.z);
+  float3 r0 = (float3)(m[0], m[1], m[2]), r1 = (float3)(m[3], m[4], m[5]), r2 = (float3)(m[6], m[7], m[8]);
+  float det = dot(r0, cross(r1, r2));
+  /* M⁻¹'s columns are the rows' cross products over det. */
+  float3 u = (cross(r1, r2) * d.x + cross(r2, r0) * d.y + cross(r0, r1) * d.z) / det;
+  float len = length(u);
+  *jacobian = fabs(det) * len * len * len;
+  return u / len;
 }
 
 /* The image position (u, v) in [0, 1)² of the world direction w, and the Jacobian factor that
- * turns a density over (u, v) into one over solid angle (1 / (2π² sin θ), or 1 / (4π)). */
+ * turns a density over (u, v) into one over world solid angle (1 / (2π² sin θ), or 1 / (4π),
+ * times the map's own). */
 inline float2 env_uv(const __global KLight* l, float3 w, float* to_solid_angle) {
-  float3 d = env_to_light(l, w);
+  float map_jacobian;
+  float3 d = env_to_light(l, w, &map_jacobian);
   if (l->mapping == KASHA_MAPPING_EQUAL_AREA) {
-    *to_solid_angle = 0.25f * KASHA_INV_PI;
+    *to_solid_angle = 0.25f * KASHA_INV_PI * map_jacobian;
     return equal_area_sphere_to_square(d);
   }
   /* sin θ from x and y: near the poles 1 − cos² θ loses it to rounding. */
   float cos_t = clamp(d.z, -1.0f, 1.0f), sin_t = length((float2)(d.x, d.y));
   float phi = atan2(d.y, d.x);
   if (phi < 0.0f) phi += 2.0f * KASHA_PI;
-  *to_solid_angle = sin_t > 0.0f ? 1.0f / (2.0f * KASHA_PI * KASHA_PI * sin_t) : 0.0f;
+  *to_solid_angle = sin_t > 0.0f ? map_jacobian / (2.0f * KASHA_PI * KASHA_PI * sin_t) : 0.0f;
   return (float2)(phi * (0.5f * KASHA_INV_PI), atan2(sin_t, cos_t) * KASHA_INV_PI);
 }
 
@@ -92,7 +116,10 @@ inline float3 env_direction(const __global KLight* l, float2 uv, float* to_solid
     d = (float3)(sin_t * c, sin_t * sn, cos_t);
     *to_solid_angle = sin_t > 0.0f ? 1.0f / (2.0f * KASHA_PI * KASHA_PI * sin_t) : 0.0f;
   }
-  return env_to_world(l, d);
+  float map_jacobian;
+  float3 w = env_to_world(l, d, &map_jacobian);
+  *to_solid_angle *= map_jacobian;
+  return w;
 }
 
 inline int env_texel(const __global KLight* l, float2 uv) {

@@ -4,7 +4,8 @@
  * the rest of the kernels read them through the Surface's pointers as any other spectrum.
  * Lookups follow pbrt-v4: (s, t) = (u·uscale + udelta, v·vscale + vdelta); an image's t runs up
  * from its bottom row; bilinear filtering between texel centres (or the nearest texel); wrap by
- * repeating, clamping to the edge, or black outside [0, 1)². A checkerboard is even where
+ * repeating, clamping to the edge, black outside [0, 1)², or mirrored as pbrt-v4's octahedral
+ * sphere. A checkerboard is even where
  * ⌊s⌋ + ⌊t⌋ is even. A spectral image blends its four texels' spectra, not their colours. */
 #ifndef KASHA_TEXTURE_H
 #define KASHA_TEXTURE_H
@@ -38,6 +39,19 @@ inline int texel_index(const __global KTexture* t, int x, int y) {
     y %= h;
     if (x < 0) x += w;
     if (y < 0) y += h;
+  } else if (t->wrap == KASHA_WRAP_OCTAHEDRAL) {
+    /* pbrt-v4's RemapPixelCoords: across a vertical edge mirrored in u and in v about its middle,
+     * across a horizontal edge likewise; clamped after for lookups further out. */
+    if (x < 0 || x >= w) {
+      x = x < 0 ? -x : 2 * w - 1 - x;
+      y = h - 1 - y;
+    }
+    if (y < 0 || y >= h) {
+      y = y < 0 ? -y : 2 * h - 1 - y;
+      x = w - 1 - x;
+    }
+    x = clamp(x, 0, w - 1);
+    y = clamp(y, 0, h - 1);
   } else if (t->wrap == KASHA_WRAP_CLAMP) {
     x = clamp(x, 0, w - 1);
     y = clamp(y, 0, h - 1);

@@ -189,6 +189,7 @@ KASHA_STATIC_SIZE(KMaterial, 96);
 #define KASHA_WRAP_REPEAT 0
 #define KASHA_WRAP_CLAMP 1
 #define KASHA_WRAP_BLACK 2
+#define KASHA_WRAP_OCTAHEDRAL 3 /* pbrt-v4's octahedralsphere: mirrored across the edges */
 
 typedef struct {
   int type;          /* KASHA_TEXTURE_* */
@@ -246,10 +247,12 @@ typedef struct {
   float cos_falloff; /* spot: where the falloff begins (full intensity inside) */
   int width, height; /* infinite: the image's size (its pixels) */
   int mapping;       /* infinite: KASHA_MAPPING_* */
-  float to_light[9]; /* infinite: the rotation from world to the image's frame, row by row */
+  float to_light[9]; /* infinite: the linear map from world directions to the image's frame, row
+                      * by row (directions are normalised after it) */
   int distribution;  /* infinite: offset of the image's sampling distribution, -1: uniform sphere */
   int lambda;        /* infinite with an image: offset of the bins' centre wavelengths (nm) */
-  float pad[5];
+  int general;       /* infinite: to_light is not orthogonal (its inverse and Jacobian are used) */
+  float pad[4];
 } KLight;
 KASHA_STATIC_SIZE(KLight, 128);
 

@@ -693,11 +693,12 @@ class Importer {
         l["image"] = file;
         l["mapping"] = "equal_area";
         l["scale"] = scale / pbrt_d65_photometric();
+        // Any invertible transform, as pbrt-v4 applies it to directions (normalised after it).
         Matrix rot = m;
         rot.topRightCorner<3, 1>().setZero();
         const Eigen::Matrix3d r = rot.topLeftCorner<3, 3>();
-        if (!(r * r.transpose()).isApprox(Eigen::Matrix3d::Identity(), 1e-6) || r.determinant() < 0)
-          pbrt_fail(where, "an environment image's transform must be a rotation in kasha");
+        if (!(std::abs(r.determinant()) > 1e-12 * std::pow(r.norm(), 3)))
+          pbrt_fail(where, "an environment image's transform is not invertible");
         if (!r.isApprox(Eigen::Matrix3d::Identity(), 1e-12))
           l["transform"] = {{"matrix", row_major(rot)}};
       } else {

@@ -1,9 +1,12 @@
 #include "scene/pbrt/pbrt_materials.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 
+#include "core/error.h"
 #include "core/printable.h"
+#include "image/color_encoding.h"
 #include "material/metals.h"
 #include "scene/pbrt/pbrt_spectra.h"
 
@@ -63,6 +66,54 @@ void uv_mapping(const PbrtParameters& params, const PbrtLocation& where, nlohman
   if (out["uscale"] == 0 || out["vscale"] == 0) pbrt_fail(where, "a texture scale of 0");
 }
 
+// pbrt-v4's imagemap (textures.cpp): its filter (point, bilinear; trilinear and EWA, which
+// filter by the footprint, approximated by bilinear), wrap, scale, invert and encoding (which
+// pbrt-v4 applies to PNGs only: other 8-bit formats are sRGB, float formats linear).
+nlohmann::json imagemap(const std::string& name, const PbrtParameters& params,
+                        const PbrtLocation& where, PbrtTextures& textures, PbrtTexture& t) {
+  nlohmann::json image = {{"type", "image"}};
+  const std::string file = params.get_string("filename", "");
+  if (file.empty())
+    pbrt_fail(where, "imagemap texture " + in_quotes(name) + " has no \"filename\"");
+  image["file"] = file;  // relative to the scene's folder, as the scene's JSON resolves it
+  const std::string filter = params.get_string("filter", "bilinear");
+  image["filter"] = filter == "point" ? "nearest" : "bilinear";
+  if (filter != "point" && filter != "bilinear" && filter != "trilinear" && filter != "ewa")
+    pbrt_warn(where, "texture " + in_quotes(name) + ": unknown filter " + in_quotes(filter) +
+                         ": bilinear, as pbrt-v4 falls back");
+  else if ((filter == "trilinear" || filter == "ewa") && !textures.filter_warned) {
+    textures.filter_warned = true;
+    pbrt_warn(where, "texture " + in_quotes(name) + ": filter " + in_quotes(filter) +
+                         " (and every later trilinear or EWA texture) is approximated by "
+                         "kasha's bilinear lookup");
+  }
+  const std::string wrap = params.get_string("wrap", "repeat");
+  if (wrap != "repeat" && wrap != "clamp" && wrap != "black" && wrap != "octahedralsphere")
+    pbrt_fail(where, "texture " + in_quotes(name) + ": unknown wrap mode " + in_quotes(wrap) +
+                         " (repeat, clamp, black, octahedralsphere)");
+  image["wrap"] = wrap == "octahedralsphere" ? "octahedral_sphere" : wrap;
+  std::string ext = std::filesystem::path(file).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  const std::string encoding = params.get_string("encoding", ext == ".png" ? "sRGB" : "linear");
+  try {
+    parse_color_encoding(encoding);
+  } catch (const Error& e) {
+    pbrt_fail(where, "texture " + in_quotes(name) + ": " + e.what());
+  }
+  if (ext == ".png") image["encoding"] = encoding;
+  params.get_float("maxanisotropy", 8);  // a filter setting: kasha does not filter by footprint
+  uv_mapping(params, where, image);
+  // pbrt-v4 inverts the scaled value; without inversion the scale is the texture's factor.
+  const double scale = params.get_float("scale", 1);
+  if (params.get_bool("invert", false)) {
+    image["invert"] = true;
+    image["scale"] = scale;
+  } else {
+    t.factor = scale;
+  }
+  return image;
+}
+
 }  // namespace
 
 void pbrt_define_texture(const std::string& name, const std::string& kind, const std::string& cls,
@@ -91,42 +142,9 @@ void pbrt_define_texture(const std::string& name, const std::string& kind, const
     }
     t.factor *= factor;
   } else if (cls == "imagemap") {
-    nlohmann::json image = {{"type", "image"}};
-    const std::string file = params.get_string("filename", "");
-    if (file.empty())
-      pbrt_fail(where, "imagemap texture " + in_quotes(name) + " has no \"filename\"");
-    const std::filesystem::path path(file);
-    image["file"] = file;  // relative to the scene's folder, as the scene's JSON resolves it
-    const std::string filter = params.get_string("filter", "bilinear");
-    if (filter == "point") {
-      image["filter"] = "nearest";
-    } else {
-      image["filter"] = "bilinear";
-      if (filter != "bilinear")
-        pbrt_warn(where, "texture " + in_quotes(name) + ": filter " + in_quotes(filter) +
-                             " is approximated by kasha's bilinear lookup");
-    }
-    const std::string wrap = params.get_string("wrap", "repeat");
-    if (wrap != "repeat" && wrap != "clamp" && wrap != "black")
-      pbrt_fail(where, "texture " + in_quotes(name) + ": wrap mode " + in_quotes(wrap) +
-                           " is not built in kasha (repeat, clamp, black)");
-    image["wrap"] = wrap;
-    if (params.get_bool("invert", false))
-      pbrt_fail(where, "texture " + in_quotes(name) + ": \"invert\" is not built in kasha");
-    const std::string encoding = params.get_string("encoding", "");
-    const std::string ext = path.extension().string();
-    if (!encoding.empty()) {
-      const bool exr = ext == ".exr" || ext == ".EXR";
-      const bool as_kasha = exr ? encoding == "linear" : encoding == "sRGB";
-      if (!as_kasha)
-        pbrt_fail(where, "texture " + in_quotes(name) + ": encoding " + in_quotes(encoding) +
-                             " is not kasha's for this file (PNG is read as sRGB, EXR as linear)");
-    }
-    params.get_float("maxanisotropy", 8);  // a filter setting: kasha does not filter by footprint
-    uv_mapping(params, where, image);
-    t.kasha_name = kasha_name;
-    t.factor = params.get_float("scale", 1);
+    nlohmann::json image = imagemap(name, params, where, textures, t);
     textures.kasha[kasha_name] = image;
+    t.kasha_name = kasha_name;
   } else if (cls == "checkerboard") {
     if (params.get_int("dimension", 2) != 2)
       pbrt_fail(where, "texture " + in_quotes(name) + ": a 3D checkerboard is not built in kasha");

@@ -24,6 +24,7 @@ struct PbrtTexture {
 struct PbrtTextures {
   std::map<std::string, PbrtTexture> spectrum, scalar;  // pbrt's "spectrum" and "float" textures
   nlohmann::json kasha = nlohmann::json::object();      // the scene's "textures"
+  bool filter_warned = false;  // an approximated filter is named once per scene, not per texture
 };
 
 // Defines texture `name` (`kind` "spectrum" or "float", class `cls`) from its parameters.
