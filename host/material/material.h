@@ -58,6 +58,10 @@ struct MaterialDesc {
   SpectrumPtr passive;     // ρ(λ)
   SpectrumPtr excitation;  // a(λ)
   SpectrumPtr emission;    // e(λ), any scale: normalized on the grid
+  // Lambert transmission τ(λ) to the other side (pbrt-v4's diffusetransmission): the passive part
+  // reflects ρ, this part transmits τ; `transmission_scale` multiplies both.
+  SpectrumPtr transmittance;
+  double transmission_scale = 1;
   std::optional<GlossDesc> gloss;
   std::optional<CoatDesc> coat;  // a dielectric coat over the Lambert parts
 
@@ -72,12 +76,14 @@ struct Material {
   std::vector<double> eta_c, k_c;  // a conductor's, per bin
   Roughness roughness;
   std::vector<double> rho;    // empty without a passive part
+  std::vector<double> tau;    // Lambert transmittance; empty without one
   std::vector<double> a;      // empty without fluorescence
   std::vector<double> e_hat;  // e·Δλ, sums to 1; empty without fluorescence
   std::optional<GlossDesc> gloss;
   std::optional<CoatDesc> coat;
 
   bool fluorescent() const { return !a.empty(); }
+  bool transmissive() const { return !tau.empty(); }
   bool specular() const { return kind != MaterialKind::measured; }
   bool dispersive() const { return !eta_bins.empty(); }
   bool rough() const { return specular() && roughness.rough(); }
