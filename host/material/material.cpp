@@ -124,6 +124,10 @@ static DielectricDesc parse_dielectric(const JsonNode& node) {
       d.eta_spectrum = parse_index_spectrum(*eta);
     }
   }
+  if (auto thin = node.find("thin")) {
+    d.thin = thin->boolean();
+    if (d.thin && d.eta_spectrum) thin->fail("a thin dielectric's \"eta\" must be a number");
+  }
   node.finish();
   return d;
 }
@@ -208,6 +212,8 @@ MaterialDesc parse_material(const JsonNode& node, const std::string& name) {
     if (dielectric) {
       m.kind = MaterialKind::dielectric;
       m.dielectric = parse_dielectric(*dielectric);
+      if (m.dielectric.thin && m.roughness.rough())
+        dielectric->fail("a thin dielectric is smooth: it takes no roughness");
     } else {
       m.kind = MaterialKind::conductor;
       m.conductor = parse_conductor(*conductor);
@@ -255,6 +261,7 @@ Material discretize_material(const MaterialDesc& desc, const WavelengthGrid& gri
   m.coat = desc.coat;
   m.kind = desc.kind;
   m.eta = desc.dielectric.eta;
+  m.thin = desc.dielectric.thin;
   m.roughness = desc.roughness;
   const std::string who = "material '" + desc.name + "' (" + desc.where + ")";
   if (desc.dielectric.eta_spectrum) {

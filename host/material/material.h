@@ -32,6 +32,9 @@ enum class MaterialKind { measured, dielectric, conductor };
 struct DielectricDesc {
   double eta = 1.5;          // a constant index
   SpectrumPtr eta_spectrum;  // or one that varies with wavelength
+  // A thin sheet (pbrt-v4's ThinDielectricBxDF): its two interfaces' every round trip summed,
+  // light reflects with R' = R + T²R / (1 − R²) or passes straight through.
+  bool thin = false;
 };
 
 // GGX roughness of a dielectric or conductor (docs/materials.md#rough-surfaces): pbrt-v4's
@@ -72,6 +75,7 @@ struct Material {
   std::string name;
   MaterialKind kind = MaterialKind::measured;
   double eta = 1;                  // a dielectric's constant index
+  bool thin = false;               // a thin dielectric sheet (DielectricDesc::thin)
   std::vector<double> eta_bins;    // a dispersive dielectric's, per bin (empty: constant)
   std::vector<double> eta_c, k_c;  // a conductor's, per bin
   Roughness roughness;

@@ -209,6 +209,7 @@ KMaterial KernelSceneData::kernel_material(const Material& m, const Scene& scene
            : m.kind == MaterialKind::conductor ? KASHA_KIND_CONDUCTOR
                                                : KASHA_KIND_MEASURED;
   k.eta = static_cast<float>(m.eta);
+  k.thin = m.thin ? 1 : 0;
   k.eta_spectrum = append(spectra, m.kind == MaterialKind::conductor ? m.eta_c : m.eta_bins);
   k.k_spectrum = append(spectra, m.k_c);
   if (m.rough()) {
@@ -383,6 +384,7 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_SCRATCH_TEXTURES"] = std::to_string(scratch_texture_offset(scene));
   d["KASHA_COATED"] = scene.coated() ? "1" : "0";
   d["KASHA_TRANSMISSION"] = scene.transmissive() ? "1" : "0";
+  d["KASHA_THIN"] = scene.thin() ? "1" : "0";
   d["KASHA_SHADING_NORMALS"] = scene.shading_normals() ? "1" : "0";
   d["KASHA_SCRATCH_COAT"] = std::to_string(scratch_coat_offset(scene));
   return d;

@@ -48,6 +48,9 @@ bool Scene::rough() const {
 bool Scene::coated() const {
   return any_used([](const Material& m) { return m.coat.has_value(); });
 }
+bool Scene::thin() const {
+  return any_used([](const Material& m) { return m.thin; });
+}
 bool Scene::transmissive() const {
   return any_used([](const Material& m) { return m.transmissive(); });
 }

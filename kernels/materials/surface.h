@@ -1,7 +1,7 @@
 /* A hit point's material as the kernels use it: pointers to its spectra in global memory (the
  * scene's zero spectrum for an absent part), so nothing of size N is copied per vertex.
  * Defines: KASHA_BINS, KASHA_FLUORESCENCE, KASHA_GLOSS, and KASHA_DIELECTRIC, KASHA_CONDUCTOR,
- * KASHA_DISPERSION, KASHA_ROUGH, KASHA_COATED, KASHA_TRANSMISSION (0 where the scene has no such material: the kernels carry no
+ * KASHA_DISPERSION, KASHA_ROUGH, KASHA_COATED, KASHA_TRANSMISSION, KASHA_THIN (0 where the scene has no such material: the kernels carry no
  * code for it). */
 #ifndef KASHA_SURFACE_H
 #define KASHA_SURFACE_H
@@ -14,6 +14,9 @@
 #endif
 #ifndef KASHA_TRANSMISSION
 #define KASHA_TRANSMISSION 0
+#endif
+#ifndef KASHA_THIN
+#define KASHA_THIN 0
 #endif
 
 typedef struct {
@@ -33,6 +36,9 @@ typedef struct {
 #endif
 #if KASHA_DIELECTRIC
   float eta;
+#endif
+#if KASHA_THIN
+  bool thin; /* a thin dielectric sheet: reflects or passes straight through (fresnel.h) */
 #endif
 #if KASHA_DISPERSION
   const __global float* eta_bins; /* a dispersive dielectric's eta per bin */
@@ -75,6 +81,9 @@ inline void load_surface(const SceneView* s, int material, Surface* out) {
 #endif
 #if KASHA_DIELECTRIC
   out->eta = m->eta;
+#endif
+#if KASHA_THIN
+  out->thin = m->thin != 0;
 #endif
 #if KASHA_DISPERSION
   out->dispersive = m->kind == KASHA_KIND_DIELECTRIC && m->eta_spectrum >= 0;

@@ -182,6 +182,13 @@ inline bool walk_specular(CameraWalk* w, const FilmView* f, const CameraVertex* 
       eta = surf->eta_bins[w->bin];
     }
 #endif
+#if KASHA_THIN
+    if (surf->thin) {
+      /* Reflects with R', else straight on: direction, weight and eta_scale unchanged. */
+      if (v->u_choice.x < thin_dielectric_reflectance(cos_i, eta)) w->dir = reflect_dir(w->dir, ns);
+      return true;
+    }
+#endif
     float etap = v->h.front ? eta : 1.0f / eta;
     if (v->u_choice.x < fresnel_dielectric(cos_i, etap)) {
       w->dir = reflect_dir(w->dir, ns);

@@ -211,6 +211,17 @@ inline int scatter_specular(Photon* p, const Surface* s, float3 x, float3 ns, bo
       eta = s->eta_bins[p->bin];
     }
 #endif
+#if KASHA_THIN
+    if (s->thin) {
+      /* Reflects with R', else passes straight through (thin_dielectric_reflectance). */
+      if (u_choice.x < thin_dielectric_reflectance(cos_i, eta))
+        p->direction = reflect_dir(d, ns);
+      else
+        side = -eps;
+      p->position = x + ns * side;
+      return photon_roulette(p, u_choice.y, depth) ? BRANCH_SPECULAR : BRANCH_ABSORBED;
+    }
+#endif
     float etap = front ? eta : 1.0f / eta;
     if (u_choice.x < fresnel_dielectric(cos_i, etap)) {
       p->direction = reflect_dir(d, ns);

@@ -294,6 +294,11 @@ nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& para
     }
     roughness(params, c);
     m["conductor"] = c;
+  } else if (type == "thindielectric") {
+    // pbrt-v4's ThinDielectricMaterial: "eta" (1.5), smooth.
+    const nlohmann::json eta = index_of_refraction(params, base_dir);
+    if (!eta.is_number()) pbrt_fail(where, "thindielectric: \"eta\" must be a number in kasha");
+    m["dielectric"] = {{"eta", eta}, {"thin", true}};
   } else if (type == "diffusetransmission") {
     diffuse_transmission(params, textures, base_dir, m);
   } else if (type == "kasha") {
@@ -301,10 +306,10 @@ nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& para
     const std::string file = params.get_string("file", "");
     if (file.empty()) pbrt_fail(where, "Material \"kasha\" needs \"string file\"");
     m["file"] = file;
-  } else if (type == "thindielectric" || type == "mix" || type == "measured" || type == "hair" ||
-             type == "subsurface" || type == "coatedconductor") {
+  } else if (type == "mix" || type == "measured" || type == "hair" || type == "subsurface" ||
+             type == "coatedconductor") {
     pbrt_fail(where, "material " + in_quotes(type) + " is not built in kasha (diffuse, "
-                     "coateddiffuse, diffusetransmission, dielectric, conductor, kasha)");
+                     "coateddiffuse, diffusetransmission, dielectric, thindielectric, conductor, kasha)");
   } else {
     pbrt_fail(where, "unknown material type " + in_quotes(type));
   }
