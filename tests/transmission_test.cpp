@@ -92,12 +92,39 @@ const char* kEnclosure = R"(
     {"type": "sphere", "center": [0, 0, 0], "radius": 2, "material": "clay", "inward": true,
      "emission": {"csv": ")";
 
-std::string enclosure(bool veil) {
-  std::string s = std::string("{\"kasha_scene\": 1,") + kEnclosure +
-                  source_path("scenes/data/CIE_D65_300_780.csv") + "\", \"scale\": 0.01}}";
+// `textured`: the veil's reflectance texture (a checkerboard of ones) multiplies ρ and τ.
+std::string enclosure(bool veil, bool textured = false) {
+  std::string s =
+      std::string("{\"kasha_scene\": 1,") +
+      (textured ? R"("textures": {"ones": {"type": "checkerboard", "even": 1, "odd": 1}},)" : "") +
+      kEnclosure + source_path("scenes/data/CIE_D65_300_780.csv") + "\", \"scale\": 0.01}}";
   if (veil)
     s += R"(, {"type": "sphere", "center": [0.8, 0.25, -0.4], "radius": 0.35, "material": "veil"})";
-  return s + "]}";
+  s += "]}";
+  if (textured) {
+    auto j = nlohmann::json::parse(s);
+    j["materials"]["veil"]["textures"] = {{"reflectance", "ones"}};
+    s = j.dump();
+  }
+  return s;
+}
+
+// The textured kernels' path (ρ and τ through the texture) in the two integrators that sample
+// the surface from both ends.
+TEST(DiffuseTransmission, ATexturedTransmitterKeepsTheFurnaceUniform) {
+  for (const char* integrator : {"backward", "vcm"}) {
+    RenderSettings s;
+    s.integrator = integrator;
+    s.grid = GridRequest{380, 780, 40};
+    Furnace f = analyze_furnace(load_scene(write_file("enclosure.json", enclosure(false)), s.grid));
+    ASSERT_TRUE(f.qualifies) << f.why_not;
+    s.integrator_settings.spp = 8;
+    s.integrator_settings.photons = 1 << 13;
+    s.passes = 8;
+    RenderResult r = render_scene(write_file("veil_textured.json", enclosure(true, true)), s);
+    EXPECT_TRUE(r.scene.textured());
+    expect_bins_match(r, f.radiance, 0.02, integrator, true);
+  }
 }
 
 class TransmissionFurnace : public ::testing::TestWithParam<std::string> {};
