@@ -127,6 +127,19 @@ TEST(DiffuseTransmission, ATexturedTransmitterKeepsTheFurnaceUniform) {
   }
 }
 
+// Lean: KASHA_TRANSMISSION only where a shape's material transmits, so other scenes compile the
+// kernels they did before; a thin dielectric's KASHA_THIN alike.
+TEST(DiffuseTransmission, KernelsCarryItOnlyWhereASceneUsesIt) {
+  CommandResult veil = run_kasha("info " + write_file("veil_info.json", enclosure(true)));
+  ASSERT_EQ(veil.exit_code, 0) << veil.err;
+  EXPECT_NE(veil.out.find("-D KASHA_TRANSMISSION=1"), std::string::npos) << veil.out;
+  EXPECT_NE(veil.out.find("-D KASHA_THIN=0"), std::string::npos) << veil.out;
+  CommandResult plain = run_kasha("info " + source_path("scenes/cornell_box.json"));
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_NE(plain.out.find("-D KASHA_TRANSMISSION=0"), std::string::npos) << plain.out;
+  EXPECT_NE(plain.out.find("-D KASHA_THIN=0"), std::string::npos) << plain.out;
+}
+
 class TransmissionFurnace : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(TransmissionFurnace, LosslessTransmitterLeavesTheFurnaceUniform) {
