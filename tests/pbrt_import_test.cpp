@@ -310,7 +310,7 @@ TEST(PbrtImport, BadInputIsOneLineWithItsFileAndLine) {
   const std::vector<Case> cases = {
       {"Frobnicate 1", "b.pbrt:5: unknown directive \"Frobnicate\""},
       {"Shape \"teapot\"", "b.pbrt:5: unknown shape type \"teapot\""},
-      {"Material \"thindielectric\"", "b.pbrt:5: material \"thindielectric\" is not built in kasha"},
+      {"Material \"measured\"", "b.pbrt:5: material \"measured\" is not built in kasha"},
       {"Material \"diffuse\" \"texture reflectance\" \"nope\"",
        "b.pbrt:5: \"texture reflectance\": no spectrum texture named \"nope\" was defined before"},
       {"MediumInterface \"fog\" \"\"\n" + std::string(kQuad),

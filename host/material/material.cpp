@@ -100,7 +100,9 @@ static CoatDesc parse_coat(const JsonNode& node) {
   if (auto d = node.find("thickness")) c.thickness = d->number_in(0.0, 1e3);
   const Roughness r = parse_roughness(node);
   if (r.alpha_x != r.alpha_y)
-    node.fail("an anisotropic coat is not built: give \"roughness\" (or equal \"uroughness\" and \"vroughness\")");
+    node.fail(
+        "an anisotropic coat is not built: give \"roughness\" (or equal \"uroughness\" and "
+        "\"vroughness\")");
   c.alpha = r.alpha_x;
   if (auto a = node.find("albedo"))
     if (!(a->number_in(0.0, 1.0) == 0))
@@ -121,6 +123,10 @@ static DielectricDesc parse_dielectric(const JsonNode& node) {
     } else {
       d.eta_spectrum = parse_index_spectrum(*eta);
     }
+  }
+  if (auto thin = node.find("thin")) {
+    d.thin = thin->boolean();
+    if (d.thin && d.eta_spectrum) thin->fail("a thin dielectric's \"eta\" must be a number");
   }
   node.finish();
   return d;
@@ -158,6 +164,15 @@ void apply_coat(MaterialDesc& m, const JsonNode& coat) {
   m.coat = parse_coat(coat);
 }
 
+// {"transmittance": SPECTRUM, "scale": k}: Lambert transmission beside the passive reflectance
+// (pbrt-v4's DiffuseTransmissionBxDF); without a "passive" part the reflectance is 0.
+static void parse_transmission(const JsonNode& node, MaterialDesc& m) {
+  m.transmittance = parse_spectrum(node.at("transmittance"));
+  if (auto scale = node.find("scale")) m.transmission_scale = scale->number_in(0.0, 1e3);
+  node.finish();
+  if (!m.passive) m.passive = std::make_shared<ConstantSpectrum>(0.0);
+}
+
 MaterialDesc parse_material(const JsonNode& node, const std::string& name) {
   MaterialDesc m;
   m.name = name;
@@ -179,6 +194,7 @@ MaterialDesc parse_material(const JsonNode& node, const std::string& name) {
     fluo->finish();
   }
   if (auto gloss = node.find("gloss")) m.gloss = parse_gloss(*gloss);
+  if (auto transmission = node.find("transmission")) parse_transmission(*transmission, m);
   if (auto coat = node.find("coat")) {
     if (node.has("dielectric") || node.has("conductor"))
       coat->fail("a dielectric or conductor takes no coat");
@@ -188,12 +204,16 @@ MaterialDesc parse_material(const JsonNode& node, const std::string& name) {
   if (dielectric || conductor) {
     const JsonNode& own = dielectric ? *dielectric : *conductor;
     if (dielectric && conductor) own.fail("a material is a dielectric or a conductor, not both");
-    if (m.passive || m.excitation || m.gloss)
-      own.fail("a dielectric or conductor has no \"passive\", \"fluorescence\" or \"gloss\" part");
+    if (m.passive || m.excitation || m.gloss || m.transmittance)
+      own.fail(
+          "a dielectric or conductor has no \"passive\", \"fluorescence\", \"gloss\" or "
+          "\"transmission\" part");
     m.roughness = parse_roughness(own);
     if (dielectric) {
       m.kind = MaterialKind::dielectric;
       m.dielectric = parse_dielectric(*dielectric);
+      if (m.dielectric.thin && m.roughness.rough())
+        dielectric->fail("a thin dielectric is smooth: it takes no roughness");
     } else {
       m.kind = MaterialKind::conductor;
       m.conductor = parse_conductor(*conductor);
@@ -218,6 +238,22 @@ static std::string nm_text(double nm) {
   return o.str();
 }
 
+// τ on the grid, and the transmission's scale applied to ρ and τ alike (after ρ's own check, as
+// pbrt-v4 scales its reflectance and transmittance). A coat or gloss lobe over it is refused.
+static void discretize_transmission(const MaterialDesc& desc, const WavelengthGrid& grid,
+                                    const std::string& who, Material& m) {
+  if (desc.coat || desc.gloss || desc.excitation)
+    throw Error(who + ": a \"transmission\" part takes no coat, gloss or fluorescence");
+  m.tau = grid.resample(*desc.transmittance);
+  for (int i = 0; i < grid.bins; ++i) {
+    if (!(m.tau[i] >= 0))
+      throw Error(who + ": transmittance " + std::to_string(m.tau[i]) + " < 0 at " +
+                  nm_text(grid.center(i)));
+    m.tau[i] *= desc.transmission_scale;
+    m.rho[i] *= desc.transmission_scale;
+  }
+}
+
 Material discretize_material(const MaterialDesc& desc, const WavelengthGrid& grid) {
   Material m;
   m.name = desc.name;
@@ -225,6 +261,7 @@ Material discretize_material(const MaterialDesc& desc, const WavelengthGrid& gri
   m.coat = desc.coat;
   m.kind = desc.kind;
   m.eta = desc.dielectric.eta;
+  m.thin = desc.dielectric.thin;
   m.roughness = desc.roughness;
   const std::string who = "material '" + desc.name + "' (" + desc.where + ")";
   if (desc.dielectric.eta_spectrum) {
@@ -272,13 +309,17 @@ Material discretize_material(const MaterialDesc& desc, const WavelengthGrid& gri
         throw Error(who + ": excitation " + std::to_string(m.a[i]) + " > 1 at " +
                     nm_text(grid.center(i)));
   }
+  if (desc.transmittance) discretize_transmission(desc, grid, who, m);
   double g = m.gloss_reflectance();
   for (int i = 0; i < grid.bins; ++i) {
     double rho = m.rho.empty() ? 0 : m.rho[i], a = m.a.empty() ? 0 : m.a[i];
-    if (g + rho + a > 1.0 + 1e-6) {
+    double tau = m.tau.empty() ? 0 : m.tau[i];
+    if (g + rho + a + tau > 1.0 + 1e-6) {
       std::ostringstream msg;
       msg << who << ": energy gain at " << nm_text(grid.center(i)) << ": gloss " << g
-          << " + passive " << rho << " + excitation " << a << " = " << g + rho + a << " > 1";
+          << " + passive " << rho << " + excitation " << a;
+      if (!m.tau.empty()) msg << " + transmittance " << tau;
+      msg << " = " << g + rho + a + tau << " > 1";
       throw Error(msg.str());
     }
   }

@@ -32,6 +32,9 @@ enum class MaterialKind { measured, dielectric, conductor };
 struct DielectricDesc {
   double eta = 1.5;          // a constant index
   SpectrumPtr eta_spectrum;  // or one that varies with wavelength
+  // A thin sheet (pbrt-v4's ThinDielectricBxDF): its two interfaces' every round trip summed,
+  // light reflects with R' = R + T²R / (1 − R²) or passes straight through.
+  bool thin = false;
 };
 
 // GGX roughness of a dielectric or conductor (docs/materials.md#rough-surfaces): pbrt-v4's
@@ -58,6 +61,10 @@ struct MaterialDesc {
   SpectrumPtr passive;     // ρ(λ)
   SpectrumPtr excitation;  // a(λ)
   SpectrumPtr emission;    // e(λ), any scale: normalized on the grid
+  // Lambert transmission τ(λ) to the other side (pbrt-v4's diffusetransmission): the passive part
+  // reflects ρ, this part transmits τ; `transmission_scale` multiplies both.
+  SpectrumPtr transmittance;
+  double transmission_scale = 1;
   std::optional<GlossDesc> gloss;
   std::optional<CoatDesc> coat;  // a dielectric coat over the Lambert parts
 
@@ -68,16 +75,19 @@ struct Material {
   std::string name;
   MaterialKind kind = MaterialKind::measured;
   double eta = 1;                  // a dielectric's constant index
+  bool thin = false;               // a thin dielectric sheet (DielectricDesc::thin)
   std::vector<double> eta_bins;    // a dispersive dielectric's, per bin (empty: constant)
   std::vector<double> eta_c, k_c;  // a conductor's, per bin
   Roughness roughness;
   std::vector<double> rho;    // empty without a passive part
+  std::vector<double> tau;    // Lambert transmittance; empty without one
   std::vector<double> a;      // empty without fluorescence
   std::vector<double> e_hat;  // e·Δλ, sums to 1; empty without fluorescence
   std::optional<GlossDesc> gloss;
   std::optional<CoatDesc> coat;
 
   bool fluorescent() const { return !a.empty(); }
+  bool transmissive() const { return !tau.empty(); }
   bool specular() const { return kind != MaterialKind::measured; }
   bool dispersive() const { return !eta_bins.empty(); }
   bool rough() const { return specular() && roughness.rough(); }

@@ -177,12 +177,25 @@ KernelSceneData::KernelSceneData(const Scene& scene)
   add_light_sampling(scene);
 }
 
+// The share of the Lambert part's samples sent through the surface: mean τ over mean ρ + τ, a
+// constant of the material so every integrator's densities agree (kernels/materials/surface.h).
+static float transmit_share(const Material& m) {
+  double rho = 0, tau = 0;
+  for (size_t i = 0; i < m.tau.size(); ++i) rho += m.rho[i], tau += m.tau[i];
+  if (!(tau > 0)) return 0.0f;
+  // Neither side's share quite 0, so a texture or spectrum that reflects where the mean
+  // does not is still sampled.
+  return static_cast<float>(std::clamp(tau / (rho + tau), 0.05, 0.95));
+}
+
 // A material in kernel layout, its spectra and gloss lobe appended to `spectra` and `lobes`.
 KMaterial KernelSceneData::kernel_material(const Material& m, const Scene& scene,
                                            const BinnedObserver& obs) {
   KMaterial k{};
   k.passive = append(spectra, m.rho);
   k.excitation = append(spectra, m.a);
+  k.transmittance = append(spectra, m.tau);
+  k.transmit_share = transmit_share(m);
   k.emission = append(spectra, m.e_hat);
   k.gloss = static_cast<float>(m.gloss_reflectance());
   k.lobe = -1;
@@ -197,6 +210,7 @@ KMaterial KernelSceneData::kernel_material(const Material& m, const Scene& scene
            : m.kind == MaterialKind::conductor ? KASHA_KIND_CONDUCTOR
                                                : KASHA_KIND_MEASURED;
   k.eta = static_cast<float>(m.eta);
+  k.thin = m.thin ? 1 : 0;
   k.eta_spectrum = append(spectra, m.kind == MaterialKind::conductor ? m.eta_c : m.eta_bins);
   k.k_spectrum = append(spectra, m.k_c);
   if (m.rough()) {
@@ -340,7 +354,9 @@ static int scratch_texture_offset(const Scene& scene) {
 }
 
 static int scratch_coat_offset(const Scene& scene) {
-  return scratch_texture_offset(scene) + (scene.textured() ? 2 * scene.grid.bins : 0);
+  // A texture's reflectance, excitation and (over a transmitting material) transmittance.
+  const int slots = scene.transmissive() ? 3 : 2;
+  return scratch_texture_offset(scene) + (scene.textured() ? slots * scene.grid.bins : 0);
 }
 
 int scratch_floats(const Scene& scene) {
@@ -369,6 +385,8 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_EMISSION_TEXTURES"] = scene.emission_textured() ? "1" : "0";
   d["KASHA_SCRATCH_TEXTURES"] = std::to_string(scratch_texture_offset(scene));
   d["KASHA_COATED"] = scene.coated() ? "1" : "0";
+  d["KASHA_TRANSMISSION"] = scene.transmissive() ? "1" : "0";
+  d["KASHA_THIN"] = scene.thin() ? "1" : "0";
   d["KASHA_SHADING_NORMALS"] = scene.shading_normals() ? "1" : "0";
   d["KASHA_SCRATCH_COAT"] = std::to_string(scratch_coat_offset(scene));
   return d;

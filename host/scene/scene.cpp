@@ -48,6 +48,12 @@ bool Scene::rough() const {
 bool Scene::coated() const {
   return any_used([](const Material& m) { return m.coat.has_value(); });
 }
+bool Scene::thin() const {
+  return any_used([](const Material& m) { return m.thin; });
+}
+bool Scene::transmissive() const {
+  return any_used([](const Material& m) { return m.transmissive(); });
+}
 bool Scene::has_delta_surfaces() const {
   return any_used([](const Material& m) {
     return (m.specular() && !m.rough()) || (m.gloss && m.gloss->mirror) ||

@@ -65,6 +65,8 @@ struct Scene {
   bool dispersive() const;             // some shape's material is a dispersive dielectric
   bool rough() const;                  // some shape's material is a rough dielectric or conductor
   bool coated() const;                 // some shape's material has a coat
+  bool transmissive() const;           // some shape's material transmits diffusely
+  bool thin() const;                   // some shape's material is a thin dielectric
   bool shading_normals() const { return !normals.empty(); }  // some shape has them
   // Some used material scatters by a delta lobe: an ideal mirror, a smooth dielectric or
   // conductor, or a smooth coat's reflection.

@@ -35,8 +35,7 @@ inline float trace_camera_path(const SceneView* s, const FilmView* f, float3 org
     if (choice < probs.x) {
       if (!walk_gloss(&w, s, &v, sampler)) return 0.0f;
     } else if (choice < probs.x + probs.y || probs.z <= 0.0f) {
-      lambert_bounce(&w, &v, probs.y);
-      pw_scatter_diagonal(&w.p, v.surf.rho, lambert_weight(&w, &v) / probs.y);
+      passive_bounce(&w, &v, probs.y);
 #if KASHA_FLUORESCENCE
     } else {
       lambert_bounce(&w, &v, probs.z);

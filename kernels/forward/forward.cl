@@ -76,6 +76,16 @@ inline void splat_surface(const SceneView* s, const FilmView* f, SplatTarget* ta
   int pixel;
   float k;
   float3 ns = hit_ng(h), x = h->x;
+  const __global float* rho = surf->rho;
+  bool through = false;
+#if KASHA_TRANSMISSION
+  /* A camera behind a transmitting surface sees the photon through its τ (surface.h). */
+  if (surf->share_t > 0.0f && dot(camera_position(&s->camera) - x, ns) < 0.0f) {
+    through = true;
+    ns = -ns;
+    rho = surf->tau;
+  }
+#endif
 #if KASHA_GLOSS
   bool glossy = surf->g > 0.0f && !surf->mirror;
 #else
@@ -92,7 +102,7 @@ inline void splat_surface(const SceneView* s, const FilmView* f, SplatTarget* ta
     film_rows_clear(rows);
 #if KASHA_SHADING_NORMALS
     /* Towards a camera below the shading normal's hemisphere the surface sends nothing. */
-    if (!hit_seen(h, normalize(x - camera_position(&s->camera)))) k = 0.0f;
+    if (hit_seen(h, normalize(x - camera_position(&s->camera))) == through) k = 0.0f;
     k *= photon_arrival_correction(h, p->direction);
 #endif
     float lambert = k * KASHA_INV_PI / s->bin_nm;
@@ -100,7 +110,7 @@ inline void splat_surface(const SceneView* s, const FilmView* f, SplatTarget* ta
     /* Under a coat, t(θi) t(θo) / η² (coat.h). */
     if (surf->coated) lambert *= surface_lambert_weight(surf, dot(normalize(camera_position(&s->camera) - x), h->ns));
 #endif
-    film_rows(f, p->power, surf->rho, 0, lambert, rows);
+    film_rows(f, p->power, rho, 0, lambert, rows);
 #if KASHA_FLUORESCENCE
     if (surf->fluorescent) film_rows(f, 0, surf->ehat, 0, spectrum_dot(KASHA_BINS, p->power, surf->a, 0) * lambert, rows);
 #endif

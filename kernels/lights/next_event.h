@@ -31,6 +31,16 @@ inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* 
   if (!(dist > eps + lp.eps)) return;
   float3 wi = to / dist;
   float cos_x = dot(ns, wi), cos_l = -dot(lp.normal, wi);
+  bool through = false;
+#if KASHA_TRANSMISSION
+  /* A light behind a transmitting surface reaches it through its τ (surface.h). */
+  if (cos_x < 0.0f && surf->share_t > 0.0f) {
+    through = true;
+    cos_x = -cos_x;
+    ns = -ns;
+    ng = -ng;
+  }
+#endif
   if (cos_x <= 0.0f || cos_l <= 0.0f) return;
 #if KASHA_SHADING_NORMALS
   /* A light behind the geometric surface does not reach it, whatever the shading normal says. */
@@ -58,9 +68,11 @@ inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* 
 #else
   const float reach = 1.0f;
 #endif
+  float side = surface_side_share(surf, through);
   if (surf->passive)
-    pw_add(p, f, surf->rho, le, lambert_base * KASHA_INV_PI * mis_weight(pdf_light, reach * probs.y * lambert_pdf),
-           rows);
+    pw_add(p, f, surface_side_spectrum(surf, through), le,
+           lambert_base * KASHA_INV_PI * mis_weight(pdf_light, reach * probs.y * side * lambert_pdf), rows);
+  if (through) return; /* a transmitting material has no other part (host/material) */
 #if KASHA_FLUORESCENCE
   if (surf->fluorescent) {
     float absorbed = spectrum_dot(KASHA_BINS, 0, surf->a, le);

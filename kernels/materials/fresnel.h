@@ -16,6 +16,15 @@ inline float fresnel_dielectric(float cos_i, float eta) {
   return 0.5f * (r_parallel * r_parallel + r_perpendicular * r_perpendicular);
 }
 
+/* A thin dielectric sheet's reflectance (pbrt-v4's ThinDielectricBxDF): R' = R + T²R / (1 − R²)
+ * with R = F(cos_i, eta) and T = 1 − R, every round trip between its faces summed; the rest passes
+ * straight through. */
+inline float thin_dielectric_reflectance(float cos_i, float eta) {
+  float r = fresnel_dielectric(fabs(cos_i), eta);
+  if (r < 1.0f) r += (1.0f - r) * (1.0f - r) * r / (1.0f - r * r);
+  return r;
+}
+
 /* The direction d refracted through the interface with normal n on d's side (dot(d, n) < 0,
  * cos_i = -dot(d, n)), eta as above; the caller has ruled out total internal reflection. */
 inline float3 refract_dir(float3 d, float3 n, float cos_i, float eta) {

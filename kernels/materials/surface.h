@@ -1,7 +1,7 @@
 /* A hit point's material as the kernels use it: pointers to its spectra in global memory (the
  * scene's zero spectrum for an absent part), so nothing of size N is copied per vertex.
  * Defines: KASHA_BINS, KASHA_FLUORESCENCE, KASHA_GLOSS, and KASHA_DIELECTRIC, KASHA_CONDUCTOR,
- * KASHA_DISPERSION, KASHA_ROUGH, KASHA_COATED (0 where the scene has no such material: the kernels carry no
+ * KASHA_DISPERSION, KASHA_ROUGH, KASHA_COATED, KASHA_TRANSMISSION, KASHA_THIN (0 where the scene has no such material: the kernels carry no
  * code for it). */
 #ifndef KASHA_SURFACE_H
 #define KASHA_SURFACE_H
@@ -11,6 +11,12 @@
 
 #ifndef KASHA_COATED
 #define KASHA_COATED 0
+#endif
+#ifndef KASHA_TRANSMISSION
+#define KASHA_TRANSMISSION 0
+#endif
+#ifndef KASHA_THIN
+#define KASHA_THIN 0
 #endif
 
 typedef struct {
@@ -31,6 +37,9 @@ typedef struct {
 #if KASHA_DIELECTRIC
   float eta;
 #endif
+#if KASHA_THIN
+  bool thin; /* a thin dielectric sheet: reflects or passes straight through (fresnel.h) */
+#endif
 #if KASHA_DISPERSION
   const __global float* eta_bins; /* a dispersive dielectric's eta per bin */
   bool dispersive;
@@ -47,6 +56,10 @@ typedef struct {
   const __global float* coat_table; /* a rough coat's E(μ) and t(μ) */
   float lambert_out;    /* t(θ) / η² on the side the surface was met from */
   float lambert_albedo; /* t(θ) τ̄ / η² */
+#endif
+#if KASHA_TRANSMISSION
+  const __global float* tau; /* Lambert transmittance to the other side (the zero spectrum: none) */
+  float share_t;             /* the share of the passive part's samples sent through; 0: none */
 #endif
 } Surface;
 
@@ -69,6 +82,9 @@ inline void load_surface(const SceneView* s, int material, Surface* out) {
 #if KASHA_DIELECTRIC
   out->eta = m->eta;
 #endif
+#if KASHA_THIN
+  out->thin = m->thin != 0;
+#endif
 #if KASHA_DISPERSION
   out->dispersive = m->kind == KASHA_KIND_DIELECTRIC && m->eta_spectrum >= 0;
   out->eta_bins = s->spectra + max(m->eta_spectrum, 0);
@@ -86,6 +102,34 @@ inline void load_surface(const SceneView* s, int material, Surface* out) {
   out->coat_table = s->spectra + max(m->coat_table, 0);
   out->lambert_out = out->lambert_albedo = 1.0f;
 #endif
+#if KASHA_TRANSMISSION
+  out->tau = s->spectra + max(m->transmittance, 0);
+  out->share_t = m->transmit_share;
+#endif
+}
+
+/* The passive part (pbrt-v4's DiffuseTransmissionBxDF where it transmits): ρ/π between
+ * directions on one side of the surface, τ/π between directions on opposite sides. Its samples
+ * go through with the material's constant share (host: mean τ / mean ρ + τ), so every
+ * integrator's densities agree; these give the spectrum and share of either side. */
+inline bool surface_transmits(const Surface* s) {
+#if KASHA_TRANSMISSION
+  return s->share_t > 0.0f;
+#else
+  return false;
+#endif
+}
+inline float surface_side_share(const Surface* s, bool through) {
+#if KASHA_TRANSMISSION
+  if (s->share_t > 0.0f) return through ? s->share_t : 1.0f - s->share_t;
+#endif
+  return through ? 0.0f : 1.0f;
+}
+inline const __global float* surface_side_spectrum(const Surface* s, bool through) {
+#if KASHA_TRANSMISSION
+  if (through) return s->tau;
+#endif
+  return s->rho;
 }
 
 /* A dielectric or conductor interface: smooth (one delta lobe each way) or rough

@@ -148,6 +148,13 @@ inline void load_textured_surface(const SceneView* s, const HitPoint* h, Surface
   if (m->reflectance_texture >= 0) {
     texture_multiply(s, &s->textures[m->reflectance_texture], uv, surf->rho, slot);
     surf->rho = slot;
+#if KASHA_TRANSMISSION
+    /* The reflectance texture colours the transmittance alike (docs/materials.md). */
+    if (surf->share_t > 0.0f) {
+      texture_multiply(s, &s->textures[m->reflectance_texture], uv, surf->tau, slot + 2 * KASHA_BINS);
+      surf->tau = slot + 2 * KASHA_BINS;
+    }
+#endif
   }
 #if KASHA_FLUORESCENCE
   if (m->fluorescence_texture >= 0) {

@@ -123,14 +123,26 @@ inline float camera_path(const SceneView* s, const FilmView* f, int pixel, Sampl
         vp[KASHA_VP_DISTANCE] = travelled;
         VertexFactorLayout layout = {KASHA_BINS, KASHA_FILM_ROWS, KASHA_SPECTRAL_FILM, KASHA_FLUORESCENCE, f->cmf};
         float k = KASHA_INV_PI / (1.0f - p_gloss);
+        const __global float* rho = v.surf.rho;
+#if KASHA_TRANSMISSION
+        /* A transmitting surface gathers one side's photons, drawn by its share on the unused
+         * direction sample: those arriving through it take τ (surface.h). */
+        if (v.surf.share_t > 0.0f) {
+          bool through = v.u_dir.x < v.surf.share_t;
+          k /= surface_side_share(&v.surf, through);
+          rho = surface_side_spectrum(&v.surf, through);
+          if (through) ns = -ns;
+          vp[3] = ns.x, vp[4] = ns.y, vp[5] = ns.z;
+        }
+#endif
 #if KASHA_COATED
         /* Under a coat, t(θo) / η² towards the viewer; the photons carry their own t(θi). */
         if (v.surf.coated) k *= v.surf.lambert_out;
 #endif
 #if KASHA_FLUORESCENCE
-        vf_build(layout, vp, w.p.w, v.surf.rho, v.surf.ehat, v.surf.a, k);
+        vf_build(layout, vp, w.p.w, rho, v.surf.ehat, v.surf.a, k);
 #else
-        vf_build(layout, vp, w.p.w, v.surf.rho, 0, 0, k);
+        vf_build(layout, vp, w.p.w, rho, 0, 0, k);
 #endif
       }
       return 0.0f;

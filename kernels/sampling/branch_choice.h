@@ -17,6 +17,9 @@ inline float3 branch_probabilities(const PathWeight* p, const FilmView* f, const
   float wg = surf->g * w0;
   float lambert = surface_lambert_albedo(surf);
   float wp = surf->passive ? pw_energy(p, f, surf->rho) * lambert : 0.0f;
+#if KASHA_TRANSMISSION
+  if (surf->share_t > 0.0f) wp += pw_energy(p, f, surf->tau);
+#endif
   float wf = 0.0f;
 #if KASHA_FLUORESCENCE
   if (surf->fluorescent) wf = pw_energy(p, f, surf->ehat) * surf->a_sum * lambert;

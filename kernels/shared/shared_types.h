@@ -173,8 +173,12 @@ typedef struct {
   float coat_alpha;     /* a rough coat's GGX roughness; 0: smooth */
   int coat_table;       /* a rough coat's E(μ) then t(μ), KASHA_COAT_TABLE values each at
                          * μ = k / (KASHA_COAT_TABLE − 1); -1: smooth */
+  int transmittance;    /* tau(lambda): Lambert transmission to the other side; -1: none */
+  float transmit_share; /* the share of Lambert samples sent through (surface.h); 0 without tau */
+  int thin;             /* a dielectric: 1 for a thin sheet (fresnel.h's thin_dielectric_reflectance) */
+  int pad_material;
 } KMaterial;
-KASHA_STATIC_SIZE(KMaterial, 96);
+KASHA_STATIC_SIZE(KMaterial, 112);
 
 /* Entries of a rough coat's tables (host/material/coat.h's kCoatTableSize). */
 #define KASHA_COAT_TABLE 64

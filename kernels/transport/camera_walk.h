@@ -182,6 +182,13 @@ inline bool walk_specular(CameraWalk* w, const FilmView* f, const CameraVertex* 
       eta = surf->eta_bins[w->bin];
     }
 #endif
+#if KASHA_THIN
+    if (surf->thin) {
+      /* Reflects with R', else straight on: direction, weight and eta_scale unchanged. */
+      if (v->u_choice.x < thin_dielectric_reflectance(cos_i, eta)) w->dir = reflect_dir(w->dir, ns);
+      return true;
+    }
+#endif
     float etap = v->h.front ? eta : 1.0f / eta;
     if (v->u_choice.x < fresnel_dielectric(cos_i, etap)) {
       w->dir = reflect_dir(w->dir, ns);
@@ -315,6 +322,28 @@ inline float lambert_weight(const CameraWalk* w, const CameraVertex* v) {
 #else
   return 1.0f;
 #endif
+}
+
+/* The passive branch chosen with probability `prob`: a cosine-distributed direction on the side the
+ * path arrived from (weight ρ), or through a transmitting surface (τ), the side drawn on the
+ * direction sample with the material's share (surface_side_share). */
+inline void passive_bounce(CameraWalk* w, const CameraVertex* v, float prob) {
+#if KASHA_TRANSMISSION
+  float st = v->surf.share_t;
+  if (st > 0.0f) {
+    bool through = v->u_dir.x < st;
+    float u = through ? v->u_dir.x / st : (v->u_dir.x - st) / (1.0f - st);
+    float side = through ? st : 1.0f - st;
+    float3 n = through ? -v->h.ns : v->h.ns;
+    w->dir = sample_cosine_hemisphere(n, min(u, 0x1.fffffep-1f), v->u_dir.y);
+    w->specular = false;
+    w->prev_pdf = prob * side * cosine_hemisphere_pdf(dot(w->dir, n));
+    pw_scatter_diagonal(&w->p, surface_side_spectrum(&v->surf, through), 1.0f / (prob * side));
+    return;
+  }
+#endif
+  lambert_bounce(w, v, prob);
+  pw_scatter_diagonal(&w->p, v->surf.rho, lambert_weight(w, v) / prob);
 }
 
 /* After the vertex's bounce: the end of a path that would leak through the surface (hit_no_leak),

@@ -211,6 +211,17 @@ inline int scatter_specular(Photon* p, const Surface* s, float3 x, float3 ns, bo
       eta = s->eta_bins[p->bin];
     }
 #endif
+#if KASHA_THIN
+    if (s->thin) {
+      /* Reflects with R', else passes straight through (thin_dielectric_reflectance). */
+      if (u_choice.x < thin_dielectric_reflectance(cos_i, eta))
+        p->direction = reflect_dir(d, ns);
+      else
+        side = -eps;
+      p->position = x + ns * side;
+      return photon_roulette(p, u_choice.y, depth) ? BRANCH_SPECULAR : BRANCH_ABSORBED;
+    }
+#endif
     float etap = front ? eta : 1.0f / eta;
     if (u_choice.x < fresnel_dielectric(cos_i, etap)) {
       p->direction = reflect_dir(d, ns);
@@ -291,6 +302,10 @@ inline int scatter_photon_about(Photon* p, const Surface* s, const SceneView* sc
   float total = photon_total(p);
   float pg = s->g * total, pp = 0.0f, pf = 0.0f;
   if (s->passive) pp = spectrum_dot(KASHA_BINS, p->power, s->rho, 0);
+  float pt = 0.0f; /* τ's share: through a transmitting surface (surface.h) */
+#if KASHA_TRANSMISSION
+  if (s->share_t > 0.0f) pt = spectrum_dot(KASHA_BINS, p->power, s->tau, 0);
+#endif
 #if KASHA_FLUORESCENCE
   if (s->fluorescent) pf = spectrum_dot(KASHA_BINS, p->power, s->a, 0);
 #endif
@@ -299,7 +314,7 @@ inline int scatter_photon_about(Photon* p, const Surface* s, const SceneView* sc
   pp *= surface_lambert_albedo(s);
   pf *= surface_lambert_albedo(s);
 #endif
-  float sum = pg + pp + pf;
+  float sum = pg + pp + pt + pf;
   if (!(sum > 0.0f)) return BRANCH_ABSORBED;
   float xi = u_choice.x * sum;
   float3 d_in = p->direction;
@@ -307,11 +322,18 @@ inline int scatter_photon_about(Photon* p, const Surface* s, const SceneView* sc
   if (xi < pg) {
     if (!scatter_gloss(p, s, scene, ns, sum / total, sum / pg, u_dir, sampler)) return BRANCH_ABSORBED;
     branch = BRANCH_GLOSS;
-  } else if (xi < pg + pp || pf <= 0.0f) {
+  } else if (xi < pg + pp || (pf <= 0.0f && pt <= 0.0f)) {
     float k = sum / pp;
     for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= s->rho[i] * k;
     p->direction = sample_cosine_hemisphere(ns, u_dir.x, u_dir.y);
     branch = BRANCH_PASSIVE;
+#if KASHA_TRANSMISSION
+  } else if (xi < pg + pp + pt || pf <= 0.0f) {
+    float k = sum / pt;
+    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= s->tau[i] * k;
+    p->direction = sample_cosine_hemisphere(-ns, u_dir.x, u_dir.y);
+    branch = BRANCH_PASSIVE;
+#endif
 #if KASHA_FLUORESCENCE
   } else {
     /* The photon changes colour: its power re-emitted with the emission spectrum. */
@@ -332,6 +354,10 @@ inline int scatter_photon_about(Photon* p, const Surface* s, const SceneView* sc
     if (branch == BRANCH_FLUORESCENT) k /= surface_lambert_albedo(s);
     for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= k;
   }
+#endif
+#if KASHA_TRANSMISSION
+  /* Off the side the photon leaves by: the far one after a transmission. */
+  if (dot(p->direction, ns) < 0.0f) ns = -ns;
 #endif
   p->position = x + ns * eps;
   return photon_roulette(p, u_choice.y, depth) ? branch : BRANCH_ABSORBED;

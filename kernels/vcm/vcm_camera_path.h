@@ -77,8 +77,7 @@ inline bool vcm_camera_bounce(VcmCamera* c, const SceneView* s, const FilmView* 
   float choice = v->u_choice.x;
   if (choice < probs.x) return walk_gloss(&c->w, s, v, sampler);
   if (choice < probs.x + probs.y || probs.z <= 0.0f) {
-    lambert_bounce(&c->w, v, probs.y);
-    pw_scatter_diagonal(&c->w.p, v->surf.rho, lambert_weight(&c->w, v) / probs.y);
+    passive_bounce(&c->w, v, probs.y);
     return true;
   }
 #if KASHA_FLUORESCENCE

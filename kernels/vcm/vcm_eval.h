@@ -8,6 +8,9 @@
  * its F(λ) at cos_m. */
 typedef struct {
   float lambert, white, conductor, cos_m;
+#if KASHA_TRANSMISSION
+  bool through; /* the Lambert part between opposite sides: τ in place of ρ (surface.h) */
+#endif
 #if KASHA_DISPERSION
   bool per_bin; /* a rough dispersive dielectric met by a spectrum: f bin by bin at o, i */
   float3 o, i;
@@ -27,6 +30,14 @@ inline VcmF vcm_eval(const SceneView* s, const Surface* surf, float3 ns, float3 
                      float eta) {
   VcmF r;
   r.lambert = r.white = r.conductor = r.cos_m = 0.0f;
+#if KASHA_TRANSMISSION
+  r.through = false;
+  if (surf->share_t > 0.0f && dot(ns, wo) * dot(ns, wi) < 0.0f) {
+    r.through = true;
+    r.lambert = KASHA_INV_PI;
+    return r;
+  }
+#endif
 #if KASHA_DISPERSION
   r.per_bin = false;
 #endif
@@ -99,6 +110,12 @@ inline void vcm_light_apply(const Surface* surf, VcmF fv, const __global float* 
   }
 #endif
   float l = surf->passive ? fv.lambert : 0.0f;
+#if KASHA_TRANSMISSION
+  if (fv.through) {
+    for (int i = 0; i < KASHA_BINS; ++i) out[i] = phi[i] * surf->tau[i] * l;
+    return;
+  }
+#endif
 #if KASHA_FLUORESCENCE
   float fl = surf->fluorescent ? fv.lambert * spectrum_dot(KASHA_BINS, 0, surf->a, phi) : 0.0f;
   for (int i = 0; i < KASHA_BINS; ++i) out[i] = phi[i] * (surf->rho[i] * l + fv.white) + surf->ehat[i] * fl;
@@ -117,6 +134,12 @@ inline void vcm_camera_apply(const PathWeight* p, const FilmView* f, const Surfa
   }
 #endif
   if (fv.lambert > 0.0f) {
+#if KASHA_TRANSMISSION
+    if (fv.through) {
+      pw_add(p, f, surf->tau, spectrum, scale * fv.lambert, rows);
+      return;
+    }
+#endif
     if (surf->passive) pw_add(p, f, surf->rho, spectrum, scale * fv.lambert, rows);
 #if KASHA_FLUORESCENCE
     if (surf->fluorescent)

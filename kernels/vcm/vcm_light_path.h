@@ -34,6 +34,10 @@ inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, con
     film_rows_conductor(f, p->power, 0, surf->eta_c, surf->k_c, fv.cos_m, scale * fv.conductor, rows);
 #endif
   if (fv.lambert > 0.0f) {
+#if KASHA_TRANSMISSION
+    if (fv.through) film_rows(f, p->power, surf->tau, 0, scale * fv.lambert, rows);
+    else
+#endif
     if (surf->passive) film_rows(f, p->power, surf->rho, 0, scale * fv.lambert, rows);
 #if KASHA_FLUORESCENCE
     if (surf->fluorescent)

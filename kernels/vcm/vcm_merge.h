@@ -36,8 +36,12 @@ inline void vcm_merge_vertex(const VcmCamera* c, const SceneView* s, const FilmV
   /* The gather's tests about the geometric surface (a shading normal tilts off the plane the
    * photons lie in: about it the slab would cut the disc). */
   float3 ng = cv->ng;
-  if (dot(ny, ng) < 0.5f || fabs(dot(d, ng)) > KASHA_GATHER_SLAB * radius) return;
   float3 light = -load_float3(lv->arrival);
+#if KASHA_TRANSMISSION
+  /* Through a transmitting surface, also the photons that arrived on its far side. */
+  if (surf->share_t > 0.0f && dot(light, ng) < 0.0f) ng = -ng;
+#endif
+  if (dot(ny, ng) < 0.5f || fabs(dot(d, ng)) > KASHA_GATHER_SLAB * radius) return;
   if (dot(light, ng) <= 0.0f) return;
   VcmF fv = vcm_eval(s, surf, ns, cv->nf, eye, light, light, cv->eta);
   if (KASHA_VCM_EDGE_CORRECTION && *covered == 0.0f) {

@@ -27,6 +27,10 @@ inline float vcm_lambert_mean(const Surface* surf) {
   float lambert = 0.0f;
   if (surf->passive)
     for (int i = 0; i < KASHA_BINS; ++i) lambert += surf->rho[i];
+#if KASHA_TRANSMISSION
+  if (surf->share_t > 0.0f)
+    for (int i = 0; i < KASHA_BINS; ++i) lambert += surf->tau[i];
+#endif
 #if KASHA_FLUORESCENCE
   if (surf->fluorescent) lambert += surf->a_sum;
 #endif
@@ -71,6 +75,11 @@ inline float vcm_pdf(const SceneView* s, const Surface* surf, float lambert, flo
   }
 #endif
   float c = dot(ns, to);
+#if KASHA_TRANSMISSION
+  /* A transmitting surface (no other part): the passive part's cosine on either side, by the
+   * material's share of each (surface.h); ns may lie on either direction's side. */
+  if (surf->share_t > 0.0f) return fabs(c) * KASHA_INV_PI * surface_side_share(surf, c * dot(ns, from) < 0.0f);
+#endif
   if (c <= 0.0f) return 0.0f;
   float share = vcm_share(surf, lambert, dot(ns, from));
   float pdf = (1.0f - share) * c * KASHA_INV_PI;

@@ -190,6 +190,32 @@ void reflectance(const PbrtParameters& params, const PbrtTextures& textures,
   material["textures"]["reflectance"] = t.kasha_name;
 }
 
+// pbrt-v4's DiffuseTransmissionMaterial: "reflectance" and "transmittance" (each 0.25 by default, a
+// value or a spectrum texture) times "scale", into kasha's passive part and "transmission". A
+// texture may colour both only as one texture: kasha's reflectance texture multiplies both.
+void diffuse_transmission(const PbrtParameters& params, const PbrtTextures& textures,
+                          const std::filesystem::path& base_dir, nlohmann::json& material) {
+  std::string texture[2];
+  const PbrtParameter* given[2] = {nullptr, nullptr};
+  auto part = [&](int k, const char* name) -> nlohmann::json {
+    const PbrtParameter* p = given[k] = params.find(name, "float rgb spectrum texture");
+    if (!p) return 0.25;  // pbrt-v4's default
+    if (p->type != "texture") return pbrt_spectrum(*p, PbrtSpectrumUse::kAlbedo, base_dir);
+    const PbrtTexture& t = texture_named(*p, textures.spectrum, "spectrum");
+    if (t.kasha_name.empty()) return pbrt_texture_constant(t, PbrtSpectrumUse::kAlbedo, base_dir);
+    texture[k] = t.kasha_name;
+    return t.factor;
+  };
+  material["passive"]["reflectance"] = part(0, "reflectance");
+  material["transmission"]["transmittance"] = part(1, "transmittance");
+  if (texture[0] != texture[1])
+    pbrt_fail((given[0] && !texture[0].empty() ? given[0] : given[1])->where,
+              "diffusetransmission: a \"reflectance\" and \"transmittance\" not of one texture "
+              "is not built in kasha");
+  if (!texture[0].empty()) material["textures"]["reflectance"] = texture[0];
+  material["transmission"]["scale"] = params.get_float("scale", 1);
+}
+
 // Roughness as pbrt-v4 names it, into kasha's keys (the same names).
 void roughness(const PbrtParameters& params, const PbrtTextures& textures, nlohmann::json& out) {
   const std::optional<double> r = pbrt_float_value(params, "roughness", textures);
@@ -365,18 +391,23 @@ nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& para
     m["dielectric"] = d;
   } else if (type == "conductor") {
     m["conductor"] = conductor(params, where, textures, base_dir);
+  } else if (type == "thindielectric") {
+    // pbrt-v4's ThinDielectricMaterial: "eta" (1.5), smooth.
+    const nlohmann::json eta = index_of_refraction(params, textures, base_dir);
+    if (!eta.is_number()) pbrt_fail(where, "thindielectric: \"eta\" must be a number in kasha");
+    m["dielectric"] = {{"eta", eta}, {"thin", true}};
+  } else if (type == "diffusetransmission") {
+    diffuse_transmission(params, textures, base_dir, m);
   } else if (type == "kasha") {
     // A material file kasha measured or wrote
     // (docs/pbrt-import.md#measured-materials-in-pbrt-scenes).
     const std::string file = params.get_string("file", "");
     if (file.empty()) pbrt_fail(where, "Material \"kasha\" needs \"string file\"");
     m["file"] = file;
-  } else if (type == "thindielectric" || type == "diffusetransmission" || type == "mix" ||
-             type == "measured" || type == "hair" || type == "subsurface" ||
+  } else if (type == "mix" || type == "measured" || type == "hair" || type == "subsurface" ||
              type == "coatedconductor") {
-    pbrt_fail(where, "material " + in_quotes(type) +
-                         " is not built in kasha (diffuse, "
-                         "coateddiffuse, dielectric, conductor, kasha)");
+    pbrt_fail(where, "material " + in_quotes(type) + " is not built in kasha (diffuse, "
+                     "coateddiffuse, diffusetransmission, dielectric, thindielectric, conductor, kasha)");
   } else {
     pbrt_fail(where, "unknown material type " + in_quotes(type));
   }
