@@ -1,8 +1,13 @@
 #include "material/coat.h"
 
+#include <tbb/parallel_for.h>
+
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
+#include <tuple>
 #include <vector>
 
 namespace kasha {
@@ -32,7 +37,8 @@ double coat_transmission(const CoatDesc& coat, double cos_theta) {
 
 // ∫₀¹ g(μ) 2μ dμ (cos θ dω / π over a hemisphere) by Gauss–Legendre on panels that crowd towards
 // μ = 0, where exp(−d/μ) and the critical angle of total internal reflection bend g sharply.
-template <typename G> static double cosine_mean(G g) {
+template <typename G>
+static double cosine_mean(G g) {
   static const double x[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
                               -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
                               0.7966664774136267,  0.9602898564975363};
@@ -116,16 +122,15 @@ void lobe_albedos(const Ggx& a, double eta, double mu, double& reflect, double& 
   transmit = t / (n * n);
 }
 
-}  // namespace
-
-CoatTables rough_coat_tables(const CoatDesc& coat) {
+CoatTables compute_rough_coat_tables(const CoatDesc& coat) {
   const Ggx a{coat.alpha};
   const int K = kCoatTableSize;
   CoatTables out;
   out.reflect.resize(K);
   out.transmit.resize(K);
   std::vector<double> inside(K);
-  for (int k = 0; k < K; ++k) {
+  // Each μ node on its own: 2 · 128² visible-normal samples, the bulk of a rough coat's cost.
+  tbb::parallel_for(0, K, [&](int k) {
     const double mu = std::max(1e-3, static_cast<double>(k) / (K - 1));
     double r, t, ri, ti;
     lobe_albedos(a, coat.eta, mu, r, t);
@@ -135,16 +140,34 @@ CoatTables rough_coat_tables(const CoatDesc& coat) {
     out.reflect[k] = r;
     out.transmit[k] = mu_t > 0 ? t * layer(coat.thickness, mu_t) : 0.0;
     inside[k] = ri;
-  }
+  });
   // Linear in μ between the nodes, integrated with the layer's exp(−2d/μ) on a fine grid.
   auto at = [&](const std::vector<double>& v, double mu) {
     const double x = mu * (K - 1);
     const int k = std::min(K - 2, static_cast<int>(x));
     return v[k] + (x - k) * (v[k + 1] - v[k]);
   };
-  out.internal = cosine_mean([&](double mu) { return at(inside, mu) * layer(2 * coat.thickness, mu); });
+  out.internal =
+      cosine_mean([&](double mu) { return at(inside, mu) * layer(2 * coat.thickness, mu); });
   out.mean = cosine_mean([&](double mu) { return at(out.transmit, mu); });
   return out;
+}
+
+}  // namespace
+
+// Scenes give many materials one coat (Bitterli's kitchen: dozens of rough coateddiffuse
+// materials with a few roughnesses): each distinct coat's tables are computed once.
+CoatTables rough_coat_tables(const CoatDesc& coat) {
+  static std::mutex mutex;
+  static std::map<std::tuple<double, double, double>, CoatTables> cache;
+  const auto key = std::make_tuple(coat.eta, coat.thickness, coat.alpha);
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (auto it = cache.find(key); it != cache.end()) return it->second;
+  }
+  CoatTables t = compute_rough_coat_tables(coat);
+  std::lock_guard<std::mutex> lock(mutex);
+  return cache.emplace(key, std::move(t)).first->second;
 }
 
 }  // namespace kasha
