@@ -53,6 +53,7 @@ def main():
     print("reference %s: %dx%d, %d pixels below the %.1fth luminance percentile, means %s"
           % (reference, ref.shape[1], ref.shape[0], mask.sum(), percentile,
              " ".join("%.5g" % m for m in ref_means)))
+    rmses = {}
     for path in images:
         img = read_exr(imgtool, path)
         if img.shape != ref.shape:
@@ -63,6 +64,14 @@ def main():
         rmse_all = np.sqrt(((img - ref) ** 2).mean())
         print("%s: means R %.4f G %.4f B %.4f of the reference; RMSE %.5g (masked) %.5g (all)"
               % (path, ratio[0], ratio[1], ratio[2], rmse_masked, rmse_all))
+        rmses[path] = rmse_all
+    # Images named *.pbrt-INTEGRATOR.exr are pbrt-v4's (scripts/equal_time_pbrt.sh): the others'
+    # RMSE against the best of them.
+    theirs = [r for p, r in rmses.items() if ".pbrt-" in os.path.basename(p)]
+    if theirs:
+        for p, r in rmses.items():
+            if ".pbrt-" not in os.path.basename(p):
+                print("%s: RMSE %.3f x pbrt-v4's best" % (p, r / min(theirs)))
 
 
 if __name__ == "__main__":
