@@ -187,6 +187,9 @@ static std::filesystem::path relative_to(const JsonNode& node, const std::string
 class TriangleKeys {
  public:
   using Key = std::array<float, 9>;
+  // The duplicates left out, told once per scene (a published scene has them in dozens of meshes).
+  size_t dropped = 0, dropped_shapes = 0;
+  std::string first_dropped;
   // Adds `key`; false when an equal key was added before.
   bool insert(const Key& key) {
     if (2 * (keys_.size() + 1) > slots_.size()) grow();
@@ -254,9 +257,10 @@ static void drop_duplicate_triangles(ShapeMesh& mesh, TriangleKeys& seen, const 
       tris[kept++] = t;
     }
   }
-  if (kept < tris.size())
-    warn(shape.where() + ": " + std::to_string(tris.size() - kept) +
-         " duplicate triangles (the same vertices as earlier ones) left out");
+  if (kept < tris.size()) {
+    if (seen.dropped_shapes++ == 0) seen.first_dropped = shape.where();
+    seen.dropped += tris.size() - kept;
+  }
   tris.resize(kept);
   mesh.uv.resize(kept);
   if (!mesh.normals.empty()) mesh.normals.resize(kept);
@@ -697,6 +701,10 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
   uses.materials.assign(scene.material_descs.size(), false);
   for (size_t s = 0; s < shapes.size(); ++s)
     parse_shape(shapes[s], lamp_on, seen_triangles, uses, scene);
+  if (seen_triangles.dropped > 0)
+    warn(seen_triangles.first_dropped + ": " + std::to_string(seen_triangles.dropped) +
+         " duplicate triangles (the same vertices as earlier ones) left out, in " +
+         std::to_string(seen_triangles.dropped_shapes) + " shape(s) from here on");
   root.finish();
   if (scene.triangles.empty()) root.fail("the scene has no shapes");
   if (lamp_on.spectrum && !uses.lamp)
