@@ -5,11 +5,26 @@
 
 namespace kasha {
 
-ClTraversal::ClTraversal(ClContext& cl, const FlatBvh& bvh) : cl_(cl) {
+ClTraversal::ClTraversal(ClContext& cl, const FlatBvh& bvh, const AlphaCutouts& alpha) : cl_(cl) {
   nodes_ = upload(cl, bvh.nodes);
   leaves_ = upload(cl, bvh.leaves);
   triangles_ = upload(cl, bvh.triangles);
-  cl::Program program = build_program(cl, assemble_kernel_source("geometry/trace_rays.cl"), {},
+  // Buffers may not be empty: without alpha, one unread entry each.
+  std::vector<KTexcoords> texcoords(1);
+  std::vector<KTexture> textures(1);
+  std::vector<float> values(1);
+  if (!alpha.empty()) {
+    texcoords.clear();
+    for (const KTriangle& t : bvh.triangles) texcoords.push_back(alpha.texcoords[t.prim]);
+    if (!alpha.textures.empty()) textures = alpha.textures;
+    if (!alpha.values.empty()) values = alpha.values;
+  }
+  texcoords_ = upload(cl, texcoords);
+  textures_ = upload(cl, textures);
+  values_ = upload(cl, values);
+  KernelDefines defines;
+  defines["KASHA_ALPHA"] = alpha.empty() ? "0" : "1";
+  cl::Program program = build_program(cl, assemble_kernel_source("geometry/trace_rays.cl"), defines,
                                       "geometry/trace_rays.cl");
   closest_ = cl::Kernel(program, "trace_closest");
   occluded_ = cl::Kernel(program, "trace_occluded");
@@ -31,9 +46,12 @@ void ClTraversal::run(cl::Kernel& kernel, const std::vector<KRay>& rays, std::ve
   kernel.setArg(0, nodes_);
   kernel.setArg(1, leaves_);
   kernel.setArg(2, triangles_);
-  kernel.setArg(3, rays_);
-  kernel.setArg(4, results_);
-  kernel.setArg(5, static_cast<int>(rays.size()));
+  kernel.setArg(3, texcoords_);
+  kernel.setArg(4, textures_);
+  kernel.setArg(5, values_);
+  kernel.setArg(6, rays_);
+  kernel.setArg(7, results_);
+  kernel.setArg(8, static_cast<int>(rays.size()));
   cl_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(rays.size()), cl::NullRange);
   cl_.queue().enqueueReadBuffer(results_, CL_TRUE, 0, rays.size() * sizeof(Out), out.data());
 }

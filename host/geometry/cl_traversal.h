@@ -3,6 +3,7 @@
 // compare with Embree and the benchmark times.
 #include <vector>
 
+#include "geometry/alpha_cutouts.h"
 #include "geometry/bvh.h"
 #include "opencl/device.h"
 
@@ -10,7 +11,8 @@ namespace kasha {
 
 class ClTraversal {
  public:
-  ClTraversal(ClContext& cl, const FlatBvh& bvh);
+  // With `alpha` (scene order), hits pass its cut-outs' test (built with KASHA_ALPHA).
+  ClTraversal(ClContext& cl, const FlatBvh& bvh, const AlphaCutouts& alpha = AlphaCutouts());
   std::vector<KHit> closest(const std::vector<KRay>& rays);
   std::vector<int> occluded(const std::vector<KRay>& rays);
   // Into the caller's vector, resized to the rays: a batch after the first of its size then
@@ -24,7 +26,8 @@ class ClTraversal {
 
   ClContext& cl_;
   cl::Buffer nodes_, leaves_, triangles_;
-  cl::Buffer rays_, results_;  // kept between batches, grown when a batch needs more
+  cl::Buffer texcoords_, textures_, values_;  // the alpha tables, leaf order (one entry without)
+  cl::Buffer rays_, results_;                 // kept between batches, grown when a batch needs more
   size_t ray_capacity_ = 0, result_bytes_ = 0;
   cl::Kernel closest_, occluded_;
 };

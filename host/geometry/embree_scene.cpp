@@ -9,7 +9,24 @@
 
 namespace kasha {
 
-EmbreeScene::EmbreeScene(const std::vector<KTriangle>& triangles) {
+// Embree's filter for both queries: a candidate hit failing the alpha test is rejected, and the
+// traversal goes on (kernels/shared/alpha_test.h, as bvh_traversal.h's).
+static void alpha_filter(const RTCFilterFunctionNArguments* args) {
+  const auto* tables = static_cast<const AlphaTables*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (args->valid[i] != -1) continue;
+    const float ray[6] = {
+        RTCRayN_org_x(args->ray, args->N, i), RTCRayN_org_y(args->ray, args->N, i),
+        RTCRayN_org_z(args->ray, args->N, i), RTCRayN_dir_x(args->ray, args->N, i),
+        RTCRayN_dir_y(args->ray, args->N, i), RTCRayN_dir_z(args->ray, args->N, i)};
+    const int prim = static_cast<int>(RTCHitN_primID(args->hit, args->N, i));
+    if (!alpha_keeps(tables, prim, RTCHitN_u(args->hit, args->N, i),
+                     RTCHitN_v(args->hit, args->N, i), ray))
+      args->valid[i] = 0;
+  }
+}
+
+EmbreeScene::EmbreeScene(const std::vector<KTriangle>& triangles, const AlphaCutouts& alpha) {
   RTCDevice device = embree_device();
   scene_ = rtcNewScene(device);
   rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
@@ -25,6 +42,15 @@ EmbreeScene::EmbreeScene(const std::vector<KTriangle>& triangles) {
     std::copy(t.v1, t.v1 + 3, v + 9 * i + 3);
     std::copy(t.v2, t.v2 + 3, v + 9 * i + 6);
     idx[3 * i] = 3 * i, idx[3 * i + 1] = 3 * i + 1, idx[3 * i + 2] = 3 * i + 2;
+  }
+  if (!alpha.empty()) {
+    triangles_ = triangles;
+    alpha_ = alpha;
+    tables_ = {triangles_.data(), alpha_.texcoords.data(), alpha_.textures.data(),
+               alpha_.values.data()};
+    rtcSetGeometryUserData(geom, &tables_);
+    rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
+    rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
   }
   rtcCommitGeometry(geom);
   rtcAttachGeometry(scene_, geom);

@@ -5,13 +5,16 @@
 
 #include <vector>
 
+#include "geometry/alpha_cutouts.h"
 #include "shared/shared_types.h"
 
 namespace kasha {
 
 class EmbreeScene {
  public:
-  explicit EmbreeScene(const std::vector<KTriangle>& triangles);  // scene order: primID = index
+  // Scene order: primID = index. With `alpha`, hits pass its cut-outs' test as the kernels' do.
+  explicit EmbreeScene(const std::vector<KTriangle>& triangles,
+                       const AlphaCutouts& alpha = AlphaCutouts());
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -24,6 +27,9 @@ class EmbreeScene {
 
  private:
   RTCScene scene_ = nullptr;
+  std::vector<KTriangle> triangles_;  // kept for the alpha test, with its tables
+  AlphaCutouts alpha_;
+  AlphaTables tables_{};
 };
 
 }  // namespace kasha

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <map>
 
 #include "color/cie_observer.h"
@@ -150,9 +151,13 @@ void KernelSceneData::add_textures(const Scene& scene) {
   std::vector<int> emitter_texture;
   for (const Emitter& e : scene.emitters)
     emitter_texture.push_back(e.texture >= 0 ? texture(e.texture, emission) : -1);
+  // An alpha is a scalar in [0, 1], as a concentration is.
+  const std::vector<int> alpha =
+      alpha_textures(scene, [&](int index) { return texture(index, concentration); });
   for (const KTriangle& t : bvh.triangles) {
     KTexcoords c{};
     c.emission_texture = t.emitter >= 0 ? emitter_texture[t.emitter] : -1;
+    c.alpha_texture = alpha[t.prim];
     const TriangleUv& uv = scene.uvs[t.prim];
     for (int k = 0; k < 3; ++k) {
       c.uv[2 * k] = static_cast<float>(uv[k].x());
@@ -160,6 +165,43 @@ void KernelSceneData::add_textures(const Scene& scene) {
     }
     texcoords.push_back(c);
   }
+}
+
+// Per triangle in scene order, the KTexture of its shape's alpha (-1: none); a constant alpha
+// becomes a checkerboard of that value on both squares.
+std::vector<int> KernelSceneData::alpha_textures(const Scene& scene,
+                                                 const std::function<int(int)>& scalar_texture) {
+  std::vector<int> alpha(scene.triangles.size(), -1);
+  for (const ShapeInfo& shape : scene.shapes) {
+    if (!shape.cut_out()) continue;
+    int k = -1;
+    if (shape.alpha_texture >= 0) {
+      k = scalar_texture(shape.alpha_texture);
+    } else {
+      KTexture c{};
+      c.type = KASHA_TEXTURE_CHECKERBOARD;
+      c.uscale = c.vscale = 1.0f;
+      c.data = c.even = c.odd = c.lambda = -1;
+      c.even_value = c.odd_value = static_cast<float>(shape.alpha);
+      textures.push_back(c);
+      k = static_cast<int>(textures.size()) - 1;
+    }
+    std::fill_n(alpha.begin() + shape.first_triangle, shape.triangle_count, k);
+  }
+  return alpha;
+}
+
+AlphaCutouts alpha_cutouts(const KernelSceneData& data) {
+  AlphaCutouts a;
+  bool any = false;
+  for (const KTexcoords& c : data.texcoords) any = any || c.alpha_texture >= 0;
+  if (!any) return a;
+  a.texcoords.resize(data.texcoords.size());
+  for (size_t i = 0; i < data.texcoords.size(); ++i)
+    a.texcoords[data.bvh.triangles[i].prim] = data.texcoords[i];
+  a.textures = data.textures;
+  a.values = data.spectra;
+  return a;
 }
 
 KernelSceneData::KernelSceneData(const Scene& scene)
@@ -170,7 +212,7 @@ KernelSceneData::KernelSceneData(const Scene& scene)
   // The zero spectrum that kernels read in place of a material's absent part (offset 0).
   spectra.assign(scene.grid.bins, 0.0f);
   for (const Material& m : scene.materials) materials.push_back(kernel_material(m, scene, obs));
-  if (scene.textured() || scene.emission_textured()) add_textures(scene);
+  if (scene.textured() || scene.emission_textured() || scene.cut_out()) add_textures(scene);
   if (scene.shading_normals()) add_shading_normals(scene);
   for (const Emitter& e : scene.emitters) append(emitter_radiance, e.per_bin);
   for (const Light& l : scene.lights) append(emitter_radiance, l.per_bin);
@@ -383,6 +425,7 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_SCRATCH_FLOATS"] = std::to_string(scratch_floats(scene));
   d["KASHA_TEXTURES"] = scene.textured() || scene.emission_textured() ? "1" : "0";
   d["KASHA_EMISSION_TEXTURES"] = scene.emission_textured() ? "1" : "0";
+  d["KASHA_ALPHA"] = scene.cut_out() ? "1" : "0";
   d["KASHA_SCRATCH_TEXTURES"] = std::to_string(scratch_texture_offset(scene));
   d["KASHA_COATED"] = scene.coated() ? "1" : "0";
   d["KASHA_TRANSMISSION"] = scene.transmissive() ? "1" : "0";

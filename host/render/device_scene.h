@@ -1,9 +1,11 @@
 #pragma once
 // The scene as kernels see it: the Embree-built BVH, triangles, materials and spectra in device
 // buffers, and the preprocessor definitions that specialise kernels to this scene.
+#include <functional>
 #include <string>
 #include <vector>
 
+#include "geometry/alpha_cutouts.h"
 #include "geometry/bvh.h"
 #include "opencl/device.h"
 #include "opencl/kernel_program.h"
@@ -41,6 +43,8 @@ struct KernelSceneData {
   KMaterial kernel_material(const Material& m, const Scene& scene, const BinnedObserver& obs);
   void add_coat(const CoatDesc& coat, KMaterial& k);
   void add_textures(const Scene& scene);
+  std::vector<int> alpha_textures(const Scene& scene,
+                                  const std::function<int(int)>& scalar_texture);
   void add_shading_normals(const Scene& scene);
   void add_light_sampling(const Scene& scene);
   static KLight kernel_light(const Light& l, int spectrum, const Eigen::Vector3d& centre,
@@ -49,6 +53,9 @@ struct KernelSceneData {
   int bin_centres(const Scene& scene);
   int lambda_ = -1;
 };
+
+// The scene's alpha cut-outs in scene order, for the host's traversals (empty without any).
+AlphaCutouts alpha_cutouts(const KernelSceneData& data);
 
 // The lobe table of a gloss part: KASHA_LOBE_CELLS ring densities (per solid angle), then their
 // CDF. The tabulated profile is averaged over each ring (a uniform cone without a profile).
@@ -65,8 +72,8 @@ class DeviceScene {
  public:
   DeviceScene(ClContext& cl, const Scene& scene);
   const KernelSceneData& data() const { return data_; }
-  // Sets KASHA_SCENE_PARAMS (kernels/geometry/scene_view.h) as kernel arguments from `first` on: the
-  // parameters, the tables buffer, and scratch for `items` work items; returns the next
+  // Sets KASHA_SCENE_PARAMS (kernels/geometry/scene_view.h) as kernel arguments from `first` on:
+  // the parameters, the tables buffer, and scratch for `items` work items; returns the next
   // argument's index.
   int bind(cl::Kernel& kernel, int first, size_t items);
 

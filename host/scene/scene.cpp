@@ -75,6 +75,12 @@ bool Scene::emission_textured() const {
   return false;
 }
 
+bool Scene::cut_out() const {
+  for (const ShapeInfo& s : shapes)
+    if (s.cut_out()) return true;
+  return false;
+}
+
 bool Scene::has_environment() const {
   for (const Light& l : lights)
     if (l.environment) return true;
@@ -631,6 +637,20 @@ static int parse_shape_emitter(const JsonNode& shape, size_t triangles, const La
   return static_cast<int>(scene.emitters.size()) - 1;
 }
 
+// A shape's "alpha": a number in [0, 1], or the name of one of the scene's textures whose value
+// (a scalar, as a concentration's) is the alpha at each point.
+static void parse_shape_alpha(const JsonNode& alpha, const Scene& scene, ShapeInfo& info) {
+  if (alpha.is_string()) {
+    const std::string name = alpha.string();
+    for (size_t i = 0; i < scene.textures.size(); ++i)
+      if (scene.textures[i].name == name) info.alpha_texture = static_cast<int>(i);
+    if (info.alpha_texture < 0)
+      alpha.fail("no texture named \"" + name + "\" in the scene's \"textures\"");
+    return;
+  }
+  info.alpha = alpha.number_in(0, 1);
+}
+
 // One shape of the scene's "shapes": its triangles, material and emission added to the scene.
 static void parse_shape(const JsonNode& shape, const LampChoice& lamp_on,
                         TriangleKeys& seen_triangles, ShapeUses& uses, Scene& scene) {
@@ -646,10 +666,15 @@ static void parse_shape(const JsonNode& shape, const LampChoice& lamp_on,
   const int emitter = parse_shape_emitter(shape, mesh.tris.size(), lamp_on, uses, scene);
   bool inward = false;
   if (auto in = shape.find("inward")) inward = in->boolean();
+  ShapeInfo info{type,
+                 inward,
+                 material,
+                 emitter,
+                 static_cast<int>(scene.triangles.size()),
+                 static_cast<int>(mesh.tris.size())};
+  if (auto alpha = shape.find("alpha")) parse_shape_alpha(*alpha, scene, info);
   shape.finish();
-  scene.shapes.push_back(ShapeInfo{type, inward, material, emitter,
-                                   static_cast<int>(scene.triangles.size()),
-                                   static_cast<int>(mesh.tris.size())});
+  scene.shapes.push_back(info);
   append_triangles(mesh, material, emitter, scene);
 }
 

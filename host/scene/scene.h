@@ -38,6 +38,10 @@ struct ShapeInfo {
   bool inward = false;
   int material = -1, emitter = -1;
   int first_triangle = 0, triangle_count = 0;  // in scene (primitive) order
+  // Its "alpha" cut-out (docs/formats.md#alpha): a constant, or a scene texture's value (-1: none).
+  double alpha = 1;
+  int alpha_texture = -1;
+  bool cut_out() const { return alpha < 1 || alpha_texture >= 0; }
 };
 
 struct Scene {
@@ -76,6 +80,7 @@ struct Scene {
   bool has_environment() const;    // some infinite light has an image
   bool textured() const;           // some shape's material carries a texture
   bool emission_textured() const;  // some emitter's radiance is multiplied by a texture
+  bool cut_out() const;            // some shape has an alpha cut-out
   // The bounding sphere of the triangles (as the kernels see them), where distant and infinite
   // lights send their photons from.
   void bounding_sphere(Eigen::Vector3d& centre, double& radius) const;

@@ -59,7 +59,8 @@ inline float surface_offset(float3 v0, float3 v1, float3 v2, float b0, float b1,
 inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint* h) {
   float t, u, v;
   ++s->rays->closest;
-  int hit = bvh_closest(s->nodes, s->leaves, org, dir, 0.0f, INFINITY, &t, &u, &v);
+  AlphaTables alpha = scene_alpha(s);
+  int hit = bvh_closest(s->nodes, s->leaves, &alpha, org, dir, 0.0f, INFINITY, &t, &u, &v);
   if (hit < 0) return false;
   const __global KTriangle* tri = &s->tris[hit];
   float3 v0 = load_float3(tri->v0), v1 = load_float3(tri->v1), v2 = load_float3(tri->v2);
@@ -146,7 +147,8 @@ inline bool segment_occluded(const SceneView* s, float3 x, float3 ns, float eps,
   float reach = dist * (1.0f - 1e-4f) - eps - far_eps;
   if (!(reach > 0.0f)) return false;
   ++s->rays->shadow;
-  return bvh_occluded(s->nodes, s->leaves, x + ns * eps, wi, 0.0f, reach);
+  AlphaTables alpha = scene_alpha(s);
+  return bvh_occluded(s->nodes, s->leaves, &alpha, x + ns * eps, wi, 0.0f, reach);
 }
 
 /* n more into a 64-bit count kept as (low, high) 32-bit words: 32-bit atomics are everywhere, and

@@ -5,6 +5,7 @@
 #ifndef KASHA_SCENE_VIEW_H
 #define KASHA_SCENE_VIEW_H
 
+#include "shared/alpha_test.h"
 #include "shared/shared_types.h"
 
 #ifndef KASHA_SCRATCH_FLOATS
@@ -69,6 +70,12 @@ typedef struct {
                     KASHA_SCENE_TABLE(KTexcoords, texcoords),                                      \
                     KASHA_SCENE_TABLE(KShadingNormals, normals),                                   \
                     &name##_rays}
+
+/* The tables the traversal's alpha test reads (shared/alpha_test.h): leaf order. */
+inline AlphaTables scene_alpha(const SceneView* s) {
+  AlphaTables a = {s->tris, s->texcoords, s->textures, s->spectra};
+  return a;
+}
 
 /* An emitter's spectral radiance, N values. */
 inline const __global float* emitter_spectrum(const SceneView* s, int emitter) {

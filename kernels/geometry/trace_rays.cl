@@ -1,14 +1,20 @@
-/* Batch ray queries: what tests compare with Embree and the benchmark times. */
+/* Batch ray queries: what tests compare with Embree and the benchmark times. The alpha tables
+ * (leaf order) are read only when built with KASHA_ALPHA. */
 #include "geometry/bvh_traversal.h"
 
-__kernel void trace_closest(__global const KBvhNode* nodes, __global const KBvhLeaf* leaves,
-                            __global const KTriangle* tris, __global const KRay* rays, __global KHit* hits,
-                            int count) {
+#define KASHA_TRACE_PARAMS                                                                                   \
+  __global const KBvhNode *nodes, __global const KBvhLeaf *leaves, __global const KTriangle *tris,           \
+      __global const KTexcoords *texcoords, __global const KTexture *textures, __global const float *values, \
+      __global const KRay *rays
+
+__kernel void trace_closest(KASHA_TRACE_PARAMS, __global KHit* hits, int count) {
   int i = get_global_id(0);
   if (i >= count) return;
   const __global KRay* r = &rays[i];
+  AlphaTables alpha = {tris, texcoords, textures, values};
   float t, u = 0.0f, v = 0.0f;
-  int leaf = bvh_closest(nodes, leaves, load_float3(r->org), load_float3(r->dir), r->tmin, r->tmax, &t, &u, &v);
+  int leaf =
+      bvh_closest(nodes, leaves, &alpha, load_float3(r->org), load_float3(r->dir), r->tmin, r->tmax, &t, &u, &v);
   KHit h;
   h.t = t;
   h.prim = leaf >= 0 ? tris[leaf].prim : -1;
@@ -17,11 +23,11 @@ __kernel void trace_closest(__global const KBvhNode* nodes, __global const KBvhL
   hits[i] = h;
 }
 
-/* Same parameters as trace_closest (tris unused), so the host sets both alike. */
-__kernel void trace_occluded(__global const KBvhNode* nodes, __global const KBvhLeaf* leaves,
-                             __global const KTriangle* tris, __global const KRay* rays, __global int* occluded, int count) {
+/* Same parameters as trace_closest, so the host sets both alike. */
+__kernel void trace_occluded(KASHA_TRACE_PARAMS, __global int* occluded, int count) {
   int i = get_global_id(0);
   if (i >= count) return;
   const __global KRay* r = &rays[i];
-  occluded[i] = bvh_occluded(nodes, leaves, load_float3(r->org), load_float3(r->dir), r->tmin, r->tmax) ? 1 : 0;
+  AlphaTables alpha = {tris, texcoords, textures, values};
+  occluded[i] = bvh_occluded(nodes, leaves, &alpha, load_float3(r->org), load_float3(r->dir), r->tmin, r->tmax) ? 1 : 0;
 }

@@ -13,6 +13,7 @@
 #include "geometry/hit_point.h"
 #include "materials/rgb_spectrum.h"
 #include "materials/surface.h"
+#include "shared/texture_lookup.h"
 
 #ifndef KASHA_EMISSION_TEXTURES
 #define KASHA_EMISSION_TEXTURES 0 /* some emitter's radiance is multiplied by a texture */
@@ -31,82 +32,20 @@ inline float2 triangle_uv(const SceneView* s, int tri, float b1, float b2) {
 
 inline float2 hit_uv(const SceneView* s, const HitPoint* h) { return triangle_uv(s, h->tri, h->b.x, h->b.y); }
 
-/* The texel (x, y) after wrapping; -1 where a black wrap leaves the image. */
-inline int texel_index(const __global KTexture* t, int x, int y) {
-  int w = t->width, h = t->height;
-  if (t->wrap == KASHA_WRAP_REPEAT) {
-    x %= w;
-    y %= h;
-    if (x < 0) x += w;
-    if (y < 0) y += h;
-  } else if (t->wrap == KASHA_WRAP_OCTAHEDRAL) {
-    /* pbrt-v4's RemapPixelCoords: across a vertical edge mirrored in u and in v about its middle,
-     * across a horizontal edge likewise; clamped after for lookups further out. */
-    if (x < 0 || x >= w) {
-      x = x < 0 ? -x : 2 * w - 1 - x;
-      y = h - 1 - y;
-    }
-    if (y < 0 || y >= h) {
-      y = y < 0 ? -y : 2 * h - 1 - y;
-      x = w - 1 - x;
-    }
-    x = clamp(x, 0, w - 1);
-    y = clamp(y, 0, h - 1);
-  } else if (t->wrap == KASHA_WRAP_CLAMP) {
-    x = clamp(x, 0, w - 1);
-    y = clamp(y, 0, h - 1);
-  } else if (x < 0 || y < 0 || x >= w || y >= h) {
-    return -1;
-  }
-  return y * w + x;
-}
-
 inline float2 texture_st(const __global KTexture* t, float2 uv) {
   return (float2)(uv.x * t->uscale + t->udelta, uv.y * t->vscale + t->vdelta);
 }
 
-/* The texels an image lookup at st blends and their weights; how many (1 or 4). */
+/* The texels an image lookup at st blends and their weights (shared/texture_lookup.h). */
 inline int texture_taps(const __global KTexture* t, float2 st, int* idx, float* w) {
-  /* Image rows run down from the top; t runs up (pbrt-v4's 1 − t). Large s, t stay finite: the
-   * floor is taken in float, then wrapped in int range. */
-  float x = st.x * (float)t->width, y = (1.0f - st.y) * (float)t->height;
-  x = clamp(x, -1e8f, 1e8f);
-  y = clamp(y, -1e8f, 1e8f);
-  if (!t->bilinear) {
-    idx[0] = texel_index(t, (int)floor(x), (int)floor(y));
-    w[0] = 1.0f;
-    return 1;
-  }
-  x -= 0.5f;
-  y -= 0.5f;
-  float fx0 = floor(x), fy0 = floor(y), fx = x - fx0, fy = y - fy0;
-  int x0 = (int)fx0, y0 = (int)fy0;
-  idx[0] = texel_index(t, x0, y0);
-  idx[1] = texel_index(t, x0 + 1, y0);
-  idx[2] = texel_index(t, x0, y0 + 1);
-  idx[3] = texel_index(t, x0 + 1, y0 + 1);
-  w[0] = (1.0f - fx) * (1.0f - fy);
-  w[1] = fx * (1.0f - fy);
-  w[2] = (1.0f - fx) * fy;
-  w[3] = fx * fy;
-  return 4;
+  return texture_taps_st(t, st.x, st.y, idx, w);
 }
 
-inline bool checker_odd(float2 st) {
-  float fs = floor(clamp(st.x, -1e8f, 1e8f)), ft = floor(clamp(st.y, -1e8f, 1e8f));
-  return (((int)fs + (int)ft) & 1) != 0;
-}
+inline bool checker_odd(float2 st) { return checker_odd_st(st.x, st.y); }
 
 /* A scalar texture's value at uv. */
 inline float texture_scalar(const SceneView* s, const __global KTexture* t, float2 uv) {
-  float2 st = texture_st(t, uv);
-  if (t->type == KASHA_TEXTURE_CHECKERBOARD) return checker_odd(st) ? t->odd_value : t->even_value;
-  int idx[4];
-  float w[4], v = 0.0f;
-  int n = texture_taps(t, st, idx, w);
-  for (int k = 0; k < n; ++k)
-    if (idx[k] >= 0) v += w[k] * s->spectra[t->data + idx[k]];
-  return v;
+  return texture_scalar_uv(t, s->spectra, uv.x, uv.y);
 }
 
 /* out = y ∘ T(uv): a spectral texture applied bin by bin to the spectrum y. */

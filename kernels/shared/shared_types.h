@@ -210,12 +210,13 @@ typedef struct {
 } KTexture;
 KASHA_STATIC_SIZE(KTexture, 64);
 
-/* A triangle's texture coordinates, in leaf order like KTriangle: (u, v) at v0, v1, v2; and the
- * texture its emission is multiplied by (-1: none). */
+/* A triangle's texture coordinates, in leaf order like KTriangle: (u, v) at v0, v1, v2; the
+ * texture its emission is multiplied by and the scalar texture of its shape's alpha cut-out
+ * (shared/alpha_test.h; -1: none). */
 typedef struct {
   float uv[6];
   int emission_texture;
-  float pad;
+  int alpha_texture;
 } KTexcoords;
 KASHA_STATIC_SIZE(KTexcoords, 32);
 

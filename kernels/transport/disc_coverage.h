@@ -21,7 +21,8 @@ inline float disc_covered(const SceneView* s, float3 x, float3 n, float r, float
     float3 org = x + rho * (cos(phi) * t1 + sin(phi) * t2) + slab * n;
     float t, u, v;
     ++s->rays->closest;
-    int hit = bvh_closest(s->nodes, s->leaves, org, -n, 0.0f, 2.0f * slab, &t, &u, &v);
+    AlphaTables alpha = scene_alpha(s);
+    int hit = bvh_closest(s->nodes, s->leaves, &alpha, org, -n, 0.0f, 2.0f * slab, &t, &u, &v);
     if (hit < 0) continue;
     const __global KTriangle* tri = &s->tris[hit];
     float3 v0 = load_float3(tri->v0);

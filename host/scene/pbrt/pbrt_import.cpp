@@ -724,6 +724,7 @@ class Importer {
   void shape(const std::string& type, const PbrtParameters& params, const PbrtLocation& where) {
     nlohmann::json s = pbrt_shape(type, params, where);
     if (s.is_null()) return;
+    pbrt_shape_alpha(params, textures_, s);
     std::string material = state_.material;
     if (material.empty()) {
       material = kDefaultMaterial;

@@ -1,6 +1,7 @@
 #include "scene/pbrt/pbrt_shapes.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -234,9 +235,7 @@ nlohmann::json disk_shape(const PbrtParameters& params, const PbrtLocation& wher
 
 nlohmann::json pbrt_shape(const std::string& type, const PbrtParameters& params,
                           const PbrtLocation& where) {
-  if (const PbrtParameter* a = params.find("alpha", "float texture"))
-    if (!(a->type == "float" && a->numbers[0] == 1))
-      pbrt_warn(a->where, "alpha cut-outs are not built in kasha: the shape is rendered whole");
+  params.find("alpha", "float texture");  // read by pbrt_shape_alpha: not an unused parameter
   nlohmann::json shape;
   if (type == "trianglemesh" || type == "bilinearmesh" || type == "loopsubdiv") {
     shape = mesh_shape(type, params, where);
@@ -259,6 +258,24 @@ nlohmann::json pbrt_shape(const std::string& type, const PbrtParameters& params,
   }
   params.warn_unused("Shape " + in_quotes(type));
   return shape;
+}
+
+void pbrt_shape_alpha(const PbrtParameters& params, const PbrtTextures& textures,
+                      nlohmann::json& shape) {
+  const PbrtParameter* a = params.find("alpha", "float texture");
+  if (!a) return;
+  if (a->type == "texture" && a->strings.size() == 1) {
+    auto t = textures.scalar.find(a->strings[0]);
+    if (t != textures.scalar.end() && !t->second.kasha_name.empty()) {
+      if (t->second.factor != 1)
+        pbrt_warn(a->where, "a scaled alpha texture is read unscaled in kasha");
+      shape["alpha"] = t->second.kasha_name;
+      return;
+    }
+  }
+  // A number, or a constant texture: pbrt-v4 keeps every hit at 1 or more, none at 0 or less.
+  const double v = *pbrt_float_value(params, "alpha", textures);
+  if (v < 1) shape["alpha"] = std::clamp(v, 0.0, 1.0);
 }
 
 }  // namespace kasha

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "scene/pbrt/pbrt_materials.h"
 #include "scene/pbrt/pbrt_parameters.h"
 
 namespace kasha {
@@ -20,5 +21,10 @@ constexpr long kMaxSubdividedTriangles = 1L << 25;
 // out with a warning (curves).
 nlohmann::json pbrt_shape(const std::string& type, const PbrtParameters& params,
                           const PbrtLocation& where);
+
+// The shape's "alpha" (a number, or a float texture's name) as kasha's shape "alpha"
+// (docs/formats.md#alpha); nothing for alpha 1.
+void pbrt_shape_alpha(const PbrtParameters& params, const PbrtTextures& textures,
+                      nlohmann::json& shape);
 
 }  // namespace kasha
