@@ -65,7 +65,7 @@ TEST_P(PbrtReference, RegionMeansMatchPbrtV4WithinOnePercent) {
 INSTANTIATE_TEST_SUITE_P(
     Scenes, PbrtReference,
     ::testing::Values(ReferenceCase{"cornell_box", {"lacquer"}},
-                      ReferenceCase{"rough_metals", {"rough_metals.pbrt:28"}},
+                      ReferenceCase{"rough_metals", {"rough_metals.pbrt:30"}},
                       ReferenceCase{"glass", {}},
-                      ReferenceCase{"textured", {"textured.pbrt:36"}}),
+                      ReferenceCase{"textured", {"textured.pbrt:38"}}),
     [](const auto& info) { return info.param.scene; });
