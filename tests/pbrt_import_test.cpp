@@ -355,7 +355,7 @@ TEST(PbrtImport, BadInputIsOneLineWithItsFileAndLine) {
 
 TEST(PbrtImport, WhatKashaIgnoresIsOneWarningEachWithItsLine) {
   const std::string file = write_file("w.pbrt", std::string(R"(LookAt 0 1 3  0 1 0  0 1 0
-Camera "perspective" "float fov" 45 "float lensradius" 0.1
+Camera "orthographic" "float lensradius" 0.1
 Sampler "halton" "integer pixelsamples" 16
 Film "rgb" "integer xresolution" 8 "integer yresolution" 8 "float iso" 400
 WorldBegin
@@ -364,7 +364,7 @@ Material "diffuse" "float sigma" 20
   CommandResult r = run_kasha("info " + file);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   for (const std::string& line :
-       {file + ":2: depth of field (\"lensradius\") is not built in kasha",
+       {file + ":2: the orthographic camera's lens is not built in kasha",
         file + ":3: Sampler \"halton\" is ignored", file + ":4: the film's sensor settings",
         file + ":6: \"float sigma\" of Material \"diffuse\" is ignored by kasha"})
     EXPECT_NE(r.err.find("kasha: warning: " + line), std::string::npos) << line << "\n" << r.err;

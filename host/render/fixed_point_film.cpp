@@ -17,7 +17,9 @@ int fixed_point_shift(const KernelSceneData& scene, const std::vector<float>& cm
   const KCamera& cam = scene.camera;
   const double pixel_area = 4.0 * Eigen::Vector3d(cam.right[0], cam.right[1], cam.right[2]).norm() *
                             Eigen::Vector3d(cam.up[0], cam.up[1], cam.up[2]).norm() /
-                            (static_cast<double>(cam.width) * cam.height);
+                            (static_cast<double>(cam.width) * cam.height) /
+                            // An orthographic pixel's area is the world's, its splats 1/A_pixel.
+                            (cam.type == KASHA_CAMERA_ORTHOGRAPHIC ? length * length : 1.0);
   // The largest film-row weight of a bin: x̄ȳz̄·Δλ on an XYZ film, 1 on a spectral one.
   double weight = spectral ? 1.0 : 0.0;
   for (float w : cmf) weight = std::max(weight, static_cast<double>(w));

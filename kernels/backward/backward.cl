@@ -69,8 +69,8 @@ __kernel void render_backward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
     sampler_next_sample(&sampler, pass * (uint)spp + (uint)k);
     float rows[KASHA_FILM_ROWS];
     film_rows_clear(rows);
-    guard += trace_camera_path(&s, &f, camera_position(&s.camera), camera_sample(&s.camera, pixel, sample_2d(&sampler)),
-                               &sampler, rows);
+    float3 o, d = camera_ray(&s.camera, pixel, &sampler, &o);
+    guard += trace_camera_path(&s, &f, o, d, &sampler, rows);
     if (film_rows_finite(rows))
       film_add(film, pixel, rows);
     else

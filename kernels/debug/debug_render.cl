@@ -34,7 +34,8 @@ __kernel void render_debug(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
   for (int k = 0; k < spp; ++k) {
     sampler_next_sample(&sampler, pass * (uint)spp + (uint)k);
     HitPoint h;
-    if (!intersect_scene(&s, camera_position(&s.camera), camera_sample(&s.camera, pixel, sample_2d(&sampler)), &h))
+    float3 o, d = camera_ray(&s.camera, pixel, &sampler, &o);
+    if (!intersect_scene(&s, o, d, &h))
       continue;
     if (view == VIEW_EMISSION) {
       /* Emitters radiate from their front side only. */

@@ -1,4 +1,4 @@
-/* Light paths connected to the pinhole camera and splatted to the film (film_splat.h): light
+/* Light paths connected to the camera and splatted to the film (film_splat.h): light
  * tracing (forward.cl) and vertex connection and merging's light subpaths (vcm.cl). */
 #ifndef KASHA_CAMERA_SPLAT_H
 #define KASHA_CAMERA_SPLAT_H
@@ -18,9 +18,10 @@ typedef struct {
  * that turns radiance leaving x (per nm, before that factor) into the pixel's average. */
 inline bool camera_connection(const SceneView* s, float3 x, float3 ns, float eps, int* pixel, float* k) {
   float importance;
-  *pixel = camera_pixel(&s->camera, x, &importance);
+  float3 at = camera_point(&s->camera, x);
+  *pixel = camera_pixel(&s->camera, x, at, &importance);
   if (*pixel < 0) return false;
-  float3 to_camera = camera_position(&s->camera) - x;
+  float3 to_camera = at - x;
   float dist = length(to_camera);
   float3 dir = to_camera / dist;
   float cos_x = dot(ns, dir);

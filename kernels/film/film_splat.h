@@ -9,24 +9,48 @@
 
 #include "geometry/camera.h"
 
-/* Where a point projects on the pinhole camera's film, and the factor that turns flux leaving
- * it towards the camera into the pixel's average radiance: 1 / (r² cos³θc A_pixel), A_pixel
- * the pixel's area on the image plane at unit distance, times the pixel filter's splat factor
+/* Where the connection from camera point `at` (camera_point) to x lands on the film, and the
+ * factor that turns flux leaving x towards the camera into the pixel's average radiance: the
+ * image area per area of x, for a perspective camera 1 / (r² cos³θc A_pixel), A_pixel the
+ * pixel's area on the image plane at unit distance (a thin lens: r and θc from the lens point,
+ * the film point where the pinhole sees the ray's point at the focal distance; the lens area
+ * cancels between pbrt-v4's We and its lens density), for an orthographic one 1 / A_pixel in the
+ * world, for a spherical one 1 / (r² dω/dA_image). Times the pixel filter's splat factor
  * (geometry/pixel_filter.h). Returns the pixel, or -1 off the film. */
-inline int camera_pixel(const KCamera* c, float3 x, float* importance) {
+inline int camera_pixel(const KCamera* c, float3 x, float3 at, float* importance) {
   float3 forward = (float3)(c->forward[0], c->forward[1], c->forward[2]);
   float3 right = (float3)(c->right[0], c->right[1], c->right[2]);
   float3 up = (float3)(c->up[0], c->up[1], c->up[2]);
-  float3 v = x - camera_position(c);
-  float depth = dot(v, forward);
-  if (depth <= 0.0f) return -1;
-  float3 plane = v / depth - forward;
-  float sx = dot(plane, right) / dot(right, right), sy = dot(plane, up) / dot(up, up);
-  float px = 0.5f * (sx + 1.0f) * c->width, py = 0.5f * (1.0f - sy) * c->height;
+  float3 v = x - at;
+  float px, py;
+  if (c->type >= KASHA_CAMERA_EQUAL_AREA) {
+    float r2 = dot(v, v), solid;
+    float2 film = camera_sphere_film(c, v / sqrt(r2), &solid);
+    if (!(solid > 0.0f)) return -1;
+    px = film.x;
+    py = film.y;
+    *importance = 1.0f / (r2 * solid);
+  } else {
+    float depth = dot(v, forward);
+    if (depth <= 0.0f) return -1;
+    float3 plane;
+    if (c->type == KASHA_CAMERA_ORTHOGRAPHIC) {
+      plane = x - camera_position(c);
+      *importance = 1.0f / camera_pixel_area(c);
+    } else {
+      float r2 = dot(v, v), cos_c = depth / sqrt(r2);
+      *importance = 1.0f / (r2 * cos_c * cos_c * cos_c * camera_pixel_area(c));
+      plane = v / depth - forward;
+      if (c->lens_radius > 0.0f) {
+        float3 q = at + v * (c->focal_distance / depth) - camera_position(c);
+        plane = q / dot(q, forward) - forward;
+      }
+    }
+    float sx = dot(plane, right) / dot(right, right) - c->center[0], sy = dot(plane, up) / dot(up, up) - c->center[1];
+    px = 0.5f * (sx + 1.0f) * c->width;
+    py = 0.5f * (1.0f - sy) * c->height;
+  }
   if (!filter_reaches(c, px, py)) return -1;
-  float r2 = dot(v, v), cos_c = depth / sqrt(r2);
-  float pixel_area = 4.0f * length(right) * length(up) / (float)(c->width * c->height);
-  *importance = 1.0f / (r2 * cos_c * cos_c * cos_c * pixel_area);
   return filter_splat_pixel(c, px, py, importance);
 }
 

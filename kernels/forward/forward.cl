@@ -19,7 +19,7 @@
 inline void splat_rough(const SceneView* s, const FilmView* f, SplatTarget* t, const Surface* surf,
                         const HitPoint* h, const Photon* p, float* rows) {
   float3 x = h->x, n = hit_front(h);
-  float3 to_camera = normalize(camera_position(&s->camera) - x);
+  float3 to_camera = normalize(camera_point(&s->camera, x) - x);
   int pixel;
   float k;
 #if KASHA_SHADING_NORMALS
@@ -80,7 +80,7 @@ inline void splat_surface(const SceneView* s, const FilmView* f, SplatTarget* ta
   bool through = false;
 #if KASHA_TRANSMISSION
   /* A camera behind a transmitting surface sees the photon through its τ (surface.h). */
-  if (surf->share_t > 0.0f && dot(camera_position(&s->camera) - x, ns) < 0.0f) {
+  if (surf->share_t > 0.0f && dot(camera_point(&s->camera, x) - x, ns) < 0.0f) {
     through = true;
     ns = -ns;
     rho = surf->tau;
@@ -102,13 +102,13 @@ inline void splat_surface(const SceneView* s, const FilmView* f, SplatTarget* ta
     film_rows_clear(rows);
 #if KASHA_SHADING_NORMALS
     /* Towards a camera below the shading normal's hemisphere the surface sends nothing. */
-    if (hit_seen(h, normalize(x - camera_position(&s->camera))) == through) k = 0.0f;
+    if (hit_seen(h, normalize(x - camera_point(&s->camera, x))) == through) k = 0.0f;
     k *= photon_arrival_correction(h, p->direction);
 #endif
     float lambert = k * KASHA_INV_PI / s->bin_nm;
 #if KASHA_COATED
     /* Under a coat, t(θi) t(θo) / η² (coat.h). */
-    if (surf->coated) lambert *= surface_lambert_weight(surf, dot(normalize(camera_position(&s->camera) - x), h->ns));
+    if (surf->coated) lambert *= surface_lambert_weight(surf, dot(normalize(camera_point(&s->camera, x) - x), h->ns));
 #endif
     film_rows(f, p->power, rho, 0, lambert, rows);
 #if KASHA_FLUORESCENCE
@@ -117,7 +117,7 @@ inline void splat_surface(const SceneView* s, const FilmView* f, SplatTarget* ta
 #if KASHA_GLOSS
     if (glossy) {
       /* A tabulated lobe can be evaluated towards the camera: white, f_g Φ / Δλ. */
-      float3 to_camera = normalize(camera_position(&s->camera) - x);
+      float3 to_camera = normalize(camera_point(&s->camera, x) - x);
       float fg = surf->g * lobe_brdf(surf->m, s->lobes, to_camera, -p->direction, h->ns);
       if (fg > 0.0f) film_rows(f, p->power, 0, 0, fg * k / s->bin_nm, rows);
     }
@@ -127,7 +127,7 @@ inline void splat_surface(const SceneView* s, const FilmView* f, SplatTarget* ta
       /* A rough coat's GGX lobe towards the camera (coat.h), white: f Φ / Δλ. */
       Frame fr = frame_of(h->ns);
       float pdf;
-      float fc = coat_lobe_eval(surf, to_local(&fr, normalize(camera_position(&s->camera) - x)),
+      float fc = coat_lobe_eval(surf, to_local(&fr, normalize(camera_point(&s->camera, x) - x)),
                                 to_local(&fr, -p->direction), &pdf);
       if (fc > 0.0f) film_rows(f, p->power, 0, 0, fc * k / s->bin_nm, rows);
     }

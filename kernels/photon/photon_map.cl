@@ -97,7 +97,8 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KPhotonTra
 inline float camera_path(const SceneView* s, const FilmView* f, int pixel, Sampler* sampler, __global float* vp,
                          float* rows) {
   CameraWalk w;
-  walk_start(&w, f, camera_position(&s->camera), camera_sample(&s->camera, pixel, sample_2d(sampler)));
+  float3 o, d = camera_ray(&s->camera, pixel, sampler, &o);
+  walk_start(&w, f, o, d);
   float travelled = 0.0f;
   CameraVertex v;
   while (walk_vertex(&w, s, f, sampler, &v, rows)) {

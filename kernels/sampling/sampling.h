@@ -30,6 +30,21 @@ inline float2 sample_triangle(float u1, float u2) {
   return (float2)(su * (1.0f - u2), su * u2);
 }
 
+/* Uniform point on the unit disk (pbrt-v4's SampleUniformDiskConcentric); density 1/pi. */
+inline float2 sample_disk_concentric(float2 u) {
+  float2 o = 2.0f * u - 1.0f;
+  if (o.x == 0.0f && o.y == 0.0f) return (float2)(0.0f, 0.0f);
+  float r, theta;
+  if (fabs(o.x) > fabs(o.y)) {
+    r = o.x;
+    theta = KASHA_PI / 4.0f * (o.y / o.x);
+  } else {
+    r = o.y;
+    theta = KASHA_PI / 2.0f - KASHA_PI / 4.0f * (o.x / o.y);
+  }
+  return r * (float2)(cos(theta), sin(theta));
+}
+
 /* Mirror reflection of the direction d about the normal n. */
 inline float3 reflect_dir(float3 d, float3 n) { return d - 2.0f * dot(d, n) * n; }
 

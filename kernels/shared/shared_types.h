@@ -105,24 +105,36 @@ KASHA_STATIC_SIZE(KHit, 16);
 #define KASHA_FILTER_BINS 16
 #define KASHA_FILTER_MAX_RADIUS 8
 
-/* Pinhole camera: a pixel (px, py), row 0 at the top, looks along
- * forward + (2 (px + 0.5) / width - 1) * right_scaled + (1 - 2 (py + 0.5) / height) * up_scaled. */
+/* The camera (geometry/camera.h): pbrt-v4's perspective (a pinhole, or a thin lens of radius
+ * lens_radius focused at focal_distance), orthographic and spherical cameras. */
+#define KASHA_CAMERA_PERSPECTIVE 0
+#define KASHA_CAMERA_ORTHOGRAPHIC 1
+#define KASHA_CAMERA_EQUAL_AREA 2      /* spherical, pbrt-v4's equal-area square (its default) */
+#define KASHA_CAMERA_EQUIRECTANGULAR 3 /* spherical, longitude along x, polar angle down y */
+
+/* A pixel (px, py), row 0 at the top, is screen point (sx, sy) = (2 (px + 0.5) / width - 1 +
+ * center[0], 1 - 2 (py + 0.5) / height + center[1]); a perspective camera looks along
+ * forward + sx * right + sy * up, an orthographic one along forward from position + sx * right +
+ * sy * up. A spherical camera maps the image on the sphere of directions in the frame (right, up,
+ * forward), all three unit. */
 typedef struct {
   float position[3];
   int width;
   float forward[3];
   int height;
-  float right[3]; /* already scaled by tan(fov/2) and the aspect ratio */
-  float pad0;
-  float up[3]; /* already scaled by tan(fov/2) */
-  float pad1;
+  float right[3]; /* perspective: scaled by tan(fov/2) and the screen window; orthographic: in world units */
+  float lens_radius; /* perspective: 0 for a pinhole */
+  float up[3];       /* scaled as right */
+  float focal_distance;
   int filter;             /* the pixel filter, KASHA_FILTER_* (geometry/pixel_filter.h) */
   float filter_radius[2]; /* in pixels, per axis */
-  float pad2;
+  int type;               /* KASHA_CAMERA_* */
   float filter_cdf[2][KASHA_FILTER_BINS]; /* KASHA_FILTER_TABLE: per axis, the filter's mass on
                                              the half axis up to each bin's end (the last 1) */
+  float center[2]; /* the screen window's centre, in units of right and up */
+  float pad[2];
 } KCamera;
-KASHA_STATIC_SIZE(KCamera, 208);
+KASHA_STATIC_SIZE(KCamera, 224);
 
 /* The scene as kernels take it by value, first of KASHA_SCENE_PARAMS (kernels/geometry/scene_view.h): the
  * camera, the light counts and the bin width, and where each of the scene's tables starts in its
@@ -137,7 +149,7 @@ typedef struct {
   int light_sources; /* entries of lights */
   int pad;
 } KSceneParams;
-KASHA_STATIC_SIZE(KSceneParams, 336);
+KASHA_STATIC_SIZE(KSceneParams, 352);
 
 /* What a material is: the measured model (gloss lobe or mirror, passive and fluorescent Lambert
  * parts), or an ideal specular interface — a dielectric or a conductor (docs/materials.md). */

@@ -9,11 +9,13 @@
  * camera path a pixel). */
 inline void vcm_camera_start(const SceneView* s, float3 dir, float paths, int spp, VcmCamera* c) {
   const KCamera* k = &s->camera;
-  float3 forward = normalize((float3)(k->forward[0], k->forward[1], k->forward[2]));
-  float pixel_area = 4.0f * length((float3)(k->right[0], k->right[1], k->right[2])) *
-                     length((float3)(k->up[0], k->up[1], k->up[2])) / (float)(k->width * k->height);
-  float cos_c = dot(dir, forward);
-  c->dvcm = KASHA_VCM_TRACING_SHARE * paths / spp * pixel_area * cos_c * cos_c * cos_c;
+  float share = KASHA_VCM_TRACING_SHARE * paths / spp;
+  if (k->type == KASHA_CAMERA_PERSPECTIVE) { /* camera_pixel_solid_angle's, in the order it had */
+    float cos_c = dot(dir, normalize(camera_vec(k->forward)));
+    c->dvcm = share * camera_pixel_area(k) * cos_c * cos_c * cos_c;
+  } else {
+    c->dvcm = share * camera_pixel_solid_angle(k, dir);
+  }
   c->dvc = c->dvm = c->dvc_merge = 0.0f;
 }
 
@@ -102,8 +104,8 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
   float vm = vcm_merge_factor(vcm_eta_at(radius, r_merge)), vc = vcm_connect_factor(vcm_eta_at(radius, r_merge));
   float travelled = 0.0f;
   VcmCamera c;
-  float3 dir = camera_sample(&s->camera, pixel, sample_2d(sampler));
-  walk_start(&c.w, f, camera_position(&s->camera), dir);
+  float3 o, dir = camera_ray(&s->camera, pixel, sampler, &o);
+  walk_start(&c.w, f, o, dir);
   vcm_camera_start(s, dir, (float)in->it->paths, in->it->spp, &c);
   CameraVertex v;
   bool met = false;       /* a vertex that is not delta is behind */
@@ -117,6 +119,8 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
       return 0.0f;
     }
     vcm_arrived(h->t, fabs(dot(h->n, c.w.dir)), &c.dvcm, &c.dvc, &c.dvm, &c.dvc_merge);
+    /* The orthographic camera's density is per area from the start (camera_pixel_solid_angle). */
+    if (c.w.depth == 0 && s->camera.type == KASHA_CAMERA_ORTHOGRAPHIC) c.dvcm /= h->t * h->t;
     travelled += h->t;
     if (own && h->emitter >= 0 && h->front && !(seen_apart && delta_only)) {
       float weight = vcm_emission_weight(&c, s, h);

@@ -13,7 +13,7 @@ inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, con
                       const KVcmRadius* radius, float paths, int spp) {
   int pixel;
   float k;
-  float3 to = camera_position(&s->camera) - h->x;
+  float3 to = camera_point(&s->camera, h->x) - h->x;
   /* The merge at this vertex, the camera path's first: its radius at the camera's distance. */
   float vm = vcm_merge_factor(vcm_eta_at(radius, vcm_radius_at(radius, length(to))));
   to = normalize(to);

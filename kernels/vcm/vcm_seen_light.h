@@ -10,7 +10,8 @@
  * roulette otherwise as vcm_camera_path's. */
 inline float vcm_seen_light(const SceneView* s, const FilmView* f, int pixel, Sampler* sampler, float* rows) {
   CameraWalk w;
-  walk_start(&w, f, camera_position(&s->camera), camera_sample(&s->camera, pixel, sample_2d(sampler)));
+  float3 o, d = camera_ray(&s->camera, pixel, sampler, &o);
+  walk_start(&w, f, o, d);
   CameraVertex v;
   while (w.depth < KASHA_MAX_PATH_DEPTH) {
     HitPoint* h = &v.h;

@@ -554,8 +554,9 @@ class Importer {
                    const PbrtParameters& params, const PbrtLocation& where) {
     if (camera_seen_) pbrt_fail(where, "a second Camera");
     camera_seen_ = true;
-    if (type != "perspective")
-      pbrt_fail(where, "Camera " + in_quotes(type) + " is not built in kasha (perspective)");
+    if (type != "perspective" && type != "orthographic" && type != "spherical")
+      pbrt_fail(where, "Camera " + in_quotes(type) +
+                           " is not built in kasha (perspective, orthographic, spherical)");
     if (std::abs(camera_from_world.determinant()) < 1e-300)
       pbrt_fail(where, "the camera's transform is singular");
     const Matrix world_from_camera = camera_from_world.inverse();
@@ -573,23 +574,56 @@ class Importer {
     // kasha's image right is forward × up; pbrt-v4's is the camera's +x, the other way in its
     // left-handed frame (unless the scene mirrors it, as `Scale -1 1 1` does).
     camera_["mirror"] = right.dot(forward.cross(up)) < 0;
-    camera_["fov_deg"] = params.get_float("fov", 90);
-    if (params.get_float("lensradius", 0) > 0)
-      pbrt_warn(where, "depth of field (\"lensradius\") is not built in kasha: a pinhole renders");
-    params.get_float("focaldistance", 1e6);
-    if (params.find("screenwindow", "float"))
-      pbrt_warn(where, "\"screenwindow\" is not built in kasha: the default window renders");
-    if (params.find("frameaspectratio", "float"))
-      pbrt_warn(where, "\"frameaspectratio\" is not built in kasha: the film's aspect renders");
+    camera_["type"] = type;
+    camera_projection(type, params, where);
     params.get_float("shutteropen", 0);
     params.get_float("shutterclose", 1);
-    params.warn_unused("Camera \"perspective\"");
+    params.warn_unused("Camera " + in_quotes(type));
     if (!state_.outside_medium.empty())
       pbrt_fail(where, "the camera is inside medium " + in_quotes(state_.outside_medium) +
                            ": participating media are not built in kasha");
     if (!camera_.contains("width")) {
       camera_["width"] = 1280;  // pbrt-v4's film defaults, unless a Film came first
       camera_["height"] = 720;
+    }
+  }
+
+  // What pbrt-v4's CameraBase and each camera's Create read besides the transform (cameras.cpp).
+  void camera_projection(const std::string& type, const PbrtParameters& params,
+                         const PbrtLocation& where) {
+    if (type == "spherical") {
+      const std::string mapping = params.get_string("mapping", "equalarea");
+      if (mapping != "equalarea" && mapping != "equirectangular")
+        pbrt_fail(where, "Camera \"spherical\": unknown \"mapping\" " + in_quotes(mapping) +
+                             " (equalarea, equirectangular)");
+      camera_["mapping"] = mapping;
+      params.get_float("lensradius", 0);  // pbrt-v4 reads them and renders a pinhole
+      params.get_float("focaldistance", 1e30);
+      params.get_float("frameaspectratio", 1);
+      params.get_numbers("screenwindow", "float");
+      return;
+    }
+    if (type == "perspective") camera_["fov_deg"] = params.get_float("fov", 90);
+    const double lens = params.get_float("lensradius", 0);
+    const double focus = params.get_float("focaldistance", 1e6);
+    if (lens < 0 || !(focus > 0))
+      pbrt_fail(where, "a negative \"lensradius\" or a \"focaldistance\" ≤ 0");
+    if (lens > 0 && type == "perspective") {
+      camera_["lens_radius"] = lens;
+      camera_["focal_distance"] = focus;
+    } else if (lens > 0) {
+      pbrt_warn(where, "the orthographic camera's lens is not built in kasha: a pinhole renders");
+    }
+    // pbrt-v4's default screen window: the shorter side spans [−1, 1] at the frame's aspect.
+    const double frame = params.get_float("frameaspectratio", 0);
+    if (frame > 0)
+      camera_["screen_window"] = frame > 1 ? std::vector<double>{-frame, frame, -1, 1}
+                                           : std::vector<double>{-1, 1, -1 / frame, 1 / frame};
+    const std::vector<double> w = params.get_numbers("screenwindow", "float");
+    if (!w.empty()) {
+      if (w.size() != 4 || !(w[0] < w[1] && w[2] < w[3]))
+        pbrt_fail(where, "\"screenwindow\" is four numbers x0 < x1, y0 < y1");
+      camera_["screen_window"] = w;
     }
   }
 
