@@ -111,11 +111,15 @@ nlohmann::json pbrt_spectrum(const PbrtParameter& p, PbrtSpectrumUse use,
 }
 
 nlohmann::json pbrt_tabulated(const std::function<double(double)>& f) {
-  std::vector<double> nm, value;
+  // pbrt-v4 samples 360–830 nm; kasha's grid may reach further (a UV lamp's 300 nm): beyond the
+  // table its end values hold, as a kasha table would otherwise fall to zero there (an η of 0).
+  std::vector<double> nm{1}, value{f(kPbrtTableMinNm)};
   for (int l = kPbrtTableMinNm; l <= kPbrtTableMaxNm; ++l) {
     nm.push_back(l);
     value.push_back(f(l));
   }
+  nm.push_back(1e5);
+  value.push_back(value.back());
   return {{"nm", nm}, {"value", value}};
 }
 
@@ -140,7 +144,8 @@ SpectrumPtr pbrt_parse_spectrum(const nlohmann::json& spectrum,
                                 const std::filesystem::path& base_dir, const PbrtLocation& where) {
   static const std::string kWhat = "a pbrt-v4 spectrum";
   try {
-    return parse_spectrum(JsonNode::parse_text(spectrum.dump(), kWhat, base_dir));
+    return parse_spectrum(JsonNode::parse_text(
+        spectrum.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace), kWhat, base_dir));
   } catch (const Error& e) {
     // "a pbrt-v4 spectrum: /PATH: why" names no file: the statement's line does.
     std::string why = e.what();

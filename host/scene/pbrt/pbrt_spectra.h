@@ -20,7 +20,8 @@ enum class PbrtSpectrumUse { kAlbedo, kUnbounded, kIlluminant };
 // The range pbrt-v4 samples wavelengths in; spectra the importer computes are tabulated over it.
 constexpr int kPbrtTableMinNm = 360, kPbrtTableMaxNm = 830;
 
-// f tabulated every nanometre over kPbrtTableMinNm–kPbrtTableMaxNm as a kasha spectrum value.
+// f tabulated every nanometre over kPbrtTableMinNm–kPbrtTableMaxNm as a kasha spectrum value,
+// its end values held beyond (1 nm to 10⁵ nm).
 nlohmann::json pbrt_tabulated(const std::function<double(double)>& f);
 
 // pbrt-v4's RGBUnboundedSpectrum of a linear sRGB triple (components ≥ 0): 2m · S(c(rgb / 2m)),
