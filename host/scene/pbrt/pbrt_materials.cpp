@@ -406,8 +406,11 @@ nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& para
     m["file"] = file;
   } else if (type == "mix" || type == "measured" || type == "hair" || type == "subsurface" ||
              type == "coatedconductor") {
-    pbrt_fail(where, "material " + in_quotes(type) + " is not built in kasha (diffuse, "
-                     "coateddiffuse, diffusetransmission, dielectric, thindielectric, conductor, kasha)");
+    pbrt_fail(
+        where,
+        "material " + in_quotes(type) +
+            " is not built in kasha (diffuse, "
+            "coateddiffuse, diffusetransmission, dielectric, thindielectric, conductor, kasha)");
   } else {
     pbrt_fail(where, "unknown material type " + in_quotes(type));
   }

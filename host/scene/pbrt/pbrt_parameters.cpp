@@ -96,8 +96,8 @@ PbrtParameters PbrtParameters::read(PbrtTokenizer& tokens) {
     std::string type, name, extra;
     words >> type >> name >> extra;
     if (name.empty() || !extra.empty())
-      pbrt_fail(decl.where, "\"" + printable(decl.text) +
-                                "\" is not a parameter declaration (\"type name\")");
+      pbrt_fail(decl.where,
+                "\"" + printable(decl.text) + "\" is not a parameter declaration (\"type name\")");
     PbrtParameter p;
     p.type = canonical_type(type);
     if (p.type.empty())
@@ -124,17 +124,16 @@ PbrtParameters PbrtParameters::read(PbrtTokenizer& tokens) {
     }
     if (p.count() == 0) pbrt_fail(decl.where, "\"" + printable(p.declaration()) + "\" is empty");
     if (!p.numbers.empty() && p.numbers.size() % group_size(p.type) != 0)
-      pbrt_fail(decl.where, "\"" + printable(p.declaration()) + "\" needs its values in groups of " +
+      pbrt_fail(decl.where, "\"" + printable(p.declaration()) +
+                                "\" needs its values in groups of " +
                                 std::to_string(group_size(p.type)));
     if (p.type == "spectrum" && !p.numbers.empty() && p.numbers.size() % 2 != 0)
-      pbrt_fail(decl.where, "\"" + printable(p.declaration()) +
-                                "\" needs wavelength-value pairs");
+      pbrt_fail(decl.where, "\"" + printable(p.declaration()) + "\" needs wavelength-value pairs");
     out.params_.push_back(std::move(p));
   }
 }
 
-const PbrtParameter* PbrtParameters::find(const std::string& name,
-                                          const std::string& types) const {
+const PbrtParameter* PbrtParameters::find(const std::string& name, const std::string& types) const {
   for (const PbrtParameter& p : params_) {
     if (p.name != name) continue;
     std::istringstream list(types);
@@ -181,8 +180,7 @@ bool PbrtParameters::get_bool(const std::string& name, bool fallback) const {
   return p->bools[0];
 }
 
-std::string PbrtParameters::get_string(const std::string& name,
-                                       const std::string& fallback) const {
+std::string PbrtParameters::get_string(const std::string& name, const std::string& fallback) const {
   const PbrtParameter* p = one_value(*this, name, "string");
   return p ? p->strings[0] : fallback;
 }

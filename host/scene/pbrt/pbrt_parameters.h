@@ -22,7 +22,7 @@ struct PbrtParameter {
   mutable bool used = false;
 
   std::string declaration() const { return type + " " + name; }  // for messages
-  size_t count() const;                                            // values given
+  size_t count() const;                                          // values given
 };
 
 class PbrtParameters {
