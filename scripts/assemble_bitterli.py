@@ -98,7 +98,7 @@ def prune_scene(path, scene_dir, log):
     out, last = [], 0
     for start, end, directive, toks in statements(text):
         files = [t.strip('"') for t in toks if t.startswith('"')]
-        for f in files:
+        for f in files if directive in ("Texture", "LightSource") else []:
             target = os.path.join(scene_dir, f)
             ext = os.path.splitext(f)[1].lower()
             if ext in STANDINS and not os.path.exists(target):
