@@ -15,7 +15,6 @@ Everything else is the snapshot's bytes. Prints one line per stand-in and left-o
 writes OUT_DIR/ASSEMBLED.txt listing them.
 """
 import os
-import re
 import struct
 import subprocess
 import sys
@@ -75,22 +74,7 @@ def write_exr(path, size=8, value=0.5):
 
 STANDINS = {".tga": write_tga, ".png": write_png, ".pfm": write_pfm, ".exr": write_exr}
 
-TOKEN = re.compile(r'#[^\n]*|"[^"]*"|\[|\]|[^\s\[\]"#]+')
-
-
-def statements(text):
-    """(start, end, directive, tokens) of each statement, by pbrt-v4's lexical rules."""
-    spans = []
-    for m in TOKEN.finditer(text):
-        tok = m.group(0)
-        if tok.startswith("#"):
-            continue
-        if tok[0].isalpha() and tok[0].isupper():
-            spans.append([m.start(), m.end(), tok, []])
-        elif spans:
-            spans[-1][1] = m.end()
-            spans[-1][3].append(tok)
-    return spans
+from pbrt_statements import statements
 
 
 def prune_scene(path, scene_dir, log):

@@ -11,21 +11,7 @@ radius 0.5 (kasha's pixels are box-filtered): both renderers then average the sa
 import re
 import sys
 
-TOKEN = re.compile(r'#[^\n]*|"[^"]*"|\[|\]|[^\s\[\]"#]+')
-
-
-def statements(text):
-    spans = []
-    for m in TOKEN.finditer(text):
-        tok = m.group(0)
-        if tok.startswith("#"):
-            continue
-        if tok[0].isalpha() and tok[0].isupper():
-            spans.append([m.start(), m.end(), tok, []])
-        elif spans:
-            spans[-1][1] = m.end()
-            spans[-1][3].append(tok)
-    return spans
+from pbrt_statements import statements
 
 
 def param(toks, name):

@@ -4,6 +4,11 @@
 
 namespace kasha {
 
+bool is_pixel_filter(const std::string& type) {
+  return type == "box" || type == "triangle" || type == "gaussian" || type == "mitchell" ||
+         type == "lanczos";
+}
+
 PixelFilter default_pixel_filter(const std::string& type) {
   PixelFilter f;
   f.type = type;
@@ -71,8 +76,7 @@ void PixelFilter::to_kernel(KCamera* out) const {
 PixelFilter parse_pixel_filter(const JsonNode& node) {
   const JsonNode type_node = node.at("type");
   const std::string type = type_node.string();
-  if (type != "box" && type != "triangle" && type != "gaussian" && type != "mitchell" &&
-      type != "lanczos")
+  if (!is_pixel_filter(type))
     type_node.fail("\"" + type +
                    "\" is not a pixel filter (box, triangle, gaussian, mitchell, lanczos)");
   PixelFilter f = default_pixel_filter(type);

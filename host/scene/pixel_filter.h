@@ -25,6 +25,8 @@ struct PixelFilter {
   void to_kernel(KCamera* out) const;
 };
 
+// Whether `type` names one of pbrt-v4's filters (box, triangle, gaussian, mitchell, lanczos).
+bool is_pixel_filter(const std::string& type);
 // pbrt-v4's defaults for a filter type: the radius and shape parameters its Create reads.
 PixelFilter default_pixel_filter(const std::string& type);
 PixelFilter parse_pixel_filter(const JsonNode& node);

@@ -15,44 +15,13 @@
 #include "materials/rgb_spectrum.h"
 #include "sampling/sampling.h"
 #include "geometry/scene_view.h"
+#include "geometry/equal_area.h"
 
 #ifndef KASHA_ENVIRONMENT
 #define KASHA_ENVIRONMENT 0
 #endif
 
 #if KASHA_ENVIRONMENT
-
-/* Clarberg's equal-area mapping of the unit square onto the sphere (pbrt-v4's
- * EqualAreaSquareToSphere) and its inverse. */
-inline float3 equal_area_square_to_sphere(float2 p) {
-  float u = 2.0f * p.x - 1.0f, v = 2.0f * p.y - 1.0f;
-  float up = fabs(u), vp = fabs(v);
-  float signed_distance = 1.0f - (up + vp);
-  float d = fabs(signed_distance), r = 1.0f - d;
-  float phi = (r == 0.0f ? 1.0f : (vp - up) / r + 1.0f) * KASHA_PI / 4.0f;
-  float z = copysign(1.0f - r * r, signed_distance);
-  float cos_phi = copysign(cos(phi), u), sin_phi = copysign(sin(phi), v);
-  float s = r * sqrt(fmax(0.0f, 2.0f - r * r));
-  return (float3)(cos_phi * s, sin_phi * s, z);
-}
-
-inline float2 equal_area_sphere_to_square(float3 d) {
-  float x = fabs(d.x), y = fabs(d.y), z = fabs(d.z);
-  float r = sqrt(fmax(0.0f, 1.0f - z));
-  float a = fmax(x, y), b = fmin(x, y);
-  b = a == 0.0f ? 0.0f : b / a;
-  float phi = atan(b) * 2.0f / KASHA_PI;
-  if (x < y) phi = 1.0f - phi;
-  float v = phi * r, u = r - v;
-  if (d.z < 0.0f) {
-    float t = u;
-    u = 1.0f - v;
-    v = 1.0f - t;
-  }
-  u = copysign(u, d.x);
-  v = copysign(v, d.y);
-  return (float2)(0.5f * (u + 1.0f), 0.5f * (v + 1.0f));
-}
 
 /* The image frame's direction for the world direction w; a general map (not a rotation or a
  * mirror) is normalised after it, and *jacobian is its solid-angle Jacobian
@@ -94,7 +63,7 @@ inline float2 env_uv(const __global KLight* l, float3 w, float* to_solid_angle) 
   float3 d = env_to_light(l, w, &map_jacobian);
   if (l->mapping == KASHA_MAPPING_EQUAL_AREA) {
     *to_solid_angle = 0.25f * KASHA_INV_PI * map_jacobian;
-    return equal_area_sphere_to_square(d);
+    return equal_area_to_square(d);
   }
   /* sin θ from x and y: near the poles 1 − cos² θ loses it to rounding. */
   float cos_t = clamp(d.z, -1.0f, 1.0f), sin_t = length((float2)(d.x, d.y));
@@ -107,7 +76,7 @@ inline float2 env_uv(const __global KLight* l, float3 w, float* to_solid_angle) 
 inline float3 env_direction(const __global KLight* l, float2 uv, float* to_solid_angle) {
   float3 d;
   if (l->mapping == KASHA_MAPPING_EQUAL_AREA) {
-    d = equal_area_square_to_sphere(uv);
+    d = equal_area_to_sphere(uv);
     *to_solid_angle = 0.25f * KASHA_INV_PI;
   } else {
     float theta = uv.y * KASHA_PI, phi = uv.x * 2.0f * KASHA_PI, sin_t, cos_t = cos(theta), c, sn;

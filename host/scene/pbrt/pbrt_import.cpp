@@ -527,8 +527,7 @@ class Importer {
   // scene names none is its gaussian, set in run().
   void pixel_filter(const std::string& type, const PbrtParameters& params,
                     const PbrtLocation& where) {
-    if (type != "box" && type != "triangle" && type != "gaussian" && type != "mitchell" &&
-        type != "lanczos")
+    if (!is_pixel_filter(type))
       pbrt_fail(where, "PixelFilter " + in_quotes(type) + " is not one of pbrt-v4's filters");
     const PixelFilter defaults = default_pixel_filter(type);
     const double rx = params.get_float("xradius", defaults.radius[0]);
