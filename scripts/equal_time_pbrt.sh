@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Equal-time comparison of kasha with pbrt-v4 on one pbrt-v4 scene (issue 41's table).
 # Usage: scripts/equal_time_pbrt.sh SCENE.pbrt REFERENCE.exr SECONDS OUTDIR [KASHA_INTEGRATORS...]
-# Env: PBRT, IMGTOOL (pbrt-v4's binaries; default /work/pbrt/build/{pbrt,imgtool}), KASHA.
+# Env: PBRT, IMGTOOL (pbrt-v4's binaries; default /work/pbrt/build/{pbrt,imgtool}), KASHA,
+# PBRT_INTEGRATORS (pbrt-v4's integrators to run; default "path bdpt"; sppm's samples are its
+# iterations).
 # The scene is used as it is (make a variant with scripts/pbrt_variant.py: resolution, maxdepth,
 # the integrator pbrt-v4 should run). kasha renders with `--time SECONDS` for each integrator named
 # (default: vcm, kasha's default); pbrt-v4 renders with `path` and `bdpt`, each at the sample
@@ -25,7 +27,7 @@ for integ in "${integrators[@]}"; do
   "$kasha" render "$scene" --integrator "$integ" --time "$secs" -o "$out/$name.kasha-$integ.exr" > /dev/null 2>&1
   images+=("$out/$name.kasha-$integ.exr")
 done
-for integ in path bdpt; do
+for integ in ${PBRT_INTEGRATORS:-path bdpt}; do
   variant=$(dirname "$scene")/_et_$integ.pbrt
   python3 "$here/pbrt_variant.py" "$scene" "$variant" --integrator "$integ"
   # Calibrate: 4 and 16 samples per pixel; their difference is 12 samples' rendering without the
