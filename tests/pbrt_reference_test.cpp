@@ -79,7 +79,7 @@ TEST(PbrtMaxDepth, CornellBoxRegionsMatchPbrtV4AtMaxdepth1And2) {
   for (int cap : {1, 2}) {
     RenderSettings s;
     s.spectral = false;
-    s.passes = 16;
+    s.passes = 8;
     s.integrator_settings.max_depth = cap;
     const RenderResult kasha = render_scene(source_path("scenes/pbrt/cornell_box.pbrt"), s);
     const Image pbrt = read_exr(
