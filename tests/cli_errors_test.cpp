@@ -133,7 +133,13 @@ TEST(CliErrors, EveryBadCommandLineIsOneLineWithExitCode2AndNoOutput) {
       {render + "--passes 1 --device 0,,1", 2, "--device: \"\" is not a device index"},
       {render + "--passes 1 --device al", 2, "--device: \"al\" is not a device index"},
       {render + "--passes 1 --memory 0", 2, "--memory: 0 is not in"},
-      {render + "--passes 1 --max-depth 0", 2, "--max-depth: 0 is not in"},
+      {render + "--passes 1 --depth-guard 0", 2, "--depth-guard: 0 is not in"},
+      {render + "--passes 1 --max-depth -1", 2,
+       "--max-depth: -1 is not in [0, 1073741824] (or scene)"},
+      {render + "--passes 1 --max-depth deep", 2,
+       "--max-depth: \"deep\" is not an integer (or scene)"},
+      // the path as given, unquoted: DepthCap.TheSceneCapIsThePbrtIntegratorsMaxdepth checks the rest
+      {render + "--passes 1 --max-depth scene", 2, "--max-depth: scene: /"},
       // measure
       {measure + "--band-nm nan", 2, "--band-nm: nan is not a finite number"},
       {measure + "--band-nm 1e300", 2, "--band-nm: 1e300 is more than 1000"},

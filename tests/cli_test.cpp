@@ -249,7 +249,7 @@ TEST(Cli, EveryPhysicalIntegratorRefusesASceneWithoutLight) {
 }
 
 TEST(Cli, RenderWarnsWhenTheDepthGuardCutsPaths) {
-  // A furnace that keeps 99.99 % of its light: paths outlive a guard of --max-depth 1000, which
+  // A furnace that keeps 99.99 % of its light: paths outlive a guard of --depth-guard 1000, which
   // biases the image, and each integrator says how much weight the guard cut. Roulette keeps a
   // path's expected weight, so after the guard's 1000 scatterings it is ρ^1000 = 0.9048 of the
   // start: each path carries about 0 or 1, so the share has a binomial error over the paths traced.
@@ -265,7 +265,7 @@ TEST(Cli, RenderWarnsWhenTheDepthGuardCutsPaths) {
                                                  {"--integrator photon --photons 200", 200}};
   for (const auto& [options, paths] : runs) {
     auto r = run_kasha("render " + shell_quoted(scene) + " " + options +
-                       " --max-depth 1000 --passes 1 -o " + shell_quoted(out));
+                       " --depth-guard 1000 --passes 1 -o " + shell_quoted(out));
     EXPECT_EQ(r.exit_code, 0) << r.err;
     const std::string lead =
         "kasha: warning: paths reaching the 1000-vertex depth guard were cut "

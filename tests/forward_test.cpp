@@ -25,7 +25,7 @@ TEST(Forward, PowerIsConservedInAClosedScene) {
   s.integrator = "forward";
   s.passes = 2;
   s.integrator_settings.photons = 100000;
-  s.integrator_settings.max_depth = 3;
+  s.integrator_settings.depth_guard = 3;
   for (const char* scene : {"furnace_fluorescent.json", "furnace_mirror.json", "furnace_uv.json"}) {
     RenderResult r = render_scene(source_path(std::string("scenes/") + scene), s);
     const double emitted = r.counters.power_emitted_w, absorbed = r.counters.power_absorbed_w,

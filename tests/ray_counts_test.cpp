@@ -11,13 +11,13 @@ using namespace kasha;
 
 namespace {
 
-test::RenderResult render(const std::string& scene, const std::string& integrator, int max_depth,
+test::RenderResult render(const std::string& scene, const std::string& integrator, int depth_guard,
                           int spp = 4) {
   test::RenderSettings s;
   s.integrator = integrator;
   s.passes = 2;
   s.spectral = false;
-  s.integrator_settings.max_depth = max_depth;
+  s.integrator_settings.depth_guard = depth_guard;
   if (integrator != "forward") s.integrator_settings.spp = spp;
   s.integrator_settings.photons = 1 << 14;
   return render_scene(test::source_path(scene), s);
@@ -34,11 +34,11 @@ TEST(RayCounts, DebugCountsOneClosestRayPerCameraSample) {
 }
 
 // Inside a closed furnace every ray hits and no path ends by itself before the depth guard (no
-// black surface, roulette from the third vertex on), so backward traces exactly max-depth
+// black surface, roulette from the third vertex on), so backward traces exactly --depth-guard
 // closest-hit rays per path: 1 (the camera ray) and 3. Next-event estimation sends at most one
 // shadow ray a vertex; inside the sphere every light point but those on the vertex's own
 // triangle is in front of it, so nearly one.
-TEST(RayCounts, BackwardCountsMaxDepthClosestRaysPerPathInAFurnace) {
+TEST(RayCounts, BackwardCountsDepthGuardClosestRaysPerPathInAFurnace) {
   for (const char* scene : {"scenes/furnace_passive.json", "scenes/furnace_self_absorption.json"})
     for (int depth : {1, 3}) {
       test::RenderResult r = render(scene, "backward", depth);
@@ -58,6 +58,25 @@ TEST(RayCounts, BackwardCountsMaxDepthClosestRaysPerPathInAFurnace) {
       std::printf("[ rays     ] %s, max depth %d: %.0f paths, %.0f closest, %.0f shadow rays\n",
                   scene, depth, paths, closest, shadow);
     }
+}
+
+// Under --max-depth N a furnace's camera path traces N + 1 closest-hit rays (emission seen after
+// 0 … N scatterings) and next-event estimation N shadow rays (from the vertices 0 … N − 1), nearly
+// one a vertex as above; the depth guard cuts nothing.
+TEST(RayCounts, BackwardUnderADepthCapTracesCapPlusOneRaysPerPath) {
+  for (int cap : {0, 2}) {
+    test::RenderSettings s;
+    s.passes = 2;
+    s.spectral = false;
+    s.integrator_settings.spp = 4;
+    s.integrator_settings.max_depth = cap;
+    test::RenderResult r = render_scene(test::source_path("scenes/furnace_passive.json"), s);
+    const double paths = r.scene.camera.width * r.scene.camera.height * 4.0 * 2;
+    EXPECT_NEAR(r.counters.closest_rays, (cap + 1) * paths, 1e-4 * (cap + 1) * paths) << cap;
+    EXPECT_LE(r.counters.shadow_rays, cap * paths) << cap;
+    EXPECT_GE(r.counters.shadow_rays, 0.97 * cap * paths) << cap;
+    EXPECT_EQ(r.counters.depth_guard.cut, 0) << cap;
+  }
 }
 
 // Every integrator counts at least one closest-hit ray per path it starts (camera paths and

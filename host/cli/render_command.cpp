@@ -19,6 +19,7 @@
 #include "mpi/mpi_world.h"
 #include "mpi/remote_ranks.h"
 #include "mpi/render_server.h"
+#include "render/depth_cap.h"
 #include "render/render_job.h"
 #include "render/render_spec.h"
 #include "shared/shared_types.h"
@@ -68,7 +69,7 @@ void report_render(const RenderArgs& a, const RenderJob& job,
         "kasha: warning: paths reaching the %d-vertex depth guard were cut still carrying %.3g "
         "of the weight they started with; the image lacks what they would have added (too "
         "dark: the scene keeps nearly all its light)\n",
-        a.spec.settings.max_depth, cut_share);
+        a.spec.settings.depth_guard, cut_share);
   if (counters.rejected_samples > 0)
     std::fprintf(stderr, "kasha: warning: %.0f samples were not finite and were left out\n",
                  counters.rejected_samples);
@@ -85,6 +86,11 @@ int run_render(const RenderArgs& a) {
   outputs.file("--log", a.log);
   Scene scene = load_scene(spec.scene, std::nullopt, spec.lamp, spec.materials);
   outputs.inputs_read("the scene's material or data file");
+  // `--max-depth scene` on a scene that names none: a usage error, found once the scene is read.
+  if (const std::string refusal = depth_cap_refusal(spec.settings, scene); !refusal.empty()) {
+    std::fprintf(stderr, "kasha: error: %s\n", refusal.c_str());
+    return kUsageExitCode;
+  }
   ConvergenceLog log(reference_for(a.reference, scene, spec.spectral));
   RenderOptions options;
   options.stop = spec.stop;

@@ -19,6 +19,7 @@ CLI::Validator check_for(const IntegratorOption& s) {
       return positive_number(s.hi);
     case V::choice:
     case V::flag:
+    case V::depth_cap:
       break;
   }
   return CLI::Validator();
@@ -38,6 +39,27 @@ CLI::Option* add_choice(CLI::App& app, const IntegratorOption& s, const ChoiceFi
       ->check(one_of(names));
 }
 
+// A depth cap: an integer within the declaration's range, or `scene` (kSceneDepthCap, which the
+// render resolves once it has read the scene: render/depth_cap.h).
+CLI::Option* add_depth_cap(CLI::App& app, const IntegratorOption& s, int* field) {
+  CLI::Validator integer =
+      integer_within(static_cast<long long>(s.lo), static_cast<long long>(s.hi));
+  return app
+      .add_option_function<std::string>(
+          s.name,
+          [field](const std::string& v) {
+            *field = v == "scene" ? IntegratorSettings::kSceneDepthCap : std::stoi(v);
+          },
+          s.help)
+      ->check(CLI::Validator(
+          [integer](std::string& v) mutable -> std::string {
+            if (v == "scene") return "";
+            const std::string problem = integer(v);
+            return problem.empty() ? problem : problem + " (or scene)";
+          },
+          "N|scene", "N|scene"));
+}
+
 }  // namespace
 
 void add_setting_options(CLI::App& app, IntegratorSettings& settings,
@@ -52,6 +74,8 @@ void add_setting_options(CLI::App& app, IntegratorSettings& settings,
             add_choice(app, s, field);
           } else if constexpr (std::is_same_v<T, bool*>) {
             app.add_flag(s.name, *field, s.help);
+          } else if (s.value == IntegratorOption::Value::depth_cap) {
+            if constexpr (std::is_same_v<T, int*>) add_depth_cap(app, s, field);
           } else {
             CLI::Option* option = app.add_option(s.name, *field, s.help);
             if (s.value == IntegratorOption::Value::bytes) option->transform(byte_size());

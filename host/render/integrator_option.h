@@ -43,12 +43,13 @@ SettingField setting_field(T& value) {
 
 struct IntegratorOption {
   enum class Value {
-    integer,   // within [lo, hi]
-    number,    // finite, within [lo, hi]
-    positive,  // finite, in (0, hi]
-    bytes,     // bytes with an optional unit (512MiB, 2GB), within [lo, hi]
-    flag,      // --name or --name=false
-    choice,    // one of the enum's names (choice_names)
+    integer,    // within [lo, hi]
+    number,     // finite, within [lo, hi]
+    positive,   // finite, in (0, hi]
+    bytes,      // bytes with an optional unit (512MiB, 2GB), within [lo, hi]
+    flag,       // --name or --name=false
+    choice,     // one of the enum's names (choice_names)
+    depth_cap,  // an integer within [lo, hi], or `scene` (an int setting: kSceneDepthCap)
   };
   std::string name;  // --spp
   Value value;

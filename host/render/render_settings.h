@@ -2,7 +2,8 @@
 // The render settings' values: every option an integrator or every integrator takes, as the
 // command line fills them. Each integrator declares its own options beside its registration line
 // (render/integrator_option.h); the options every integrator takes (--seed, --max-depth,
-// --sampler) are declared once, here. Enumerations are parsed once, into the enums below.
+// --depth-guard, --sampler) are declared once, here. Enumerations are parsed once, into the enums
+// below.
 #include <string>
 #include <vector>
 
@@ -55,9 +56,15 @@ struct IntegratorSettings {
   Gather gather = Gather::automatic;
   Merges merges = Merges::automatic;
   DebugView view = DebugView::emission;
-  unsigned seed = 1;                     // --seed (every integrator)
-  Sampler sampler = Sampler::sobol;      // --sampler (every integrator)
-  int max_depth = KASHA_MAX_PATH_DEPTH;  // --max-depth (every integrator): the path-length guard
+  unsigned seed = 1;                 // --seed (every integrator)
+  Sampler sampler = Sampler::sobol;  // --sampler (every integrator)
+  // --max-depth (every integrator): pbrt-v4's maxdepth, the scattering vertices a counted light
+  // path may have (render/depth_cap.h); none by default, as an unbiased render needs;
+  // kSceneDepthCap: `--max-depth scene`, the scene's own (Scene::max_depth).
+  static constexpr int kNoDepthCap = -1;
+  static constexpr int kSceneDepthCap = -2;
+  int max_depth = kNoDepthCap;
+  int depth_guard = KASHA_MAX_PATH_DEPTH;  // --depth-guard (every integrator): the safety guard
   unsigned long long memory = 0;  // --memory: the photon or light-vertex store, bytes (0: auto)
 };
 

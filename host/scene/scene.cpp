@@ -719,6 +719,7 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
   parse_textures(root, scene);
   parse_materials(root.at("materials"), scene);
   parse_lights(root, scene);
+  if (auto depth = root.find("max_depth")) scene.max_depth = depth->integer_in(0, 1 << 30);
 
   JsonNode shapes = root.at("shapes");
   TriangleKeys seen_triangles;

@@ -62,6 +62,9 @@ struct Scene {
   // Switchable lamps (the scene's "lamps"): their names, and the one that is on.
   std::vector<std::string> lamp_names;
   std::string lamp;
+  // "max_depth": the scattering vertices a counted path may have as the scene's author rendered it
+  // (pbrt-v4's Integrator maxdepth, which the import writes): what `--max-depth scene` uses.
+  std::optional<int> max_depth;
 
   bool fluorescent() const;            // some shape's material has a fluorescent part
   bool glossy() const;                 // some shape's material has a gloss lobe

@@ -80,6 +80,10 @@ __kernel void gather_photons(__global const float* cmf, /* the film's C (film_vi
           float off = (y.x - x.x) * n.x + (y.y - x.y) * n.y;
           off = off + (y.z - x.z) * n.z;
           if (fabs(off) > KASHA_GATHER_SLAB * r) continue;
+#ifdef KASHA_DEPTH_CAP
+          /* The camera's bounces, the photon's and the merged vertex: at most the cap. */
+          if ((int)vp[KASHA_VP_VALID] - 1 + as_int(ph[KASHA_PHOTON_DEPTH]) + 1 > KASHA_DEPTH_CAP) continue;
+#endif
           ++found;
           vf_apply(layout, vp, ph + KASHA_PHOTON_POWER, rows);
         }

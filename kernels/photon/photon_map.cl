@@ -46,6 +46,11 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KPhotonTra
         guard += photon_total(&p) / p.start;
         break;
       }
+#ifdef KASHA_DEPTH_CAP
+      /* A photon stored at hit k has k scattering vertices behind it and the visible point makes
+       * one more: hits from the cap's on would count none (gather_photons checks the sum). */
+      if (depth >= KASHA_DEPTH_CAP) break;
+#endif
       HitPoint h;
       if (!intersect_scene(&s, p.position, p.direction, &h)) break;
       float3 ns = hit_ng(&h), x = h.x;
@@ -120,7 +125,11 @@ inline float camera_path(const SceneView* s, const FilmView* f, int pixel, Sampl
         float3 x = v.h.x, ns = hit_ng(&v.h);
         vp[0] = x.x, vp[1] = x.y, vp[2] = x.z;
         vp[3] = ns.x, vp[4] = ns.y, vp[5] = ns.z;
+#ifdef KASHA_DEPTH_CAP
+        vp[KASHA_VP_VALID] = 1.0f + (float)w.depth; /* the gather's cap needs the camera's bounces */
+#else
         vp[KASHA_VP_VALID] = 1.0f;
+#endif
         vp[KASHA_VP_DISTANCE] = travelled;
         VertexFactorLayout layout = {KASHA_BINS, KASHA_FILM_ROWS, KASHA_SPECTRAL_FILM, KASHA_FLUORESCENCE, f->cmf};
         float k = KASHA_INV_PI / (1.0f - p_gloss);

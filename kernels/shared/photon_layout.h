@@ -6,7 +6,8 @@
  * the pass and the bounce it was stored at, two ints in float bits, which order a cell's photons
  * so a gather sums them in the same order on any device and in any launch order — then power per
  * bin (N).
- * Visible point: position (3), normal on the camera's side (3), valid flag, path length from the
+ * Visible point: position (3), normal on the camera's side (3), valid flag (under --max-depth: 1 +
+ * the bounces the camera path made before it, for the gather's cap), path length from the
  * camera (for the initial radius), then the factor K = C∘d + c bᵀ that maps a photon's power to the
  * pixel's film rows: d (N) and, in a fluorescent scene only, c (R) and b (N). */
 #ifndef KASHA_PHOTON_LAYOUT_H

@@ -29,10 +29,15 @@ typedef float kasha_real;
 
 /* A guard on path length in every kernel, far beyond what Russian roulette reaches (a path of a
  * scene keeping 99.99 % of its light passes it with probability e^-26); what it cuts is counted
- * and reported. Kernels are built with the render's --max-depth in its place. */
+ * and reported. Kernels are built with the render's --depth-guard in its place. */
 #ifndef KASHA_MAX_PATH_DEPTH
 #define KASHA_MAX_PATH_DEPTH (1 << 18)
 #endif
+
+/* KASHA_DEPTH_CAP, defined only under --max-depth N (render/depth_cap.h): pbrt-v4's maxdepth, a
+ * biased cap. A light path counts only with at most N scattering vertices (every vertex but the
+ * camera's and the light's: a fluorescent, gloss or delta bounce is one); 0 keeps emitters seen
+ * directly, 1 direct light. Left undefined, the kernels are the unbiased ones, unchanged. */
 
 /* The BVH that Embree builds and the OpenCL traversal reads (kernels/geometry/bvh_traversal.h). Children
  * per node and triangles per leaf: one float8 expression tests all of a node's child boxes, or all

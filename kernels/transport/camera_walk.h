@@ -80,7 +80,7 @@ inline void walk_escaped(const CameraWalk* w, const SceneView* s, const FilmView
 /* The path's next vertex: adds the emission it hits to rows (MIS-weighted against next-event
  * estimation unless a specular bounce led there), then loads the vertex's surface, branch
  * probabilities and samples into v. False where the path ends: it escaped, no branch carries
- * anything on, or the depth guard (walk_cut) stopped it. */
+ * anything on, the --max-depth cap is reached, or the depth guard (walk_cut) stopped it. */
 inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sampler* sampler, CameraVertex* v,
                         float* rows) {
   if (w->depth == KASHA_MAX_PATH_DEPTH) return false;
@@ -99,6 +99,11 @@ inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sa
 #endif
     pw_add(&w->p, f, emitter_spectrum(s, h->emitter), 0, weight, rows);
   }
+#ifdef KASHA_DEPTH_CAP
+  /* Emission here ends a path of `depth` scattering vertices; next-event estimation or a bounce
+   * from here would make one more than the cap allows. */
+  if (w->depth >= KASHA_DEPTH_CAP) return false;
+#endif
 #if KASHA_SHADING_NORMALS
   /* Seen from below the shading normal's hemisphere, the surface scatters nothing (hit_seen). */
   if (!hit_seen(h, w->dir)) return false;

@@ -129,6 +129,10 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
 #endif
       pw_add(&c.w.p, f, emitter_spectrum(s, h->emitter), 0, weight, rows);
     }
+#ifdef KASHA_DEPTH_CAP
+    /* Every technique from here on makes a path of more scattering vertices than the cap. */
+    if (c.w.depth >= KASHA_DEPTH_CAP) return 0.0f;
+#endif
 #if KASHA_SHADING_NORMALS
     /* Seen from below the shading normal's hemisphere, the surface scatters nothing (hit_seen). */
     if (!hit_seen(h, c.w.dir)) return 0.0f;

@@ -138,6 +138,10 @@ inline float vcm_light_path(const SceneView* s, const FilmView* f, const KVcmIte
       guard = photon_total(&p) / p.start;
       break;
     }
+#ifdef KASHA_DEPTH_CAP
+    /* A vertex at hit k makes paths of at least k + 1 scattering vertices. */
+    if (depth >= KASHA_DEPTH_CAP) break;
+#endif
     HitPoint h;
     if (!intersect_scene(s, p.position, p.direction, &h)) break;
     vcm_arrived(far_start && depth == 0 ? 1.0f : h.t, fabs(dot(h.n, p.direction)), &dvcm, &dvc, &dvm, &dvc_merge);

@@ -47,7 +47,15 @@
 #ifndef KASHA_VCM_DROP_DENSITY
 #define KASHA_VCM_DROP_DENSITY 0
 #endif
+/* A path of `segments` segments has segments − 1 scattering vertices, which --max-depth's cap
+ * (KASHA_DEPTH_CAP, shared_types.h) bounds; every technique of a path sees the same count, so its
+ * weights still sum to one. */
+#ifdef KASHA_DEPTH_CAP
+#define VCM_LENGTH_COUNTS(segments) \
+  ((KASHA_VCM_LENGTH == 0 || (segments) == KASHA_VCM_LENGTH) && (segments) <= KASHA_DEPTH_CAP + 1)
+#else
 #define VCM_LENGTH_COUNTS(segments) (KASHA_VCM_LENGTH == 0 || (segments) == KASHA_VCM_LENGTH)
+#endif
 
 /* The MIS factors of an iteration with merging radius r and L light subpaths, η = κ π r² L / spp
  * (SmallVCM's mMisVmWeightFactor and mMisVcWeightFactor): a merge weighs η against a

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "opencl/device_buffer.h"
+#include "render/depth_cap.h"
 #include "render/fixed_point_film.h"
 #include "render/kernel_integrator.h"
 #include "render/launch_pacer.h"
@@ -23,10 +24,17 @@ class ForwardIntegrator : public KernelIntegrator {
       : KernelIntegrator(s, "forward/forward.cl"),
         photons_(s.settings.photons > 0 ? s.settings.photons : kForwardPhotons),
         seed_(s.settings.seed),
-        max_depth_(s.settings.max_depth),
+        max_depth_(s.settings.depth_guard),
         photons_per_item_(s.hooks.photons_per_item),
         items_((photons_ + photons_per_item_ - 1) / photons_per_item_) {
     if (photons_ > (1LL << 31) - 1) throw Error("--photons: at most 2^31 - 1 photons per pass");
+    // A photon's hit k is a path of k + 1 scattering vertices: a cap N keeps hits 0 … N − 1, and
+    // what it stops is the cap's doing, not the guard's.
+    const int cap = depth_cap(s.settings, s.scene);
+    if (cap != IntegratorSettings::kNoDepthCap && cap < max_depth_) {
+      max_depth_ = cap;
+      guarded_ = false;
+    }
     kernel_ = cl::Kernel(program_, "trace_forward");
     film_shift_ = fixed_point_shift(scene_.data(), film_.cmf(), film_.spectral());
     fixed_ = device_buffer(cl_, cells() * 2 * sizeof(cl_ulong), "forward: the fixed-point film");
@@ -81,7 +89,7 @@ class ForwardIntegrator : public KernelIntegrator {
     c.power_absorbed_w = power[1];
     c.power_escaped_w = power[2];
     c.power_in_flight_w = power[3];
-    c.depth_guard = {power[3], power[0]};  // photons the depth guard cut, still carrying power
+    c.depth_guard = {guarded_ ? power[3] : 0, power[0]};  // photons the guard cut, still carrying
     add_ray_counts(r);
     return r;
   }
@@ -110,7 +118,8 @@ class ForwardIntegrator : public KernelIntegrator {
 
   long long photons_;
   unsigned seed_;
-  int max_depth_, photons_per_item_;
+  int max_depth_, photons_per_item_;  // max_depth_: the hits a photon may have
+  bool guarded_ = true;               // max_depth_ is the depth guard, not the --max-depth cap
   size_t items_;
   int film_shift_;             // a film value v is v·2^film_shift_ fixed-point units
   LaunchPacer pacer_{0.2, 4};  // in work items: the first launch is small, as paths may be long

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <nanoflann.hpp>
 
@@ -52,9 +53,17 @@ PhotonKdTree::~PhotonKdTree() {
   delete impl_;
 }
 
+// The scattering vertices of the path a photon and a visible point make: the camera path's
+// bounces (1 + them in the valid flag under a cap), the photon's, and the merged vertex.
+static int merged_path_depth(const float* vp, const float* photon) {
+  int32_t photon_bounces;
+  std::memcpy(&photon_bounces, photon + KASHA_PHOTON_DEPTH, sizeof photon_bounces);
+  return static_cast<int>(vp[KASHA_VP_VALID]) - 1 + photon_bounces + 1;
+}
+
 GatherResult PhotonKdTree::gather(const float* vps, int vp_floats, size_t pixels,
-                                  const std::vector<double>& radius,
-                                  const VertexFactorLayout& L) const {
+                                  const std::vector<double>& radius, const VertexFactorLayout& L,
+                                  int depth_cap) const {
   GatherResult out;
   out.flux.assign(pixels * L.rows, 0.0);
   out.found.assign(pixels, 0);
@@ -78,6 +87,7 @@ GatherResult PhotonKdTree::gather(const float* vps, int vp_floats, size_t pixels
         const float off =
             (ph[0] - vp[0]) * vp[3] + (ph[1] - vp[1]) * vp[4] + (ph[2] - vp[2]) * vp[5];
         if (std::abs(off) > kGatherSlab * r) continue;
+        if (depth_cap >= 0 && merged_path_depth(vp, ph) > depth_cap) continue;
         ++found;
         vf_apply(L, vp, ph + KASHA_PHOTON_POWER, rows);
       }
@@ -95,7 +105,8 @@ void HostGather::take_inputs(const PassInputs& inputs) {
 void HostGather::gather(std::vector<float>& records, size_t count, ChunkResult& c) const {
   sort_by_key(records, count);
   PhotonKdTree tree(records.data(), count, photon_floats_);
-  GatherResult found = tree.gather(visible_points_.data(), vp_floats_, pixels_, radius_, layout_);
+  GatherResult found =
+      tree.gather(visible_points_.data(), vp_floats_, pixels_, radius_, layout_, depth_cap_);
   for (size_t i = 0; i < c.flux.size(); ++i) c.flux[i] += found.flux[i];
   for (size_t p = 0; p < c.found.size(); ++p) c.found[p] += found.found[p];
 }

@@ -26,9 +26,12 @@ class PhotonKdTree {
   PhotonKdTree(const PhotonKdTree&) = delete;
   PhotonKdTree& operator=(const PhotonKdTree&) = delete;
 
-  // Gathers for every pixel with a valid visible point, within radius[pixel].
+  // Gathers for every pixel with a valid visible point, within radius[pixel]; under a
+  // --max-depth cap (>= 0), only the photons that make a path of at most that many scattering
+  // vertices with the visible point's camera path (kernels/photon/photon_gather.cl).
   GatherResult gather(const float* visible_points, int vp_floats, size_t pixels,
-                      const std::vector<double>& radius, const VertexFactorLayout& layout) const;
+                      const std::vector<double>& radius, const VertexFactorLayout& layout,
+                      int depth_cap = -1) const;
 
  private:
   struct Impl;
@@ -39,8 +42,13 @@ class PhotonKdTree {
 // each full store's records gathered into a chunk's result.
 class HostGather {
  public:
-  HostGather(int photon_floats, int vp_floats, size_t pixels, const VertexFactorLayout& layout)
-      : photon_floats_(photon_floats), vp_floats_(vp_floats), pixels_(pixels), layout_(layout) {}
+  HostGather(int photon_floats, int vp_floats, size_t pixels, const VertexFactorLayout& layout,
+             int depth_cap)
+      : photon_floats_(photon_floats),
+        vp_floats_(vp_floats),
+        pixels_(pixels),
+        layout_(layout),
+        depth_cap_(depth_cap) {}
 
   void take_inputs(const PassInputs& inputs);
   // Adds the gather of `count` records (read from the store) to `c`; reorders `records`.
@@ -53,6 +61,7 @@ class HostGather {
   int photon_floats_, vp_floats_;
   size_t pixels_;
   VertexFactorLayout layout_;
+  int depth_cap_;  // --max-depth's cap, or -1
   std::vector<float> visible_points_;
   std::vector<double> radius_;
 };

@@ -21,6 +21,7 @@
 #include "integrators/photon/photon_pass_chunks.h"
 #include "integrators/photon/photon_store.h"
 #include "opencl/device_buffer.h"
+#include "render/depth_cap.h"
 #include "render/kernel_integrator.h"
 #include "render/launch_pacer.h"
 #include "render/merge_radius.h"
@@ -75,7 +76,8 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
     if (host_gather)
       host_gather_.emplace(photon_floats_, vp_floats_, film_.pixels(),
                            VertexFactorLayout{s.scene.grid.bins, film_.rows(), film_.spectral(),
-                                              s.scene.fluorescent(), film_.cmf().data()});
+                                              s.scene.fluorescent(), film_.cmf().data()},
+                           depth_cap(s.settings, s.scene));
     else
       grid_ = std::make_unique<PhotonGrid>(device, program_, store_->capacity());
     set_radius_bounds(s.scene);

@@ -12,6 +12,7 @@
 #include "core/input_file.h"
 #include "core/printable.h"
 #include "scene/pbrt/pbrt_color_space.h"
+#include "scene/pbrt/pbrt_integrator.h"
 #include "scene/pbrt/pbrt_materials.h"
 #include "scene/pbrt/pbrt_parameters.h"
 #include "scene/pbrt/pbrt_shapes.h"
@@ -128,6 +129,7 @@ class Importer {
         {"kasha_scene", 1}, {"camera", camera_}, {"materials", materials_}, {"shapes", shapes_}};
     if (!lights_.empty()) scene["lights"] = lights_;
     if (!textures_.kasha.empty()) scene["textures"] = textures_.kasha;
+    if (max_depth_) scene["max_depth"] = *max_depth_;
     return scene;
   }
 
@@ -389,7 +391,10 @@ class Importer {
       const std::string type = string_arg(tokens, d);
       pixel_filter(type, PbrtParameters::read(tokens), d.where);
       sources_["/camera/filter"] = d.where.str();
-    } else if (name == "Sampler" || name == "Integrator" || name == "Accelerator") {
+    } else if (name == "Integrator") {
+      const std::string type = string_arg(tokens, d);
+      max_depth_ = pbrt_integrator_max_depth(type, PbrtParameters::read(tokens), d.where);
+    } else if (name == "Sampler" || name == "Accelerator") {
       pbrt_warn(d.where, name + " " + in_quotes(skipped_directive(tokens, d)) +
                              " is ignored: kasha's --integrator, --spp " +
                              "and --passes decide (docs/pbrt-import.md)");
@@ -828,6 +833,7 @@ class Importer {
   std::map<std::string, Matrix> named_frames_;
   bool end_time_only_ = false;
   bool camera_seen_ = false;
+  std::optional<int> max_depth_ = kPbrtDefaultMaxDepth;  // the Integrator's (pbrt_integrator.h)
   bool world_begun_ = false;
   nlohmann::json camera_ = nlohmann::json::object();
   // pbrt-v4's default filter (filters.cpp): a gaussian of radius 1.5 and sigma 0.5.
