@@ -1,7 +1,7 @@
 // Device unit tests of next-event estimation from a shading point (kernels/lights/lights.h:
 // sample_light_from, light_pdf_from, triangle_solid_angle, sample_spherical_triangle) and of the
-// sample generator (kernels/sampling/sampler.h: Owen-scrambled Sobol pairs, and the independent PCG32
-// numbers of KASHA_SOBOL 0). χ² tests as in kernel_sampling_test.cpp: cells expected below 5
+// sample generator (kernels/sampling/sampler.h: Owen-scrambled Sobol pairs, and the independent
+// PCG32 numbers of KASHA_SOBOL 0). χ² tests as in kernel_sampling_test.cpp: cells expected below 5
 // pooled, a fit fails when p < 1e-4, and each test shows that its samples reject a plausible
 // wrong density.
 #include <gtest/gtest.h>
@@ -18,6 +18,7 @@
 
 #include "chi2.h"
 #include "kernel_harness.h"
+#include "light_tables.h"
 #include "shared/shared_types.h"
 
 using namespace kasha;
@@ -125,9 +126,8 @@ __kernel void light_from(KASHA_SCENE_PARAMS, __global const float* x_in, __globa
   float pdf;
   /* u.x picks the light and, rescaled, the point with u.y (u[3 i + 1] is left unused). */
   LightPoint p = sample_light_from(&s, x, (float2)(u[3 * i], u[3 * i + 2]), &pdf);
-  /* The light it should have picked: the first whose CDF value exceeds u0. */
-  int k = 0;
-  while (k < s.light_count - 1 && s.light_cdf[k] <= u[3 * i]) ++k;
+  /* The triangle it picked: emitter e is emitting triangle light_count - 1 - e. */
+  int k = s.light_count - 1 - p.emitter;
   float3 to_x = x - p.position;
   float cos_light = dot(p.normal, to_x) / length(to_x);
   __global float* o = out + 10 * i;
@@ -188,9 +188,7 @@ TEST(KernelLightSampler, PointsFollowTheClaimedDensity) {
   // Leaf triangles: the lights among non-emitting ones, emitter e = lights_n - 1 - j for light j.
   std::vector<KTriangle> tris;
   std::vector<int> light_tri;
-  std::vector<float> emitter_area_pdf(lights_n);
   std::vector<double> power(lights_n), area(lights_n);
-  double total = 0;
   for (int j = 0; j < lights_n; ++j) {
     TestLight& l = lights[j];
     const Vector3d away(9, 0, 0);
@@ -201,42 +199,16 @@ TEST(KernelLightSampler, PointsFollowTheClaimedDensity) {
     l.v0 = vertex(t.v0), l.v1 = vertex(t.v1), l.v2 = vertex(t.v2);
     area[j] = 0.5 * (l.v1 - l.v0).cross(l.v2 - l.v0).norm();
     power[j] = l.target;  // area · π · radiance: the emitter's radiance follows from it
-    total += power[j];
   }
-  std::vector<float> light_cdf;
-  double cdf = 0;
-  for (int j = 0; j < lights_n; ++j) {
-    light_cdf.push_back(static_cast<float>((cdf += power[j]) / total));
-    emitter_area_pdf[lights_n - 1 - j] = static_cast<float>(power[j] / total / area[j]);
-  }
-  light_cdf.back() = 1.0f;
-
+  const LightTables tables = light_tables(tris, light_tri, power, lights_n);
   TestKernel kernel(kLightFromSource, "light_from_test.cl", "light_from");
-  KSceneParams params{};
-  params.light_count = lights_n;
-  params.bin_nm = 1.0f;
-  params.light_sources = 0;  // no lights but triangles
-  const std::vector<float> spectra(4, 0.0f), lobes(4, 0.0f), radiance(4 * lights_n, 1.0f);
-  kernel.buffer(
-      1, upload_tables(
-             test_device(),
-             {host_table(std::vector<KBvhNode>(1), params.nodes),
-              host_table(std::vector<KBvhLeaf>(1), params.leaves), host_table(tris, params.tris),
-              host_table(std::vector<KMaterial>(1), params.materials),
-              host_table(spectra, params.spectra), host_table(lobes, params.lobes),
-              host_table(radiance, params.emitter_radiance),
-              host_table(emitter_area_pdf, params.emitter_area_pdf),
-              host_table(light_tri, params.light_tri), host_table(light_cdf, params.light_cdf),
-              host_table(std::vector<KLight>(1), params.lights),
-              host_table(std::vector<KTexture>(1), params.textures),
-              host_table(std::vector<KTexcoords>(1), params.texcoords),
-              host_table(std::vector<KShadingNormals>(1), params.normals)}));
-  kernel.scalar(0, params);
+  kernel.buffer(1, tables.buffer);
+  kernel.scalar(0, tables.params);
   kernel.input(2, std::vector<float>(1));  // scratch
   kernel.input(3, std::vector<float>{float(x.x()), float(x.y()), float(x.z())});
   const std::vector<float> out = kernel.sample(4, uniforms(3 * kSamples, 11), 5, 10, kSamples);
 
-  // Per light: the selection probability from the CDF the device has, the solid angle, the
+  // Per light: the selection probability of the light BVH at x, the solid angle, the
   // branch, the cells' shares of its points. The claimed density integrated over a cell: a
   // constant p / Ω in solid angle when spherical (so the share Ω(cell) / Ω), p / area in area
   // otherwise; the pdfs are checked against these below.
@@ -248,7 +220,7 @@ TEST(KernelLightSampler, PointsFollowTheClaimedDensity) {
   std::vector<Vector3d> normal(lights_n);
   for (int j = 0; j < lights_n; ++j) {
     const TestLight& l = lights[j];
-    p_light[j] = double(light_cdf[j]) - (j > 0 ? double(light_cdf[j - 1]) : 0.0);
+    p_light[j] = reference_pick(tables.bvh, j, x);  // the light BVH's choice at x
     omega[j] = solid_angle(x, l.v0, l.v1, l.v2);
     spherical[j] =
         omega[j] > KASHA_MIN_SPHERICAL_SOLID_ANGLE && omega[j] < KASHA_MAX_SPHERICAL_SOLID_ANGLE;
@@ -340,6 +312,7 @@ TEST(KernelLightSampler, PointsFollowTheClaimedDensity) {
       expected[c] = chosen[j] * share[j][c];
       wrong[c] = chosen[j] * by_area[c];  // uniform in area
     }
+    if (chosen[j] == 0) continue;  // the BVH sees it facing away: the choice's fit checks it
     expect_fits("light point on " + l.name, observed[j], expected);
     if (l.close)
       expect_rejects("light point on " + l.name + ", uniform in area", observed[j], wrong);

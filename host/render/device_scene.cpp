@@ -311,6 +311,8 @@ void KernelSceneData::add_light_sampling(const Scene& scene) {
     double p = emitted_power(t, radiance_sum[t.emitter]) * scene.emitters[t.emitter].texture_mean;
     if (p > 0) sample(static_cast<int>(i), p);
   }
+  light_triangles = static_cast<int>(light_tri.size());
+  light_bvh = build_light_bvh(bvh.triangles, light_tri, power);
   Eigen::Vector3d centre;
   double radius;
   scene.bounding_sphere(centre, radius);
@@ -385,7 +387,8 @@ size_t KernelSceneData::bytes() const {
          (spectra.size() + lobes.size() + emitter_radiance.size() + light_cdf.size() +
           emitter_area_pdf.size()) *
              sizeof(float) +
-         light_tri.size() * sizeof(int);
+         light_tri.size() * sizeof(int) + light_bvh.nodes.size() * sizeof(KLightNode) +
+         light_bvh.trails.size() * sizeof(std::uint64_t);
 }
 
 // Scratch spectra per work item: an environment texel's radiance, then a textured reflectance
@@ -455,6 +458,7 @@ DeviceScene::DeviceScene(ClContext& cl, const Scene& scene)
   p.light_count = static_cast<int>(data_.light_tri.size());
   p.bin_nm = data_.bin_nm;
   p.light_sources = static_cast<int>(data_.lights.size());
+  p.light_triangles = data_.light_triangles;
   tables_ = upload_tables(
       cl, {host_table(data_.bvh.nodes, p.nodes), host_table(data_.bvh.leaves, p.leaves),
            host_table(data_.bvh.triangles, p.tris), host_table(data_.materials, p.materials),
@@ -463,7 +467,9 @@ DeviceScene::DeviceScene(ClContext& cl, const Scene& scene)
            host_table(data_.emitter_area_pdf, p.emitter_area_pdf),
            host_table(data_.light_tri, p.light_tri), host_table(data_.light_cdf, p.light_cdf),
            host_table(data_.lights, p.lights), host_table(data_.textures, p.textures),
-           host_table(data_.texcoords, p.texcoords), host_table(data_.normals, p.normals)});
+           host_table(data_.texcoords, p.texcoords), host_table(data_.normals, p.normals),
+           host_table(data_.light_bvh.nodes, p.light_nodes),
+           host_table(data_.light_bvh.trails, p.light_trails)});
 }
 
 }  // namespace kasha

@@ -9,6 +9,7 @@
 #include "geometry/bvh.h"
 #include "opencl/device.h"
 #include "opencl/kernel_program.h"
+#include "render/light_bvh.h"
 #include "scene/scene.h"
 
 namespace kasha {
@@ -30,10 +31,13 @@ struct KernelSceneData {
   std::vector<KShadingNormals> normals;  // per leaf triangle, when some shape has shading normals
   // Light sampling: emitting triangles (leaf order), then the other lights (~index into
   // `lights`), with the CDF of their power, and per emitter the area density
-  // p(triangle)/area = pi·Σ Le Δλ / total power.
+  // p(triangle)/area = pi·Σ Le Δλ / total power (light paths'). Next-event estimation picks
+  // within the emitting triangles' share by the light BVH (render/light_bvh.h), given the point.
   std::vector<int> light_tri;
   std::vector<float> light_cdf;
   std::vector<float> emitter_area_pdf;
+  int light_triangles = 0;  // the first entries of light_tri
+  LightBvh light_bvh;
   double total_power = 0;  // W: Σ over emitting triangles of area·pi·Σ Le Δλ and the lights' power
 
   explicit KernelSceneData(const Scene& scene);

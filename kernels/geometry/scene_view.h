@@ -28,9 +28,12 @@ typedef struct {
   const __global float* lobes;
   const __global float* emitter_radiance; /* emitters × N */
   const __global float* emitter_area_pdf;
-  const __global int* light_tri;
-  const __global float* light_cdf;
+  const __global int* light_tri;   /* the emitting triangles (ascending), then ~k of the lights */
+  const __global float* light_cdf; /* by power: what photons and light paths leave */
   int light_count;
+  const __global KLightNode* light_nodes; /* next-event estimation's choice of emitting triangle */
+  const __global ulong* light_trails;     /* per emitting triangle, its path from the root */
+  int light_triangles;                    /* how many emitting triangles light_tri starts with */
   float bin_nm;
   const __global KLight* lights; /* the lights that are not triangles (light_tri's ~k) */
   int light_sources;             /* how many */
@@ -62,6 +65,9 @@ typedef struct {
                     KASHA_SCENE_TABLE(int, light_tri),                                             \
                     KASHA_SCENE_TABLE(float, light_cdf),                                           \
                     scene_params.light_count,                                                      \
+                    KASHA_SCENE_TABLE(KLightNode, light_nodes),                                    \
+                    KASHA_SCENE_TABLE(ulong, light_trails),                                        \
+                    scene_params.light_triangles,                                                  \
                     scene_params.bin_nm,                                                           \
                     KASHA_SCENE_TABLE(KLight, lights),                                             \
                     scene_params.light_sources,                                                    \

@@ -1,14 +1,17 @@
-/* Next-event estimation: emitting triangles chosen in proportion to their power (a CDF over the
- * emitting triangles), then a point on the chosen one: uniform in the solid angle it subtends from
- * the shading point (Arvo 1995, as pbrt-v4 does) when that angle lies between
- * KASHA_MIN_SPHERICAL_SOLID_ANGLE and KASHA_MAX_SPHERICAL_SOLID_ANGLE, uniform in area otherwise. Since a triangle's power is its area
- * times pi times its emitter's band-integrated radiance, the area density of a light point,
+/* Next-event estimation: the emitting triangles together keep their share of the lights' power
+ * (a CDF over the emitting triangles and the other lights, what photons leave by), and within it
+ * the light BVH (light_bvh.h) picks one given the shading point; then a point on it: uniform in
+ * the solid angle it subtends from the shading point (Arvo 1995, as pbrt-v4 does) when that angle
+ * lies between KASHA_MIN_SPHERICAL_SOLID_ANGLE and KASHA_MAX_SPHERICAL_SOLID_ANGLE, uniform in
+ * area otherwise. Light paths choose a triangle by power alone: since a triangle's power is its
+ * area times pi times its emitter's band-integrated radiance, the area density of their start,
  * p(triangle)/area, depends only on the emitter: emitter_area_pdf[e]. */
 #ifndef KASHA_LIGHTS_H
 #define KASHA_LIGHTS_H
 
 #include "geometry/bvh_traversal.h"
 #include "lights/environment.h"
+#include "lights/light_bvh.h"
 #include "geometry/hit_point.h"
 #include "sampling/sampling.h"
 #include "geometry/scene_view.h"
@@ -270,18 +273,11 @@ inline float3 sample_spherical_triangle(float3 p, float3 v0, float3 v1, float3 v
   return cos_t * b + sin_t * normalize(cp - dot(cp, b) * b);
 }
 
-/* A light point for next-event estimation at x, with the solid-angle density of having sampled
- * its direction (0 when the sample failed). u.x picks the triangle and, rescaled to the part of
- * [0, 1) that picked it, goes on with u.y to pick the point: the 2-D sample stays stratified over
- * all the emitting triangles together (a quad lamp's two triangles included). */
-inline LightPoint sample_light_from(const SceneView* s, float3 x, float2 u, float* pdf) {
-  int lo = choose_light(s->light_cdf, s->light_count, u.x);
-  float below = lo > 0 ? s->light_cdf[lo - 1] : 0.0f, width = s->light_cdf[lo] - below;
-  u.x = width > 0.0f ? clamp((u.x - below) / width, 0.0f, 0.99999994f) : 0.5f;
-#if KASHA_LIGHT_SOURCES
-  if (s->light_tri[lo] < 0) return sample_light_source(s, &s->lights[~s->light_tri[lo]], x, u, pdf);
-#endif
-  const __global KTriangle* t = &s->tris[s->light_tri[lo]];
+/* A light point on emitting triangle `tri` (leaf order) for next-event estimation at x, which
+ * picked the triangle with probability `pick`, and the solid-angle density of its direction (0
+ * when the sample failed). */
+inline LightPoint sample_light_triangle(const SceneView* s, int tri, float pick, float3 x, float2 u, float* pdf) {
+  const __global KTriangle* t = &s->tris[tri];
   float3 v0 = load_float3(t->v0), v1 = load_float3(t->v1), v2 = load_float3(t->v2);
   float3 cr = cross(v1 - v0, v2 - v0);
   float area = 0.5f * length(cr);
@@ -298,7 +294,6 @@ inline LightPoint sample_light_from(const SceneView* s, float3 x, float2 u, floa
 #if KASHA_ENVIRONMENT
   p.le = 0;
 #endif
-  float area_pdf = s->emitter_area_pdf[t->emitter]; /* p(triangle) / area */
   float omega = triangle_solid_angle(x, v0, v1, v2);
   *pdf = 0.0f;
   if (spherical_sampling(omega)) {
@@ -309,34 +304,71 @@ inline LightPoint sample_light_from(const SceneView* s, float3 x, float2 u, floa
     /* Found along a ray from x: its rounding grows with x and the distance too. */
     p.eps = surface_offset(v0, v1, v2, 1.0f, 1.0f, 1.0f, p.normal) +
             KASHA_GAMMA(16) * (dot(fabs(p.normal), fabs(x)) + dist);
-    if (dist > 0.0f && isfinite(dist)) *pdf = area_pdf * area / omega;
+    if (dist > 0.0f && isfinite(dist)) *pdf = pick / omega;
   } else {
     float2 b = sample_triangle(u.x, u.y);
     p.position = v0 + b.x * (v1 - v0) + b.y * (v2 - v0);
     p.eps = surface_offset(v0, v1, v2, 1.0f - b.x - b.y, b.x, b.y, p.normal);
     float3 to = p.position - x;
     float d2 = dot(to, to), cos_l = -dot(p.normal, to) / sqrt(d2);
-    if (cos_l > 0.0f) *pdf = area_pdf * d2 / cos_l;
+    if (cos_l > 0.0f) *pdf = pick / area * d2 / cos_l;
   }
 #if KASHA_EMISSION_TEXTURES
   /* The point's barycentrics (the spherical branch found it along a ray), for its texture. */
   float3 e1 = v1 - v0, e2 = v2 - v0, q = p.position - v0;
   float inv = 1.0f / dot(cr, cr);
-  p.scale = emission_factor(s, s->light_tri[lo], dot(cross(q, e2), cr) * inv, dot(cross(e1, q), cr) * inv);
+  p.scale = emission_factor(s, tri, dot(cross(q, e2), cr) * inv, dot(cross(e1, q), cr) * inv);
 #endif
   return p;
+}
+
+/* The emitting triangles' share of light sampling (their power over all the lights'), as the CDF
+ * the other lights are picked from has it. */
+inline float light_triangle_share(const SceneView* s) { return s->light_cdf[s->light_triangles - 1]; }
+
+/* A light point for next-event estimation at x, with the solid-angle density of having sampled
+ * its direction (0 when the sample failed). u.x picks the light and, rescaled to the part of
+ * [0, 1) that picked it, goes on with u.y to pick the point: the 2-D sample stays stratified over
+ * all the emitting triangles together (a quad lamp's two triangles included). */
+inline LightPoint sample_light_from(const SceneView* s, float3 x, float2 u, float* pdf) {
+#if KASHA_LIGHT_SOURCES
+  int lo = choose_light(s->light_cdf, s->light_count, u.x);
+  if (s->light_tri[lo] < 0) {
+    float below = lo > 0 ? s->light_cdf[lo - 1] : 0.0f, width = s->light_cdf[lo] - below;
+    u.x = width > 0.0f ? clamp((u.x - below) / width, 0.0f, 0.99999994f) : 0.5f;
+    return sample_light_source(s, &s->lights[~s->light_tri[lo]], x, u, pdf);
+  }
+#endif
+  float share = light_triangle_share(s), pick, ux = clamp(u.x / share, 0.0f, 0.99999994f);
+  int tri = light_bvh_sample(s->light_nodes, x, &ux, &pick);
+  u.x = ux;
+  return sample_light_triangle(s, tri, share * pick, x, u, pdf);
+}
+
+/* The index of emitting triangle `tri` (leaf order) among the emitting triangles, which light_tri
+ * lists in ascending order; -1 when it is not one (it emits nothing). */
+inline int emitting_index(const SceneView* s, int tri) {
+  int lo = 0, hi = s->light_triangles - 1;
+  while (lo < hi) {
+    int mid = (lo + hi) / 2;
+    if (s->light_tri[mid] < tri) lo = mid + 1;
+    else hi = mid;
+  }
+  return hi >= 0 && s->light_tri[lo] == tri ? lo : -1;
 }
 
 /* The solid-angle density with which sample_light_from at x would pick the point y on leaf
  * triangle `tri` (front side seen, cos_light > 0), for multiple importance sampling. */
 inline float light_pdf_from(const SceneView* s, int tri, float3 x, float3 y, float cos_light) {
+  int j = emitting_index(s, tri);
+  if (j < 0) return 0.0f;
+  float pick = light_triangle_share(s) * light_bvh_pmf(s->light_nodes, s->light_trails[j], x);
   const __global KTriangle* t = &s->tris[tri];
   float3 v0 = load_float3(t->v0), v1 = load_float3(t->v1), v2 = load_float3(t->v2);
-  float area_pdf = s->emitter_area_pdf[t->emitter];
   float omega = triangle_solid_angle(x, v0, v1, v2);
-  if (spherical_sampling(omega)) return area_pdf * 0.5f * length(cross(v1 - v0, v2 - v0)) / omega;
+  if (spherical_sampling(omega)) return pick / omega;
   float3 to = y - x;
-  return cos_light > 0.0f ? area_pdf * dot(to, to) / cos_light : 0.0f;
+  return cos_light > 0.0f ? pick / (0.5f * length(cross(v1 - v0, v2 - v0))) * dot(to, to) / cos_light : 0.0f;
 }
 
 #endif

@@ -148,13 +148,13 @@ KASHA_STATIC_SIZE(KCamera, 224);
 typedef struct {
   KCamera camera;
   ulong nodes, leaves, tris, materials, spectra, lobes, emitter_radiance, emitter_area_pdf, light_tri,
-      light_cdf, lights, textures, texcoords, normals; /* see SceneView */
-  int light_count;   /* entries of light_tri and light_cdf */
+      light_cdf, lights, textures, texcoords, normals, light_nodes, light_trails; /* see SceneView */
+  int light_count;     /* entries of light_tri and light_cdf */
   float bin_nm;
-  int light_sources; /* entries of lights */
-  int pad;
+  int light_sources;   /* entries of lights */
+  int light_triangles; /* the emitting triangles: the first entries of light_tri */
 } KSceneParams;
-KASHA_STATIC_SIZE(KSceneParams, 352);
+KASHA_STATIC_SIZE(KSceneParams, 368);
 
 /* What a material is: the measured model (gloss lobe or mirror, passive and fluorescent Lambert
  * parts), or an ideal specular interface — a dielectric or a conductor (docs/materials.md). */
@@ -249,7 +249,8 @@ KASHA_STATIC_SIZE(KShadingNormals, 48);
  * intensity falls off to zero at the edge of a cone), a distant light (parallel light of a given
  * irradiance) and an infinite light (radiance from every direction, constant or an environment
  * image). Light sampling picks them from the same CDF as the emitting triangles, in proportion to
- * their power: their entries of light_tri are ~index into the KLight array. */
+ * their power (next-event estimation then picks within the triangles' share by the light BVH,
+ * KLightNode): their entries of light_tri are ~index into the KLight array. */
 #define KASHA_LIGHT_POINT 0
 #define KASHA_LIGHT_SPOT 1
 #define KASHA_LIGHT_DISTANT 2
@@ -277,6 +278,26 @@ typedef struct {
   float pad[4];
 } KLight;
 KASHA_STATIC_SIZE(KLight, 128);
+
+/* A node of the light BVH that next-event estimation picks an emitting triangle with
+ * (kernels/lights/light_bvh.h): pbrt-v4's LightBVHNode, its LightBounds kept in floats. The box
+ * of its triangles, the cone of their front normals (axis w, cosine of its half-angle cos_o) and
+ * their power phi (W); every emitter is a one-sided triangle, so pbrt-v4's θe is π/2 throughout.
+ * child >= 0: an interior node, its first child the next node and its second node `child`;
+ * < 0: a leaf, the emitting triangle ~child (leaf order, as KTriangle). Node 0 is the root. */
+typedef struct {
+  float lo[3];
+  float phi;
+  float hi[3];
+  float cos_o;
+  float w[3];
+  int child;
+} KLightNode;
+KASHA_STATIC_SIZE(KLightNode, 48);
+
+/* A path from the light BVH's root to a leaf: bit k chooses the second child at depth k, so the
+ * deepest tree the builder may make (host/render/light_bvh.cpp) has 64 levels below the root. */
+#define KASHA_LIGHT_BVH_MAX_DEPTH 64
 
 /* How an environment image covers the sphere of directions. */
 #define KASHA_MAPPING_LATLONG 0
