@@ -360,6 +360,7 @@ MakeNamedMaterial "leaf" "string type" "diffusetransmission" "rgb transmittance"
 MakeNamedMaterial "sheet" "string type" "thindielectric" "float eta" 1.4
 MakeNamedMaterial "brushed" "string type" "conductor" "rgb eta" [0.2 0.9 1.1] "rgb k" [3.9 2.4 2.2] "float roughness" 0.2
 Texture "holes" "float" "checkerboard" "float uscale" 8 "float vscale" 8 "float tex1" 1 "float tex2" 0
+MakeNamedMaterial "worn" "string type" "mix" "string materials" ["lacquer" "gold"] "texture amount" "holes"
 LightSource "point" "point3 from" [0 2 0] "blackbody I" 4000 "float scale" 2
 LightSource "spot" "point3 from" [1 2 1] "point3 to" [0 0 0] "rgb I" [0.5 0.6 0.7] "float coneangle" 25
 LightSource "distant" "point3 from" [0 1 0] "point3 to" [0.2 0 0.1] "spectrum L" [400 1 700 2] "float scale" 0.3
@@ -380,6 +381,11 @@ NamedMaterial "sheet"
 Shape "trianglemesh" "point3 P" [-1 0.1 -1.2  1 0.6 -1.2  -1 0.6 -1.2] "float alpha" 0.5
 NamedMaterial "brushed"
 Shape "sphere" "float radius" 0.2
+AttributeBegin
+  NamedMaterial "worn"
+  Translate -0.5 0.3 0.6
+  Shape "sphere" "float radius" 0.15
+AttributeEnd
 ObjectBegin "thing"
   NamedMaterial "paper"
   Shape "bilinearmesh" "point3 P" [0 0 0  0.4 0 0  0 0.4 0  0.4 0.4 0]

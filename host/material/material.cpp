@@ -159,6 +159,7 @@ static ConductorDesc parse_conductor(const JsonNode& node) {
 }
 
 void apply_coat(MaterialDesc& m, const JsonNode& coat) {
+  if (m.kind == MaterialKind::mix) coat.fail("a mix takes no coat (its materials may)");
   if (m.kind != MaterialKind::measured) coat.fail("a dielectric or conductor takes no coat");
   if (m.gloss) coat.fail("a coated material has no \"gloss\" part: the coat is its gloss");
   m.coat = parse_coat(coat);
@@ -219,6 +220,15 @@ MaterialDesc parse_material(const JsonNode& node, const std::string& name) {
       m.conductor = parse_conductor(*conductor);
     }
   }
+  if (auto mix = node.find("mix")) {
+    // A mix is only its two materials: their parts are theirs.
+    for (const char* part :
+         {"passive", "fluorescence", "gloss", "transmission", "coat", "dielectric", "conductor"})
+      if (node.has(part))
+        mix->fail(std::string("a mix has no \"") + part + "\" part of its own (its materials do)");
+    m.kind = MaterialKind::mix;
+    m.mix = parse_mix(*mix);
+  }
   node.find("diagnostics");  // written by `kasha measure`, ignored on load
   node.finish();
   return m;
@@ -229,6 +239,8 @@ MaterialDesc load_material_file(const std::string& path, const std::string& name
   if (!root.is_object()) root.fail("expected a material object");
   if (!root.has("kasha_material"))
     root.fail("missing \"kasha_material\": 1 (not a kasha material file)");
+  if (auto mix = root.find("mix"))
+    mix->fail("a material file cannot hold a mix (it names a scene's materials)");
   return parse_material(root, name);
 }
 
@@ -259,6 +271,7 @@ Material discretize_material(const MaterialDesc& desc, const WavelengthGrid& gri
   m.name = desc.name;
   m.gloss = desc.gloss;
   m.coat = desc.coat;
+  m.mix = desc.mix;
   m.kind = desc.kind;
   m.eta = desc.dielectric.eta;
   m.thin = desc.dielectric.thin;

@@ -10,6 +10,7 @@
 
 #include "core/json_node.h"
 #include "material/coat.h"
+#include "material/mix.h"
 #include "spectrum/spectrum.h"
 #include "spectrum/wavelength_grid.h"
 
@@ -23,8 +24,8 @@ struct GlossDesc {
   std::vector<double> profile_deg, profile_value;
 };
 
-// What a material is (KASHA_KIND_* in the kernels).
-enum class MaterialKind { measured, dielectric, conductor };
+// What a material is (KASHA_KIND_* in the kernels); a mix picks one of two others per point.
+enum class MaterialKind { measured, dielectric, conductor, mix };
 
 // A smooth dielectric interface: eta is the index on the back side of its surfaces over the
 // index on the front side (1.5: glass in air; below 1: an air bubble in water or glass).
@@ -66,7 +67,8 @@ struct MaterialDesc {
   SpectrumPtr transmittance;
   double transmission_scale = 1;
   std::optional<GlossDesc> gloss;
-  std::optional<CoatDesc> coat;  // a dielectric coat over the Lambert parts
+  std::optional<CoatDesc> coat;    // a dielectric coat over the Lambert parts
+  std::optional<MaterialMix> mix;  // kind mix: its two materials and amount
 
   bool fluorescent() const { return excitation != nullptr; }
 };
@@ -85,10 +87,13 @@ struct Material {
   std::vector<double> e_hat;  // e·Δλ, sums to 1; empty without fluorescence
   std::optional<GlossDesc> gloss;
   std::optional<CoatDesc> coat;
+  std::optional<MaterialMix> mix;  // kind mix (its indices set by the scene)
 
   bool fluorescent() const { return !a.empty(); }
   bool transmissive() const { return !tau.empty(); }
-  bool specular() const { return kind != MaterialKind::measured; }
+  bool specular() const {
+    return kind == MaterialKind::dielectric || kind == MaterialKind::conductor;
+  }
   bool dispersive() const { return !eta_bins.empty(); }
   bool rough() const { return specular() && roughness.rough(); }
   double gloss_reflectance() const { return gloss ? gloss->reflectance : 0.0; }

@@ -147,6 +147,10 @@ void KernelSceneData::add_textures(const Scene& scene) {
       materials[i].reflectance_texture = texture(mt.reflectance, reflectance);
     if (mt.fluorescence >= 0)
       materials[i].fluorescence_texture = texture(mt.fluorescence, concentration);
+    // A mix's amount is a scalar in [0, 1], as a concentration is.
+    const auto& mix = scene.materials[i].mix;
+    if (mix && mix->amount_texture >= 0)
+      materials[i].mix.amount_texture = texture(mix->amount_texture, concentration);
   }
   std::vector<int> emitter_texture;
   for (const Emitter& e : scene.emitters)
@@ -250,7 +254,15 @@ KMaterial KernelSceneData::kernel_material(const Material& m, const Scene& scene
   for (double a : m.a) k.excitation_sum += static_cast<float>(a);
   k.kind = m.kind == MaterialKind::dielectric  ? KASHA_KIND_DIELECTRIC
            : m.kind == MaterialKind::conductor ? KASHA_KIND_CONDUCTOR
+           : m.kind == MaterialKind::mix       ? KASHA_KIND_MIX
                                                : KASHA_KIND_MEASURED;
+  static_assert(kMaxMixDepth == KASHA_MIX_DEPTH, "mix depths differ");
+  k.mix.materials[0] = k.mix.materials[1] = k.mix.amount_texture = -1;
+  if (m.mix) {
+    k.mix.materials[0] = m.mix->materials[0];
+    k.mix.materials[1] = m.mix->materials[1];
+    k.mix.amount = static_cast<float>(m.mix->amount);
+  }
   k.eta = static_cast<float>(m.eta);
   k.thin = m.thin ? 1 : 0;
   k.eta_spectrum = append(spectra, m.kind == MaterialKind::conductor ? m.eta_c : m.eta_bins);
@@ -433,6 +445,7 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_COATED"] = scene.coated() ? "1" : "0";
   d["KASHA_TRANSMISSION"] = scene.transmissive() ? "1" : "0";
   d["KASHA_THIN"] = scene.thin() ? "1" : "0";
+  d["KASHA_MIX"] = scene.mixed() ? "1" : "0";
   d["KASHA_SHADING_NORMALS"] = scene.shading_normals() ? "1" : "0";
   d["KASHA_SCRATCH_COAT"] = std::to_string(scratch_coat_offset(scene));
   return d;

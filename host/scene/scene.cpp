@@ -22,12 +22,34 @@
 
 namespace kasha {
 
+// The materials some shape uses, a mix's two with it (and theirs, in turn), each once.
+std::vector<int> Scene::used_materials() const {
+  std::vector<bool> seen(materials.size(), false);
+  std::vector<int> used, pending;
+  for (const ShapeInfo& s : shapes) pending.push_back(s.material);
+  while (!pending.empty()) {
+    const int m = pending.back();
+    pending.pop_back();
+    if (seen[m]) continue;
+    seen[m] = true;
+    used.push_back(m);
+    if (materials[m].mix)
+      for (int k : materials[m].mix->materials) pending.push_back(k);
+  }
+  return used;
+}
+
 // Only materials that some shape uses count: a declared but unused fluorescent or glossy material
-// must not switch on kernels and buffers the scene does not need.
+// must not switch on kernels and buffers the scene does not need. A mix's materials count, since
+// the kernels meet either at its points.
 bool Scene::any_used(const std::function<bool(const Material&)>& has) const {
-  for (const ShapeInfo& s : shapes)
-    if (has(materials[s.material])) return true;
+  for (int m : used_materials())
+    if (has(materials[m])) return true;
   return false;
+}
+
+bool Scene::mixed() const {
+  return any_used([](const Material& m) { return m.kind == MaterialKind::mix; });
 }
 
 bool Scene::fluorescent() const {
@@ -62,9 +84,9 @@ bool Scene::has_delta_surfaces() const {
 }
 
 bool Scene::textured() const {
-  for (const ShapeInfo& s : shapes)
-    if (material_textures[s.material].reflectance >= 0 ||
-        material_textures[s.material].fluorescence >= 0)
+  for (int m : used_materials())
+    if (material_textures[m].reflectance >= 0 || material_textures[m].fluorescence >= 0 ||
+        (materials[m].mix && materials[m].mix->amount_texture >= 0))
       return true;
   return false;
 }
@@ -462,6 +484,7 @@ static void check_material_textures(const Scene& scene) {
     const MaterialTextures& mt = scene.material_textures[i];
     const Material& m = scene.materials[i];
     if (mt.reflectance < 0 && mt.fluorescence < 0) continue;
+    if (m.mix) throw Error(mt.where + ": a mix's textures are its materials' own");
     if (m.kind != MaterialKind::measured)
       throw Error(mt.where + ": textures apply to a measured material's Lambert parts, not to a " +
                   "dielectric or conductor");
@@ -490,6 +513,44 @@ static void check_material_textures(const Scene& scene) {
   }
 }
 
+// A mix may name mixes, at most kMaxMixDepth deep (the kernels resolve that many in turn); one
+// that names itself, in turn, never ends and is refused the same way.
+static void check_mix_nesting(const Scene& scene, int m, int depth) {
+  const MaterialDesc& d = scene.material_descs[m];
+  if (!d.mix) return;
+  if (depth >= kMaxMixDepth)
+    throw Error(d.mix->where + ": mixes nest deeper than " + std::to_string(kMaxMixDepth) +
+                " (or a mix names itself in turn)");
+  for (int k : d.mix->materials) check_mix_nesting(scene, k, depth + 1);
+}
+
+// A mix's material and texture names as the scene's indices.
+static void resolve_mixes(Scene& scene) {
+  for (MaterialDesc& d : scene.material_descs) {
+    if (!d.mix) continue;
+    MaterialMix& mix = *d.mix;
+    for (int k = 0; k < 2; ++k) {
+      mix.materials[k] = scene.material_index(mix.names[k]);
+      if (mix.materials[k] < 0)
+        throw Error(mix.where + ": no material named \"" + printable(mix.names[k]) + "\"");
+    }
+    if (mix.amount_texture_name.empty()) continue;
+    for (size_t i = 0; i < scene.textures.size(); ++i)
+      if (scene.textures[i].name == mix.amount_texture_name)
+        mix.amount_texture = static_cast<int>(i);
+    if (mix.amount_texture < 0)
+      throw Error(mix.where + ": no texture named \"" + printable(mix.amount_texture_name) +
+                  "\" in the scene's \"textures\"");
+    const Texture& t = scene.textures[mix.amount_texture];
+    if (t.type == TextureType::checkerboard &&
+        !(t.even_value >= 0 && t.even_value <= 1 && t.odd_value >= 0 && t.odd_value <= 1))
+      throw Error(t.where +
+                  ": a mix's amount texture's \"even\" and \"odd\" are numbers in [0, 1]");
+  }
+  for (size_t m = 0; m < scene.material_descs.size(); ++m)
+    check_mix_nesting(scene, static_cast<int>(m), 0);
+}
+
 static void parse_materials(const JsonNode& materials, Scene& scene) {
   for (const std::string& name : materials.keys()) {
     JsonNode m = materials.at(name);
@@ -505,6 +566,7 @@ static void parse_materials(const JsonNode& materials, Scene& scene) {
       scene.material_descs.push_back(parse_material(m, name));
     }
   }
+  resolve_mixes(scene);
 }
 
 // Vertices must be finite and well inside float range after transforms: squared distances of
@@ -651,6 +713,13 @@ static void parse_shape_alpha(const JsonNode& alpha, const Scene& scene, ShapeIn
   info.alpha = alpha.number_in(0, 1);
 }
 
+// A used mix's materials, and in turn theirs, are used.
+static void mark_mix_used(const Scene& scene, int m, ShapeUses& uses) {
+  uses.materials[m] = true;
+  if (const auto& mix = scene.material_descs[m].mix)
+    for (int k : mix->materials) mark_mix_used(scene, k, uses);
+}
+
 // One shape of the scene's "shapes": its triangles, material and emission added to the scene.
 static void parse_shape(const JsonNode& shape, const LampChoice& lamp_on,
                         TriangleKeys& seen_triangles, ShapeUses& uses, Scene& scene) {
@@ -736,6 +805,10 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
   if (lamp_on.spectrum && !uses.lamp)
     root.at("lamps").fail("no shape emits the lamps (give one \"lamp\": true)");
 
+  // A used mix uses its materials (the grid must cover their excitation).
+  for (size_t m = uses.materials.size(); m-- > 0;)
+    if (uses.materials[m] && scene.material_descs[m].mix)
+      mark_mix_used(scene, static_cast<int>(m), uses);
   discretize(request, uses.materials, scene);
   check_emitters(scene);
   check_material_textures(scene);

@@ -74,6 +74,7 @@ struct Scene {
   bool coated() const;                 // some shape's material has a coat
   bool transmissive() const;           // some shape's material transmits diffusely
   bool thin() const;                   // some shape's material is a thin dielectric
+  bool mixed() const;                  // some shape's material is a mix (docs/materials.md#mixes)
   bool shading_normals() const { return !normals.empty(); }  // some shape has them
   // Some used material scatters by a delta lobe: an ideal mirror, a smooth dielectric or
   // conductor, or a smooth coat's reflection.
@@ -87,8 +88,11 @@ struct Scene {
   // The bounding sphere of the triangles (as the kernels see them), where distant and infinite
   // lights send their photons from.
   void bounding_sphere(Eigen::Vector3d& centre, double& radius) const;
-  // Whether the material of some shape has the property (unused materials do not count).
+  // Whether the material of some shape has the property (unused materials do not count; a used
+  // mix's materials do).
   bool any_used(const std::function<bool(const Material&)>& has) const;
+  // The indices of the materials shapes use, a used mix's materials included.
+  std::vector<int> used_materials() const;
 };
 
 // `grid`, when given, replaces the scene's own "wavelengths" (the same scene on another grid);

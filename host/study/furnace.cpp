@@ -29,6 +29,7 @@ Furnace analyze_furnace(const Scene& scene) {
   const Material& m = scene.materials[material];
   if (m.gloss && !m.gloss->mirror) return refuse("its gloss lobe is not an ideal mirror");
   if (m.specular()) return refuse("its material is a dielectric or conductor");
+  if (m.mix) return refuse("its material is a mix");
 
   // The camera must be inside: its corner and centre rays all meet a front (inner) face.
   EmbreeScene embree(scene.triangles);

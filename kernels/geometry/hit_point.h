@@ -5,6 +5,7 @@
 
 #include "geometry/bvh_traversal.h"
 #include "geometry/scene_view.h"
+#include "materials/mix.h"
 
 #ifndef KASHA_TEXTURES
 #define KASHA_TEXTURES 0
@@ -85,7 +86,7 @@ inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint
   h->x = (1.0f - u - v) * v0 + u * v1 + v * v2;
   h->eps = surface_offset(v0, v1, v2, 1.0f - u - v, u, v, h->n);
   h->t = t;
-  h->material = tri->material;
+  h->material = resolve_material(s, tri->material, h->x, hit, (float2)(u, v));
   h->emitter = tri->emitter;
   h->tri = hit;
 #if KASHA_TEXTURES

@@ -161,6 +161,17 @@ KASHA_STATIC_SIZE(KSceneParams, 368);
 #define KASHA_KIND_MEASURED 0
 #define KASHA_KIND_DIELECTRIC 1
 #define KASHA_KIND_CONDUCTOR 2
+#define KASHA_KIND_MIX 3 /* one of two other materials per point (materials/mix.h) */
+#define KASHA_MIX_DEPTH 8 /* mixes nest at most this deep (host/material/mix.h's kMaxMixDepth) */
+
+/* A mix's two materials (indices into the material table) and the second's share at a point: the
+ * constant amount, or a scalar KTexture's value there. */
+typedef struct {
+  int materials[2];
+  float amount;
+  int amount_texture; /* -1: the constant */
+} KMix;
+KASHA_STATIC_SIZE(KMix, 16);
 
 /* Per-material data the kernels read; spectra live in one float buffer at the given offsets
  * (N values each, -1 when the part is absent; the buffer starts with N zeros that kernels read
@@ -194,8 +205,9 @@ typedef struct {
   float transmit_share; /* the share of Lambert samples sent through (surface.h); 0 without tau */
   int thin;             /* a dielectric: 1 for a thin sheet (fresnel.h's thin_dielectric_reflectance) */
   int pad_material;
+  KMix mix;             /* KASHA_KIND_MIX: what it mixes */
 } KMaterial;
-KASHA_STATIC_SIZE(KMaterial, 112);
+KASHA_STATIC_SIZE(KMaterial, 128);
 
 /* Entries of a rough coat's tables (host/material/coat.h's kCoatTableSize). */
 #define KASHA_COAT_TABLE 64

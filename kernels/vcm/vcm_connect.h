@@ -13,7 +13,9 @@ inline void vcm_light_surface(const SceneView* s, const __global KVcmLightVertex
   HitPoint h;
   h.tri = y->triangle;
   const __global KTriangle* t = &s->tris[h.tri];
-  h.material = t->material;
+  /* The material the light subpath resolved there: the same point, the same choice. */
+  h.material = resolve_material(s, t->material, load_float3(y->position), h.tri,
+                                (float2)(y->barycentrics[0], y->barycentrics[1]));
   float3 arrival = load_float3(y->arrival);
   *ns = load_float3(y->shading);
   *ng = load_float3(y->normal);

@@ -115,6 +115,7 @@ class Importer {
     for (const auto& [name, where] : named_material_uses_)
       if (!materials_.contains(name) && !interfaces_.count(name))
         pbrt_fail(where, "NamedMaterial " + in_quotes(name) + ": no material of that name");
+    for (const auto& [key, where] : anonymous_mixes_) check_mix_parts(key, where);
     for (const auto& [name, file] : overrides_) {
       const bool material = materials_.contains(name) && named_materials_.count(name);
       if (material) materials_[name] = {{"file", absolute(file)}};
@@ -428,6 +429,8 @@ class Importer {
       const PbrtParameters params = read_parameters(tokens, "material");
       const std::string key = "pbrt material at " + d.where.str();
       define_material(key, type, params, d.where);
+      // pbrt-v4 creates the named materials first: a mix here may name any of them.
+      if (type == "mix") anonymous_mixes_.emplace_back(key, d.where);
       state_.material = key;
     } else if (name == "MakeNamedMaterial") {
       make_named_material(d, tokens);
@@ -465,6 +468,22 @@ class Importer {
       pbrt_fail(d.where, "MakeNamedMaterial " + in_quotes(material) + " defined twice");
     named_materials_.insert(material);
     define_material(material, type, params, d.where);
+    check_mix_parts(material, d.where);
+  }
+
+  // A mix's materials are named materials that are surfaces; pbrt-v4 creates named materials in
+  // order, so a named mix may name only those defined before it (which also rules out a loop).
+  void check_mix_parts(const std::string& key, const PbrtLocation& where) const {
+    const auto m = materials_.find(key);
+    if (m == materials_.end() || !m->contains("mix")) return;
+    for (const auto& part : (*m)["mix"]["materials"]) {
+      const std::string name = part.get<std::string>();
+      if (interfaces_.count(name))
+        pbrt_fail(where, "mix: " + in_quotes(name) +
+                             " is an \"interface\" material, which a mix cannot hold");
+      if (name == key || !named_materials_.count(name) || !materials_.contains(name))
+        pbrt_fail(where, "mix: no named material " + in_quotes(name) + " defined before it");
+    }
   }
 
   // Object definitions and their instances; false for other directives.
@@ -841,6 +860,7 @@ class Importer {
   nlohmann::json materials_ = nlohmann::json::object();
   std::set<std::string> named_materials_, interfaces_;
   std::multimap<std::string, PbrtLocation> named_material_uses_;
+  std::vector<std::pair<std::string, PbrtLocation>> anonymous_mixes_;  // checked at the end
   bool uses_default_material_ = false;
   PbrtTextures textures_;
   nlohmann::json lights_ = nlohmann::json::array();

@@ -329,6 +329,30 @@ nlohmann::json conductor(const PbrtParameters& params, const PbrtLocation& where
   return c;
 }
 
+// pbrt-v4's MixMaterial: "string materials" (two named materials, which the importer checks
+// once it knows them) and "float amount" (0.5): a number, clamped to [0, 1] as ChooseMaterial
+// reads it, or a float texture that varies over the surface (kasha's scalar texture).
+nlohmann::json mix(const PbrtParameters& params, const PbrtLocation& where,
+                   const PbrtTextures& textures) {
+  const PbrtParameter* names = params.find("materials", "string");
+  if (!names || names->strings.size() != 2)
+    pbrt_fail(names ? names->where : where, "mix: \"string materials\" must name two materials");
+  nlohmann::json out = {{"materials", names->strings}};
+  const PbrtParameter* amount = params.find("amount", "float texture");
+  if (amount && amount->type == "texture") {
+    const PbrtTexture& t = texture_named(*amount, textures.scalar, "float");
+    if (!t.kasha_name.empty()) {
+      if (t.factor != 1)
+        pbrt_fail(amount->where, in_quotes(amount->declaration()) +
+                                     ": a scaled texture as a mix's amount is not built in kasha");
+      out["amount"] = t.kasha_name;
+      return out;
+    }
+  }
+  out["amount"] = std::clamp(pbrt_float_value(params, "amount", textures).value_or(0.5), 0.0, 1.0);
+  return out;
+}
+
 }  // namespace
 
 nlohmann::json pbrt_texture_constant(const PbrtTexture& t, PbrtSpectrumUse use,
@@ -404,13 +428,13 @@ nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& para
     const std::string file = params.get_string("file", "");
     if (file.empty()) pbrt_fail(where, "Material \"kasha\" needs \"string file\"");
     m["file"] = file;
-  } else if (type == "mix" || type == "measured" || type == "hair" || type == "subsurface" ||
+  } else if (type == "mix") {
+    m["mix"] = mix(params, where, textures);
+  } else if (type == "measured" || type == "hair" || type == "subsurface" ||
              type == "coatedconductor") {
-    pbrt_fail(
-        where,
-        "material " + in_quotes(type) +
-            " is not built in kasha (diffuse, "
-            "coateddiffuse, diffusetransmission, dielectric, thindielectric, conductor, kasha)");
+    pbrt_fail(where, "material " + in_quotes(type) +
+                         " is not built in kasha (diffuse, coateddiffuse, diffusetransmission, "
+                         "dielectric, thindielectric, conductor, mix, kasha)");
   } else {
     pbrt_fail(where, "unknown material type " + in_quotes(type));
   }

@@ -1,7 +1,7 @@
 #pragma once
 // pbrt-v4's `Texture`, `Material` and `MakeNamedMaterial` as kasha textures and materials
-// (docs/pbrt-import.md#materials-and-textures): diffuse, coateddiffuse, dielectric, conductor, and
-// kasha's own measured materials; imagemap, checkerboard, scale and constant textures.
+// (docs/pbrt-import.md#materials-and-textures): diffuse, coateddiffuse, dielectric, conductor, mix
+// and kasha's own measured materials; imagemap, checkerboard, scale and constant textures.
 #include <filesystem>
 #include <map>
 #include <nlohmann/json.hpp>

@@ -1,0 +1,66 @@
+/* pbrt-v4's MixMaterial (docs/materials.md#mixes): at each point of a mix's surface one of its two
+ * materials, the second where amount ≥ u, u uniform from a hash; nested mixes in turn. pbrt-v4
+ * hashes the point and the viewing direction; kasha hashes the point alone (and the two
+ * materials), so a camera path, a light path and vcm's stored light vertex that meet one point all
+ * see one surface there, which bidirectional estimators need. Over a pixel the expectation is
+ * the same blend (1 − amount)·first + amount·second. */
+#ifndef KASHA_MIX_H
+#define KASHA_MIX_H
+
+#include "geometry/scene_view.h"
+#include "shared/texture_lookup.h"
+
+#ifndef KASHA_MIX
+#define KASHA_MIX 0 /* some shape's material is a mix */
+#endif
+#ifndef KASHA_TEXTURES
+#define KASHA_TEXTURES 0
+#endif
+
+#if KASHA_MIX
+/* MurmurHash3's 64-bit finalizer over each word in turn (as alpha_hash): a uniform value in
+ * [0, 1) from the point's coordinates and the mix's two materials. */
+inline float mix_hash(float3 x, int a, int b) {
+  uint words[5] = {as_uint(x.x), as_uint(x.y), as_uint(x.z), (uint)a, (uint)b};
+  ulong h = 0x9e3779b97f4a7c15UL;
+  for (int k = 0; k < 5; ++k) {
+    h ^= (ulong)words[k];
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdUL;
+    h ^= h >> 33;
+    h *= 0xc4ceb9fe1a85ec53UL;
+    h ^= h >> 33;
+  }
+  return (float)(uint)(h >> 40) * 0x1p-24f;
+}
+
+/* A mix's amount at barycentrics b of leaf triangle tri: its constant, or its texture's value. */
+inline float mix_amount(const SceneView* s, const __global KMix* m, int tri, float2 b) {
+#if KASHA_TEXTURES
+  if (m->amount_texture >= 0) {
+    const __global float* t = s->texcoords[tri].uv;
+    float b0 = 1.0f - b.x - b.y;
+    return texture_scalar_uv(&s->textures[m->amount_texture], s->spectra, b0 * t[0] + b.x * t[2] + b.y * t[4],
+                             b0 * t[1] + b.x * t[3] + b.y * t[5]);
+  }
+#endif
+  return m->amount;
+}
+#endif
+
+/* The material at point x (barycentrics b of leaf triangle tri) of a triangle whose material is
+ * `material`: a mix resolved to one of its materials, as pbrt-v4's ChooseMaterial (amount ≤ 0:
+ * the first, ≥ 1: the second), the host bounding the nesting by KASHA_MIX_DEPTH. */
+inline int resolve_material(const SceneView* s, int material, float3 x, int tri, float2 b) {
+#if KASHA_MIX
+  for (int d = 0; d < KASHA_MIX_DEPTH && s->materials[material].kind == KASHA_KIND_MIX; ++d) {
+    const __global KMix* m = &s->materials[material].mix;
+    float amount = mix_amount(s, m, tri, b);
+    int first = m->materials[0], second = m->materials[1];
+    material = amount <= 0.0f ? first : amount >= 1.0f ? second : amount < mix_hash(x, first, second) ? first : second;
+  }
+#endif
+  return material;
+}
+
+#endif
