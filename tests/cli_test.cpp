@@ -17,9 +17,7 @@ using test::run_kasha;
 
 namespace {
 
-std::string shell_quoted(const std::string& s) {
-  return "'" + s + "'";
-}
+using test::shell_quoted;
 
 void expect_one_line_error(const test::CommandResult& r, const std::string& expected) {
   EXPECT_NE(r.exit_code, 0);

@@ -26,9 +26,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string shell_quoted(const std::string& s) {
-  return "'" + s + "'";
-}
+using test::shell_quoted;
 
 // A small lit scene whose parts the cases replace: `material` is the material's JSON, `shape`
 // the one shape's.

@@ -28,6 +28,10 @@ std::string write_file(const std::string& name, const std::string& text) {
   return p.string();
 }
 
+std::string shell_quoted(const std::string& s) {
+  return "'" + s + "'";
+}
+
 std::string source_path(const std::string& relative) {
   return std::string(KASHA_SOURCE_DIR) + "/" + relative;
 }
@@ -76,8 +80,8 @@ CommandResult run_kasha_signalled(const std::string& env, const std::string& arg
   // The timer's shell holds no standard stream (an orphaned sleep would keep a pipe open) and is
   // stopped, with its sleep, as soon as kasha ends.
   std::ostringstream script;
-  script << "setsid env " << env << " " << KASHA_BINARY << " " << args << " > '" << out
-         << "' 2> '" << err << "' < /dev/null &\n"
+  script << "setsid env " << env << " " << KASHA_BINARY << " " << args << " > '" << out << "' 2> '"
+         << err << "' < /dev/null &\n"
          << "p=$!\n"
          << "(exec > /dev/null 2>&1 < /dev/null; sleep " << after_s << " && kill -s " << signal
          << " -- -$p) &\n"
@@ -87,7 +91,6 @@ CommandResult run_kasha_signalled(const std::string& env, const std::string& arg
   for (char c : script.str()) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
   return finish(std::system(("bash -c '" + quoted + "'").c_str()), out, err);
 }
-
 
 }  // namespace kasha::test
 

@@ -15,6 +15,7 @@ std::filesystem::path scratch_dir();
 // Writes `text` to scratch_dir()/name and returns the path.
 std::string write_file(const std::string& name, const std::string& text);
 std::string source_path(const std::string& relative);  // inside the source tree
+std::string shell_quoted(const std::string& s);        // for run_kasha's argument string
 
 // Unpolarized Fresnel reflectance of a smooth interface of complex relative index m (far side
 // over near side), cos_i > 0, from Born & Wolf's form (r_s, r_p through sqrt(m² − sin²θ)): the

@@ -75,6 +75,22 @@ void report_render(const RenderArgs& a, const RenderJob& job,
                  counters.rejected_samples);
 }
 
+// What the integrator leaves out of this scene's image, or estimates short: one warning each.
+void warn_what_it_cannot_see(const Scene& scene, const std::string& integrator) {
+  const IntegratorTraits& traits = IntegratorRegistry::find(integrator).traits;
+  if (scene.has_delta_surfaces() && !traits.sees_camera_mirrors)
+    warn(
+        integrator + ": ideal mirrors, glass and metal are out of its reach from a pinhole " +
+        "camera and show black, as does a smooth coat's reflection (backward and photon see them)");
+  if (scene.mixes_delta() && traits.physical && !traits.unbiased)
+    warn(integrator + ": a mix with a smooth (delta) material stores photons on only its " +
+         "other material's share of the surface, so merges there fall short (backward and bpt " +
+         "are unbiased on it; docs/materials.md#mixes)");
+  if (scene.has_light(LightType::infinite) && !traits.sees_camera_mirrors)
+    warn(integrator + ": an infinite light seen directly by the camera is out of its reach " +
+         "and shows black (backward and photon see it)");
+}
+
 int run_render(const RenderArgs& a) {
   install_interrupt_handler();  // from the start, so an early Ctrl-C still gets one pass written
   const RenderSpec& spec = a.spec;
@@ -103,14 +119,7 @@ int run_render(const RenderArgs& a) {
     remote = std::make_unique<RemoteRanks>(spec.integrator, render_fingerprint(spec));
   RenderJob job(lanes, scene, spec.integrator, spec.settings, spec.spectral,
                 remote ? remote->lanes() : std::vector<Integrator*>{});
-  if (scene.has_delta_surfaces() &&
-      !IntegratorRegistry::find(spec.integrator).traits.sees_camera_mirrors)
-    warn(spec.integrator + ": ideal mirrors, glass and metal are out of its reach from a pinhole " +
-         "camera and show black, as does a smooth coat's reflection (backward and photon see them)");
-  if (scene.has_light(LightType::infinite) &&
-      !IntegratorRegistry::find(spec.integrator).traits.sees_camera_mirrors)
-    warn(spec.integrator + ": an infinite light seen directly by the camera is out of its reach " +
-         "and shows black (backward and photon see it)");
+  warn_what_it_cannot_see(scene, spec.integrator);
   std::vector<std::string> names;
   for (size_t d = 0; d < devices.size(); ++d) names.push_back(devices[d].info().name);
   std::string where = devices.names();

@@ -76,11 +76,23 @@ bool Scene::thin() const {
 bool Scene::transmissive() const {
   return any_used([](const Material& m) { return m.transmissive(); });
 }
+namespace {
+bool scatters_by_delta(const Material& m) {
+  return (m.specular() && !m.rough()) || (m.gloss && m.gloss->mirror) ||
+         (m.coat && !m.coat->rough());
+}
+}  // namespace
+
 bool Scene::has_delta_surfaces() const {
-  return any_used([](const Material& m) {
-    return (m.specular() && !m.rough()) || (m.gloss && m.gloss->mirror) ||
-           (m.coat && !m.coat->rough());
-  });
+  return any_used(scatters_by_delta);
+}
+
+bool Scene::mixes_delta() const {
+  for (int m : used_materials())
+    if (materials[m].mix)
+      for (int k : materials[m].mix->materials)
+        if (scatters_by_delta(materials[k])) return true;
+  return false;
 }
 
 bool Scene::textured() const {

@@ -79,6 +79,10 @@ struct Scene {
   // Some used material scatters by a delta lobe: an ideal mirror, a smooth dielectric or
   // conductor, or a smooth coat's reflection.
   bool has_delta_surfaces() const;
+  // Some used mix picks a material that scatters by a delta lobe on part of its surface: photons
+  // are stored only on the other part, so merging estimates there fall short
+  // (docs/materials.md#mixes).
+  bool mixes_delta() const;
   int material_index(const std::string& name) const;  // -1 when absent
   bool has_light(LightType type) const;
   bool has_environment() const;    // some infinite light has an image
