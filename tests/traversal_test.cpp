@@ -11,8 +11,10 @@
 #include "geometry/bvh.h"
 #include "geometry/cl_traversal.h"
 #include "geometry/embree_scene.h"
+#include "geometry/instanced_bvh.h"
 #include "geometry/random_rays.h"
 #include "scene/scene.h"
+#include "instanced_scene.h"
 #include "test_support.h"
 
 using namespace kasha;
@@ -33,8 +35,10 @@ float edge_distance(const KHit& h) {
 
 // |cos| of the angle between a ray and the triangle it hit: near 0 the ray runs along the face,
 // where t and the barycentrics are ill-conditioned and two tests may round either way.
-double incidence(const std::vector<KTriangle>& triangles, const KHit& h, const KRay& ray) {
-  const KTriangle& t = triangles.at(h.prim);
+double incidence(const std::vector<KTriangle>& triangles, const KHit& h, const KRay& ray,
+                 const std::vector<KInstance>& instances = {}) {
+  const KTriangle t = instances.empty() ? triangles.at(h.prim)
+                                        : placed_triangle(triangles.at(h.prim), instances.at(h.instance));
   Eigen::Vector3d a(t.v1[0] - t.v0[0], t.v1[1] - t.v0[1], t.v1[2] - t.v0[2]);
   Eigen::Vector3d b(t.v2[0] - t.v0[0], t.v2[1] - t.v0[1], t.v2[2] - t.v0[2]);
   Eigen::Vector3d d(ray.dir[0], ray.dir[1], ray.dir[2]);
@@ -56,10 +60,12 @@ struct Agreement {
 // Closest hits against Embree's. A hit within `edge_tol` (barycentric) of an edge, or nearly
 // along its face, may be counted by one test and not the other.
 Agreement compare_closest(const std::vector<KTriangle>& triangles, const std::vector<KRay>& rays,
-                          float edge_tol = 1e-5f) {
-  FlatBvh bvh = build_bvh(triangles);
+                          float edge_tol = 1e-5f,
+                          const SceneInstances& instances = SceneInstances()) {
+  FlatBvh bvh = build_instanced_bvh(triangles, instances);
   EXPECT_LE(bvh.depth, KASHA_BVH_MAX_DEPTH);
-  EmbreeScene embree(triangles);
+  EmbreeScene embree(triangles, AlphaCutouts(), instances);
+  const std::vector<KInstance>& placed = bvh.instances;
   ClTraversal traversal(device(), bvh);
   std::vector<KHit> expected;
   embree.intersect_all(rays, expected);
@@ -72,7 +78,7 @@ Agreement compare_closest(const std::vector<KTriangle>& triangles, const std::ve
     if (e.prim >= 0) ++a.hits;
     // Float rounding in t grows with the distance and with the coordinates' magnitude.
     double tol = 1e-5 * (e.prim >= 0 ? e.t : g.t) + 1e-6 * extent;
-    if (e.prim == g.prim) {
+    if (e.prim == g.prim && e.instance == g.instance) {
       if (e.prim < 0 || std::abs(e.t - g.t) <= tol) {
         ++a.same;
         continue;
@@ -90,17 +96,20 @@ Agreement compare_closest(const std::vector<KTriangle>& triangles, const std::ve
     // other does not, or rounds t differently.
     const KHit& nearer = g.prim < 0 || (e.prim >= 0 && e.t <= g.t) ? e : g;
     if (nearer.prim >= 0 &&
-        (edge_distance(nearer) < edge_tol || incidence(triangles, nearer, rays[i]) < 1e-2)) {
+        (edge_distance(nearer) < edge_tol ||
+         incidence(triangles, nearer, rays[i], placed) < 1e-2)) {
       ++a.edge_ties;
       continue;
     }
     ++a.mismatches;
     auto cosine = [&](const KHit& h) {
-      return h.prim < 0 ? 0.0 : incidence(triangles, h, rays[i]);
+      return h.prim < 0 ? 0.0 : incidence(triangles, h, rays[i], placed);
     };
     if (a.mismatches <= 5)
-      ADD_FAILURE() << "ray " << i << ": Embree prim " << e.prim << " t " << e.t << " edge "
-                    << edge_distance(e) << " cos " << cosine(e) << ", OpenCL prim " << g.prim
+      ADD_FAILURE() << "ray " << i << ": Embree prim " << e.prim << " (instance " << e.instance
+                    << ") t " << e.t << " edge "
+                    << edge_distance(e) << " cos " << cosine(e) << ", OpenCL prim " << g.prim << " (instance "
+                    << g.instance << ")"
                     << " t " << g.t << " edge " << edge_distance(g) << " cos " << cosine(g);
   }
   return a;
@@ -419,4 +428,33 @@ TEST(Traversal, ShadowSegmentsMatchEmbree) {
     EXPECT_GT(blocked, kRays / 10);
     EXPECT_LT(blocked, kRays - kRays / 20);
   }
+}
+
+// Two levels: an object placed 9 times (rotated, scaled unevenly, mirrored) in a box, against
+// Embree's own instances; rays over the placed geometry (the same scene written out flat).
+TEST(Traversal, InstancedSceneMatchesEmbree) {
+  const Scene scene = load_scene(test::instanced_scene(false));
+  const Scene flat = load_scene(test::instanced_scene(true));
+  ASSERT_EQ(scene.instances.placements.size(), 9u);
+  const std::vector<KRay> rays = random_rays(flat.triangles, kRays, 7);
+  Agreement a = compare_closest(scene.triangles, rays, 1e-5f, scene.instances);
+  EXPECT_EQ(a.mismatches, 0u);
+  EXPECT_GT(a.hits, kRays / 4);
+  EXPECT_LT(a.edge_ties, kRays / 1000);
+  print(a, kRays);
+
+  // Shadow segments toward points of the placed triangles: blocked or not as Embree says.
+  const std::vector<KRay> shadows = shadow_rays(flat.triangles, kRays / 4, 8);
+  EmbreeScene embree(scene.triangles, AlphaCutouts(), scene.instances);
+  ClTraversal traversal(device(), build_instanced_bvh(scene.triangles, scene.instances));
+  const std::vector<int> got = traversal.occluded(shadows);
+  size_t blocked = 0, differ = 0;
+  for (size_t i = 0; i < shadows.size(); ++i) {
+    const bool expected = embree.occluded(shadows[i]);
+    blocked += expected;
+    differ += expected != static_cast<bool>(got[i]);
+  }
+  EXPECT_LE(differ, shadows.size() / 2000);  // a segment grazing an edge may go either way
+  EXPECT_GT(blocked, shadows.size() / 10);
+  EXPECT_LT(blocked, shadows.size());
 }

@@ -51,6 +51,10 @@ static int run_info(const std::string& scene_path, bool spectral, const std::str
   std::printf("materials: %zu; shapes: %zu; triangles: %zu; emitters: %zu (%d triangles)\n",
               scene.materials.size(), scene.shapes.size(), scene.triangles.size(),
               scene.emitters.size(), emitting_triangles);
+  if (!scene.instances.empty())
+    std::printf("instances: %zu of %zu objects; triangles placed: %zu (each stored once)\n",
+                scene.instances.placements.size(), scene.instances.objects.size(),
+                scene.placed_triangles());
   // The lights that are not shapes, with the share of light sampling each gets (its power's).
   for (size_t k = 0; k < scene.lights.size(); ++k) {
     const Light& l = scene.lights[k];

@@ -20,7 +20,7 @@ JsonNode::JsonNode(std::shared_ptr<const nlohmann::json> root, const nlohmann::j
       read_keys_(std::make_shared<std::set<std::string>>()) {}
 
 // JSON Pointer escaping (RFC 6901) keeps paths unambiguous for keys holding '/' or '~'.
-static std::string escape_pointer(const std::string& key) {
+std::string escape_pointer(const std::string& key) {
   std::string out;
   for (char c : key) {
     if (c == '~')

@@ -17,6 +17,9 @@ namespace kasha {
 // source's "FILE:LINE" (an imported pbrt-v4 scene's statements).
 using JsonSourceMap = std::map<std::string, std::string>;
 
+// A key as one step of a JSON pointer (RFC 6901: ~ as ~0, / as ~1).
+std::string escape_pointer(const std::string& key);
+
 class JsonNode {
  public:
   // Parses a whole file; a syntax error names the file, line and column.

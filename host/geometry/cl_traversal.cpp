@@ -7,9 +7,11 @@ namespace kasha {
 
 ClTraversal::ClTraversal(ClContext& cl, const FlatBvh& bvh, const AlphaCutouts& alpha) : cl_(cl) {
   nodes_ = upload(cl, bvh.nodes);
+  // Buffers may not be empty: without instances, one unread entry.
+  instances_ = upload(cl, bvh.instances.empty() ? std::vector<KInstance>(1) : bvh.instances);
   leaves_ = upload(cl, bvh.leaves);
   triangles_ = upload(cl, bvh.triangles);
-  // Buffers may not be empty: without alpha, one unread entry each.
+  // Without alpha, one unread entry each.
   std::vector<KTexcoords> texcoords(1);
   std::vector<KTexture> textures(1);
   std::vector<float> values(1);
@@ -24,6 +26,7 @@ ClTraversal::ClTraversal(ClContext& cl, const FlatBvh& bvh, const AlphaCutouts& 
   values_ = upload(cl, values);
   KernelDefines defines;
   defines["KASHA_ALPHA"] = alpha.empty() ? "0" : "1";
+  defines["KASHA_INSTANCES"] = bvh.instances.empty() ? "0" : "1";
   cl::Program program = build_program(cl, assemble_kernel_source("geometry/trace_rays.cl"), defines,
                                       "geometry/trace_rays.cl");
   closest_ = cl::Kernel(program, "trace_closest");
@@ -45,13 +48,14 @@ void ClTraversal::run(cl::Kernel& kernel, const std::vector<KRay>& rays, std::ve
   cl_.queue().enqueueWriteBuffer(rays_, CL_FALSE, 0, rays.size() * sizeof(KRay), rays.data());
   kernel.setArg(0, nodes_);
   kernel.setArg(1, leaves_);
-  kernel.setArg(2, triangles_);
-  kernel.setArg(3, texcoords_);
-  kernel.setArg(4, textures_);
-  kernel.setArg(5, values_);
-  kernel.setArg(6, rays_);
-  kernel.setArg(7, results_);
-  kernel.setArg(8, static_cast<int>(rays.size()));
+  kernel.setArg(2, instances_);
+  kernel.setArg(3, triangles_);
+  kernel.setArg(4, texcoords_);
+  kernel.setArg(5, textures_);
+  kernel.setArg(6, values_);
+  kernel.setArg(7, rays_);
+  kernel.setArg(8, results_);
+  kernel.setArg(9, static_cast<int>(rays.size()));
   cl_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(rays.size()), cl::NullRange);
   cl_.queue().enqueueReadBuffer(results_, CL_TRUE, 0, rays.size() * sizeof(Out), out.data());
 }

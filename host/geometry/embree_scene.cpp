@@ -26,40 +26,79 @@ static void alpha_filter(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-EmbreeScene::EmbreeScene(const std::vector<KTriangle>& triangles, const AlphaCutouts& alpha) {
-  RTCDevice device = embree_device();
-  scene_ = rtcNewScene(device);
-  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
-  RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+// Triangles [first, first + count) as one Embree geometry, primID counted from `first`.
+RTCGeometry EmbreeScene::triangle_geometry(size_t first, size_t count,
+                                           const std::vector<KTriangle>& triangles) {
+  RTCGeometry geom = rtcNewGeometry(embree_device(), RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* v = static_cast<float*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * triangles.size()));
+      geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), 3 * count));
   auto* idx = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), triangles.size()));
+      geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), count));
   if (!v || !idx) throw Error("Embree: cannot allocate geometry buffers");
-  for (size_t i = 0; i < triangles.size(); ++i) {
-    const KTriangle& t = triangles[i];
+  for (size_t i = 0; i < count; ++i) {
+    const KTriangle& t = triangles[first + i];
     std::copy(t.v0, t.v0 + 3, v + 9 * i);
     std::copy(t.v1, t.v1 + 3, v + 9 * i + 3);
     std::copy(t.v2, t.v2 + 3, v + 9 * i + 6);
     idx[3 * i] = 3 * i, idx[3 * i + 1] = 3 * i + 1, idx[3 * i + 2] = 3 * i + 2;
   }
-  if (!alpha.empty()) {
-    triangles_ = triangles;
-    alpha_ = alpha;
-    tables_ = {triangles_.data(), alpha_.texcoords.data(), alpha_.textures.data(),
-               alpha_.values.data()};
-    rtcSetGeometryUserData(geom, &tables_);
+  if (!alpha_.empty()) {
+    // The tables seen from this geometry's primIDs (tables_ was reserved: pointers stay).
+    tables_.push_back({triangles_.data() + first, alpha_.texcoords.data() + first,
+                       alpha_.textures.data(), alpha_.values.data()});
+    rtcSetGeometryUserData(geom, &tables_.back());
     rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
     rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);
   }
   rtcCommitGeometry(geom);
-  rtcAttachGeometry(scene_, geom);
-  rtcReleaseGeometry(geom);
+  return geom;
+}
+
+EmbreeScene::EmbreeScene(const std::vector<KTriangle>& triangles, const AlphaCutouts& alpha,
+                         const SceneInstances& instances) {
+  RTCDevice device = embree_device();
+  scene_ = rtcNewScene(device);
+  rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+  if (!alpha.empty()) {
+    triangles_ = triangles;
+    alpha_ = alpha;
+  }
+  tables_.reserve(instances.objects.size() + 1);
+  const size_t own = instances.empty() ? triangles.size() : size_t(instances.world_triangles);
+  if (own > 0) {
+    RTCGeometry geom = triangle_geometry(0, own, triangles);
+    rtcAttachGeometryByID(scene_, geom, 0);
+    rtcReleaseGeometry(geom);
+  }
+  if (!instances.empty()) {
+    own_instance_ = own > 0 ? 0 : -1;
+    instance_first_.assign(own > 0 ? 1 : 0, 0);
+    for (const ObjectRange& o : instances.objects) {
+      objects_.push_back(rtcNewScene(device));
+      rtcSetSceneFlags(objects_.back(), RTC_SCENE_FLAG_ROBUST);
+      RTCGeometry geom = triangle_geometry(o.first_triangle, o.triangle_count, triangles);
+      rtcAttachGeometry(objects_.back(), geom);
+      rtcReleaseGeometry(geom);
+      rtcCommitScene(objects_.back());
+    }
+    for (const Placement& p : instances.placements) {
+      RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+      rtcSetGeometryInstancedScene(geom, objects_[p.object]);
+      float m[12];
+      for (int i = 0; i < 12; ++i) m[i] = static_cast<float>(p.world_from_object[i]);
+      rtcSetGeometryTransform(geom, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, m);
+      rtcCommitGeometry(geom);
+      rtcAttachGeometryByID(scene_, geom, static_cast<unsigned>(instance_first_.size()));
+      rtcReleaseGeometry(geom);
+      instance_first_.push_back(instances.objects[p.object].first_triangle);
+    }
+  }
   rtcCommitScene(scene_);
 }
 
 EmbreeScene::~EmbreeScene() {
   rtcReleaseScene(scene_);
+  for (RTCScene s : objects_) rtcReleaseScene(s);
 }
 
 KHit EmbreeScene::intersect(const KRay& ray) const {
@@ -73,13 +112,19 @@ KHit EmbreeScene::intersect(const KRay& ray) const {
   rh.ray.mask = 0xFFFFFFFFu;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.primID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(scene_, &context, &rh);
-  KHit hit{ray.tmax, -1, 0, 0};
+  KHit hit{ray.tmax, -1, 0, 0, -1};
   if (rh.hit.geomID != RTC_INVALID_GEOMETRY_ID) {
     hit.t = rh.ray.tfar;
     hit.prim = static_cast<int>(rh.hit.primID);
     hit.u = rh.hit.u;
     hit.v = rh.hit.v;
+    hit.instance = own_instance_;
+    if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+      hit.instance = static_cast<int>(rh.hit.instID[0]);
+      hit.prim += instance_first_[hit.instance];
+    }
   }
   return hit;
 }

@@ -209,7 +209,7 @@ AlphaCutouts alpha_cutouts(const KernelSceneData& data) {
 }
 
 KernelSceneData::KernelSceneData(const Scene& scene)
-    : bvh(build_bvh(scene.triangles)),
+    : bvh(build_instanced_bvh(scene.triangles, scene.instances)),
       camera(scene.camera.to_kernel()),
       bin_nm(static_cast<float>(scene.grid.bin_nm)) {
   BinnedObserver obs(scene.grid);
@@ -400,7 +400,8 @@ size_t KernelSceneData::bytes() const {
           emitter_area_pdf.size()) *
              sizeof(float) +
          light_tri.size() * sizeof(int) + light_bvh.nodes.size() * sizeof(KLightNode) +
-         light_bvh.trails.size() * sizeof(std::uint64_t);
+         light_bvh.trails.size() * sizeof(std::uint64_t) +
+         bvh.instances.size() * sizeof(KInstance);
 }
 
 // Scratch spectra per work item: an environment texel's radiance, then a textured reflectance
@@ -441,6 +442,7 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_TEXTURES"] = scene.textured() || scene.emission_textured() ? "1" : "0";
   d["KASHA_EMISSION_TEXTURES"] = scene.emission_textured() ? "1" : "0";
   d["KASHA_ALPHA"] = scene.cut_out() ? "1" : "0";
+  d["KASHA_INSTANCES"] = scene.instances.empty() ? "0" : "1";
   d["KASHA_SCRATCH_TEXTURES"] = std::to_string(scratch_texture_offset(scene));
   d["KASHA_COATED"] = scene.coated() ? "1" : "0";
   d["KASHA_TRANSMISSION"] = scene.transmissive() ? "1" : "0";
@@ -482,7 +484,8 @@ DeviceScene::DeviceScene(ClContext& cl, const Scene& scene)
            host_table(data_.lights, p.lights), host_table(data_.textures, p.textures),
            host_table(data_.texcoords, p.texcoords), host_table(data_.normals, p.normals),
            host_table(data_.light_bvh.nodes, p.light_nodes),
-           host_table(data_.light_bvh.trails, p.light_trails)});
+           host_table(data_.light_bvh.trails, p.light_trails),
+           host_table(data_.bvh.instances, p.instances)});
 }
 
 }  // namespace kasha

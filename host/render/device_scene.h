@@ -7,6 +7,7 @@
 
 #include "geometry/alpha_cutouts.h"
 #include "geometry/bvh.h"
+#include "geometry/instanced_bvh.h"
 #include "opencl/device.h"
 #include "opencl/kernel_program.h"
 #include "render/light_bvh.h"

@@ -12,12 +12,12 @@ MergeRadiusBounds merge_radius_bounds(const Scene& scene, const KCamera& c) {
   MergeRadiusBounds b;
   b.footprint =
       2.0 * std::sqrt(c.up[0] * c.up[0] + c.up[1] * c.up[1] + c.up[2] * c.up[2]) / c.height;
-  Eigen::AlignedBox3d box;
-  for (const KTriangle& t : scene.triangles)
-    for (const float* v : {t.v0, t.v1, t.v2}) box.extend(Eigen::Vector3d(v[0], v[1], v[2]));
-  b.largest = box.diagonal().norm() / 50;
+  Eigen::Vector3d centre;
+  double radius;
+  scene.bounding_sphere(centre, radius);  // its diameter is the triangles' box's diagonal
+  b.largest = 2 * radius / 50;
   const Eigen::Vector3d eye(c.position[0], c.position[1], c.position[2]);
-  b.centre_distance = (box.center() - eye).norm();
+  b.centre_distance = (centre - eye).norm();
   return b;
 }
 

@@ -129,10 +129,53 @@ bool Scene::has_light(LightType type) const {
 
 void Scene::bounding_sphere(Eigen::Vector3d& centre, double& radius) const {
   Eigen::AlignedBox3d box;
-  for (const KTriangle& t : triangles)
-    for (const float* v : {t.v0, t.v1, t.v2}) box.extend(Eigen::Vector3d(v[0], v[1], v[2]));
+  const size_t own = instances.empty() ? triangles.size() : size_t(instances.world_triangles);
+  for (size_t i = 0; i < own; ++i)
+    for (const float* v : {triangles[i].v0, triangles[i].v1, triangles[i].v2})
+      box.extend(Eigen::Vector3d(v[0], v[1], v[2]));
+  // Each placement's object box, its corners placed: the sphere holds what the kernels meet.
+  std::vector<Eigen::AlignedBox3d> objects(instances.objects.size());
+  for (size_t o = 0; o < objects.size(); ++o)
+    for (int i = 0; i < instances.objects[o].triangle_count; ++i) {
+      const KTriangle& t = triangles[instances.objects[o].first_triangle + i];
+      for (const float* v : {t.v0, t.v1, t.v2}) objects[o].extend(Eigen::Vector3d(v[0], v[1], v[2]));
+    }
+  for (const Placement& p : instances.placements) {
+    const Eigen::Matrix<double, 3, 4, Eigen::RowMajor> m(p.world_from_object.data());
+    const Eigen::AlignedBox3d& b = objects[p.object];
+    if (b.isEmpty()) continue;
+    for (int c = 0; c < 8; ++c)
+      box.extend(m.leftCols<3>() * b.corner(static_cast<Eigen::AlignedBox3d::CornerType>(c)) +
+                 m.col(3));
+  }
   centre = box.center();
   radius = std::max(box.diagonal().norm() / 2, 1e-6);
+}
+
+size_t Scene::placed_triangles() const {
+  if (instances.empty()) return triangles.size();
+  size_t n = instances.world_triangles;
+  for (const Placement& p : instances.placements) n += instances.objects[p.object].triangle_count;
+  return n;
+}
+
+// The placement a hit was met in, or null for the scene's own triangles.
+static const Placement* hit_placement(const SceneInstances& instances, const KHit& hit) {
+  if (hit.instance < 0 || instances.empty()) return nullptr;
+  const int own = instances.world_triangles > 0 ? 1 : 0;
+  return hit.instance < own ? nullptr : &instances.placements[hit.instance - own];
+}
+
+KTriangle Scene::hit_triangle(const KHit& hit) const {
+  const Placement* p = hit_placement(instances, hit);
+  return p ? placed_triangle(triangles[hit.prim], kernel_instance(*p)) : triangles[hit.prim];
+}
+
+Eigen::Vector3d Scene::hit_normal(const KHit& hit, const Eigen::Vector3d& n) const {
+  const Placement* p = hit_placement(instances, hit);
+  if (!p) return n;
+  const Eigen::Matrix<double, 3, 4, Eigen::RowMajor> m(p->world_from_object.data());
+  return m.leftCols<3>().inverse().transpose() * n;
 }
 
 int Scene::material_index(const std::string& name) const {
@@ -732,16 +775,24 @@ static void mark_mix_used(const Scene& scene, int m, ShapeUses& uses) {
     for (int k : mix->materials) mark_mix_used(scene, k, uses);
 }
 
-// One shape of the scene's "shapes": its triangles, material and emission added to the scene.
+// One shape of the scene's "shapes" (or of an object's, `placed` by its one instance when it has
+// one): its triangles, material and emission added to the scene.
 static void parse_shape(const JsonNode& shape, const LampChoice& lamp_on,
-                        TriangleKeys& seen_triangles, ShapeUses& uses, Scene& scene) {
+                        TriangleKeys& seen_triangles, ShapeUses& uses, Scene& scene,
+                        bool in_object = false, const Eigen::Affine3d* placed = nullptr) {
   if (!shape.is_object()) shape.fail("expected a shape object");
+  for (const char* key : {"emission", "lamp"})
+    if (in_object && shape.has(key))
+      shape.at(key).fail(
+          "a shape of an object does not emit (an instance is not a light): give the shape "
+          "in the scene's \"shapes\"");
   std::string type = shape.at("type").string();
   std::string material_name = shape.at("material").string();
   int material = scene.material_index(material_name);
   if (material < 0) shape.at("material").fail("no material named \"" + material_name + "\"");
   uses.materials[material] = true;
   ShapeMesh mesh = shape_triangles(shape, type);
+  if (placed) transform_triangles(mesh, *placed);
   check_vertices(mesh.tris, shape);
   drop_duplicate_triangles(mesh, seen_triangles, shape);
   const int emitter = parse_shape_emitter(shape, mesh.tris.size(), lamp_on, uses, scene);
@@ -783,6 +834,72 @@ static void discretize(const GridRequest& request, const std::vector<bool>& mate
   }
 }
 
+// An instance's placed object must stay within the coordinates every vertex keeps to.
+static void check_placed_box(const Scene& scene, const Placement& p, const JsonNode& where) {
+  const ObjectRange& r = scene.instances.objects[p.object];
+  const Eigen::Matrix<double, 3, 4, Eigen::RowMajor> m(p.world_from_object.data());
+  for (int i = r.first_triangle; i < r.first_triangle + r.triangle_count; ++i)
+    for (const float* v : {scene.triangles[i].v0, scene.triangles[i].v1, scene.triangles[i].v2}) {
+      const Eigen::Vector3d w = m.leftCols<3>() * Eigen::Vector3d(v[0], v[1], v[2]) + m.col(3);
+      if (!(w.cwiseAbs().maxCoeff() <= kMaxCoordinate))
+        where.fail("the object placed here has a vertex that is not finite or beyond ±1e18");
+    }
+}
+
+// "objects" and "instances" (docs/formats.md#instances), after the scene's own shapes: an object
+// placed once joins the scene's own triangles; one placed more often is stored once, after them,
+// with each placement kept for the two-level BVH. An object placed nowhere adds nothing.
+static void parse_instances(const JsonNode& root, const LampChoice& lamp_on,
+                            TriangleKeys& seen_triangles, ShapeUses& uses, Scene& scene) {
+  auto objects = root.find("objects");
+  auto instances = root.find("instances");
+  if (instances && !objects) instances->fail("\"instances\" place the scene's \"objects\"");
+  if (!objects) return;
+  if (!objects->is_object()) objects->fail("expected an object of named shape arrays");
+  const std::vector<std::string> names = objects->keys();
+  std::vector<std::vector<Eigen::Affine3d>> placed(names.size());
+  std::vector<std::vector<JsonNode>> where(names.size());
+  for (size_t i = 0; instances && i < instances->size(); ++i) {
+    JsonNode in = (*instances)[i];
+    if (!in.is_object()) in.fail("expected {\"object\": NAME, \"transform\": ...}");
+    const std::string name = in.at("object").string();
+    const auto k = std::find(names.begin(), names.end(), name) - names.begin();
+    if (k == long(names.size())) in.at("object").fail("no object named \"" + name + "\"");
+    placed[k].push_back(Eigen::Affine3d::Identity());
+    if (auto t = in.find("transform")) placed[k].back() = parse_transform(*t);
+    where[k].push_back(in);
+    in.finish();
+  }
+  for (size_t k = 0; k < names.size(); ++k) {
+    JsonNode shapes = objects->at(names[k]);
+    if (!shapes.is_array()) shapes.fail("expected an array of shapes");
+    if (placed[k].size() == 1)
+      for (size_t s = 0; s < shapes.size(); ++s)
+        parse_shape(shapes[s], lamp_on, seen_triangles, uses, scene, true, &placed[k][0]);
+  }
+  scene.instances.world_triangles = static_cast<int>(scene.triangles.size());
+  for (size_t k = 0; k < names.size(); ++k) {
+    if (placed[k].size() < 2) continue;
+    JsonNode shapes = objects->at(names[k]);
+    ObjectRange range{static_cast<int>(scene.triangles.size()), 0};
+    TriangleKeys own;  // duplicates within the object; its instances overlap no one's triangles
+    for (size_t s = 0; s < shapes.size(); ++s) parse_shape(shapes[s], lamp_on, own, uses, scene, true);
+    range.triangle_count = static_cast<int>(scene.triangles.size()) - range.first_triangle;
+    if (range.triangle_count == 0) continue;
+    const int object = static_cast<int>(scene.instances.objects.size());
+    scene.instances.objects.push_back(range);
+    scene.object_names.push_back(names[k]);
+    for (size_t i = 0; i < placed[k].size(); ++i) {
+      Placement p;
+      p.object = object;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 4; ++c) p.world_from_object[4 * r + c] = placed[k][i].matrix()(r, c);
+      scene.instances.placements.push_back(p);
+      check_placed_box(scene, p, where[k][i]);
+    }
+  }
+}
+
 Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid,
                  const std::string& lamp, const std::vector<MaterialOverride>& materials) {
   JsonNode root = read_scene_document(path, materials);
@@ -808,6 +925,7 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
   uses.materials.assign(scene.material_descs.size(), false);
   for (size_t s = 0; s < shapes.size(); ++s)
     parse_shape(shapes[s], lamp_on, seen_triangles, uses, scene);
+  parse_instances(root, lamp_on, seen_triangles, uses, scene);
   if (seen_triangles.dropped > 0)
     warn(seen_triangles.first_dropped + ": " + std::to_string(seen_triangles.dropped) +
          " duplicate triangles (the same vertices as earlier ones) left out, in " +

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "geometry/instances.h"
 #include "material/material.h"
 #include "scene/camera.h"
 #include "scene/light.h"
@@ -58,7 +59,11 @@ struct Scene {
   std::vector<TriangleNormals> normals;
   std::vector<Emitter> emitters;
   std::vector<Light> lights;  // the "lights" that are not shapes
-  std::vector<ShapeInfo> shapes;
+  std::vector<ShapeInfo> shapes;  // the scene's own, then the objects' (triangles in that order)
+  // Object instancing (docs/formats.md#instances): an object placed more than once keeps one
+  // copy of its triangles, after the scene's own, and each placement; `object_names` by object.
+  SceneInstances instances;
+  std::vector<std::string> object_names;
   // Switchable lamps (the scene's "lamps"): their names, and the one that is on.
   std::vector<std::string> lamp_names;
   std::string lamp;
@@ -89,14 +94,22 @@ struct Scene {
   bool textured() const;           // some shape's material carries a texture
   bool emission_textured() const;  // some emitter's radiance is multiplied by a texture
   bool cut_out() const;            // some shape has an alpha cut-out
-  // The bounding sphere of the triangles (as the kernels see them), where distant and infinite
-  // lights send their photons from.
+  // The bounding sphere of the triangles as placed (as the kernels see them), where distant and
+  // infinite lights send their photons from.
   void bounding_sphere(Eigen::Vector3d& centre, double& radius) const;
   // Whether the material of some shape has the property (unused materials do not count; a used
   // mix's materials do).
   bool any_used(const std::function<bool(const Material&)>& has) const;
   // The indices of the materials shapes use, a used mix's materials included.
   std::vector<int> used_materials() const;
+  // Triangles as the renders see them: each placement's object counted again.
+  size_t placed_triangles() const;
+  // The triangle of a hit (KHit::instance numbered as the kernels' instances: the scene's own
+  // triangles first when there are instances) as placed in the world.
+  KTriangle hit_triangle(const KHit& hit) const;
+  // A normal of the hit's triangle (a shading normal) carried into the world, not normalised.
+  Eigen::Vector3d hit_normal(const KHit& hit, const Eigen::Vector3d& n) const;
+
 };
 
 // `grid`, when given, replaces the scene's own "wavelengths" (the same scene on another grid);

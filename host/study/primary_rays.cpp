@@ -6,7 +6,7 @@ namespace kasha {
 
 PrimaryRays::PrimaryRays(const Scene& scene, const Camera& camera)
     : scene_(scene),
-      embree_(scene.triangles),
+      embree_(scene.triangles, AlphaCutouts(), scene.instances),
       camera_(camera.to_kernel()),
       width_(camera.width),
       height_(camera.height) {}
@@ -22,7 +22,7 @@ int PrimaryRays::triangle(double px, double py, bool* front) const {
   r.tmax = INFINITY;
   const KHit h = embree_.intersect(r);
   if (h.prim >= 0 && front) {
-    const KTriangle& t = scene_.triangles[h.prim];
+    const KTriangle t = scene_.hit_triangle(h);
     float e1[3], e2[3];
     for (int c = 0; c < 3; ++c) e1[c] = t.v1[c] - t.v0[c], e2[c] = t.v2[c] - t.v0[c];
     const float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],

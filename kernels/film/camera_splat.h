@@ -29,7 +29,8 @@ inline bool camera_connection(const SceneView* s, float3 x, float3 ns, float eps
   if (dist - eps <= 0.0f) return false;
   ++s->rays->shadow;
   AlphaTables alpha = scene_alpha(s);
-  if (bvh_occluded(s->nodes, s->leaves, &alpha, x + ns * eps, dir, 0.0f, dist - eps)) return false;
+  BvhTables bvh = scene_bvh(s);
+  if (bvh_occluded(&bvh, &alpha, x + ns * eps, dir, 0.0f, dist - eps)) return false;
   *k = cos_x * importance;
   return true;
 }

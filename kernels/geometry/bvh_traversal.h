@@ -5,6 +5,7 @@
 #ifndef KASHA_BVH_TRAVERSAL_H
 #define KASHA_BVH_TRAVERSAL_H
 
+#include "geometry/instances.h"
 #include "shared/alpha_test.h"
 #include "shared/shared_types.h"
 
@@ -19,6 +20,14 @@
 #endif
 
 inline float3 load_float3(const __global float* p) { return (float3)(p[0], p[1], p[2]); }
+
+/* The BVH's tables. With KASHA_INSTANCES, node 0 roots the top-level tree, whose leaves are
+ * instances (~k), each rooting its object's tree: one stack serves both levels. */
+typedef struct {
+  const __global KBvhNode* nodes;
+  const __global KBvhLeaf* leaves;
+  const __global KInstance* instances; /* read only with KASHA_INSTANCES */
+} BvhTables;
 
 /* A lane mask (-1 where true) as bits 0-7. */
 inline int lane_bits(int8 m) {
@@ -42,6 +51,33 @@ inline BvhRay bvh_ray(float3 org, float3 dir) {
   r.nx = inv.x < 0.0f, r.ny = inv.y < 0.0f, r.nz = inv.z < 0.0f;
   return r;
 }
+
+/* The ray a traversal is at: in world space, or in the object space of instance `inst` (entered
+ * when the stack held `inst_sp` entries: popping below them leaves it). */
+typedef struct {
+  BvhRay r;
+  float3 org, dir;
+  int inst, inst_sp;
+} BvhWalk;
+
+inline void bvh_walk_world(BvhWalk* w, float3 org, float3 dir) {
+  w->org = org, w->dir = dir;
+  w->r = bvh_ray(org, dir);
+  w->inst = -1, w->inst_sp = 0;
+}
+
+#if KASHA_INSTANCES
+/* Into instance k at stack height sp: the ray in its object's space (the direction keeps its
+ * length, so distances are the same numbers); returns its object's root. */
+inline int bvh_enter(const BvhTables* b, BvhWalk* w, int k, int sp) {
+  const __global KInstance* in = &b->instances[k];
+  w->org = affine_point(in->object_from_world, w->org);
+  w->dir = affine_direction(in->object_from_world, w->dir);
+  w->r = bvh_ray(w->org, w->dir);
+  w->inst = k, w->inst_sp = sp;
+  return in->root;
+}
+#endif
 
 /* The child boxes' slab test: entry distances, and which boxes [tmin, tmax] enters. Near and far
  * planes by the direction's sign, so an unused slot's inverted box is never entered; a NaN (0·inf:
@@ -136,31 +172,39 @@ inline bool alpha_candidate(const AlphaTables* alpha, int tri, float u, float v,
 }
 
 /* Ordered stack traversal for the closest hit: returns the leaf-order index of the nearest
- * triangle in [tmin, tmax] (or -1) with its t and barycentrics. The stack keeps each waiting
- * child's entry distance, so one farther than the best hit so far is dropped when popped. With
- * KASHA_ALPHA, a candidate that fails its alpha test is passed over (`alpha` is read only then). */
-inline int bvh_closest(const __global KBvhNode* nodes, const __global KBvhLeaf* leaves, const AlphaTables* alpha,
-                       float3 org, float3 dir, float tmin, float tmax, float* t_hit, float* u_hit, float* v_hit) {
-  BvhRay r = bvh_ray(org, dir);
+ * triangle in [tmin, tmax] (or -1) with its t and barycentrics, and the instance it was met in
+ * (-1 without instances). The stack keeps each waiting child's entry distance, so one farther than
+ * the best hit so far is dropped when popped. With KASHA_ALPHA, a candidate that fails its alpha
+ * test is passed over (`alpha` is read only then). */
+inline int bvh_closest(const BvhTables* b, const AlphaTables* alpha, float3 org, float3 dir, float tmin, float tmax,
+                       float* t_hit, float* u_hit, float* v_hit, int* inst_hit) {
+  BvhWalk w;
+  bvh_walk_world(&w, org, dir);
   int best = -1;
   float best_t = tmax;
+  *inst_hit = -1;
   int stack[KASHA_BVH_STACK];
   float stack_t[KASHA_BVH_STACK];
   int sp = 0;
   int node = 0;
   for (;;) {
     if (node >= 0) {
-      const __global KBvhNode* n = &nodes[node];
+      const __global KBvhNode* n = &b->nodes[node];
       float8 enter;
-      int bits = node_hits(n, &r, tmin, best_t, &enter);
+      int bits = node_hits(n, &w.r, tmin, best_t, &enter);
       if (bits) {
-        node = push_children(nodes, leaves, n, bits, enter, stack, stack_t, &sp);
+        node = push_children(b->nodes, b->leaves, n, bits, enter, stack, stack_t, &sp);
         continue;
       }
+#if KASHA_INSTANCES
+    } else if (w.inst < 0) {
+      node = bvh_enter(b, &w, ~node, sp);
+      continue;
+#endif
     } else {
-      const __global KBvhLeaf* leaf = &leaves[~node];
+      const __global KBvhLeaf* leaf = &b->leaves[~node];
       float8 t8, u8, v8;
-      int bits = leaf_hits(leaf, org, dir, tmin, best_t, &t8, &u8, &v8);
+      int bits = leaf_hits(leaf, w.org, w.dir, tmin, best_t, &t8, &u8, &v8);
       if (bits) {
         float t[KASHA_BVH_LEAF_SIZE], u[KASHA_BVH_LEAF_SIZE], v[KASHA_BVH_LEAF_SIZE];
         vstore8(t8, 0, t), vstore8(u8, 0, u), vstore8(v8, 0, v);
@@ -170,12 +214,13 @@ inline int bvh_closest(const __global KBvhNode* nodes, const __global KBvhLeaf* 
           bits &= bits - 1;
           if (t[i] <= best_t) {
 #if KASHA_ALPHA
-            if (!alpha_candidate(alpha, leaf->tri[i], u[i], v[i], org, dir)) continue;
+            if (!alpha_candidate(alpha, leaf->tri[i], u[i], v[i], w.org, w.dir)) continue;
 #endif
             best = leaf->tri[i];
             best_t = t[i];
             *u_hit = u[i];
             *v_hit = v[i];
+            *inst_hit = w.inst;
           }
         } while (bits);
       }
@@ -187,6 +232,9 @@ inline int bvh_closest(const __global KBvhNode* nodes, const __global KBvhLeaf* 
       }
       --sp;
     } while (stack_t[sp] > best_t);
+#if KASHA_INSTANCES
+    if (sp < w.inst_sp) bvh_walk_world(&w, org, dir); /* back at the top level */
+#endif
     node = stack[sp];
   }
 }
@@ -215,27 +263,36 @@ inline bool leaf_blocks(const __global KBvhLeaf* leaf, const AlphaTables* alpha,
 /* Any hit in [tmin, tmax] (shadow rays), out at the first triangle found. Children go nearest
  * first here too: a blocker near the origin is found before the far side of the scene is
  * searched, which measured about 1.5× faster than slot order on shadow rays. */
-inline bool bvh_occluded(const __global KBvhNode* nodes, const __global KBvhLeaf* leaves, const AlphaTables* alpha,
-                         float3 org, float3 dir, float tmin, float tmax) {
-  BvhRay r = bvh_ray(org, dir);
+inline bool bvh_occluded(const BvhTables* b, const AlphaTables* alpha, float3 org, float3 dir, float tmin,
+                         float tmax) {
+  BvhWalk w;
+  bvh_walk_world(&w, org, dir);
   int stack[KASHA_BVH_STACK];
   float stack_t[KASHA_BVH_STACK];
   int sp = 0;
   int node = 0;
   for (;;) {
     if (node >= 0) {
-      const __global KBvhNode* n = &nodes[node];
+      const __global KBvhNode* n = &b->nodes[node];
       float8 enter;
-      int bits = node_hits(n, &r, tmin, tmax, &enter);
+      int bits = node_hits(n, &w.r, tmin, tmax, &enter);
       if (bits) {
-        node = push_children(nodes, leaves, n, bits, enter, stack, stack_t, &sp);
+        node = push_children(b->nodes, b->leaves, n, bits, enter, stack, stack_t, &sp);
         continue;
       }
+#if KASHA_INSTANCES
+    } else if (w.inst < 0) {
+      node = bvh_enter(b, &w, ~node, sp);
+      continue;
+#endif
     } else {
-      if (leaf_blocks(&leaves[~node], alpha, org, dir, tmin, tmax)) return true;
+      if (leaf_blocks(&b->leaves[~node], alpha, w.org, w.dir, tmin, tmax)) return true;
     }
     if (sp == 0) return false;
     node = stack[--sp];
+#if KASHA_INSTANCES
+    if (sp < w.inst_sp) bvh_walk_world(&w, org, dir);
+#endif
   }
 }
 

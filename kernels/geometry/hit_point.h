@@ -36,6 +36,9 @@ typedef struct {
   int material;
   int emitter;   /* -1: the triangle does not emit */
   int tri;       /* the triangle, in leaf order */
+#if KASHA_INSTANCES
+  int instance;  /* the instance it was met in (its vertices are the object's) */
+#endif
 #if KASHA_TEXTURES
   float2 b;      /* the barycentrics of v1 and v2, for texture coordinates */
 #endif
@@ -61,11 +64,24 @@ inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint
   float t, u, v;
   ++s->rays->closest;
   AlphaTables alpha = scene_alpha(s);
-  int hit = bvh_closest(s->nodes, s->leaves, &alpha, org, dir, 0.0f, INFINITY, &t, &u, &v);
+  BvhTables bvh = scene_bvh(s);
+  int inst;
+  int hit = bvh_closest(&bvh, &alpha, org, dir, 0.0f, INFINITY, &t, &u, &v, &inst);
   if (hit < 0) return false;
   const __global KTriangle* tri = &s->tris[hit];
   float3 v0 = load_float3(tri->v0), v1 = load_float3(tri->v1), v2 = load_float3(tri->v2);
+#if KASHA_INSTANCES
+  /* Everything downstream is in world space: the object's triangle placed. */
+  const __global KInstance* in = &s->instances[inst];
+  v0 = affine_point(in->world_from_object, v0);
+  v1 = affine_point(in->world_from_object, v1);
+  v2 = affine_point(in->world_from_object, v2);
+  h->instance = inst;
+#endif
   h->n = normalize(cross(v1 - v0, v2 - v0));
+#if KASHA_INSTANCES
+  if (in->mirrors) h->n = -h->n;
+#endif
   h->front = dot(h->n, dir) < 0.0f;
   h->ns = h->front ? h->n : -h->n;
 #if KASHA_SHADING_NORMALS
@@ -73,6 +89,9 @@ inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint
     const __global float* sn = s->normals[hit].n;
     float3 n = (1.0f - u - v) * (float3)(sn[0], sn[1], sn[2]) + u * (float3)(sn[3], sn[4], sn[5]) +
                v * (float3)(sn[6], sn[7], sn[8]);
+#if KASHA_INSTANCES
+    n = affine_normal(in->object_from_world, n);
+#endif
     float len = length(n);
     /* A degenerate interpolation shades flat; a normal against the winding is turned to the front. */
     n = len > 1e-6f ? n / len : h->n;
@@ -149,7 +168,8 @@ inline bool segment_occluded(const SceneView* s, float3 x, float3 ns, float eps,
   if (!(reach > 0.0f)) return false;
   ++s->rays->shadow;
   AlphaTables alpha = scene_alpha(s);
-  return bvh_occluded(s->nodes, s->leaves, &alpha, x + ns * eps, wi, 0.0f, reach);
+  BvhTables bvh = scene_bvh(s);
+  return bvh_occluded(&bvh, &alpha, x + ns * eps, wi, 0.0f, reach);
 }
 
 /* n more into a 64-bit count kept as (low, high) 32-bit words: 32-bit atomics are everywhere, and

@@ -5,6 +5,7 @@
 #ifndef KASHA_SCENE_VIEW_H
 #define KASHA_SCENE_VIEW_H
 
+#include "geometry/bvh_traversal.h"
 #include "shared/alpha_test.h"
 #include "shared/shared_types.h"
 
@@ -43,6 +44,7 @@ typedef struct {
   const __global KTexture* textures;
   const __global KTexcoords* texcoords; /* per leaf triangle, when textures need them */
   const __global KShadingNormals* normals; /* per leaf triangle, when some shape has them */
+  const __global KInstance* instances;     /* KASHA_INSTANCES: the top level's leaves */
   RayCounts* rays; /* private: the work item's own counts */
 } SceneView;
 
@@ -75,12 +77,19 @@ typedef struct {
                     KASHA_SCENE_TABLE(KTexture, textures),                                         \
                     KASHA_SCENE_TABLE(KTexcoords, texcoords),                                      \
                     KASHA_SCENE_TABLE(KShadingNormals, normals),                                   \
+                    KASHA_SCENE_TABLE(KInstance, instances),                                       \
                     &name##_rays}
 
 /* The tables the traversal's alpha test reads (shared/alpha_test.h): leaf order. */
 inline AlphaTables scene_alpha(const SceneView* s) {
   AlphaTables a = {s->tris, s->texcoords, s->textures, s->spectra};
   return a;
+}
+
+/* The tables the traversal reads. */
+inline BvhTables scene_bvh(const SceneView* s) {
+  BvhTables b = {s->nodes, s->leaves, s->instances};
+  return b;
 }
 
 /* An emitter's spectral radiance, N values. */

@@ -3,23 +3,26 @@
 #include "geometry/bvh_traversal.h"
 
 #define KASHA_TRACE_PARAMS                                                                                   \
-  __global const KBvhNode *nodes, __global const KBvhLeaf *leaves, __global const KTriangle *tris,           \
-      __global const KTexcoords *texcoords, __global const KTexture *textures, __global const float *values, \
-      __global const KRay *rays
+  __global const KBvhNode *nodes, __global const KBvhLeaf *leaves, __global const KInstance *instances,      \
+      __global const KTriangle *tris, __global const KTexcoords *texcoords, __global const KTexture *textures, \
+      __global const float *values, __global const KRay *rays
 
 __kernel void trace_closest(KASHA_TRACE_PARAMS, __global KHit* hits, int count) {
   int i = get_global_id(0);
   if (i >= count) return;
   const __global KRay* r = &rays[i];
   AlphaTables alpha = {tris, texcoords, textures, values};
+  BvhTables bvh = {nodes, leaves, instances};
   float t, u = 0.0f, v = 0.0f;
-  int leaf =
-      bvh_closest(nodes, leaves, &alpha, load_float3(r->org), load_float3(r->dir), r->tmin, r->tmax, &t, &u, &v);
+  int inst;
+  int leaf = bvh_closest(&bvh, &alpha, load_float3(r->org), load_float3(r->dir), r->tmin, r->tmax, &t, &u, &v,
+                         &inst);
   KHit h;
   h.t = t;
   h.prim = leaf >= 0 ? tris[leaf].prim : -1;
   h.u = u;
   h.v = v;
+  h.instance = leaf >= 0 ? inst : -1;
   hits[i] = h;
 }
 
@@ -29,5 +32,6 @@ __kernel void trace_occluded(KASHA_TRACE_PARAMS, __global int* occluded, int cou
   if (i >= count) return;
   const __global KRay* r = &rays[i];
   AlphaTables alpha = {tris, texcoords, textures, values};
-  occluded[i] = bvh_occluded(nodes, leaves, &alpha, load_float3(r->org), load_float3(r->dir), r->tmin, r->tmax) ? 1 : 0;
+  BvhTables bvh = {nodes, leaves, instances};
+  occluded[i] = bvh_occluded(&bvh, &alpha, load_float3(r->org), load_float3(r->dir), r->tmin, r->tmax) ? 1 : 0;
 }

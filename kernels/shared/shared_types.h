@@ -92,14 +92,33 @@ typedef struct {
 } KRay;
 KASHA_STATIC_SIZE(KRay, 32);
 
-/* Closest hit: prim == -1 for a miss; (u, v) are barycentrics of v1 and v2. */
+/* Closest hit: prim == -1 for a miss; (u, v) are barycentrics of v1 and v2; `instance` is the
+ * KInstance the triangle was met in (-1: the scene's own triangles, or a scene without instances). */
 typedef struct {
   float t;
   int prim;
   float u;
   float v;
+  int instance;
 } KHit;
-KASHA_STATIC_SIZE(KHit, 16);
+KASHA_STATIC_SIZE(KHit, 20);
+
+/* An object placed in the scene (pbrt-v4's ObjectInstance, docs/formats.md#instances): the
+ * object's triangles and BVH are stored once, and each instance is a leaf of a top-level BVH over
+ * the instances' boxes. A ray enters an instance transformed into object space, its direction
+ * not renormalised, so distances along it are the same numbers in both spaces. Only built where
+ * a scene has instances (KASHA_INSTANCES); the scene's own triangles are then instance 0 under
+ * the identity. Matrices are 3 × 4 affine, row-major. */
+typedef struct {
+  float object_from_world[12];
+  float world_from_object[12];
+  int root;   /* the object's BVH root node */
+  int object; /* the scene's object it places (-1: the scene's own triangles) */
+  int mirrors; /* 1: the transform mirrors, so a placed triangle's winding turns its normal to the
+                * back and the front is the other side (as a mirrored shape's is, flattened) */
+  int pad;
+} KInstance;
+KASHA_STATIC_SIZE(KInstance, 112);
 
 /* Pixel filters (geometry/pixel_filter.h): the unit box of kasha's own scenes, then pbrt-v4's box
  * and triangle of any radius, and the other filters as a table of 16 bins per half axis. */
@@ -148,13 +167,13 @@ KASHA_STATIC_SIZE(KCamera, 224);
 typedef struct {
   KCamera camera;
   ulong nodes, leaves, tris, materials, spectra, lobes, emitter_radiance, emitter_area_pdf, light_tri,
-      light_cdf, lights, textures, texcoords, normals, light_nodes, light_trails; /* see SceneView */
+      light_cdf, lights, textures, texcoords, normals, light_nodes, light_trails, instances; /* see SceneView */
   int light_count;     /* entries of light_tri and light_cdf */
   float bin_nm;
   int light_sources;   /* entries of lights */
   int light_triangles; /* the emitting triangles: the first entries of light_tri */
 } KSceneParams;
-KASHA_STATIC_SIZE(KSceneParams, 368);
+KASHA_STATIC_SIZE(KSceneParams, 376);
 
 /* What a material is: the measured model (gloss lobe or mirror, passive and fluorescent Lambert
  * parts), or an ideal specular interface — a dielectric or a conductor (docs/materials.md). */

@@ -27,11 +27,15 @@ typedef struct {
                   * walks its light subpath from the last stored vertex back */
   int ordinal;   /* among the subpath's stored vertices (0: the first) */
   float barycentrics[2]; /* of the hit, for textures */
-  int mergeable; /* 1 where merges may use it: 0 at a rough interface, which only connects, and
-                  * with caustic merges where the light came by no delta bounce */
+  int flags; /* KASHA_VCM_MERGEABLE: merges may use it (not at a rough interface, which only
+              * connects, nor with caustic merges where the light came by no delta bounce);
+              * KASHA_VCM_FRONT: the light arrived on the triangle's front side */
   float shading[3]; /* the shading normal on the light's side */
 } KVcmLightVertex;
 KASHA_STATIC_SIZE(KVcmLightVertex, 96);
+
+#define KASHA_VCM_MERGEABLE 1
+#define KASHA_VCM_FRONT 2
 
 /* Floats of a stored light vertex with its power over `bins` bins: the store's stride. */
 #define KASHA_VCM_VERTEX_FLOATS(bins) ((int)(sizeof(KVcmLightVertex) / sizeof(float)) + (bins))

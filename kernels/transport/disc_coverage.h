@@ -22,11 +22,16 @@ inline float disc_covered(const SceneView* s, float3 x, float3 n, float r, float
     float t, u, v;
     ++s->rays->closest;
     AlphaTables alpha = scene_alpha(s);
-    int hit = bvh_closest(s->nodes, s->leaves, &alpha, org, -n, 0.0f, 2.0f * slab, &t, &u, &v);
+    BvhTables bvh = scene_bvh(s);
+    int inst;
+    int hit = bvh_closest(&bvh, &alpha, org, -n, 0.0f, 2.0f * slab, &t, &u, &v, &inst);
     if (hit < 0) continue;
     const __global KTriangle* tri = &s->tris[hit];
     float3 v0 = load_float3(tri->v0);
     float3 g = normalize(cross(load_float3(tri->v1) - v0, load_float3(tri->v2) - v0));
+#if KASHA_INSTANCES
+    g = normalize(affine_normal(s->instances[inst].object_from_world, g));
+#endif
     /* The normal on the side the probe arrives from, n's side, is |g·n| from n. */
     if (fabs(dot(g, n)) > 0.5f) ++covered;
   }

@@ -36,7 +36,7 @@
 /* The store's stride, and (hash_grid.cl) the grid holds only the vertices merges may use. */
 #define VCM_FLOATS KASHA_VCM_VERTEX_FLOATS(KASHA_BINS)
 #define KASHA_RECORD_FLOATS VCM_FLOATS
-#define KASHA_RECORD_IN_GRID(r) (((const __global KVcmLightVertex*)(r))->mergeable != 0)
+#define KASHA_RECORD_IN_GRID(r) (((const __global KVcmLightVertex*)(r))->flags & KASHA_VCM_MERGEABLE)
 
 /* Included before the vcm headers: hash_grid.cl turns floating-point contraction off for all
  * that follows it (its gather must round as the host's does), vcm's code included. */

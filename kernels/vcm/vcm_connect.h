@@ -19,13 +19,12 @@ inline void vcm_light_surface(const SceneView* s, const __global KVcmLightVertex
   float3 arrival = load_float3(y->arrival);
   *ns = load_float3(y->shading);
   *ng = load_float3(y->normal);
-  float3 n = normalize(cross(load_float3(t->v1) - load_float3(t->v0), load_float3(t->v2) - load_float3(t->v0)));
-  *nf = dot(n, arrival) < 0.0f ? *ns : -*ns;
+  *nf = (y->flags & KASHA_VCM_FRONT) ? *ns : -*ns;
 #if KASHA_TEXTURES
   h.b = (float2)(y->barycentrics[0], y->barycentrics[1]);
 #endif
 #if KASHA_COATED
-  h.cos_in = fabs(dot(n, arrival));
+  h.cos_in = fabs(dot(*ng, arrival)); /* ng is ±the front normal */
 #endif
   SceneView own = *s;
   own.scratch = room;
@@ -71,7 +70,7 @@ inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* 
     /* The camera side's radiance takes the shading cosine; the turns to area, the geometric. */
     float cos_s = fabs(dot(ns, dir)), cos_c = fabs(dot(cv->ng, dir)), cos_y = fabs(dot(ngy, dir));
     float lambert_y = vcm_lambert_mean(&sy);
-    bool merges_y = KASHA_VCM_MERGE_EVERY && lv->mergeable; /* else behind the camera's merging vertex */
+    bool merges_y = KASHA_VCM_MERGE_EVERY && (lv->flags & KASHA_VCM_MERGEABLE); /* else behind the camera's merging vertex */
     float w_light = vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, dir) * cos_y / dist2 *
                     ((merges_y ? vm : 0.0f) + lv->dvcm + lv->dvc * vcm_pdf(s, &sy, lambert_y, ny, nfy, -dir, light));
     float w_camera = vcm_pdf(s, &sy, lambert_y, ny, nfy, light, -dir) * cos_c / dist2 *

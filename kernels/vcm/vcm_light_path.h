@@ -106,7 +106,7 @@ inline void vcm_store_vertex(__global float* store, int slot, const HitPoint* h,
 #else
   v->barycentrics[0] = v->barycentrics[1] = 0.0f;
 #endif
-  v->mergeable = merges ? 1 : 0;
+  v->flags = (merges ? KASHA_VCM_MERGEABLE : 0) | (h->front ? KASHA_VCM_FRONT : 0);
   v->shading[0] = h->ns.x, v->shading[1] = h->ns.y, v->shading[2] = h->ns.z;
 }
 

@@ -29,7 +29,7 @@ inline void vcm_merge_vertex(const VcmCamera* c, const SceneView* s, const FilmV
                              const VcmVertex* cv, float vc, float radius, float3 d,
                              const __global KVcmLightVertex* lv, float* scale, float* covered, float* rows) {
   if (!VCM_LENGTH_COUNTS(c->w.depth + lv->depth + 2)) return;
-  if (!lv->mergeable) return;
+  if (!(lv->flags & KASHA_VCM_MERGEABLE)) return;
   const Surface* surf = &v->surf;
   float3 x = v->h.x, ns = cv->ns, eye = -c->w.dir;
   float3 ny = load_float3(lv->normal);

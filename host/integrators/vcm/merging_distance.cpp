@@ -70,7 +70,7 @@ MergingVertices probe_merging_vertices(const Scene& scene, const EmbreeScene& em
         const KHit h = embree.intersect(r);
         if (h.prim < 0) break;
         travelled += h.t;
-        const KTriangle& t = scene.triangles[h.prim];
+        const KTriangle t = scene.hit_triangle(h);
         const Eigen::Vector3f n = triangle_normal(t);
         if (t.material < 0 || !delta_surface(scene.materials[t.material])) {
           distances.push_back(travelled);

@@ -47,7 +47,7 @@ bool reaches_light(const Scene& scene, const EmbreeScene& embree, bool infinite,
       if (infinite) return true;
       continue;
     }
-    const KTriangle& t = scene.triangles[h.prim];
+    const KTriangle t = scene.hit_triangle(h);
     Eigen::Vector3f n = triangle_normal(t);
     const bool front = n.dot(p.dir) < 0;
     if (t.emitter >= 0 && front) return true;
@@ -58,7 +58,8 @@ bool reaches_light(const Scene& scene, const EmbreeScene& embree, bool infinite,
     if (!scene.normals.empty()) {
       // The shading normal the kernels bounce about (kernels/geometry/hit_point.h).
       const TriangleNormals& sn = scene.normals[h.prim];
-      const Eigen::Vector3f s = ((1 - h.u - h.v) * sn[0] + h.u * sn[1] + h.v * sn[2]).cast<float>();
+      const Eigen::Vector3f s =
+          scene.hit_normal(h, (1 - h.u - h.v) * sn[0] + h.u * sn[1] + h.v * sn[2]).cast<float>();
       if (s.norm() > 1e-6f) n = s.dot(n) < 0 ? -s.normalized() : s.normalized();
     }
     if (!front) n = -n;  // on the ray's side

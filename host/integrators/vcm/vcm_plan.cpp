@@ -22,7 +22,7 @@ int default_camera_paths(VcmMode m, const Scene& scene, bool caustic_lit) {
 
 VcmPlan plan_for(VcmMode m, const IntegratorSetup& s) {
   VcmPlan p;
-  const EmbreeScene embree(s.scene.triangles);
+  const EmbreeScene embree(s.scene.triangles, AlphaCutouts(), s.scene.instances);
   const KCamera& camera = s.device_scene.data().camera;
   p.merging = probe_merging_vertices(s.scene, embree, camera);
   const bool caustic_lit =

@@ -89,11 +89,13 @@ struct SavedState {
 struct DefinedShape {
   nlohmann::json shape;  // with its material, without its transform
   Matrix ctm;            // object to instance space
+  PbrtLocation where;
 };
 
 struct ObjectDefinition {
   std::vector<DefinedShape> shapes;
   PbrtLocation where;
+  std::string material;  // --material's replacement for all its shapes, when it has one
 };
 
 class Importer {
@@ -110,7 +112,7 @@ class Importer {
     if (!stack_.empty()) pbrt_fail(stack_.back().where, "AttributeBegin without its AttributeEnd");
     if (object_) pbrt_fail(object_->where, "ObjectBegin without its ObjectEnd");
     if (!camera_seen_) make_camera(Matrix::Identity(), "perspective", PbrtParameters{}, {});
-    if (shapes_.empty())
+    if (shapes_.empty() && instances_.empty())
       throw Error(printable(main_file_) + ": the scene has no shape that kasha renders");
     for (const auto& [name, where] : named_material_uses_)
       if (!materials_.contains(name) && !interfaces_.count(name))
@@ -131,6 +133,10 @@ class Importer {
     if (!lights_.empty()) scene["lights"] = lights_;
     if (!textures_.kasha.empty()) scene["textures"] = textures_.kasha;
     if (max_depth_) scene["max_depth"] = *max_depth_;
+    if (!instances_.empty()) {
+      scene["objects"] = placed_objects();
+      scene["instances"] = instances_;
+    }
     return scene;
   }
 
@@ -523,11 +529,35 @@ class Importer {
       materials_[material] = {{"file", absolute(overrides_[object])}};
       overridden_objects_.insert(object);
     }
-    for (const DefinedShape& s : o->second.shapes) {
-      nlohmann::json shape = s.shape;
-      if (!material.empty()) shape["material"] = material;
-      place(shape, state_.ctm * s.ctm, d.where);
+    if (o->second.shapes.empty()) return;
+    // Kept as an instance (docs/pbrt-import.md#instancing): the object's triangles are stored
+    // once, however often it is placed.
+    check_affine(state_.ctm, d.where);
+    const std::string at = "/instances/" + std::to_string(instances_.size());
+    sources_[at] = d.where.str();
+    instances_.push_back({{"object", object}, {"transform", {{"matrix", row_major(state_.ctm)}}}});
+    o->second.material = material;
+  }
+
+  // The objects that instances place, as kasha's "objects" (their shapes in object space).
+  nlohmann::json placed_objects() {
+    nlohmann::json out = nlohmann::json::object();
+    for (const nlohmann::json& in : instances_) {
+      const std::string name = in["object"].get<std::string>();
+      if (out.contains(name)) continue;
+      const ObjectDefinition& o = objects_.at(name);
+      nlohmann::json shapes = nlohmann::json::array();
+      for (const DefinedShape& s : o.shapes) {
+        nlohmann::json shape = s.shape;
+        if (!o.material.empty()) shape["material"] = o.material;
+        if (!s.ctm.isIdentity(0)) shape["transform"] = {{"matrix", row_major(s.ctm)}};
+        sources_["/objects/" + escape_pointer(name) + "/" + std::to_string(shapes.size())] =
+            s.where.str();
+        shapes.push_back(std::move(shape));
+      }
+      out[name] = std::move(shapes);
     }
+    return out;
   }
 
   Matrix look_at(const PbrtToken& d, const Eigen::Vector3d& pos, const Eigen::Vector3d& look,
@@ -807,7 +837,8 @@ class Importer {
     if (object_) {
       if (state_.area_light)
         pbrt_fail(where, "an area light inside an object definition (pbrt-v4 refuses it too)");
-      object_->shapes.push_back({s, state_.ctm});
+      check_affine(state_.ctm, where);
+      object_->shapes.push_back({s, state_.ctm, where});
       return;
     }
     if (state_.area_light) {
@@ -831,10 +862,14 @@ class Importer {
     place(s, state_.ctm, where);
   }
 
-  void place(nlohmann::json s, const Matrix& ctm, const PbrtLocation& where) {
+  static void check_affine(const Matrix& ctm, const PbrtLocation& where) {
     if (!(std::abs(ctm.topLeftCorner<3, 3>().determinant()) > 1e-300) ||
         ctm.row(3) != Eigen::RowVector4d(0, 0, 0, 1) || !ctm.allFinite())
       pbrt_fail(where, "the shape's transform is singular or projective");
+  }
+
+  void place(nlohmann::json s, const Matrix& ctm, const PbrtLocation& where) {
+    check_affine(ctm, where);
     if (!ctm.isIdentity(0)) s["transform"] = {{"matrix", row_major(ctm)}};
     const std::string at = "/shapes/" + std::to_string(shapes_.size());
     sources_[at] = where.str();
@@ -865,6 +900,7 @@ class Importer {
   PbrtTextures textures_;
   nlohmann::json lights_ = nlohmann::json::array();
   nlohmann::json shapes_ = nlohmann::json::array();
+  nlohmann::json instances_ = nlohmann::json::array();
   std::map<std::string, ObjectDefinition> objects_;
   ObjectDefinition* object_ = nullptr;
   std::set<std::string> warned_;
