@@ -394,6 +394,12 @@ AttributeBegin
   Transform [1 0 0 0  0 1 0 0  0 0 1 0  -0.8 0.1 0.5 1]
   ObjectInstance "thing"
 AttributeEnd
+AttributeBegin
+  Translate 0.6 0.1 -0.2
+  Rotate 30 0 1 0
+  Scale 1 -1 1
+  ObjectInstance "thing"
+AttributeEnd
 )";
 
 const char* kSeedPbrtPart = R"(AttributeBegin

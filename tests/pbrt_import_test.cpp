@@ -153,17 +153,20 @@ AttributeBegin
 AttributeEnd
 )" + kQuad));
   const nlohmann::json& shapes = s.at("shapes");
-  ASSERT_EQ(shapes.size(), 4u);
+  ASSERT_EQ(shapes.size(), 3u);
   // T(1,2,3) · Rz(90°) · S(2,3,4): x → 2y, y → −3x, z → 4z, then the translation.
   expect_matrix(matrix_of(shapes[0]), {0, -3, 0, 1, 2, 0, 0, 2, 0, 0, 4, 3, 0, 0, 0, 1},
                 "Translate Rotate Scale");
   // pbrt's matrices are column-major: translation (5, 6, 7), then a rotation x → y.
   expect_matrix(matrix_of(shapes[1]), {0, -1, 0, 5, 1, 0, 0, 6, 0, 0, 1, 7, 0, 0, 0, 1},
                 "Transform ConcatTransform CoordSysTransform");
-  // The instance's transform times the object's: S(2) · T(0, 0, 1).
-  expect_matrix(matrix_of(shapes[2]), {2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 2, 0, 0, 0, 1},
-                "ObjectInstance");
-  EXPECT_FALSE(shapes[3].contains("transform")) << "AttributeEnd restores the identity";
+  // The instance is kept (docs/formats.md#instances): its transform S(2), and the object's shape
+  // under its own T(0, 0, 1).
+  expect_matrix(matrix_of(s.at("instances").at(0)),
+                {2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1}, "ObjectInstance");
+  expect_matrix(matrix_of(s.at("objects").at("thing").at(0)),
+                {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 1, 0, 0, 0, 1}, "ObjectBegin");
+  EXPECT_FALSE(shapes[2].contains("transform")) << "AttributeEnd restores the identity";
 
   // LookAt from +z towards the origin: pbrt-v4's image right is −x (its frame is left-handed),
   // kasha's would be +x: the camera is mirrored.

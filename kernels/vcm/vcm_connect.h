@@ -16,7 +16,6 @@ inline void vcm_light_surface(const SceneView* s, const __global KVcmLightVertex
   /* The material the light subpath resolved there: the same point, the same choice. */
   h.material = resolve_material(s, t->material, load_float3(y->position), h.tri,
                                 (float2)(y->barycentrics[0], y->barycentrics[1]));
-  float3 arrival = load_float3(y->arrival);
   *ns = load_float3(y->shading);
   *ng = load_float3(y->normal);
   *nf = (y->flags & KASHA_VCM_FRONT) ? *ns : -*ns;
@@ -24,7 +23,7 @@ inline void vcm_light_surface(const SceneView* s, const __global KVcmLightVertex
   h.b = (float2)(y->barycentrics[0], y->barycentrics[1]);
 #endif
 #if KASHA_COATED
-  h.cos_in = fabs(dot(*ng, arrival)); /* ng is ±the front normal */
+  h.cos_in = fabs(dot(*ng, load_float3(y->arrival))); /* ng is ±the front normal */
 #endif
   SceneView own = *s;
   own.scratch = room;
