@@ -11,6 +11,7 @@
 #include "colorimetry/sample_colorimetry.h"
 #include "opencl/device_buffer.h"
 #include "opencl/upload.h"
+#include "scene/triangle_dpdu.h"
 #include "spectrum/rgb_spectrum.h"
 
 namespace kasha {
@@ -218,9 +219,21 @@ KernelSceneData::KernelSceneData(const Scene& scene)
   for (const Material& m : scene.materials) materials.push_back(kernel_material(m, scene, obs));
   if (scene.textured() || scene.emission_textured() || scene.cut_out()) add_textures(scene);
   if (scene.shading_normals()) add_shading_normals(scene);
+  if (scene.anisotropic()) add_tangents(scene);
   for (const Emitter& e : scene.emitters) append(emitter_radiance, e.per_bin);
   for (const Light& l : scene.lights) append(emitter_radiance, l.per_bin);
   add_light_sampling(scene);
+}
+
+// pbrt-v4's ∂p/∂u of each leaf triangle, from its texture coordinates (scene/triangle_dpdu.h).
+void KernelSceneData::add_tangents(const Scene& scene) {
+  for (const KTriangle& t : bvh.triangles) {
+    const Triangle p = {Eigen::Vector3d(t.v0[0], t.v0[1], t.v0[2]),
+                        Eigen::Vector3d(t.v1[0], t.v1[1], t.v1[2]),
+                        Eigen::Vector3d(t.v2[0], t.v2[1], t.v2[2])};
+    const Eigen::Vector3d d = triangle_dpdu(p, scene.uvs[t.prim]);
+    tangents.push_back({{float(d.x()), float(d.y()), float(d.z())}, 0.0f});
+  }
 }
 
 // The share of the Lambert part's samples sent through the surface: mean τ over mean ρ + τ, a
@@ -401,7 +414,7 @@ size_t KernelSceneData::bytes() const {
              sizeof(float) +
          light_tri.size() * sizeof(int) + light_bvh.nodes.size() * sizeof(KLightNode) +
          light_bvh.trails.size() * sizeof(std::uint64_t) +
-         bvh.instances.size() * sizeof(KInstance);
+         bvh.instances.size() * sizeof(KInstance) + tangents.size() * sizeof(KTangent);
 }
 
 // Scratch spectra per work item: an environment texel's radiance, then a textured reflectance
@@ -432,6 +445,7 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_CONDUCTOR"] = scene.uses(MaterialKind::conductor) ? "1" : "0";
   d["KASHA_DISPERSION"] = scene.dispersive() ? "1" : "0";
   d["KASHA_ROUGH"] = scene.rough() ? "1" : "0";
+  d["KASHA_ANISOTROPIC"] = scene.anisotropic() ? "1" : "0";
   // Each light kind's code only where the scene has one (docs/lights.md).
   d["KASHA_LIGHT_SOURCES"] = scene.lights.empty() ? "0" : "1";
   d["KASHA_SPOT_LIGHTS"] = scene.has_light(LightType::spot) ? "1" : "0";
@@ -485,7 +499,7 @@ DeviceScene::DeviceScene(ClContext& cl, const Scene& scene)
            host_table(data_.texcoords, p.texcoords), host_table(data_.normals, p.normals),
            host_table(data_.light_bvh.nodes, p.light_nodes),
            host_table(data_.light_bvh.trails, p.light_trails),
-           host_table(data_.bvh.instances, p.instances)});
+           host_table(data_.bvh.instances, p.instances), host_table(data_.tangents, p.tangents)});
 }
 
 }  // namespace kasha

@@ -30,6 +30,7 @@ struct KernelSceneData {
   std::vector<KTexture> textures;        // per texture and use (kernels/materials/texture.h)
   std::vector<KTexcoords> texcoords;     // per leaf triangle, when the scene has textures
   std::vector<KShadingNormals> normals;  // per leaf triangle, when some shape has shading normals
+  std::vector<KTangent> tangents;        // per leaf triangle, when some rough material is anisotropic
   // Light sampling: emitting triangles (leaf order), then the other lights (~index into
   // `lights`), with the CDF of their power, and per emitter the area density
   // p(triangle)/area = pi·Σ Le Δλ / total power (light paths'). Next-event estimation picks
@@ -51,6 +52,7 @@ struct KernelSceneData {
   std::vector<int> alpha_textures(const Scene& scene,
                                   const std::function<int(int)>& scalar_texture);
   void add_shading_normals(const Scene& scene);
+  void add_tangents(const Scene& scene);
   void add_light_sampling(const Scene& scene);
   static KLight kernel_light(const Light& l, int spectrum, const Eigen::Vector3d& centre,
                              double radius);

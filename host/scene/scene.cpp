@@ -67,6 +67,11 @@ bool Scene::dispersive() const {
 bool Scene::rough() const {
   return any_used([](const Material& m) { return m.rough(); });
 }
+bool Scene::anisotropic() const {
+  return any_used([](const Material& m) {
+    return m.rough() && m.roughness.alpha_x != m.roughness.alpha_y;
+  });
+}
 bool Scene::coated() const {
   return any_used([](const Material& m) { return m.coat.has_value(); });
 }

@@ -76,6 +76,7 @@ struct Scene {
   bool uses(MaterialKind kind) const;  // some shape's material is of this kind
   bool dispersive() const;             // some shape's material is a dispersive dielectric
   bool rough() const;                  // some shape's material is a rough dielectric or conductor
+  bool anisotropic() const;            // ... with alpha_x != alpha_y (its frame follows ∂p/∂u)
   bool coated() const;                 // some shape's material has a coat
   bool transmissive() const;           // some shape's material transmits diffusely
   bool thin() const;                   // some shape's material is a thin dielectric

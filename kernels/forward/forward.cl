@@ -31,7 +31,7 @@ inline void splat_rough(const SceneView* s, const FilmView* f, SplatTarget* t, c
 #else
   if (!camera_connection(s, x, dot(to_camera, n) >= 0.0f ? n : -n, h->eps, &pixel, &k)) return;
 #endif
-  Frame fr = frame_of(n);
+  Frame fr = surface_frame(surf, n);
   float3 wo = to_local(&fr, to_camera), wi = to_local(&fr, -p->direction);
   float pdf, cos_m = 0.0f;
   film_rows_clear(rows);

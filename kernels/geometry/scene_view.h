@@ -45,6 +45,7 @@ typedef struct {
   const __global KTexcoords* texcoords; /* per leaf triangle, when textures need them */
   const __global KShadingNormals* normals; /* per leaf triangle, when some shape has them */
   const __global KInstance* instances;     /* KASHA_INSTANCES: the top level's leaves */
+  const __global KTangent* tangents;       /* per leaf triangle, KASHA_ANISOTROPIC */
   RayCounts* rays; /* private: the work item's own counts */
 } SceneView;
 
@@ -78,6 +79,7 @@ typedef struct {
                     KASHA_SCENE_TABLE(KTexcoords, texcoords),                                      \
                     KASHA_SCENE_TABLE(KShadingNormals, normals),                                   \
                     KASHA_SCENE_TABLE(KInstance, instances),                                       \
+                    KASHA_SCENE_TABLE(KTangent, tangents),                                         \
                     &name##_rays}
 
 /* The tables the traversal's alpha test reads (shared/alpha_test.h): leaf order. */

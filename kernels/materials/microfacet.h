@@ -14,6 +14,23 @@ typedef struct {
   float ax, ay;
 } Ggx;
 
+/* The local frame of a surface: x, y tangents, z the front normal. An isotropic distribution
+ * needs no particular x (frame_of picks one); an anisotropic one's x is the surface's ∂p/∂u
+ * (surface.h: surface_frame). */
+typedef struct {
+  float3 s, t, n;
+} Frame;
+
+inline Frame frame_of(float3 n) {
+  Frame f;
+  f.n = n;
+  basis_around(n, &f.s, &f.t);
+  return f;
+}
+inline float3 to_local(const Frame* f, float3 v) { return (float3)(dot(v, f->s), dot(v, f->t), dot(v, f->n)); }
+inline float3 to_world(const Frame* f, float3 v) { return v.x * f->s + v.y * f->t + v.z * f->n; }
+
+
 inline float ggx_tan2(float3 w) {
   float c2 = w.z * w.z;
   return fmax(0.0f, 1.0f - c2) / c2;

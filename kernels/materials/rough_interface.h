@@ -122,18 +122,4 @@ inline bool rough_conductor_sample(float3 wo, Ggx a, float2 u, InterfaceSample* 
   return true;
 }
 
-/* The local frame of a surface: x, y tangents, z the front normal. */
-typedef struct {
-  float3 s, t, n;
-} Frame;
-
-inline Frame frame_of(float3 n) {
-  Frame f;
-  f.n = n;
-  basis_around(n, &f.s, &f.t);
-  return f;
-}
-inline float3 to_local(const Frame* f, float3 v) { return (float3)(dot(v, f->s), dot(v, f->t), dot(v, f->n)); }
-inline float3 to_world(const Frame* f, float3 v) { return v.x * f->s + v.y * f->t + v.z * f->n; }
-
 #endif

@@ -18,6 +18,10 @@
 #ifndef KASHA_THIN
 #define KASHA_THIN 0
 #endif
+/* Some used rough material has alpha_x != alpha_y: its frame follows ∂p/∂u (surface_frame). */
+#ifndef KASHA_ANISOTROPIC
+#define KASHA_ANISOTROPIC 0
+#endif
 
 typedef struct {
   const __global KMaterial* m;
@@ -51,6 +55,9 @@ typedef struct {
 #if KASHA_ROUGH
   Ggx alpha; /* a rough dielectric's or conductor's roughness; (0, 0) when smooth */
 #endif
+#if KASHA_ANISOTROPIC
+  float3 dpdu; /* ∂p/∂u at the point, in world space: the x axis of alpha (pbrt-v4's frame) */
+#endif
 #if KASHA_COATED
   bool coated;          /* a coat over the Lambert parts (coat.h; set up there by coat_at) */
   const __global float* coat_table; /* a rough coat's E(μ) and t(μ) */
@@ -62,6 +69,24 @@ typedef struct {
   float share_t;             /* the share of the passive part's samples sent through; 0: none */
 #endif
 } Surface;
+
+/* The frame a rough surface's GGX distribution lives in, about n (±the normal): x along ∂p/∂u
+ * made orthogonal to n, y = n × x (pbrt-v4's Frame::FromXZ of the shading ∂p/∂u and n), so
+ * alpha_x runs along the surface's u direction. Isotropic roughness needs no such x. */
+inline Frame surface_frame(const Surface* surf, float3 n) {
+#if KASHA_ANISOTROPIC
+  float3 x = surf->dpdu - n * dot(n, surf->dpdu);
+  float len = length(x);
+  if (len > 1e-6f) {
+    Frame f;
+    f.n = n;
+    f.s = x / len;
+    f.t = cross(n, f.s);
+    return f;
+  }
+#endif
+  return frame_of(n);
+}
 
 inline void load_surface(const SceneView* s, int material, Surface* out) {
   const __global KMaterial* m = &s->materials[material];

@@ -103,6 +103,15 @@ typedef struct {
 } KHit;
 KASHA_STATIC_SIZE(KHit, 20);
 
+/* A triangle's ∂p/∂u as pbrt-v4 derives it from its texture coordinates (in object space for an
+ * instanced object's): the x axis of an anisotropic roughness (materials/surface.h). Per leaf
+ * triangle, only where some used rough material is anisotropic (KASHA_ANISOTROPIC). */
+typedef struct {
+  float dpdu[3];
+  float pad;
+} KTangent;
+KASHA_STATIC_SIZE(KTangent, 16);
+
 /* An object placed in the scene (pbrt-v4's ObjectInstance, docs/formats.md#instances): the
  * object's triangles and BVH are stored once, and each instance is a leaf of a top-level BVH over
  * the instances' boxes. A ray enters an instance transformed into object space, its direction
@@ -167,13 +176,14 @@ KASHA_STATIC_SIZE(KCamera, 224);
 typedef struct {
   KCamera camera;
   ulong nodes, leaves, tris, materials, spectra, lobes, emitter_radiance, emitter_area_pdf, light_tri,
-      light_cdf, lights, textures, texcoords, normals, light_nodes, light_trails, instances; /* see SceneView */
+      light_cdf, lights, textures, texcoords, normals, light_nodes, light_trails, instances,
+      tangents; /* see SceneView */
   int light_count;     /* entries of light_tri and light_cdf */
   float bin_nm;
   int light_sources;   /* entries of lights */
   int light_triangles; /* the emitting triangles: the first entries of light_tri */
 } KSceneParams;
-KASHA_STATIC_SIZE(KSceneParams, 376);
+KASHA_STATIC_SIZE(KSceneParams, 384);
 
 /* What a material is: the measured model (gloss lobe or mirror, passive and fluorescent Lambert
  * parts), or an ideal specular interface — a dielectric or a conductor (docs/materials.md). */

@@ -31,8 +31,10 @@ typedef struct {
               * connects, nor with caustic merges where the light came by no delta bounce);
               * KASHA_VCM_FRONT: the light arrived on the triangle's front side */
   float shading[3]; /* the shading normal on the light's side */
+  int instance;     /* the instance the hit was in (KASHA_INSTANCES; else -1) */
+  int pad[3];
 } KVcmLightVertex;
-KASHA_STATIC_SIZE(KVcmLightVertex, 96);
+KASHA_STATIC_SIZE(KVcmLightVertex, 112);
 
 #define KASHA_VCM_MERGEABLE 1
 #define KASHA_VCM_FRONT 2

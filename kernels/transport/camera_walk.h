@@ -241,7 +241,7 @@ inline void walk_rough_next_event(const CameraWalk* w, const SceneView* s, const
   float3 wi = to / dist;
   float cos_l = -dot(lp.normal, wi);
   if (cos_l <= 0.0f) return;
-  Frame fr = frame_of(hit_front(&v->h));
+  Frame fr = surface_frame(surf, hit_front(&v->h));
   float3 wo_l = to_local(&fr, -w->dir), wi_l = to_local(&fr, wi);
   float pdf, cos_m = 0.0f, fv;
   if (surf->kind == KASHA_KIND_DIELECTRIC)
@@ -279,7 +279,7 @@ inline void walk_rough_next_event(const CameraWalk* w, const SceneView* s, const
  * applied bin by bin). False: the path ends. */
 inline bool walk_rough_scatter(CameraWalk* w, const CameraVertex* v, float eta) {
   const Surface* surf = &v->surf;
-  Frame fr = frame_of(hit_front(&v->h));
+  Frame fr = surface_frame(surf, hit_front(&v->h));
   float3 wo = to_local(&fr, -w->dir);
   InterfaceSample smp;
   bool ok = surf->kind == KASHA_KIND_DIELECTRIC

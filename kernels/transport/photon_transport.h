@@ -175,7 +175,7 @@ inline int scatter_rough(Photon* p, const Surface* s, float3 x, float3 n, float 
     eta = s->eta_bins[p->bin];
   }
 #endif
-  Frame fr = frame_of(n);
+  Frame fr = surface_frame(s, n);
   float3 wo = to_local(&fr, -p->direction);
   InterfaceSample smp;
   bool ok = s->kind == KASHA_KIND_DIELECTRIC ? rough_dielectric_sample(wo, eta, s->alpha, false, u_choice.x, u_dir, &smp)

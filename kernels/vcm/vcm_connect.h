@@ -12,6 +12,9 @@ inline void vcm_light_surface(const SceneView* s, const __global KVcmLightVertex
                               Surface* sy, float3* ns, float3* nf, float3* ng) {
   HitPoint h;
   h.tri = y->triangle;
+#if KASHA_INSTANCES
+  h.instance = y->instance;
+#endif
   const __global KTriangle* t = &s->tris[h.tri];
   /* The material the light subpath resolved there: the same point, the same choice. */
   h.material = resolve_material(s, t->material, load_float3(y->position), h.tri,

@@ -43,7 +43,7 @@ inline VcmF vcm_eval(const SceneView* s, const Surface* surf, float3 ns, float3 
 #endif
 #if KASHA_ROUGH
   if (surface_rough(surf)) {
-    Frame fr = frame_of(nf);
+    Frame fr = surface_frame(surf, nf);
     float pdf;
     float3 o = to_local(&fr, wo), i = to_local(&fr, wi);
 #if KASHA_CONDUCTOR

@@ -108,6 +108,11 @@ inline void vcm_store_vertex(__global float* store, int slot, const HitPoint* h,
 #endif
   v->flags = (merges ? KASHA_VCM_MERGEABLE : 0) | (h->front ? KASHA_VCM_FRONT : 0);
   v->shading[0] = h->ns.x, v->shading[1] = h->ns.y, v->shading[2] = h->ns.z;
+#if KASHA_INSTANCES
+  v->instance = h->instance;
+#else
+  v->instance = -1;
+#endif
 }
 
 /* Light subpath `index` of the iteration, from the stream of its index: its vertices stored (past

@@ -61,7 +61,7 @@ inline float vcm_pdf(const SceneView* s, const Surface* surf, float lambert, flo
                      float3 to) {
 #if KASHA_ROUGH
   if (surface_rough(surf)) {
-    Frame fr = frame_of(nf);
+    Frame fr = surface_frame(surf, nf);
     float pdf, cos_m;
     float3 wo = to_local(&fr, from), wi = to_local(&fr, to);
 #if KASHA_DIELECTRIC
