@@ -5,8 +5,9 @@
  * θ and θt), Fc the conductor's at θt with index (n + ik) / η, and A = exp(−2d / cos θt) the
  * layer's transmittance down and up,
  *     R(θ) = F + (1 − F)² Fc A / (1 − F Fc A).
- * The walk ends at pbrt-v4's maxdepth (10), which drops (F Fc A)^10 of a term: below 1e-6 at
- * η 1.5 short of grazing.
+ * pbrt-v4's walk stops at maxdepth (10 scattering events: 5 at the metal), which drops the
+ * series' terms past (F Fc A)^4: a share (F Fc A)^5 of the metal's part: below 1e-5 up to 60° at
+ * η 1.5, under 1 % at 80°. kasha sums them all.
  * Defines: KASHA_COATED (0: no coat anywhere, and this is fresnel_conductor). */
 #ifndef KASHA_COATED_CONDUCTOR_H
 #define KASHA_COATED_CONDUCTOR_H
