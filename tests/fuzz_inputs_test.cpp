@@ -359,6 +359,7 @@ MakeNamedMaterial "paper" "string type" "kasha" "string file" "paper.json"
 MakeNamedMaterial "leaf" "string type" "diffusetransmission" "rgb transmittance" [0.3 0.5 0.2] "float scale" 0.9
 MakeNamedMaterial "sheet" "string type" "thindielectric" "float eta" 1.4
 MakeNamedMaterial "brushed" "string type" "conductor" "rgb eta" [0.2 0.9 1.1] "rgb k" [3.9 2.4 2.2] "float roughness" 0.2
+MakeNamedMaterial "varnish" "string type" "coatedconductor" "spectrum conductor.eta" "metal-Au-eta" "spectrum conductor.k" "metal-Au-k" "float interface.eta" 1.4 "float thickness" 0.05
 Texture "holes" "float" "checkerboard" "float uscale" 8 "float vscale" 8 "float tex1" 1 "float tex2" 0
 MakeNamedMaterial "worn" "string type" "mix" "string materials" ["lacquer" "gold"] "texture amount" "holes"
 LightSource "point" "point3 from" [0 2 0] "blackbody I" 4000 "float scale" 2
@@ -381,6 +382,11 @@ NamedMaterial "sheet"
 Shape "trianglemesh" "point3 P" [-1 0.1 -1.2  1 0.6 -1.2  -1 0.6 -1.2] "float alpha" 0.5
 NamedMaterial "brushed"
 Shape "sphere" "float radius" 0.2
+AttributeBegin
+  NamedMaterial "varnish"
+  Translate 0.5 0.3 0.6
+  Shape "sphere" "float radius" 0.1
+AttributeEnd
 AttributeBegin
   NamedMaterial "worn"
   Translate -0.5 0.3 0.6

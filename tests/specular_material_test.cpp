@@ -262,7 +262,7 @@ TEST(SpecularMaterial, BadDielectricsAndConductorsNameTheJsonPath) {
       {R"({"passive": {"reflectance": 0.5}, "coat": {"albedo": 0.5}})", "/materials/m/coat/albedo:"},
       {R"({"passive": {"reflectance": 0.5}, "coat": {"eta": 1.5, "thikness": 0.1}})", "/materials/m/coat"},
       {R"({"gloss": {"reflectance": 0.1}, "coat": {}})", "/materials/m/coat: a coated material has no \"gloss\""},
-      {R"({"dielectric": {}, "coat": {}})", "/materials/m/coat: a dielectric or conductor takes no coat"},
+      {R"({"dielectric": {}, "coat": {}})", "/materials/m/coat: a dielectric takes no coat"},
       {R"({"passive": {"reflectance": 0.5}, "coat": 1.5})", "/materials/m/coat:"},
   };
   int k = 0;

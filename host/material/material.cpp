@@ -160,9 +160,15 @@ static ConductorDesc parse_conductor(const JsonNode& node) {
 
 void apply_coat(MaterialDesc& m, const JsonNode& coat) {
   if (m.kind == MaterialKind::mix) coat.fail("a mix takes no coat (its materials may)");
-  if (m.kind != MaterialKind::measured) coat.fail("a dielectric or conductor takes no coat");
+  if (m.kind == MaterialKind::dielectric) coat.fail("a dielectric takes no coat");
   if (m.gloss) coat.fail("a coated material has no \"gloss\" part: the coat is its gloss");
   m.coat = parse_coat(coat);
+  // Both smooth, the layer's walk stays on the mirror direction and sums in closed form
+  // (docs/materials.md#coated-conductors); a rough layer over a metal is not built.
+  if (m.kind == MaterialKind::conductor && (m.coat->rough() || m.roughness.rough()))
+    coat.fail(
+        "a coat over a conductor is built smooth over a smooth conductor only (a rough coat or "
+        "a rough conductor under a coat is not built)");
 }
 
 // {"transmittance": SPECTRUM, "scale": k}: Lambert transmission beside the passive reflectance
@@ -197,9 +203,8 @@ MaterialDesc parse_material(const JsonNode& node, const std::string& name) {
   if (auto gloss = node.find("gloss")) m.gloss = parse_gloss(*gloss);
   if (auto transmission = node.find("transmission")) parse_transmission(*transmission, m);
   if (auto coat = node.find("coat")) {
-    if (node.has("dielectric") || node.has("conductor"))
-      coat->fail("a dielectric or conductor takes no coat");
-    apply_coat(m, *coat);
+    if (node.has("dielectric")) coat->fail("a dielectric takes no coat");
+    if (!node.has("conductor")) apply_coat(m, *coat);
   }
   auto dielectric = node.find("dielectric"), conductor = node.find("conductor");
   if (dielectric || conductor) {
@@ -218,6 +223,7 @@ MaterialDesc parse_material(const JsonNode& node, const std::string& name) {
     } else {
       m.kind = MaterialKind::conductor;
       m.conductor = parse_conductor(*conductor);
+      if (auto coat = node.find("coat")) apply_coat(m, *coat);
     }
   }
   if (auto mix = node.find("mix")) {

@@ -67,7 +67,7 @@ struct MaterialDesc {
   SpectrumPtr transmittance;
   double transmission_scale = 1;
   std::optional<GlossDesc> gloss;
-  std::optional<CoatDesc> coat;    // a dielectric coat over the Lambert parts
+  std::optional<CoatDesc> coat;    // a dielectric coat over the Lambert parts or the conductor
   std::optional<MaterialMix> mix;  // kind mix: its two materials and amount
 
   bool fluorescent() const { return excitation != nullptr; }
@@ -102,7 +102,8 @@ struct Material {
 // A material object (inline in a scene, or the root of a material file).
 MaterialDesc parse_material(const JsonNode& node, const std::string& name);
 // Puts a coat ({"eta", "thickness", "roughness"}: docs/materials.md#coated-surfaces) over the
-// material's Lambert parts; a gloss part or a dielectric or conductor is refused.
+// material's Lambert parts, or a smooth one over a smooth conductor
+// (docs/materials.md#coated-conductors); a gloss part or a dielectric is refused.
 void apply_coat(MaterialDesc& material, const JsonNode& coat);
 // A material file written by `kasha measure` or by hand: {"kasha_material": 1, ...}.
 MaterialDesc load_material_file(const std::string& path, const std::string& name);

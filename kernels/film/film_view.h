@@ -6,7 +6,7 @@
 #ifndef KASHA_FILM_VIEW_H
 #define KASHA_FILM_VIEW_H
 
-#include "materials/fresnel.h"
+#include "materials/coated_conductor.h"
 #include "shared/spectral_product.h"
 
 typedef struct {
@@ -25,12 +25,12 @@ inline void film_rows(const FilmView* f, const float* x, const __global float* y
 }
 
 #if KASHA_CONDUCTOR
-/* rows += scale · C·(x∘y∘F), F a conductor's Fresnel reflectance in each bin at the cosine cos_m
- * (fresnel.h), computed bin by bin. */
+/* rows += scale · C·(x∘y∘F), F a conductor's reflectance in each bin at the cosine cos_m, bare or
+ * under the coat `coat` (coated_conductor.h), computed bin by bin. */
 inline void film_rows_conductor(const FilmView* f, const float* x, const __global float* y, const __global float* eta,
-                                const __global float* k, float cos_m, float scale, float* rows) {
+                                const __global float* k, float2 coat, float cos_m, float scale, float* rows) {
   for (int i = 0; i < KASHA_BINS; ++i) {
-    float v = scale * (x ? x[i] : 1.0f) * (y ? y[i] : 1.0f) * fresnel_conductor(cos_m, eta[i], k[i]);
+    float v = scale * (x ? x[i] : 1.0f) * (y ? y[i] : 1.0f) * conductor_reflectance(cos_m, eta[i], k[i], coat);
 #if KASHA_SPECTRAL_FILM
     rows[i] += v;
 #else

@@ -8,7 +8,7 @@
 #define KASHA_PATH_WEIGHT_H
 
 #include "film/film_view.h"
-#include "materials/fresnel.h"
+#include "materials/coated_conductor.h"
 
 #ifndef KASHA_FULL_MATRIX
 #define KASHA_FULL_MATRIX 0
@@ -181,48 +181,51 @@ inline int pw_choose_bin(PathWeight* p, const FilmView* f, float u) {
 #endif
 
 #if KASHA_CONDUCTOR
-/* rows += scale · T·(y∘F): light y through a conductor whose Fresnel reflectance F is computed
- * bin by bin at the cosine cos_m (next-event estimation at a rough conductor). */
+/* rows += scale · T·(y∘F): light y through a conductor whose reflectance F (bare or under `coat`,
+ * coated_conductor.h) is computed bin by bin at the cosine cos_m (next-event estimation at a rough
+ * conductor). */
 inline void pw_add_conductor(const PathWeight* p, const FilmView* f, const __global float* y, const __global float* eta,
-                             const __global float* k, float cos_m, float scale, float* rows) {
+                             const __global float* k, float2 coat, float cos_m, float scale, float* rows) {
 #if KASHA_FULL_MATRIX
   for (int i = 0; i < KASHA_BINS; ++i) {
-    float v = scale * PW_FACTOR(y, i) * fresnel_conductor(cos_m, eta[i], k[i]);
+    float v = scale * PW_FACTOR(y, i) * conductor_reflectance(cos_m, eta[i], k[i], coat);
     for (int r = 0; r < KASHA_FILM_ROWS; ++r) rows[r] += p->T[r][i] * v;
   }
 #else
 #if KASHA_FLUORESCENCE
   if (p->rank1) {
     float s = 0.0f;
-    for (int i = 0; i < KASHA_BINS; ++i) s += p->b[i] * PW_FACTOR(y, i) * fresnel_conductor(cos_m, eta[i], k[i]);
+    for (int i = 0; i < KASHA_BINS; ++i) s += p->b[i] * PW_FACTOR(y, i) * conductor_reflectance(cos_m, eta[i], k[i], coat);
     for (int r = 0; r < KASHA_FILM_ROWS; ++r) rows[r] += scale * s * p->c[r];
     return;
   }
 #endif
-  film_rows_conductor(f, p->w, y, eta, k, cos_m, scale, rows);
+  film_rows_conductor(f, p->w, y, eta, k, coat, cos_m, scale, rows);
 #endif
 }
 
-/* T ← T·diag(F): a smooth conductor's reflection, F_i its Fresnel reflectance in bin i at the
- * cosine cos_i (fresnel.h), computed bin by bin so no spectrum is held in private memory. */
-inline void pw_scatter_conductor(PathWeight* p, const __global float* eta, const __global float* k, float cos_i) {
+/* T ← T·diag(F): a smooth conductor's reflection, F_i its reflectance in bin i at the cosine cos_i
+ * (bare or under `coat`, coated_conductor.h), computed bin by bin so no spectrum is held in
+ * private memory. */
+inline void pw_scatter_conductor(PathWeight* p, const __global float* eta, const __global float* k, float2 coat,
+                                 float cos_i) {
 #if KASHA_FULL_MATRIX
   for (int i = 0; i < KASHA_BINS; ++i) {
-    float F = fresnel_conductor(cos_i, eta[i], k[i]);
+    float F = conductor_reflectance(cos_i, eta[i], k[i], coat);
     for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->T[r][i] *= F;
   }
 #else
 #if KASHA_FLUORESCENCE
   if (p->rank1) {
     float m = 0.0f;
-    for (int i = 0; i < KASHA_BINS; ++i) m = fmax(m, p->b[i] *= fresnel_conductor(cos_i, eta[i], k[i]));
+    for (int i = 0; i < KASHA_BINS; ++i) m = fmax(m, p->b[i] *= conductor_reflectance(cos_i, eta[i], k[i], coat));
     if (m > 0.0f)
       for (int i = 0; i < KASHA_BINS; ++i) p->b[i] /= m;
     for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->c[r] *= m;
     return;
   }
 #endif
-  for (int i = 0; i < KASHA_BINS; ++i) p->w[i] *= fresnel_conductor(cos_i, eta[i], k[i]);
+  for (int i = 0; i < KASHA_BINS; ++i) p->w[i] *= conductor_reflectance(cos_i, eta[i], k[i], coat);
 #endif
 }
 #endif

@@ -51,6 +51,7 @@ typedef struct {
 #if KASHA_CONDUCTOR
   const __global float* eta_c; /* the conductor's eta(lambda) and k(lambda) */
   const __global float* k_c;
+  float2 coat_c; /* a coated conductor's (coat index, thickness); (0, 0): bare (coated_conductor.h) */
 #endif
 #if KASHA_ROUGH
   Ggx alpha; /* a rough dielectric's or conductor's roughness; (0, 0) when smooth */
@@ -121,9 +122,11 @@ inline void load_surface(const SceneView* s, int material, Surface* out) {
 #if KASHA_CONDUCTOR
   out->eta_c = s->spectra + max(m->eta_spectrum, 0);
   out->k_c = s->spectra + max(m->k_spectrum, 0);
+  out->coat_c = (float2)(m->coat_eta, m->coat_thickness);
 #endif
 #if KASHA_COATED
-  out->coated = m->coat_eta > 0.0f;
+  /* A conductor's coat is in its reflectance (coat_c), not over Lambert parts. */
+  out->coated = m->coat_eta > 0.0f && m->kind == KASHA_KIND_MEASURED;
   out->coat_table = s->spectra + max(m->coat_table, 0);
   out->lambert_out = out->lambert_albedo = 1.0f;
 #endif

@@ -206,7 +206,7 @@ inline bool walk_specular(CameraWalk* w, const FilmView* f, const CameraVertex* 
   }
 #endif
 #if KASHA_CONDUCTOR
-  pw_scatter_conductor(&w->p, surf->eta_c, surf->k_c, cos_i);
+  pw_scatter_conductor(&w->p, surf->eta_c, surf->k_c, surf->coat_c, cos_i);
   w->dir = reflect_dir(w->dir, ns);
 #endif
   return true;
@@ -267,7 +267,7 @@ inline void walk_rough_next_event(const CameraWalk* w, const SceneView* s, const
   const __global float* le = light_point_spectrum(s, &lp);
 #if KASHA_CONDUCTOR
   if (surf->kind == KASHA_KIND_CONDUCTOR) {
-    pw_add_conductor(&w->p, f, le, surf->eta_c, surf->k_c, cos_m, scale, rows);
+    pw_add_conductor(&w->p, f, le, surf->eta_c, surf->k_c, surf->coat_c, cos_m, scale, rows);
     return;
   }
 #endif
@@ -287,7 +287,7 @@ inline bool walk_rough_scatter(CameraWalk* w, const CameraVertex* v, float eta) 
                 : rough_conductor_sample(wo, surf->alpha, v->u_dir, &smp);
   if (!ok || !(smp.pdf > 0.0f)) return false;
 #if KASHA_CONDUCTOR
-  if (surf->kind == KASHA_KIND_CONDUCTOR) pw_scatter_conductor(&w->p, surf->eta_c, surf->k_c, smp.cos_m);
+  if (surf->kind == KASHA_KIND_CONDUCTOR) pw_scatter_conductor(&w->p, surf->eta_c, surf->k_c, surf->coat_c, smp.cos_m);
 #endif
   pw_scatter_diagonal(&w->p, 0, smp.weight);
   if (smp.transmitted) {

@@ -5,7 +5,7 @@
 #ifndef KASHA_PHOTON_TRANSPORT_H
 #define KASHA_PHOTON_TRANSPORT_H
 
-#include "materials/fresnel.h"
+#include "materials/coated_conductor.h"
 #include "materials/gloss_lobe.h"
 #include "lights/lights.h"
 #include "materials/rough_interface.h"
@@ -183,7 +183,7 @@ inline int scatter_rough(Photon* p, const Surface* s, float3 x, float3 n, float 
   if (!ok || !(smp.pdf > 0.0f)) return BRANCH_ABSORBED;
 #if KASHA_CONDUCTOR
   if (s->kind == KASHA_KIND_CONDUCTOR)
-    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= fresnel_conductor(smp.cos_m, s->eta_c[i], s->k_c[i]);
+    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= conductor_reflectance(smp.cos_m, s->eta_c[i], s->k_c[i], s->coat_c);
 #endif
   for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= smp.weight;
   p->direction = to_world(&fr, smp.wi);
@@ -233,7 +233,7 @@ inline int scatter_specular(Photon* p, const Surface* s, float3 x, float3 ns, bo
 #endif
 #if KASHA_CONDUCTOR
   if (s->kind == KASHA_KIND_CONDUCTOR) {
-    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= fresnel_conductor(cos_i, s->eta_c[i], s->k_c[i]);
+    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= conductor_reflectance(cos_i, s->eta_c[i], s->k_c[i], s->coat_c);
     p->direction = reflect_dir(d, ns);
   }
 #endif

@@ -105,7 +105,7 @@ inline void vcm_light_apply(const Surface* surf, VcmF fv, const __global float* 
 #if KASHA_CONDUCTOR
   if (fv.conductor > 0.0f) {
     for (int i = 0; i < KASHA_BINS; ++i)
-      out[i] = phi[i] * fv.conductor * fresnel_conductor(fv.cos_m, surf->eta_c[i], surf->k_c[i]);
+      out[i] = phi[i] * fv.conductor * conductor_reflectance(fv.cos_m, surf->eta_c[i], surf->k_c[i], surf->coat_c);
     return;
   }
 #endif
@@ -129,7 +129,7 @@ inline void vcm_camera_apply(const PathWeight* p, const FilmView* f, const Surfa
                              const __global float* spectrum, float scale, float* rows) {
 #if KASHA_CONDUCTOR
   if (fv.conductor > 0.0f) {
-    pw_add_conductor(p, f, spectrum, surf->eta_c, surf->k_c, fv.cos_m, scale * fv.conductor, rows);
+    pw_add_conductor(p, f, spectrum, surf->eta_c, surf->k_c, surf->coat_c, fv.cos_m, scale * fv.conductor, rows);
     return;
   }
 #endif

@@ -31,7 +31,7 @@ inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, con
   film_rows_clear(rows);
 #if KASHA_CONDUCTOR
   if (fv.conductor > 0.0f)
-    film_rows_conductor(f, p->power, 0, surf->eta_c, surf->k_c, fv.cos_m, scale * fv.conductor, rows);
+    film_rows_conductor(f, p->power, 0, surf->eta_c, surf->k_c, surf->coat_c, fv.cos_m, scale * fv.conductor, rows);
 #endif
   if (fv.lambert > 0.0f) {
 #if KASHA_TRANSMISSION

@@ -216,11 +216,13 @@ void diffuse_transmission(const PbrtParameters& params, const PbrtTextures& text
   material["transmission"]["scale"] = params.get_float("scale", 1);
 }
 
-// Roughness as pbrt-v4 names it, into kasha's keys (the same names).
-void roughness(const PbrtParameters& params, const PbrtTextures& textures, nlohmann::json& out) {
-  const std::optional<double> r = pbrt_float_value(params, "roughness", textures);
-  const std::optional<double> u = pbrt_float_value(params, "uroughness", textures);
-  const std::optional<double> v = pbrt_float_value(params, "vroughness", textures);
+// Roughness as pbrt-v4 names it (after `prefix`: coatedconductor's "interface." and
+// "conductor."), into kasha's keys (the same names).
+void roughness(const PbrtParameters& params, const PbrtTextures& textures, nlohmann::json& out,
+               const std::string& prefix = "") {
+  const std::optional<double> r = pbrt_float_value(params, prefix + "roughness", textures);
+  const std::optional<double> u = pbrt_float_value(params, prefix + "uroughness", textures);
+  const std::optional<double> v = pbrt_float_value(params, prefix + "vroughness", textures);
   const double rough = r.value_or(0);
   const double ur = u.value_or(rough), vr = v.value_or(rough);
   if (ur == vr) {
@@ -260,8 +262,9 @@ bool is_black(const nlohmann::json& v) {
 }
 
 nlohmann::json index_of_refraction(const PbrtParameters& params, const PbrtTextures& textures,
-                                   const std::filesystem::path& base_dir) {
-  const PbrtParameter* eta = params.find("eta", "float rgb spectrum blackbody texture");
+                                   const std::filesystem::path& base_dir,
+                                   const std::string& name = "eta") {
+  const PbrtParameter* eta = params.find(name, "float rgb spectrum blackbody texture");
   if (!eta) return 1.5;
   return spectrum_value(*eta, PbrtSpectrumUse::kUnbounded, textures, base_dir);
 }
@@ -297,12 +300,15 @@ nlohmann::json metal_part(const PbrtParameter* p, const char* part, const PbrtTe
   return pbrt_tabulated([&](double nm) { return s->value(nm); });
 }
 
+// pbrt-v4's ConductorMaterial; `prefix` "conductor." for CoatedConductorMaterial's (whose
+// "reflectance" has none).
 nlohmann::json conductor(const PbrtParameters& params, const PbrtLocation& where,
-                         const PbrtTextures& textures, const std::filesystem::path& base_dir) {
+                         const PbrtTextures& textures, const std::filesystem::path& base_dir,
+                         const std::string& prefix = "") {
   nlohmann::json c = nlohmann::json::object();
   const PbrtParameter* r = params.find("reflectance", "float rgb spectrum blackbody texture");
-  const PbrtParameter* eta = params.find("eta", "float rgb spectrum blackbody texture");
-  const PbrtParameter* k = params.find("k", "float rgb spectrum blackbody texture");
+  const PbrtParameter* eta = params.find(prefix + "eta", "float rgb spectrum blackbody texture");
+  const PbrtParameter* k = params.find(prefix + "k", "float rgb spectrum blackbody texture");
   const std::string me = metal_of(eta, "eta"), mk = metal_of(k, "k");
   if (r && (eta || k))
     pbrt_fail(where,
@@ -325,8 +331,57 @@ nlohmann::json conductor(const PbrtParameters& params, const PbrtLocation& where
     c["eta"] = metal_part(eta, "eta", textures, base_dir);
     c["k"] = metal_part(k, "k", textures, base_dir);
   }
-  roughness(params, textures, c);
+  roughness(params, textures, c, prefix);
   return c;
+}
+
+// A coat as pbrt-v4's coateddiffuse and coatedconductor take it: the index `eta_name` (a number
+// in kasha), "thickness" (0.01), roughness after `prefix`, and a clear layer: "albedo" 0.
+nlohmann::json coat_layer(const std::string& type, const PbrtParameters& params,
+                          const PbrtLocation& where, const PbrtTextures& textures,
+                          const std::filesystem::path& base_dir, const std::string& eta_name,
+                          const std::string& prefix) {
+  nlohmann::json coat = nlohmann::json::object();
+  const nlohmann::json eta = index_of_refraction(params, textures, base_dir, eta_name);
+  if (!eta.is_number()) pbrt_fail(where, type + ": a coat's index must be a number in kasha");
+  coat["eta"] = eta;
+  coat["thickness"] = pbrt_float_value(params, "thickness", textures).value_or(0.01);
+  roughness(params, textures, coat, prefix);
+  const PbrtParameter* albedo = params.find("albedo", "float rgb spectrum blackbody texture");
+  if (albedo && !is_black(spectrum_value(*albedo, PbrtSpectrumUse::kAlbedo, textures, base_dir)))
+    pbrt_fail(albedo->where, type + ": a scattering coat (\"albedo\" > 0) is not built in kasha");
+  // Settings of pbrt-v4's stochastic evaluation, which kasha's closed forms do not need
+  // (docs/materials.md#coated-surfaces: kasha sums every round trip).
+  params.get_int("maxdepth", 10);
+  params.get_int("nsamples", 1);
+  pbrt_float_value(params, "g", textures);
+  return coat;
+}
+
+// Whether roughness keys roughness() wrote make a rough surface (alpha ≥ 1e-3, kasha's
+// material.h and pbrt-v4's EffectivelySmooth).
+bool rough(const nlohmann::json& r) {
+  const bool remap = r.value("remap_roughness", true);
+  for (const char* key : {"roughness", "uroughness", "vroughness"})
+    if (r.contains(key) && (remap ? std::sqrt(r[key].get<double>()) : r[key].get<double>()) >= 1e-3)
+      return true;
+  return false;
+}
+
+// pbrt-v4's CoatedConductorMaterial: a conductor ("conductor.eta"/"conductor.k" or
+// "reflectance", copper by default) under a dielectric coat ("interface.eta" 1.5, "thickness").
+// kasha builds it with both interfaces smooth (docs/materials.md#coated-conductors).
+void coated_conductor(const PbrtParameters& params, const PbrtLocation& where,
+                      const PbrtTextures& textures, const std::filesystem::path& base_dir,
+                      nlohmann::json& m) {
+  m["conductor"] = conductor(params, where, textures, base_dir, "conductor.");
+  m["coat"] = coat_layer("coatedconductor", params, where, textures, base_dir, "interface.eta",
+                         "interface.");
+  if (rough(m["conductor"]) || rough(m["coat"]))
+    pbrt_fail(where,
+              "coatedconductor: a rough interface or conductor is not built in kasha (both "
+              "smooth are: interface.roughness and conductor.roughness 0)");
+  m["conductor"].erase("remap_roughness");
 }
 
 // pbrt-v4's MixMaterial: "string materials" (two named materials, which the importer checks
@@ -391,24 +446,9 @@ nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& para
     reflectance(params, textures, base_dir, m);
   } else if (type == "coateddiffuse") {
     reflectance(params, textures, base_dir, m);
-    nlohmann::json coat = nlohmann::json::object();
-    const nlohmann::json eta = index_of_refraction(params, textures, base_dir);
-    if (!eta.is_number())
-      pbrt_fail(where, "coateddiffuse: a coat's index must be a number in kasha");
-    coat["eta"] = eta;
-    coat["thickness"] = pbrt_float_value(params, "thickness", textures).value_or(0.01);
-    roughness(params, textures, coat);
-    const PbrtParameter* albedo = params.find("albedo", "float rgb spectrum blackbody texture");
-    if (albedo && !is_black(spectrum_value(*albedo, PbrtSpectrumUse::kAlbedo, textures, base_dir)))
-      pbrt_fail(albedo->where,
-                "coateddiffuse: a scattering coat (\"albedo\" > 0) is not built "
-                "in kasha");
-    // Settings of pbrt-v4's stochastic evaluation, which kasha's closed form does not need
-    // (docs/materials.md#coated-surfaces: kasha sums every round trip).
-    params.get_int("maxdepth", 10);
-    params.get_int("nsamples", 1);
-    pbrt_float_value(params, "g", textures);
-    m["coat"] = coat;
+    m["coat"] = coat_layer(type, params, where, textures, base_dir, "eta", "");
+  } else if (type == "coatedconductor") {
+    coated_conductor(params, where, textures, base_dir, m);
   } else if (type == "dielectric") {
     nlohmann::json d = {{"eta", index_of_refraction(params, textures, base_dir)}};
     roughness(params, textures, d);
@@ -430,11 +470,10 @@ nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& para
     m["file"] = file;
   } else if (type == "mix") {
     m["mix"] = mix(params, where, textures);
-  } else if (type == "measured" || type == "hair" || type == "subsurface" ||
-             type == "coatedconductor") {
+  } else if (type == "measured" || type == "hair" || type == "subsurface") {
     pbrt_fail(where, "material " + in_quotes(type) +
-                         " is not built in kasha (diffuse, coateddiffuse, diffusetransmission, "
-                         "dielectric, thindielectric, conductor, mix, kasha)");
+                         " is not built in kasha (diffuse, coateddiffuse, coatedconductor, "
+                         "diffusetransmission, dielectric, thindielectric, conductor, mix, kasha)");
   } else {
     pbrt_fail(where, "unknown material type " + in_quotes(type));
   }
