@@ -4,8 +4,8 @@
 // bound for an imported scene. Backward at 32 passes, about 5 s a scene; pbrt-v4 at 1024 samples
 // per pixel. Left out, with their measured differences (docs/materials.md, docs/pbrt-import.md):
 // rough coats (pbrt-v4 3–5 % brighter under a lamp or the sun: its LayeredBxDF weighs a strategy
-// by the wrong density, scripts/check_pbrt_rough_coat.py) and the anisotropic aluminium, whose
-// brushing direction follows kasha's tangent frame, not the sphere's ∂p/∂u (+4 %).
+// by the wrong density, scripts/check_pbrt_rough_coat.py). The anisotropic aluminium is in: its
+// brushing follows the sphere's ∂p/∂u as pbrt-v4's does (it was +1.6 % in another frame).
 #include <gtest/gtest.h>
 
 #include "image/exr_io.h"
