@@ -37,6 +37,8 @@ class TestKernel {
   void scalar(int index, T value) {
     kernel_.setArg(index, value);
   }
+  // The kernel itself, for DeviceScene::bind.
+  cl::Kernel& handle() { return kernel_; }
   // Argument `index`: a buffer of `count` floats the kernel writes, read back by read().
   void output(int index, size_t count);
 

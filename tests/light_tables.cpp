@@ -42,7 +42,8 @@ LightTables light_tables(const std::vector<KTriangle>& tris, const std::vector<i
        host_table(std::vector<KTexture>(1), p.textures),
        host_table(std::vector<KTexcoords>(1), p.texcoords),
        host_table(std::vector<KShadingNormals>(1), p.normals),
-       host_table(t.bvh.nodes, p.light_nodes), host_table(t.bvh.trails, p.light_trails)});
+       host_table(t.bvh.nodes, p.light_nodes), host_table(t.bvh.trails, p.light_trails),
+       host_table(std::vector<KSphereLight>(1), p.light_spheres)});
   return t;
 }
 

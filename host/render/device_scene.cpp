@@ -318,6 +318,41 @@ void KernelSceneData::add_shading_normals(const Scene& scene) {
   }
 }
 
+// Per emitting triangle (`emitting`, leaf order), its shape's sphere light (radius 0: none); empty
+// where no shape is one. The radius holds the float vertices as the kernels test them, from the
+// float centre, with a margin for the kernels' rounding: the mesh lies inside the cone sampled.
+static std::vector<KSphereLight> sphere_lights(const Scene& scene,
+                                               const std::vector<KTriangle>& tris,
+                                               const std::vector<int>& emitting) {
+  std::vector<int> shape_of(scene.triangles.size(), -1);
+  bool any = false;
+  for (size_t k = 0; k < scene.shapes.size(); ++k) {
+    const ShapeInfo& s = scene.shapes[k];
+    if (!s.sphere_light) continue;
+    any = true;
+    std::fill_n(shape_of.begin() + s.first_triangle, s.triangle_count, static_cast<int>(k));
+  }
+  if (!any) return {};
+  std::vector<KSphereLight> out(emitting.size(), KSphereLight{});
+  std::vector<double> reach(scene.shapes.size(), 0.0);
+  for (int pass = 0; pass < 2; ++pass)
+    for (size_t j = 0; j < emitting.size(); ++j) {
+      const KTriangle& t = tris[emitting[j]];
+      const int k = shape_of[t.prim];
+      if (k < 0) continue;
+      const Eigen::Vector3d c = scene.shapes[k].sphere_light->centre.cast<float>().cast<double>();
+      KSphereLight& l = out[j];
+      for (int a = 0; a < 3; ++a) l.centre[a] = static_cast<float>(c[a]);
+      if (pass == 0) {
+        for (const float* v : {t.v0, t.v1, t.v2})
+          reach[k] = std::max(reach[k], (Eigen::Vector3d(v[0], v[1], v[2]) - c).norm());
+      } else {
+        l.radius = static_cast<float>(reach[k] * (1 + 1e-5) + 1e-6 * c.cwiseAbs().maxCoeff());
+      }
+    }
+  return out;
+}
+
 // Lights, in leaf order so kernels index the triangles they traverse: the emitting triangles,
 // then the lights that are not triangles, each picked in proportion to its power.
 void KernelSceneData::add_light_sampling(const Scene& scene) {
@@ -337,7 +372,8 @@ void KernelSceneData::add_light_sampling(const Scene& scene) {
     if (p > 0) sample(static_cast<int>(i), p);
   }
   light_triangles = static_cast<int>(light_tri.size());
-  light_bvh = build_light_bvh(bvh.triangles, light_tri, power);
+  light_spheres = sphere_lights(scene, bvh.triangles, light_tri);
+  light_bvh = build_light_bvh(bvh.triangles, light_tri, power, light_spheres);
   Eigen::Vector3d centre;
   double radius;
   scene.bounding_sphere(centre, radius);
@@ -412,7 +448,8 @@ size_t KernelSceneData::bytes() const {
          (spectra.size() + lobes.size() + emitter_radiance.size() + light_cdf.size() +
           emitter_area_pdf.size()) *
              sizeof(float) +
-         light_tri.size() * sizeof(int) + light_bvh.nodes.size() * sizeof(KLightNode) +
+         light_tri.size() * sizeof(int) + light_spheres.size() * sizeof(KSphereLight) +
+         light_bvh.nodes.size() * sizeof(KLightNode) +
          light_bvh.trails.size() * sizeof(std::uint64_t) +
          bvh.instances.size() * sizeof(KInstance) + tangents.size() * sizeof(KTangent);
 }
@@ -450,6 +487,9 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_LIGHT_SOURCES"] = scene.lights.empty() ? "0" : "1";
   d["KASHA_SPOT_LIGHTS"] = scene.has_light(LightType::spot) ? "1" : "0";
   d["KASHA_INFINITE_LIGHTS"] = scene.has_light(LightType::infinite) ? "1" : "0";
+  const bool spheres = std::any_of(scene.shapes.begin(), scene.shapes.end(),
+                                   [](const ShapeInfo& s) { return s.sphere_light.has_value(); });
+  d["KASHA_SPHERE_LIGHTS"] = spheres ? "1" : "0";
   d["KASHA_ENVIRONMENT"] = scene.has_environment() ? "1" : "0";
   // Spectra computed per work item on the way (an environment texel's radiance).
   d["KASHA_SCRATCH_FLOATS"] = std::to_string(scratch_floats(scene));
@@ -499,7 +539,8 @@ DeviceScene::DeviceScene(ClContext& cl, const Scene& scene)
            host_table(data_.texcoords, p.texcoords), host_table(data_.normals, p.normals),
            host_table(data_.light_bvh.nodes, p.light_nodes),
            host_table(data_.light_bvh.trails, p.light_trails),
-           host_table(data_.bvh.instances, p.instances), host_table(data_.tangents, p.tangents)});
+           host_table(data_.bvh.instances, p.instances), host_table(data_.tangents, p.tangents),
+           host_table(data_.light_spheres, p.light_spheres)});
 }
 
 }  // namespace kasha

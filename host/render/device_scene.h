@@ -39,6 +39,8 @@ struct KernelSceneData {
   std::vector<float> light_cdf;
   std::vector<float> emitter_area_pdf;
   int light_triangles = 0;  // the first entries of light_tri
+  // Per emitting triangle, its sphere light (radius 0: none); empty without sphere lights.
+  std::vector<KSphereLight> light_spheres;
   LightBvh light_bvh;
   double total_power = 0;  // W: Σ over emitting triangles of area·pi·Σ Le Δλ and the lights' power
 

@@ -2,7 +2,9 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 
 namespace kasha {
 namespace {
@@ -110,7 +112,9 @@ struct Buckets {
       }
       for (int i = start; i < end; ++i) {
         Cone& c = bounds[dim][bucket_of(items[i], cmin, cmax, dim)].cone;
-        c.cos_theta = std::min(c.cos_theta, c.w.dot(items[i].bounds.cone.w));
+        // A sphere light's cone is the whole sphere of directions.
+        const bool whole = items[i].bounds.cone.theta >= M_PI;
+        c.cos_theta = std::min(c.cos_theta, whole ? -1.0 : c.w.dot(items[i].bounds.cone.w));
       }
       for (Bounds& b : bounds[dim])
         b.cone.theta = std::acos(std::clamp(b.cone.cos_theta, -1.0, 1.0));
@@ -226,16 +230,49 @@ class Builder {
   LightBvh& out_;
 };
 
+// Per emitting triangle, the first emitting triangle of its sphere light (itself where it is of
+// none), and the leaf items of the sphere lights, their powers summed.
+std::vector<int> sphere_items(const std::vector<int>& emitting, const std::vector<double>& power,
+                              const std::vector<KSphereLight>& spheres, std::vector<Item>& items) {
+  std::vector<int> first(emitting.size());
+  std::map<std::array<float, 4>, int> seen;  // a sphere's record: its item
+  for (size_t j = 0; j < emitting.size(); ++j) {
+    first[j] = static_cast<int>(j);
+    if (spheres.empty() || !(spheres[j].radius > 0)) continue;
+    const KSphereLight& l = spheres[j];
+    const auto [at, fresh] = seen.try_emplace({l.centre[0], l.centre[1], l.centre[2], l.radius},
+                                              static_cast<int>(items.size()));
+    if (fresh) {
+      Item it;
+      const Vector3d c(l.centre[0], l.centre[1], l.centre[2]);
+      it.bounds.lo = c - Vector3d::Constant(l.radius);
+      it.bounds.hi = c + Vector3d::Constant(l.radius);
+      it.bounds.cone = {Vector3d::UnitZ(), -1, M_PI};  // pbrt-v4's sphere: every direction
+      it.centroid = c;
+      it.tri = emitting[j];
+      it.index = static_cast<int>(j);
+      items.push_back(it);
+    }
+    items[at->second].bounds.phi += power[j];
+    first[j] = items[at->second].index;
+  }
+  return first;
+}
+
 }  // namespace
 
 LightBvh build_light_bvh(const std::vector<KTriangle>& tris, const std::vector<int>& emitting,
-                         const std::vector<double>& power) {
+                         const std::vector<double>& power,
+                         const std::vector<KSphereLight>& spheres) {
   LightBvh out;
   if (emitting.empty()) return out;
   std::vector<Item> items;
   items.reserve(emitting.size());
+  const std::vector<int> first = sphere_items(emitting, power, spheres, items);
   double total = 0;
   for (size_t j = 0; j < emitting.size(); ++j) {
+    total += power[j];
+    if (first[j] != static_cast<int>(j) || (!spheres.empty() && spheres[j].radius > 0)) continue;
     const KTriangle& t = tris[emitting[j]];
     const Vector3d v0(t.v0[0], t.v0[1], t.v0[2]), v1(t.v1[0], t.v1[1], t.v1[2]),
         v2(t.v2[0], t.v2[1], t.v2[2]);
@@ -248,11 +285,11 @@ LightBvh build_light_bvh(const std::vector<KTriangle>& tris, const std::vector<i
     it.tri = emitting[j];
     it.index = static_cast<int>(j);
     items.push_back(it);
-    total += power[j];
   }
   out.trails.resize(emitting.size());
-  out.nodes.reserve(2 * emitting.size() - 1);
+  out.nodes.reserve(2 * items.size() - 1);
   Builder(items, total, out).build(0, static_cast<int>(items.size()), 0, 0);
+  for (size_t j = 0; j < emitting.size(); ++j) out.trails[j] = out.trails[first[j]];
   return out;
 }
 

@@ -16,8 +16,12 @@ struct LightBvh {
 };
 
 // The tree over emitting triangles `emitting` (indices into `tris`, leaf order) of powers
-// `power` (> 0); trails follow `emitting`'s order. Empty without emitting triangles.
+// `power` (> 0); trails follow `emitting`'s order. Empty without emitting triangles. `spheres`
+// (empty, or one per emitting triangle): the triangles of one sphere light (equal records of
+// radius > 0) are one leaf, as pbrt-v4's sphere is one light, its first triangle standing for
+// it; all of them share its trail.
 LightBvh build_light_bvh(const std::vector<KTriangle>& tris, const std::vector<int>& emitting,
-                         const std::vector<double>& power);
+                         const std::vector<double>& power,
+                         const std::vector<KSphereLight>& spheres = {});
 
 }  // namespace kasha

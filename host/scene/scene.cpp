@@ -461,6 +461,25 @@ static ShapeMesh shape_triangles(const JsonNode& shape, const std::string& type)
   return tris;
 }
 
+// An emitting shape's sphere light: a "sphere", or "triangles" whose "sphere" names the sphere
+// they tessellate (pbrt-v4's full sphere), where the shape's "transform" keeps it one.
+static std::optional<SphereBound> shape_sphere_light(const JsonNode& shape, const std::string& type,
+                                                     const ShapeMesh& mesh) {
+  SphereBound own;
+  if (type == "sphere") {
+    own = {vec(shape.at("center")), shape.at("radius").number()};
+  } else if (auto s = shape.find("sphere")) {
+    if (type != "triangles") s->fail("\"sphere\" applies to \"triangles\"");
+    own = {vec(s->at("center")), s->at("radius").number()};
+    s->finish();
+  } else {
+    return std::nullopt;
+  }
+  Eigen::Affine3d placed = Eigen::Affine3d::Identity();
+  if (auto t = shape.find("transform")) placed = parse_transform(*t);
+  return tessellated_sphere(mesh, own, placed);
+}
+
 // The emission of the shapes marked "lamp": true — the chosen one of the scene's named "lamps",
 // each parsed (so a bad one is reported whichever is on). Empty without "lamps".
 struct LampChoice {
@@ -803,13 +822,17 @@ static void parse_shape(const JsonNode& shape, const LampChoice& lamp_on,
   const int emitter = parse_shape_emitter(shape, mesh.tris.size(), lamp_on, uses, scene);
   bool inward = false;
   if (auto in = shape.find("inward")) inward = in->boolean();
-  ShapeInfo info{type,
-                 inward,
-                 material,
-                 emitter,
-                 static_cast<int>(scene.triangles.size()),
-                 static_cast<int>(mesh.tris.size())};
+  ShapeInfo info;
+  info.type = type;
+  info.inward = inward;
+  info.material = material;
+  info.emitter = emitter;
+  info.first_triangle = static_cast<int>(scene.triangles.size());
+  info.triangle_count = static_cast<int>(mesh.tris.size());
   if (auto alpha = shape.find("alpha")) parse_shape_alpha(*alpha, scene, info);
+  // Read whether or not it emits ("sphere" is a key like any other).
+  std::optional<SphereBound> sphere = shape_sphere_light(shape, type, mesh);
+  if (emitter >= 0 && !info.cut_out()) info.sphere_light = sphere;
   shape.finish();
   scene.shapes.push_back(info);
   append_triangles(mesh, material, emitter, scene);

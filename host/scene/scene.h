@@ -12,6 +12,7 @@
 #include "scene/light.h"
 #include "scene/pbrt/pbrt_import.h"
 #include "scene/shape_mesh.h"
+#include "scene/sphere_light.h"
 #include "scene/texture.h"
 #include "shared/shared_types.h"
 #include "spectrum/wavelength_grid.h"
@@ -42,6 +43,8 @@ struct ShapeInfo {
   // Its "alpha" cut-out (docs/formats.md#alpha): a constant, or a scene texture's value (-1: none).
   double alpha = 1;
   int alpha_texture = -1;
+  // An emitting sphere that next-event estimation samples as one light (scene/sphere_light.h).
+  std::optional<SphereBound> sphere_light;
   bool cut_out() const { return alpha < 1 || alpha_texture >= 0; }
 };
 

@@ -35,6 +35,7 @@ typedef struct {
   const __global KLightNode* light_nodes; /* next-event estimation's choice of emitting triangle */
   const __global ulong* light_trails;     /* per emitting triangle, its path from the root */
   int light_triangles;                    /* how many emitting triangles light_tri starts with */
+  const __global KSphereLight* light_spheres; /* per emitting triangle, its sphere light */
   float bin_nm;
   const __global KLight* lights; /* the lights that are not triangles (light_tri's ~k) */
   int light_sources;             /* how many */
@@ -71,6 +72,7 @@ typedef struct {
                     KASHA_SCENE_TABLE(KLightNode, light_nodes),                                    \
                     KASHA_SCENE_TABLE(ulong, light_trails),                                        \
                     scene_params.light_triangles,                                                  \
+                    KASHA_SCENE_TABLE(KSphereLight, light_spheres),                                \
                     scene_params.bin_nm,                                                           \
                     KASHA_SCENE_TABLE(KLight, lights),                                             \
                     scene_params.light_sources,                                                    \

@@ -3,7 +3,8 @@
  * the light BVH (light_bvh.h) picks one given the shading point; then a point on it: uniform in
  * the solid angle it subtends from the shading point (Arvo 1995, as pbrt-v4 does) when that angle
  * lies between KASHA_MIN_SPHERICAL_SOLID_ANGLE and KASHA_MAX_SPHERICAL_SOLID_ANGLE, uniform in
- * area otherwise. Light paths choose a triangle by power alone: since a triangle's power is its
+ * area otherwise; an emitting sphere is one light, sampled by the solid angle it subtends
+ * (sphere_light.h). Light paths choose a triangle by power alone: since a triangle's power is its
  * area times pi times its emitter's band-integrated radiance, the area density of their start,
  * p(triangle)/area, depends only on the emitter: emitter_area_pdf[e]. */
 #ifndef KASHA_LIGHTS_H
@@ -25,6 +26,9 @@
 #endif
 #ifndef KASHA_INFINITE_LIGHTS
 #define KASHA_INFINITE_LIGHTS 0
+#endif
+#ifndef KASHA_SPHERE_LIGHTS
+#define KASHA_SPHERE_LIGHTS 0 /* some emitting sphere is sampled as one light (sphere_light.h) */
 #endif
 
 typedef struct {
@@ -326,6 +330,22 @@ inline LightPoint sample_light_triangle(const SceneView* s, int tri, float pick,
  * the other lights are picked from has it. */
 inline float light_triangle_share(const SceneView* s) { return s->light_cdf[s->light_triangles - 1]; }
 
+/* The index of emitting triangle `tri` (leaf order) among the emitting triangles, which light_tri
+ * lists in ascending order; -1 when it is not one (it emits nothing). */
+inline int emitting_index(const SceneView* s, int tri) {
+  int lo = 0, hi = s->light_triangles - 1;
+  while (lo < hi) {
+    int mid = (lo + hi) / 2;
+    if (s->light_tri[mid] < tri) lo = mid + 1;
+    else hi = mid;
+  }
+  return hi >= 0 && s->light_tri[lo] == tri ? lo : -1;
+}
+
+#if KASHA_SPHERE_LIGHTS
+#include "lights/sphere_light.h"
+#endif
+
 /* A light point for next-event estimation at x, with the solid-angle density of having sampled
  * its direction (0 when the sample failed). u.x picks the light and, rescaled to the part of
  * [0, 1) that picked it, goes on with u.y to pick the point: the 2-D sample stays stratified over
@@ -342,19 +362,12 @@ inline LightPoint sample_light_from(const SceneView* s, float3 x, float2 u, floa
   float share = light_triangle_share(s), pick, ux = clamp(u.x / share, 0.0f, 0.99999994f);
   int tri = light_bvh_sample(s->light_nodes, x, &ux, &pick);
   u.x = ux;
+#if KASHA_SPHERE_LIGHTS
+  /* A sphere is one leaf of the light BVH, its first triangle standing for it. */
+  KSphereLight sphere = sphere_light_of(s, emitting_index(s, tri));
+  if (sphere.radius > 0.0f) return sample_sphere_light(s, &sphere, share * pick, x, u, pdf);
+#endif
   return sample_light_triangle(s, tri, share * pick, x, u, pdf);
-}
-
-/* The index of emitting triangle `tri` (leaf order) among the emitting triangles, which light_tri
- * lists in ascending order; -1 when it is not one (it emits nothing). */
-inline int emitting_index(const SceneView* s, int tri) {
-  int lo = 0, hi = s->light_triangles - 1;
-  while (lo < hi) {
-    int mid = (lo + hi) / 2;
-    if (s->light_tri[mid] < tri) lo = mid + 1;
-    else hi = mid;
-  }
-  return hi >= 0 && s->light_tri[lo] == tri ? lo : -1;
 }
 
 /* The solid-angle density with which sample_light_from at x would pick the point y on leaf
@@ -363,6 +376,11 @@ inline float light_pdf_from(const SceneView* s, int tri, float3 x, float3 y, flo
   int j = emitting_index(s, tri);
   if (j < 0) return 0.0f;
   float pick = light_triangle_share(s) * light_bvh_pmf(s->light_nodes, s->light_trails[j], x);
+#if KASHA_SPHERE_LIGHTS
+  /* A sphere's triangles share its leaf's trail; its points are found by direction. */
+  KSphereLight sphere = sphere_light_of(s, j);
+  if (sphere.radius > 0.0f) return cos_light > 0.0f ? sphere_light_pdf(&sphere, pick, x) : 0.0f;
+#endif
   const __global KTriangle* t = &s->tris[tri];
   float3 v0 = load_float3(t->v0), v1 = load_float3(t->v1), v2 = load_float3(t->v2);
   float omega = triangle_solid_angle(x, v0, v1, v2);

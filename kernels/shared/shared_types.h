@@ -177,13 +177,13 @@ typedef struct {
   KCamera camera;
   ulong nodes, leaves, tris, materials, spectra, lobes, emitter_radiance, emitter_area_pdf, light_tri,
       light_cdf, lights, textures, texcoords, normals, light_nodes, light_trails, instances,
-      tangents; /* see SceneView */
+      tangents, light_spheres; /* see SceneView */
   int light_count;     /* entries of light_tri and light_cdf */
   float bin_nm;
   int light_sources;   /* entries of lights */
   int light_triangles; /* the emitting triangles: the first entries of light_tri */
 } KSceneParams;
-KASHA_STATIC_SIZE(KSceneParams, 384);
+KASHA_STATIC_SIZE(KSceneParams, 392);
 
 /* What a material is: the measured model (gloss lobe or mirror, passive and fluorescent Lambert
  * parts), or an ideal specular interface — a dielectric or a conductor (docs/materials.md). */
@@ -335,6 +335,16 @@ typedef struct {
   int child;
 } KLightNode;
 KASHA_STATIC_SIZE(KLightNode, 48);
+
+/* Per emitting triangle (as light_tri lists them), under KASHA_SPHERE_LIGHTS: the sphere it
+ * tessellates, which next-event estimation samples as one light by the solid angle it subtends
+ * (kernels/lights/sphere_light.h): its centre and the radius of a sphere holding all its vertices;
+ * radius 0 for a triangle of no such sphere. */
+typedef struct {
+  float centre[3];
+  float radius;
+} KSphereLight;
+KASHA_STATIC_SIZE(KSphereLight, 16);
 
 /* A path from the light BVH's root to a leaf: bit k chooses the second child at depth k, so the
  * deepest tree the builder may make (host/render/light_bvh.cpp) has 64 levels below the root. */

@@ -196,7 +196,11 @@ nlohmann::json sphere_shape(const PbrtParameters& params, const PbrtLocation& wh
         nn = {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
         pt = r * nn;
       });
-  return triangles_json(g, true);  // ∂p/∂u × ∂p/∂v points out, as pbrt-v4's normal
+  nlohmann::json s = triangles_json(g, true);  // ∂p/∂u × ∂p/∂v points out, as pbrt-v4's normal
+  // A full sphere, as an emitter, is sampled by the solid angle it subtends (docs/lights.md).
+  if (z0 == -r && z1 == r && phimax == radians(360))
+    s["sphere"] = {{"center", {0, 0, 0}}, {"radius", r}};
+  return s;
 }
 
 nlohmann::json cylinder_shape(const PbrtParameters& params, const PbrtLocation& where) {
