@@ -161,6 +161,15 @@ TEST(Cli, InfoReportsGridFeaturesOptionsAndMemory) {
                         "memory: ", "photon mapping: 224 bytes per photon (position, normal, key",
                         "428 bytes per visible point", "2N + R = 99 values"})
     EXPECT_NE(r.out.find(s), std::string::npos) << s << "\n" << r.out;
+  // --bin-nm replaces the scene's bin width; the range stays what its spectra need.
+  r = run_kasha("info " + shell_quoted(test::source_path("scenes/cornell_box.json")) +
+                " --bin-nm 5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("wavelengths: 300–780 nm, 96 bins of 5 nm"), std::string::npos) << r.out;
+  expect_one_line_error(run_kasha("info " +
+                                  shell_quoted(test::source_path("scenes/cornell_box.json")) +
+                                  " --bin-nm 0.01"),
+                        "--bin-nm: 0.01 is not in [0.1, 1000]");
 }
 
 TEST(Cli, CtrlCWritesTheImageSoFar) {

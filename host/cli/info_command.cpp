@@ -32,8 +32,8 @@ std::string bytes_text(double b) {
 }  // namespace
 
 static int run_info(const std::string& scene_path, bool spectral, const std::string& lamp,
-                    const std::vector<MaterialOverride>& materials) {
-  Scene scene = load_scene(scene_path, std::nullopt, lamp, materials);
+                    const std::vector<MaterialOverride>& materials, double bin_nm) {
+  Scene scene = load_scene(scene_path, bins_request(bin_nm), lamp, materials);
   KernelSceneData data(scene);
   int emitting_triangles = 0;
   for (const Emitter& e : scene.emitters) emitting_triangles += e.triangle_count;
@@ -109,13 +109,15 @@ static Command::Action declare_info(CLI::App& app) {
     std::string scene, lamp;
     std::vector<MaterialOverride> materials;
     bool spectral = false;
+    double bin_nm = 0;
   };
   auto a = std::make_shared<Args>();
   app.add_option("scene", a->scene, "scene: kasha JSON or pbrt-v4 (.pbrt)")->required();
   app.add_flag("--spectral", a->spectral, "report for a spectral film");
   app.add_option("--lamp", a->lamp, "switch on this one of the scene's \"lamps\"");
   cli::add_material_option(app, a->materials);
-  return [a] { return run_info(a->scene, a->spectral, a->lamp, a->materials); };
+  cli::add_bin_option(app, a->bin_nm);
+  return [a] { return run_info(a->scene, a->spectral, a->lamp, a->materials, a->bin_nm); };
 }
 
 KASHA_REGISTER_COMMAND(info, "info",

@@ -100,7 +100,7 @@ int run_render(const RenderArgs& a) {
   outputs.file("-o", a.output);
   outputs.file("--png", a.png);
   outputs.file("--log", a.log);
-  Scene scene = load_scene(spec.scene, std::nullopt, spec.lamp, spec.materials);
+  Scene scene = load_scene(spec.scene, spec.grid(), spec.lamp, spec.materials);
   outputs.inputs_read("the scene's material or data file");
   // `--max-depth scene` on a scene that names none: a usage error, found once the scene is read.
   if (const std::string refusal = depth_cap_refusal(spec.settings, scene); !refusal.empty()) {
@@ -166,6 +166,7 @@ Command::Action declare(CLI::App& app) {
   cli::add_device_option(app, r.device);
   app.add_option("--lamp", r.lamp, "switch on this one of the scene's \"lamps\"");
   cli::add_material_option(app, r.materials);
+  cli::add_bin_option(app, r.bin_nm);
   app.add_option("--png", a->png, "also write a tone-mapped sRGB PNG preview");
   app.add_flag("--spectral", r.spectral, "add one channel per wavelength bin to the EXR");
   app.add_option("--reference", a->reference,

@@ -117,6 +117,15 @@ CLI::Option* add_material_option(CLI::App& app, std::vector<MaterialOverride>& m
       ->allow_extra_args(false);
 }
 
+CLI::Option* add_bin_option(CLI::App& app, double& bin_nm) {
+  // The grid's own limits (docs/formats.md#wavelengths).
+  return app
+      .add_option("--bin-nm", bin_nm,
+                  "the wavelength bins' width in nm, in place of the scene's \"wavelengths\" "
+                  "(the range automatic): narrower bins follow steep spectra closer, at a cost")
+      ->check(number_within(0.1, 1000));
+}
+
 CLI::Option* add_device_option(CLI::App& app, std::string& device) {
   return app
       .add_option("--device", device,

@@ -28,6 +28,8 @@ std::vector<std::string> integrator_options_given(const CLI::App& app);
 CLI::Option* add_material_option(CLI::App& app, std::vector<MaterialOverride>& materials);
 
 // `--device LIST`.
+// --bin-nm W: the scene's wavelength grid with bins of W nm (render/render_spec.h).
+CLI::Option* add_bin_option(CLI::App& app, double& bin_nm);
 CLI::Option* add_device_option(CLI::App& app, std::string& device);
 
 }  // namespace kasha::cli

@@ -95,7 +95,7 @@ int serve_render(const RenderSpec& spec) {
   std::unique_ptr<DeviceSet> devices;
   std::vector<std::unique_ptr<RenderJob>> jobs;
   try {
-    scene = std::make_unique<Scene>(load_scene(spec.scene, std::nullopt, spec.lamp, spec.materials));
+    scene = std::make_unique<Scene>(load_scene(spec.scene, spec.grid(), spec.lamp, spec.materials));
     devices = std::make_unique<DeviceSet>(spec.device);
     if (devices->size() > static_cast<size_t>(mpi::kMaxDevices))
       throw Error("--device: more than " + std::to_string(mpi::kMaxDevices) + " devices");

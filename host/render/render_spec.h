@@ -3,6 +3,7 @@
 // its settings, the film, when to stop and the devices. The command line fills it (cli/
 // render_command.cpp); under MPI, ranks > 0 render from their own and compare it with rank 0's by
 // its fingerprint (mpi/render_server.h).
+#include <optional>
 #include <string>
 
 #include "render/integrator_registry.h"
@@ -19,6 +20,10 @@ struct RenderSpec {
   std::string device = "0";  // an index, a list or all (opencl/device_list.h)
   IntegratorSettings settings;
   std::vector<MaterialOverride> materials;  // --material NAME=FILE
+  double bin_nm = 0;  // --bin-nm: the wavelength bins' width, the range automatic (0: the scene's)
+
+  // The grid the scene is loaded on: the scene's own, or --bin-nm's.
+  std::optional<GridRequest> grid() const;
 };
 
 // What the image depends on, as text: the scene's path, its lamp, the integrator, the film and

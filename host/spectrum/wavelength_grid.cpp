@@ -27,6 +27,13 @@ std::string WavelengthGrid::describe() const {
   return o.str();
 }
 
+std::optional<GridRequest> bins_request(double bin_nm) {
+  if (!(bin_nm > 0)) return std::nullopt;
+  GridRequest g;
+  g.bin_nm = bin_nm;
+  return g;
+}
+
 WavelengthGrid choose_grid(const GridRequest& request, const std::vector<SpectralSupport>& emitters,
                            const std::vector<SpectralSupport>& excitations) {
   double shortest = kVisibleMinNm;

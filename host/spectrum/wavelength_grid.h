@@ -1,5 +1,6 @@
 #pragma once
 // The wavelength grid: N bins of equal width; spectra are stored as per-bin averages.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,9 @@ constexpr double kShortestNm = 200.0;
 struct GridRequest {
   double min_nm = -1, max_nm = -1, bin_nm = 10.0;
 };
+
+// A request for bins of `bin_nm` over the automatic range (--bin-nm); none for 0 (the scene's).
+std::optional<GridRequest> bins_request(double bin_nm);
 
 // The automatic range of docs/design.md#the-wavelength-grid: the visible range, extended down to
 // the shortest wavelength at which some emitter emits and some material is excited, on bin edges
