@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "furnace_scene.h"
 #include "material/material.h"
 #include "render/integrator_registry.h"
 #include "render_support.h"
@@ -73,53 +74,18 @@ TEST(CoatedConductor, EmitterSeenInATiltedCoatedGoldSheetTakesTheLayeredReflecta
   }
 }
 
-// The passive furnace's enclosure with a lossless coated metal sphere (thickness 0, k large: the
-// metal reflects all, so the coat's round trips return all of what enters it): in view where the
-// integrator sees delta surfaces from the camera, else behind the camera.
-std::string enclosure(bool sphere, bool in_view) {
-  std::string s = R"({"kasha_scene": 1,
-  "camera": {"position": [0.2, -0.1, 0.3], "look_at": [1, 0.3, -0.5], "fov_deg": 60, "width": 16, "height": 16},
-  "materials": {
-    "clay": {"passive": {"reflectance": {"nm": [380, 450, 550, 650, 780], "value": [0.2, 0.35, 0.6, 0.7, 0.65]}}},
-    "lossless": {"conductor": {"eta": 0.001, "k": 1000}, "coat": {"eta": 1.5, "thickness": 0}}
-  },
-  "shapes": [
-    {"type": "sphere", "center": [0, 0, 0], "radius": 2, "material": "clay", "inward": true,
-     "emission": {"csv": ")" +
-                  emitter_csv() + R"(", "scale": 0.01}})";
-  if (sphere)
-    s +=
-        in_view
-            ? R"(, {"type": "sphere", "center": [0.8, 0.25, -0.4], "radius": 0.7, "material": "lossless"})"
-            : R"(, {"type": "sphere", "center": [-0.5, -0.4, 0.9], "radius": 0.7, "material": "lossless"})";
-  return s + "]}";
-}
-
 class CoatedConductorFurnace : public ::testing::TestWithParam<std::string> {};
 
+// A lossless coated metal sphere (thickness 0, k large: the metal reflects all, so the coat's
+// round trips return all of what enters it) leaves the passive furnace's radiance unchanged.
 TEST_P(CoatedConductorFurnace, LosslessCoatedMetalLeavesTheFurnaceUniform) {
   const std::string integrator = GetParam();
-  const IntegratorInfo& info = IntegratorRegistry::find(integrator);
-  RenderSettings s;
-  s.integrator = integrator;
-  s.grid = GridRequest{380, 780, 20};
-  Furnace f =
-      analyze_furnace(load_scene(write_file("cc_enclosure.json", enclosure(false, false)), s.grid));
-  ASSERT_TRUE(f.qualifies) << f.why_not;
-  const std::string path =
-      write_file("cc_" + integrator + ".json", enclosure(true, info.traits.sees_camera_mirrors));
-  s.integrator_settings.spp = 8;
-  s.integrator_settings.photons = integrator == "ppm" ? 1 << 15 : 1 << 13;
-  s.passes = info.traits.unbiased ? 12 : 16;
-  RenderResult r = render_scene(path, s);
-  BinStats st = pixel_statistics(r.image, true);
-  double worst = 0;
-  for (size_t i = 0; i < f.radiance.size(); ++i)
-    worst = std::max(worst, std::abs(st.mean[i] / f.radiance[i] - 1));
-  std::printf("  %s: worst bin of the image mean off the furnace by %.4f\n", integrator.c_str(),
-              worst);
-  expect_bins_match(r, f.radiance, info.traits.unbiased ? 0.02 : 0.04, integrator,
-                    info.traits.unbiased);
+  const std::string materials = with_clay(
+      R"("lossless": {"conductor": {"eta": 0.001, "k": 1000}, "coat": {"eta": 1.5, "thickness": 0}})");
+  const bool in_view = IntegratorRegistry::find(integrator).traits.sees_camera_mirrors;
+  expect_furnace_render(integrator,
+                        furnace_scene(materials, "clay", FurnaceObject{"lossless", 0.7, in_view}),
+                        furnace_radiance(furnace_scene(materials)));
 }
 
 INSTANTIATE_TEST_SUITE_P(Registry, CoatedConductorFurnace,

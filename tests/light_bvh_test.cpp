@@ -11,10 +11,12 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "chi2.h"
 #include "kernel_harness.h"
+#include "light_sample_kernel.h"
 #include "light_tables.h"
 #include "shared/shared_types.h"
 
@@ -130,8 +132,7 @@ TEST(LightBvh, CoincidentTrianglesStayWithinTheTrail) {
 // ---------------------------------------------------------------------------------------------
 // On the device.
 
-const char* const kPickSource = R"(
-#include "lights/lights.h"
+const std::string kPickSource = std::string(kLightSampleKernelHead) + R"(
 /* Work item j: the light BVH's probability of emitting triangle j at x, and light_pdf_from at its
  * centroid seen from x. */
 __kernel void pick(KASHA_SCENE_PARAMS, __global const float* x_in, __global float* out) {
@@ -149,11 +150,7 @@ __kernel void pick(KASHA_SCENE_PARAMS, __global const float* x_in, __global floa
  * it reports and light_pdf_from at the same point. */
 __kernel void sample(KASHA_SCENE_PARAMS, __global const float* x_in, __global const float* u,
                      __global float* out) {
-  KASHA_SCENE_VIEW(s);
-  size_t i = get_global_id(0);
-  float3 x = vload3(0, x_in);
-  float pdf;
-  LightPoint p = sample_light_from(&s, x, vload2(i, u), &pdf);
+  SAMPLE_LIGHT_AT_X_IN();
   float3 to_x = x - p.position;
   out[3 * i] = (float)p.emitter;
   out[3 * i + 1] = pdf;

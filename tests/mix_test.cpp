@@ -10,6 +10,7 @@
 #include <functional>
 
 #include "core/input_file.h"
+#include "furnace_scene.h"
 #include "render/integrator_registry.h"
 #include "render_support.h"
 #include "scene/pbrt/pbrt_import.h"
@@ -21,20 +22,6 @@ using namespace kasha::test;
 
 namespace {
 
-// The passive furnace (transmission_test.cpp's) with its wall's material `wall`, and the scene's
-// materials and textures.
-std::string furnace(const std::string& materials, const std::string& wall,
-                    const std::string& textures = "{}") {
-  return R"({"kasha_scene": 1, "textures": )" + textures + R"(,
-  "camera": {"position": [0.2, -0.1, 0.3], "look_at": [1, 0.3, -0.5], "fov_deg": 60, "width": 16, "height": 16},
-  "materials": )" +
-         materials +
-         R"(,
-  "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 2, "material": ")" +
-         wall + R"(", "inward": true, "emission": {"csv": ")" +
-         source_path("scenes/data/CIE_D65_300_780.csv") + R"(", "scale": 0.01}}]})";
-}
-
 // Two Lambert reflectances and their blend at t = 0.3, in every bin.
 const char* kLambertMix = R"({
   "dark": {"passive": {"reflectance": {"nm": [380, 780], "value": [0.2, 0.6]}}},
@@ -42,14 +29,8 @@ const char* kLambertMix = R"({
   "wall": {"mix": {"materials": ["dark", "light"], "amount": 0.3}},
   "blend": {"passive": {"reflectance": {"nm": [380, 780], "value": [0.41, 0.51]}}}})";
 
-std::vector<double> furnace_radiance(const std::string& scene, const GridRequest& grid) {
-  Furnace f = analyze_furnace(load_scene(write_file("mix_truth.json", scene), grid));
-  EXPECT_TRUE(f.qualifies) << f.why_not;
-  return f.radiance;
-}
-
 TEST(Mix, ParsedResolvedAndRefused) {
-  const Scene s = load_scene(write_file("mix_parse.json", furnace(kLambertMix, "wall")));
+  const Scene s = load_scene(write_file("mix_parse.json", furnace_scene(kLambertMix, "wall")));
   const Material& wall = s.materials.at(s.material_index("wall"));
   ASSERT_TRUE(wall.mix.has_value());
   EXPECT_EQ(wall.kind, MaterialKind::mix);
@@ -58,8 +39,9 @@ TEST(Mix, ParsedResolvedAndRefused) {
   EXPECT_DOUBLE_EQ(wall.mix->amount, 0.3);
   EXPECT_TRUE(s.mixed());
   const auto refused = [](const std::string& materials, const std::string& textures = "{}") {
-    return error_of(
-        [&] { load_scene(write_file("mix_bad.json", furnace(materials, "m", textures))); });
+    return error_of([&] {
+      load_scene(write_file("mix_bad.json", furnace_scene(materials, "m", std::nullopt, textures)));
+    });
   };
   const std::string lambert = R"("a": {"passive": {"reflectance": 0.5}})";
   EXPECT_NE(refused("{" + lambert + R"(, "m": {"mix": {"materials": ["a", "b"]}}})")
@@ -94,12 +76,13 @@ TEST(Mix, KernelsCarryItOnlyWhereASceneUsesIt) {
   const std::string materials = R"({"plain": {"passive": {"reflectance": 0.5}},
     "ink": {"fluorescence": {"excitation": 0.3, "emission": {"gaussian_nm": 540, "fwhm_nm": 40}}},
     "m": {"mix": {"materials": ["plain", "ink"]}}})";
-  CommandResult mixed = run_kasha("info " + write_file("mix_info.json", furnace(materials, "m")));
+  CommandResult mixed =
+      run_kasha("info " + write_file("mix_info.json", furnace_scene(materials, "m")));
   ASSERT_EQ(mixed.exit_code, 0) << mixed.err;
   EXPECT_NE(mixed.out.find("-D KASHA_MIX=1"), std::string::npos) << mixed.out;
   EXPECT_NE(mixed.out.find("-D KASHA_FLUORESCENCE=1"), std::string::npos) << mixed.out;
   CommandResult plain =
-      run_kasha("info " + write_file("mix_plain.json", furnace(materials, "plain")));
+      run_kasha("info " + write_file("mix_plain.json", furnace_scene(materials, "plain")));
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
   EXPECT_NE(plain.out.find("-D KASHA_MIX=0"), std::string::npos) << plain.out;
   EXPECT_NE(plain.out.find("-D KASHA_FLUORESCENCE=0"), std::string::npos) << plain.out;
@@ -109,21 +92,11 @@ class MixFurnace : public ::testing::TestWithParam<std::string> {};
 
 // A wall that is dark at 70 % of its points and light at 30 % is the furnace of the blend.
 TEST_P(MixFurnace, LambertMixIsTheFurnaceOfTheBlend) {
-  const std::string integrator = GetParam();
-  const IntegratorInfo& info = IntegratorRegistry::find(integrator);
-  RenderSettings s;
-  s.integrator = integrator;
-  s.grid = GridRequest{380, 780, 20};
-  const std::vector<double> truth = furnace_radiance(furnace(kLambertMix, "blend"), *s.grid);
+  const std::vector<double> truth = furnace_radiance(furnace_scene(kLambertMix, "blend"));
   // Either material alone is far from it: the test sees a mix that is not resolved.
-  const std::vector<double> dark = furnace_radiance(furnace(kLambertMix, "dark"), *s.grid);
+  const std::vector<double> dark = furnace_radiance(furnace_scene(kLambertMix, "dark"));
   EXPECT_GT(std::abs(dark[0] / truth[0] - 1), 0.2);
-  s.integrator_settings.spp = 8;
-  s.integrator_settings.photons = integrator == "ppm" ? 1 << 15 : 1 << 13;
-  s.passes = info.traits.unbiased ? 12 : 16;
-  RenderResult r =
-      render_scene(write_file("mix_" + integrator + ".json", furnace(kLambertMix, "wall")), s);
-  expect_bins_match(r, truth, info.traits.unbiased ? 0.02 : 0.04, integrator, info.traits.unbiased);
+  expect_furnace_render(GetParam(), furnace_scene(kLambertMix, "wall"), truth);
 }
 
 INSTANTIATE_TEST_SUITE_P(Registry, MixFurnace, ::testing::ValuesIn(IntegratorRegistry::names(true)),
@@ -146,17 +119,18 @@ TEST(Mix, FluorescentMixAgreesFromBothEnds) {
                      "emission": {"gaussian_nm": 560, "fwhm_nm": 40}}}})";
   const std::string texture = R"({"t": {"type": "checkerboard", "even": 0.4, "odd": 0.4}})";
   RenderSettings s;
-  s.grid = GridRequest{380, 780, 20};
-  const std::vector<double> truth = furnace_radiance(furnace(blend, "b"), *s.grid);
+  s.grid = kFurnaceGrid;
+  const std::vector<double> truth = furnace_radiance(furnace_scene(blend, "b"));
   s.integrator_settings.spp = 8;
   s.integrator_settings.photons = 1 << 13;
   s.passes = 12;
   for (const char* wall : {"m", "mt"})
     for (const char* integrator : {"backward", "vcm"}) {
       s.integrator = integrator;
-      RenderResult r = render_scene(
-          write_file(std::string("mix_ink_") + wall + ".json", furnace(materials, wall, texture)),
-          s);
+      RenderResult r =
+          render_scene(write_file(std::string("mix_ink_") + wall + ".json",
+                                  furnace_scene(materials, wall, std::nullopt, texture)),
+                       s);
       EXPECT_EQ(r.scene.textured(), std::string(wall) == "mt");
       expect_bins_match(r, truth, 0.02, std::string(integrator) + " " + wall, true);
     }
@@ -174,12 +148,12 @@ TEST(Mix, MirrorMixConnectsWhereTheLightPathChoseLambert) {
     "b": {"passive": {"reflectance": 0.25}, "gloss": {"reflectance": 0.45, "mirror": true}}})";
   RenderSettings s;
   s.grid = GridRequest{380, 780, 40};
-  const std::vector<double> truth = furnace_radiance(furnace(materials, "b"), *s.grid);
+  const std::vector<double> truth = furnace_radiance(furnace_scene(materials, "b"), *s.grid);
   s.integrator_settings.spp = 8;
   s.passes = 12;
   for (const char* integrator : {"backward", "bpt"}) {
     s.integrator = integrator;
-    RenderResult r = render_scene(write_file("mix_mirror.json", furnace(materials, "m")), s);
+    RenderResult r = render_scene(write_file("mix_mirror.json", furnace_scene(materials, "m")), s);
     expect_bins_match(r, truth, 0.02, integrator, true);
   }
 }
@@ -190,10 +164,10 @@ TEST(Mix, MergingOnAMirrorMixIsWarnedAbout) {
   const std::string materials = R"({"matte": {"passive": {"reflectance": 0.5}},
     "mirror": {"gloss": {"reflectance": 0.9, "mirror": true}},
     "m": {"mix": {"materials": ["matte", "mirror"]}}})";
-  const std::string mirror_mix = write_file("mix_warn.json", furnace(materials, "m"));
+  const std::string mirror_mix = write_file("mix_warn.json", furnace_scene(materials, "m"));
   EXPECT_TRUE(load_scene(mirror_mix).mixes_delta());
   EXPECT_FALSE(
-      load_scene(write_file("mix_nowarn.json", furnace(kLambertMix, "wall"))).mixes_delta());
+      load_scene(write_file("mix_nowarn.json", furnace_scene(kLambertMix, "wall"))).mixes_delta());
   const std::string warning = "a mix with a smooth (delta) material";
   for (const char* integrator : {"vcm", "photon", "backward", "bpt"}) {
     const CommandResult r =

@@ -14,6 +14,7 @@
 
 #include "chi2.h"
 #include "kernel_harness.h"
+#include "light_sample_kernel.h"
 #include "render/device_scene.h"
 #include "render_support.h"
 #include "scene/scene.h"
@@ -29,15 +30,10 @@ namespace {
 // Work item i: next-event estimation at x (normal +z) with u[2i], u[2i+1]: the irradiance sample
 // L cos / pdf (0 where it failed), whether it landed, and its density against light_pdf_from at
 // the triangle the direction to the point hits first.
-const char* const kNeeSource = R"(
-#include "lights/lights.h"
+const std::string kNeeSource = std::string(kLightSampleKernelHead) + R"(
 __kernel void nee(KASHA_SCENE_PARAMS, __global const float* x_in, __global const float* u,
                   __global float* out) {
-  KASHA_SCENE_VIEW(s);
-  size_t i = get_global_id(0);
-  float3 x = vload3(0, x_in);
-  float pdf;
-  LightPoint p = sample_light_from(&s, x, vload2(i, u), &pdf);
+  SAMPLE_LIGHT_AT_X_IN();
   __global float* o = out + 4 * i;
   o[0] = o[1] = o[2] = o[3] = 0.0f;
   if (!(pdf > 0.0f)) return;

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "furnace_scene.h"
 #include "material/material.h"
 #include "render/integrator_registry.h"
 #include "render_support.h"
@@ -79,34 +80,21 @@ NamedMaterial "x"
   EXPECT_NE(e.find("dt2.pbrt:7: diffusetransmission"), std::string::npos) << e;
 }
 
-// The passive furnace's enclosure (the truth) and the same with a lossless transmitter in view:
-// ρ rising where τ falls, ρ + τ = 1 in every bin.
-const char* kEnclosure = R"(
-  "camera": {"position": [0.2, -0.1, 0.3], "look_at": [1, 0.3, -0.5], "fov_deg": 60, "width": 16, "height": 16},
-  "materials": {
-    "clay": {"passive": {"reflectance": {"nm": [380, 450, 550, 650, 780], "value": [0.2, 0.35, 0.6, 0.7, 0.65]}}},
-    "veil": {"passive": {"reflectance": {"nm": [380, 780], "value": [0.2, 0.7]}},
-             "transmission": {"transmittance": {"nm": [380, 780], "value": [0.8, 0.3]}}}
-  },
-  "shapes": [
-    {"type": "sphere", "center": [0, 0, 0], "radius": 2, "material": "clay", "inward": true,
-     "emission": {"csv": ")";
+// A lossless transmitter: ρ rising where τ falls, ρ + τ = 1 in every bin.
+const char* kVeil = R"("passive": {"reflectance": {"nm": [380, 780], "value": [0.2, 0.7]}},
+    "transmission": {"transmittance": {"nm": [380, 780], "value": [0.8, 0.3]}})";
 
-// `textured`: the veil's reflectance texture (a checkerboard of ones) multiplies ρ and τ.
+// The passive furnace (the truth) and the same with the veil in view; `textured`: the veil's
+// reflectance texture (a checkerboard of ones) multiplies ρ and τ.
 std::string enclosure(bool veil, bool textured = false) {
-  std::string s =
-      std::string("{\"kasha_scene\": 1,") +
-      (textured ? R"("textures": {"ones": {"type": "checkerboard", "even": 1, "odd": 1}},)" : "") +
-      kEnclosure + source_path("scenes/data/CIE_D65_300_780.csv") + "\", \"scale\": 0.01}}";
-  if (veil)
-    s += R"(, {"type": "sphere", "center": [0.8, 0.25, -0.4], "radius": 0.35, "material": "veil"})";
-  s += "]}";
-  if (textured) {
-    auto j = nlohmann::json::parse(s);
-    j["materials"]["veil"]["textures"] = {{"reflectance", "ones"}};
-    s = j.dump();
-  }
-  return s;
+  const std::string materials =
+      with_clay(R"("veil": {)" + std::string(kVeil) +
+                (textured ? R"(, "textures": {"reflectance": "ones"}})" : "}"));
+  std::optional<FurnaceObject> object;
+  if (veil) object = FurnaceObject{"veil", 0.35, true};
+  return furnace_scene(
+      materials, "clay", object,
+      textured ? R"({"ones": {"type": "checkerboard", "even": 1, "odd": 1}})" : "{}");
 }
 
 // The textured kernels' path (ρ and τ through the texture) in the two integrators that sample
@@ -116,14 +104,13 @@ TEST(DiffuseTransmission, ATexturedTransmitterKeepsTheFurnaceUniform) {
     RenderSettings s;
     s.integrator = integrator;
     s.grid = GridRequest{380, 780, 40};
-    Furnace f = analyze_furnace(load_scene(write_file("enclosure.json", enclosure(false)), s.grid));
-    ASSERT_TRUE(f.qualifies) << f.why_not;
+    const std::vector<double> truth = furnace_radiance(enclosure(false), *s.grid);
     s.integrator_settings.spp = 8;
     s.integrator_settings.photons = 1 << 13;
     s.passes = 8;
     RenderResult r = render_scene(write_file("veil_textured.json", enclosure(true, true)), s);
     EXPECT_TRUE(r.scene.textured());
-    expect_bins_match(r, f.radiance, 0.02, integrator, true);
+    expect_bins_match(r, truth, 0.02, integrator, true);
   }
 }
 
@@ -143,26 +130,7 @@ TEST(DiffuseTransmission, KernelsCarryItOnlyWhereASceneUsesIt) {
 class TransmissionFurnace : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(TransmissionFurnace, LosslessTransmitterLeavesTheFurnaceUniform) {
-  const std::string integrator = GetParam();
-  const IntegratorInfo& info = IntegratorRegistry::find(integrator);
-  RenderSettings s;
-  s.integrator = integrator;
-  s.grid = GridRequest{380, 780, 20};
-  Furnace f = analyze_furnace(load_scene(write_file("enclosure.json", enclosure(false)), s.grid));
-  ASSERT_TRUE(f.qualifies) << f.why_not;
-  const std::string path = write_file("veil_" + integrator + ".json", enclosure(true));
-  s.integrator_settings.spp = 8;
-  s.integrator_settings.photons = integrator == "ppm" ? 1 << 15 : 1 << 13;
-  s.passes = info.traits.unbiased ? 12 : 16;
-  RenderResult r = render_scene(path, s);
-  BinStats st = pixel_statistics(r.image, true);
-  double worst = 0;
-  for (size_t i = 0; i < f.radiance.size(); ++i)
-    worst = std::max(worst, std::abs(st.mean[i] / f.radiance[i] - 1));
-  std::printf("  %s: worst bin of the image mean off the furnace by %.4f\n", integrator.c_str(),
-              worst);
-  expect_bins_match(r, f.radiance, info.traits.unbiased ? 0.02 : 0.04, integrator,
-                    info.traits.unbiased);
+  expect_furnace_render(GetParam(), enclosure(true), furnace_radiance(enclosure(false)));
 }
 
 INSTANTIATE_TEST_SUITE_P(Registry, TransmissionFurnace,

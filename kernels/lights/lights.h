@@ -48,6 +48,28 @@ typedef struct {
 #endif
 } LightPoint;
 
+/* A light point at `position` facing `normal`, of emitter row `emitter` (-1: none) and eps 0, its
+ * other fields neutral (scale 1, no delta light, no source, no environment texel): where a light
+ * sample starts, and what a failed one returns. */
+inline LightPoint light_point(float3 position, float3 normal, int emitter) {
+  LightPoint p;
+  p.position = position;
+  p.normal = normal;
+  p.emitter = emitter;
+  p.eps = 0.0f;
+#if KASHA_LIGHT_SOURCES || KASHA_EMISSION_TEXTURES
+  p.scale = 1.0f;
+#endif
+#if KASHA_LIGHT_SOURCES
+  p.delta = false;
+  p.source = 0;
+#endif
+#if KASHA_ENVIRONMENT
+  p.le = 0;
+#endif
+  return p;
+}
+
 /* The spectral radiance (or intensity, irradiance) of the light point. */
 inline const __global float* light_point_spectrum(const SceneView* s, const LightPoint* p) {
 #if KASHA_ENVIRONMENT
@@ -285,19 +307,7 @@ inline LightPoint sample_light_triangle(const SceneView* s, int tri, float pick,
   float3 v0 = load_float3(t->v0), v1 = load_float3(t->v1), v2 = load_float3(t->v2);
   float3 cr = cross(v1 - v0, v2 - v0);
   float area = 0.5f * length(cr);
-  LightPoint p;
-  p.normal = normalize(cr);
-  p.emitter = t->emitter;
-#if KASHA_LIGHT_SOURCES || KASHA_EMISSION_TEXTURES
-  p.scale = 1.0f;
-#endif
-#if KASHA_LIGHT_SOURCES
-  p.delta = false;
-  p.source = 0;
-#endif
-#if KASHA_ENVIRONMENT
-  p.le = 0;
-#endif
+  LightPoint p = light_point(x, normalize(cr), t->emitter); /* position and eps found below */
   float omega = triangle_solid_angle(x, v0, v1, v2);
   *pdf = 0.0f;
   if (spherical_sampling(omega)) {

@@ -62,21 +62,7 @@ inline LightPoint sample_sphere_light(const SceneView* s, const KSphereLight* l,
   float3 w = sample_cone_1mcos(d2 > 0.0f ? to * rsqrt(d2) : (float3)(0.0f, 0.0f, 1.0f), omc, u);
   float along = dot(to, w), tmin = 0.0f;
   if (d2 > r2) tmin = 0.999f * (along - sqrt(fmax(0.0f, r2 - (d2 - along * along))));
-  LightPoint p;
-  p.emitter = -1;
-  p.position = x;
-  p.normal = w;
-  p.eps = 0.0f;
-#if KASHA_LIGHT_SOURCES || KASHA_EMISSION_TEXTURES
-  p.scale = 1.0f;
-#endif
-#if KASHA_LIGHT_SOURCES
-  p.delta = false;
-  p.source = 0;
-#endif
-#if KASHA_ENVIRONMENT
-  p.le = 0;
-#endif
+  LightPoint p = light_point(x, w, -1);
   *pdf = 0.0f;
   float t, bu, bv;
   ++s->rays->closest;

@@ -8,6 +8,7 @@
 #define KASHA_MIX_H
 
 #include "geometry/scene_view.h"
+#include "shared/alpha_test.h"
 #include "shared/texture_lookup.h"
 
 #ifndef KASHA_MIX
@@ -18,20 +19,10 @@
 #endif
 
 #if KASHA_MIX
-/* MurmurHash3's 64-bit finalizer over each word in turn (as alpha_hash): a uniform value in
- * [0, 1) from the point's coordinates and the mix's two materials. */
+/* A uniform value in [0, 1) from the point's coordinates and the mix's two materials. */
 inline float mix_hash(float3 x, int a, int b) {
   uint words[5] = {as_uint(x.x), as_uint(x.y), as_uint(x.z), (uint)a, (uint)b};
-  ulong h = 0x9e3779b97f4a7c15UL;
-  for (int k = 0; k < 5; ++k) {
-    h ^= (ulong)words[k];
-    h ^= h >> 33;
-    h *= 0xff51afd7ed558ccdUL;
-    h ^= h >> 33;
-    h *= 0xc4ceb9fe1a85ec53UL;
-    h ^= h >> 33;
-  }
-  return (float)(uint)(h >> 40) * 0x1p-24f;
+  return hash_words(words, 5);
 }
 
 /* A mix's amount at barycentrics b of leaf triangle tri: its constant, or its texture's value. */

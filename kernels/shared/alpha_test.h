@@ -30,12 +30,12 @@ typedef struct {
   const KASHA_GLOBAL float* values; /* an image's scalar texels */
 } AlphaTables;
 
-/* MurmurHash3's 64-bit finalizer over each word in turn: a uniform value in [0, 1) from the ray
- * (origin, direction) and the triangle's scene index. */
-inline float alpha_hash(const float* ray, int prim) {
+/* MurmurHash3's 64-bit finalizer over each of the n words in turn: a uniform value in [0, 1)
+ * (the alpha test's and the mixes' choices). */
+inline float hash_words(const uint* words, int n) {
   ulong h = 0x9e3779b97f4a7c15UL;
-  for (int k = 0; k < 7; ++k) {
-    h ^= k < 6 ? (ulong)alpha_float_bits(ray[k]) : (ulong)(uint)prim;
+  for (int k = 0; k < n; ++k) {
+    h ^= (ulong)words[k];
     h ^= h >> 33;
     h *= 0xff51afd7ed558ccdUL;
     h ^= h >> 33;
@@ -43,6 +43,14 @@ inline float alpha_hash(const float* ray, int prim) {
     h ^= h >> 33;
   }
   return (float)(uint)(h >> 40) * 0x1p-24f;
+}
+
+/* The alpha test's value from the ray (origin, direction) and the triangle's scene index. */
+inline float alpha_hash(const float* ray, int prim) {
+  uint words[7];
+  for (int k = 0; k < 6; ++k) words[k] = alpha_float_bits(ray[k]);
+  words[6] = (uint)prim;
+  return hash_words(words, 7);
 }
 
 /* The alpha at barycentrics (b1, b2) of triangle tri: 1 for a shape without one. */
