@@ -13,70 +13,19 @@
 #include "geometry/bvh_traversal.h"
 #include "lights/environment.h"
 #include "lights/light_bvh.h"
+#include "lights/light_point.h"
+#include "lights/sphere_light.h"
 #include "geometry/hit_point.h"
 #include "sampling/sampling.h"
 #include "geometry/scene_view.h"
 #include "materials/texture.h"
 
-#ifndef KASHA_LIGHT_SOURCES
-#define KASHA_LIGHT_SOURCES 0 /* some light is not a triangle (KLight) */
-#endif
 #ifndef KASHA_SPOT_LIGHTS
 #define KASHA_SPOT_LIGHTS 0
 #endif
 #ifndef KASHA_INFINITE_LIGHTS
 #define KASHA_INFINITE_LIGHTS 0
 #endif
-#ifndef KASHA_SPHERE_LIGHTS
-#define KASHA_SPHERE_LIGHTS 0 /* some emitting sphere is sampled as one light (sphere_light.h) */
-#endif
-
-typedef struct {
-  float3 position;
-  float3 normal; /* front side */
-  int emitter;   /* the row of emitter_radiance */
-  float eps; /* the point's rounding bound along the normal (hit_point.h's surface_offset) */
-#if KASHA_LIGHT_SOURCES || KASHA_EMISSION_TEXTURES
-  float scale; /* on the spectrum: a point light's 1/d², a spot's falloff, an emission texture */
-#endif
-#if KASHA_LIGHT_SOURCES
-  bool delta; /* no other strategy can find it: a point, a spot, a distant light */
-  const __global KLight* source; /* the light that is not a triangle, else null */
-#endif
-#if KASHA_ENVIRONMENT
-  const __global float* le; /* an environment texel's radiance (the scratch spectrum), else null */
-#endif
-} LightPoint;
-
-/* A light point at `position` facing `normal`, of emitter row `emitter` (-1: none) and eps 0, its
- * other fields neutral (scale 1, no delta light, no source, no environment texel): where a light
- * sample starts, and what a failed one returns. */
-inline LightPoint light_point(float3 position, float3 normal, int emitter) {
-  LightPoint p;
-  p.position = position;
-  p.normal = normal;
-  p.emitter = emitter;
-  p.eps = 0.0f;
-#if KASHA_LIGHT_SOURCES || KASHA_EMISSION_TEXTURES
-  p.scale = 1.0f;
-#endif
-#if KASHA_LIGHT_SOURCES
-  p.delta = false;
-  p.source = 0;
-#endif
-#if KASHA_ENVIRONMENT
-  p.le = 0;
-#endif
-  return p;
-}
-
-/* The spectral radiance (or intensity, irradiance) of the light point. */
-inline const __global float* light_point_spectrum(const SceneView* s, const LightPoint* p) {
-#if KASHA_ENVIRONMENT
-  if (p->le) return p->le;
-#endif
-  return emitter_spectrum(s, p->emitter);
-}
 
 /* The emitting triangle whose CDF step holds u (the first with light_cdf > u). */
 inline int choose_light(const __global float* light_cdf, int light_count, float u) {
@@ -340,21 +289,6 @@ inline LightPoint sample_light_triangle(const SceneView* s, int tri, float pick,
  * the other lights are picked from has it. */
 inline float light_triangle_share(const SceneView* s) { return s->light_cdf[s->light_triangles - 1]; }
 
-/* The index of emitting triangle `tri` (leaf order) among the emitting triangles, which light_tri
- * lists in ascending order; -1 when it is not one (it emits nothing). */
-inline int emitting_index(const SceneView* s, int tri) {
-  int lo = 0, hi = s->light_triangles - 1;
-  while (lo < hi) {
-    int mid = (lo + hi) / 2;
-    if (s->light_tri[mid] < tri) lo = mid + 1;
-    else hi = mid;
-  }
-  return hi >= 0 && s->light_tri[lo] == tri ? lo : -1;
-}
-
-#if KASHA_SPHERE_LIGHTS
-#include "lights/sphere_light.h"
-#endif
 
 /* A light point for next-event estimation at x, with the solid-angle density of having sampled
  * its direction (0 when the sample failed). u.x picks the light and, rescaled to the part of

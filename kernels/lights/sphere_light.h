@@ -10,7 +10,16 @@
 #ifndef KASHA_SPHERE_LIGHT_H
 #define KASHA_SPHERE_LIGHT_H
 
-/* Included by lights.h, after LightPoint and emitting_index. */
+#include "geometry/hit_point.h"
+#include "lights/light_point.h"
+#include "materials/texture.h"
+#include "sampling/sampling.h"
+
+#ifndef KASHA_SPHERE_LIGHTS
+#define KASHA_SPHERE_LIGHTS 0 /* some emitting sphere is sampled as one light */
+#endif
+
+#if KASHA_SPHERE_LIGHTS
 
 /* The sphere light of emitting triangle j (its index in light_tri); radius 0: none. */
 inline KSphereLight sphere_light_of(const SceneView* s, int j) { return s->light_spheres[j]; }
@@ -87,5 +96,7 @@ inline LightPoint sample_sphere_light(const SceneView* s, const KSphereLight* l,
   *pdf = sphere_light_pdf(l, pick, x);
   return p;
 }
+
+#endif /* KASHA_SPHERE_LIGHTS */
 
 #endif
