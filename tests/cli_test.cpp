@@ -166,10 +166,10 @@ TEST(Cli, InfoReportsGridFeaturesOptionsAndMemory) {
                 " --bin-nm 5");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("wavelengths: 300–780 nm, 96 bins of 5 nm"), std::string::npos) << r.out;
-  expect_one_line_error(run_kasha("info " +
-                                  shell_quoted(test::source_path("scenes/cornell_box.json")) +
-                                  " --bin-nm 0.01"),
-                        "--bin-nm: 0.01 is not in [0.1, 1000]");
+  expect_one_line_error(
+      run_kasha("info " + shell_quoted(test::source_path("scenes/cornell_box.json")) +
+                " --bin-nm 0.01"),
+      "--bin-nm: 0.01 is not in [0.1, 1000]");
 }
 
 TEST(Cli, CtrlCWritesTheImageSoFar) {
@@ -221,9 +221,10 @@ TEST(Cli, CompareReportsErrorsWithAndWithoutTheLampPixels) {
   auto blocks = run_kasha("compare " + shell_quoted(a) + " " + shell_quoted(b) + " --block 8");
   ASSERT_EQ(blocks.exit_code, 0) << blocks.err;
   double block_rmse = -1, block_rel = -1, all2 = -1, rel2 = -1;
-  ASSERT_EQ(std::sscanf(blocks.out.c_str(), "rmse %lf relmse %lf | 8x8 block means: rmse %lf relmse %lf",
-                        &all2, &rel2, &block_rmse, &block_rel),
-            4)
+  ASSERT_EQ(
+      std::sscanf(blocks.out.c_str(), "rmse %lf relmse %lf | 8x8 block means: rmse %lf relmse %lf",
+                  &all2, &rel2, &block_rmse, &block_rel),
+      4)
       << blocks.out;
   EXPECT_EQ(all2, all);
   EXPECT_GT(block_rmse, 0);

@@ -11,17 +11,17 @@
 #include <fcntl.h>
 #include <gtest/gtest.h>
 #include <qoi.h>
-#include <stb_image_write.h>
 #include <signal.h>
+#include <stb_image_write.h>
 #include <unistd.h>
 #include <zlib.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
-#include <array>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -43,11 +43,11 @@
 #include "image/exr_io.h"
 #include "image/png_preview.h"
 #include "image/rgb_image.h"
+#include "mesh_writers.h"
 #include "render/device_scene.h"
 #include "render/render_job.h"
 #include "scene/ply_mesh.h"
 #include "scene/scene.h"
-#include "mesh_writers.h"
 #include "test_support.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -529,13 +529,16 @@ static std::string gzip_bytes(const std::string& data) {
 
 TEST(Fuzz, MutatedPlyAndGzipMeshesReadOrGiveOneLine) {
   const std::string quads =
-      "ply\nformat ascii 1.0\ncomment quads\nelement vertex 5\nproperty double x\nproperty double y\n"
+      "ply\nformat ascii 1.0\ncomment quads\nelement vertex 5\nproperty double x\nproperty double "
+      "y\n"
       "property double z\nproperty float texture_s\nproperty float texture_t\nproperty short nx\n"
-      "property short ny\nproperty short nz\nelement face 3\nproperty list int uint vertex_indices\n"
+      "property short ny\nproperty short nz\nelement face 3\nproperty list int uint "
+      "vertex_indices\n"
       "property int face_indices\nelement extra 1\nproperty list uchar float values\nend_header\n"
       "0 0 0 0 0 0 0 1\n1 0 0 1 0 0 0 1\n1 1 0 1 1 0 0 1\n0 1 0 0 1 0 0 1\n2 2 0 1 1 0 0 1\n"
       "4 0 1 2 3 0\n5 0 1 2 3 4 1\n3 2 3 4 2\n2 0.5 1.5\n";
-  const std::vector<std::string> seeds = {mesh_ply(tent_mesh(), true), mesh_ply(tent_mesh(), false), quads};
+  const std::vector<std::string> seeds = {mesh_ply(tent_mesh(), true), mesh_ply(tent_mesh(), false),
+                                          quads};
   std::mt19937 rng(11);
   const int cases = fuzz_cases(400);
   int read = 0, refused = 0;
@@ -575,9 +578,10 @@ TEST(Fuzz, MutatedPlyAndGzipMeshesReadOrGiveOneLine) {
 // image beyond the pixel limit (sizes are checked before the pixels are allocated).
 TEST(Fuzz, MutatedSceneImagesReadOrGiveOneLine) {
   const fs::path dir = scratch_dir();
-  const unsigned char px[48] = {0, 9, 18, 27, 36, 45, 54, 63, 72, 81, 90, 99, 108, 117, 126, 135,
-                                1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16,
-                                200, 210, 220, 230, 240, 250, 255, 0, 0, 7, 77, 177, 17, 27, 37, 47};
+  const unsigned char px[48] = {0,   9,   18,  27,  36, 45, 54, 63,  72,  81,  90,  99,
+                                108, 117, 126, 135, 1,  2,  3,  4,   5,   6,   7,   8,
+                                9,   10,  11,  12,  13, 14, 15, 16,  200, 210, 220, 230,
+                                240, 250, 255, 0,   0,  7,  77, 177, 17,  27,  37,  47};
   std::vector<float> f(px, px + 48);
   ASSERT_TRUE(stbi_write_png((dir / "seed.png").string().c_str(), 4, 4, 3, px, 12));
   ASSERT_TRUE(stbi_write_tga((dir / "seed.tga").string().c_str(), 4, 4, 3, px));

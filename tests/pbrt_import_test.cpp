@@ -7,6 +7,8 @@
 //   `scale` times the RGB's luminance, whatever its spectrum (computed here from the CIE table);
 // - named spectra, metals and glasses map to kasha's; --material replaces a named material or
 //   an object's; bad input is one line with FILE:LINE, ignored input one warning each.
+#include "scene/pbrt/pbrt_import.h"
+
 #include <gtest/gtest.h>
 #include <stb_image_write.h>
 
@@ -16,7 +18,6 @@
 
 #include "color/cie_observer.h"
 #include "render_support.h"
-#include "scene/pbrt/pbrt_import.h"
 #include "scene/pbrt/pbrt_parameters.h"
 #include "scene/pbrt/pbrt_subdivision.h"
 #include "scene/pbrt/pbrt_tokenizer.h"
@@ -68,8 +69,9 @@ void expect_matrix(const std::vector<double>& got, const std::vector<double>& wa
 }  // namespace
 
 TEST(PbrtTokenizer, WordsStringsBracketsAndCommentsWithTheirLines) {
-  const auto t = all_tokens("Shape \"sphere\" # a comment \"not a string\"\n"
-                            "  \"float radius\" [ 2.5e-1 ]\n\"a \\\"quoted\\\" \\\\ word\"");
+  const auto t = all_tokens(
+      "Shape \"sphere\" # a comment \"not a string\"\n"
+      "  \"float radius\" [ 2.5e-1 ]\n\"a \\\"quoted\\\" \\\\ word\"");
   ASSERT_EQ(t.size(), 7u);
   EXPECT_EQ(t[0].kind, PbrtToken::kWord);
   EXPECT_EQ(t[0].text, "Shape");
@@ -86,8 +88,10 @@ TEST(PbrtTokenizer, WordsStringsBracketsAndCommentsWithTheirLines) {
   EXPECT_EQ(t[6].where.str(), "t.pbrt:3");
   EXPECT_EQ(error_of([] { all_tokens("Shape\n\n\"sphere"); }),
             "t.pbrt:3: a string without its closing quote");
-  EXPECT_EQ(error_of([] { all_tokens("Shape \"a\\qb\""); }), "t.pbrt:1: unknown escape \\q in a string");
-  EXPECT_EQ(error_of([] { all_tokens("Sha\x01pe"); }), "t.pbrt:1: a control byte \\x01 in the file");
+  EXPECT_EQ(error_of([] { all_tokens("Shape \"a\\qb\""); }),
+            "t.pbrt:1: unknown escape \\q in a string");
+  EXPECT_EQ(error_of([] { all_tokens("Sha\x01pe"); }),
+            "t.pbrt:1: a control byte \\x01 in the file");
 }
 
 TEST(PbrtParameters, TypedValuesAndTheirErrors) {
@@ -177,8 +181,8 @@ AttributeEnd
   EXPECT_EQ(cam.at("fov_deg"), 45);
   EXPECT_EQ(cam.at("width"), 8);
   // `Scale -1 1 1` before LookAt (a common way to a right-handed pbrt scene) unmirrors it.
-  const nlohmann::json r = import_text(
-      "r.pbrt", "Scale -1 1 1\n" + scene(kQuad));  // the LookAt comes after the Scale
+  const nlohmann::json r =
+      import_text("r.pbrt", "Scale -1 1 1\n" + scene(kQuad));  // the LookAt comes after the Scale
   EXPECT_EQ(r.at("camera").at("mirror"), false);
 }
 
@@ -220,8 +224,9 @@ AttributeEnd
                 "red": {"passive": {"reflectance": {"rgb": [0.6, 0.1, 0.1]}}}},
   "shapes": [
     {"type": "quad", "corner": [-0.25, 1.75, -0.25], "u": [0.5, 0, 0], "v": [0, 0, 0.5],
-     "material": "lamp", "emission": {"nm": [300, 800], "value": [1, 1], "scale": )") + scale +
-                                                     R"(}},
+     "material": "lamp", "emission": {"nm": [300, 800], "value": [1, 1], "scale": )") +
+                                                       scale +
+                                                       R"(}},
     {"type": "quad", "corner": [-1, 0, -1], "u": [0, 0, 2], "v": [2, 0, 0], "material": "grey"},
     {"type": "quad", "corner": [-1, 0, -1], "u": [2, 0, 0], "v": [0, 2, 0], "material": "grey"},
     {"type": "quad", "corner": [0, 0, -1], "u": [0, 2, 0], "v": [0, 0, 2], "material": "red",
@@ -253,7 +258,8 @@ TEST(PbrtImport, LightsTakePbrtV4sPhotometricScale) {
     double y;
   };
   const double y_rgb = 0.2126 * 0.2 + 0.7152 * 0.5 + 0.0722 * 0.1;  // sRGB luminance
-  for (const Case& c : {Case{"\"rgb L\" [1 1 1]", 1.0}, Case{"\"rgb L\" [0.2 0.5 0.1] \"float scale\" 2", 2 * y_rgb},
+  for (const Case& c : {Case{"\"rgb L\" [1 1 1]", 1.0},
+                        Case{"\"rgb L\" [0.2 0.5 0.1] \"float scale\" 2", 2 * y_rgb},
                         Case{"\"blackbody L\" 3000 \"float scale\" 3", 3.0},
                         Case{"\"spectrum L\" \"stdillum-A\"", 1.0},
                         Case{"\"spectrum L\" [420 1 640 1] \"float scale\" 0.5", 0.5}}) {
@@ -296,14 +302,18 @@ MakeNamedMaterial "coat" "string type" "coateddiffuse" "rgb reflectance" [0.2 0.
 NamedMaterial "gold"
 )" + std::string(kQuad)));
   const nlohmann::json& m = s.at("materials");
-  EXPECT_EQ(m.at("gold"), nlohmann::json::parse(
-                              R"({"conductor": {"metal": "Au", "roughness": 0.1, "remap_roughness": true}})"));
+  EXPECT_EQ(m.at("gold"),
+            nlohmann::json::parse(
+                R"({"conductor": {"metal": "Au", "roughness": 0.1, "remap_roughness": true}})"));
   EXPECT_EQ(m.at("copper").at("conductor").at("metal"), "Cu");  // pbrt-v4's default conductor
   EXPECT_EQ(m.at("bk7").at("dielectric").at("eta"), "BK7");
-  EXPECT_EQ(m.at("file").at("dielectric").at("eta"), nlohmann::json::parse(R"({"csv": "data/n.spd"})"));
-  EXPECT_EQ(m.at("coat").at("coat"), nlohmann::json::parse(
-                                         R"({"eta": 1.5, "thickness": 0.01, "roughness": 0.1, "remap_roughness": true})"));
-  EXPECT_EQ(m.at("coat").at("passive").at("reflectance"), nlohmann::json::parse(R"({"rgb": [0.2, 0.3, 0.4]})"));
+  EXPECT_EQ(m.at("file").at("dielectric").at("eta"),
+            nlohmann::json::parse(R"({"csv": "data/n.spd"})"));
+  EXPECT_EQ(m.at("coat").at("coat"),
+            nlohmann::json::parse(
+                R"({"eta": 1.5, "thickness": 0.01, "roughness": 0.1, "remap_roughness": true})"));
+  EXPECT_EQ(m.at("coat").at("passive").at("reflectance"),
+            nlohmann::json::parse(R"({"rgb": [0.2, 0.3, 0.4]})"));
 }
 
 TEST(PbrtImport, BadInputIsOneLineWithItsFileAndLine) {
@@ -321,11 +331,14 @@ TEST(PbrtImport, BadInputIsOneLineWithItsFileAndLine) {
       {"AttributeEnd", "b.pbrt:5: AttributeEnd without its AttributeBegin"},
       {"AttributeBegin", "b.pbrt:5: AttributeBegin without its AttributeEnd"},
       {"Include \"missing.pbrt\"", "b.pbrt:5: "},
-      {"NamedMaterial \"nope\"\n" + std::string(kQuad), "b.pbrt:5: NamedMaterial \"nope\": no material of that name"},
-      {"LightSource \"goniometric\"", "b.pbrt:5: LightSource \"goniometric\" is not built in kasha"},
+      {"NamedMaterial \"nope\"\n" + std::string(kQuad),
+       "b.pbrt:5: NamedMaterial \"nope\": no material of that name"},
+      {"LightSource \"goniometric\"",
+       "b.pbrt:5: LightSource \"goniometric\" is not built in kasha"},
       {"Translate 1 2 x", "b.pbrt:5: Translate: \"x\" is not a finite number"},
       {"Rotate 30 0 0 0", "b.pbrt:5: Rotate about a zero axis"},
-      {"Scale 0 1 1\n" + std::string(kQuad), "b.pbrt:6: the shape's transform is singular or projective"},
+      {"Scale 0 1 1\n" + std::string(kQuad),
+       "b.pbrt:6: the shape's transform is singular or projective"},
       {"Shape \"sphere\" \"float radius\" -1", "b.pbrt:5: \"radius\" must be positive"},
       {"Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 3]",
        "b.pbrt:5: Shape \"trianglemesh\": index 3"},
@@ -351,8 +364,10 @@ TEST(PbrtImport, BadInputIsOneLineWithItsFileAndLine) {
   const std::string bad = write_file("bad.pbrt", scene("Shape \"teapot\""));
   CommandResult r = run_kasha("render " + bad + " --passes 1 -o " + out);
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err, "kasha: error: " + bad + ":5: unknown shape type \"teapot\" (kasha reads "
-                   "trianglemesh, plymesh, bilinearmesh, loopsubdiv, sphere, cylinder, disk)\n");
+  EXPECT_EQ(r.err,
+            "kasha: error: " + bad +
+                ":5: unknown shape type \"teapot\" (kasha reads "
+                "trianglemesh, plymesh, bilinearmesh, loopsubdiv, sphere, cylinder, disk)\n");
   EXPECT_FALSE(std::ifstream(out).good());
 }
 
@@ -413,8 +428,8 @@ AttributeEnd
        at = r.err.find("kasha's bilinear lookup", at + 1))
     ++warnings;
   EXPECT_EQ(warnings, 1u) << r.err;
-  const std::string bad = write_file(
-      "enc.pbrt", scene(R"(Texture "d" "spectrum" "imagemap" "string filename" "tex.png"
+  const std::string bad =
+      write_file("enc.pbrt", scene(R"(Texture "d" "spectrum" "imagemap" "string filename" "tex.png"
   "string encoding" "gamma x")"));
   r = run_kasha("info " + bad);
   EXPECT_EQ(r.exit_code, 1);
@@ -444,13 +459,15 @@ ObjectInstance "card"
   EXPECT_TRUE(object.fluorescent());
   EXPECT_FALSE(object.materials[object.shapes[0].material].fluorescent());
   EXPECT_TRUE(object.materials[object.shapes[1].material].fluorescent());
-  EXPECT_NE(error_of([&] { load_scene(file, std::nullopt, "", {{"nothing", postit}}); })
+  EXPECT_NE(error_of([&] {
+              load_scene(file, std::nullopt, "", {{"nothing", postit}});
+            })
                 .find("--material nothing=" + postit + ": " + file +
                       " has no material or object named \"nothing\""),
             std::string::npos);
   // The same option on a kasha JSON scene, through the command line.
-  CommandResult r = run_kasha("info " + source_path("scenes/cornell_box.json") +
-                              " --material white=" + postit);
+  CommandResult r =
+      run_kasha("info " + source_path("scenes/cornell_box.json") + " --material white=" + postit);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   r = run_kasha("info " + source_path("scenes/cornell_box.json") + " --material white");
   EXPECT_EQ(r.exit_code, 2);
@@ -522,10 +539,12 @@ TEST(PbrtImport, LoopSubdivisionMatchesTheLimitWorkedByHand) {
   }
   // Two triangles of a unit square in z = 0: flat, and the corner (0, 0) — two boundary
   // neighbours (1, 0) and (0, 1) — goes to 3/5·(0, 0) + 1/5·((1, 0) + (0, 1)) = (0.2, 0.2).
-  const SubdividedMesh sq = loop_subdivide({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, {0, 1, 2, 0, 2, 3}, 0);
+  const SubdividedMesh sq =
+      loop_subdivide({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, {0, 1, 2, 0, 2, 3}, 0);
   EXPECT_NEAR(sq.positions[0], 0.2, 1e-12);
   EXPECT_NEAR(sq.positions[1], 0.2, 1e-12);
-  const SubdividedMesh flat = loop_subdivide({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, {0, 1, 2, 0, 2, 3}, 3);
+  const SubdividedMesh flat =
+      loop_subdivide({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, {0, 1, 2, 0, 2, 3}, 3);
   for (size_t i = 2; i < flat.positions.size(); i += 3) EXPECT_EQ(flat.positions[i], 0);
   // Through the importer: a subdivided octahedron renders as "triangles" with normals.
   const nlohmann::json s = import_text("sub.pbrt", scene(R"(Shape "loopsubdiv" "integer levels" 2

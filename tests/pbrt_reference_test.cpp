@@ -67,8 +67,7 @@ INSTANTIATE_TEST_SUITE_P(
     Scenes, PbrtReference,
     ::testing::Values(ReferenceCase{"cornell_box", {"lacquer"}},
                       // The rough copper's glossy reflections are the noisiest region.
-                      ReferenceCase{"rough_metals", {}, 64},
-                      ReferenceCase{"glass", {}},
+                      ReferenceCase{"rough_metals", {}, 64}, ReferenceCase{"glass", {}},
                       ReferenceCase{"textured", {"textured.pbrt:38"}},
                       ReferenceCase{"coated_metals", {}}),
     [](const auto& info) { return info.param.scene; });

@@ -13,8 +13,8 @@
 #include "geometry/embree_scene.h"
 #include "geometry/instanced_bvh.h"
 #include "geometry/random_rays.h"
-#include "scene/scene.h"
 #include "instanced_scene.h"
+#include "scene/scene.h"
 #include "test_support.h"
 
 using namespace kasha;
@@ -37,8 +37,9 @@ float edge_distance(const KHit& h) {
 // where t and the barycentrics are ill-conditioned and two tests may round either way.
 double incidence(const std::vector<KTriangle>& triangles, const KHit& h, const KRay& ray,
                  const std::vector<KInstance>& instances = {}) {
-  const KTriangle t = instances.empty() ? triangles.at(h.prim)
-                                        : placed_triangle(triangles.at(h.prim), instances.at(h.instance));
+  const KTriangle t = instances.empty()
+                          ? triangles.at(h.prim)
+                          : placed_triangle(triangles.at(h.prim), instances.at(h.instance));
   Eigen::Vector3d a(t.v1[0] - t.v0[0], t.v1[1] - t.v0[1], t.v1[2] - t.v0[2]);
   Eigen::Vector3d b(t.v2[0] - t.v0[0], t.v2[1] - t.v0[1], t.v2[2] - t.v0[2]);
   Eigen::Vector3d d(ray.dir[0], ray.dir[1], ray.dir[2]);
@@ -95,9 +96,8 @@ Agreement compare_closest(const std::vector<KTriangle>& triangles, const std::ve
     // The nearer hit (a miss is the farthest) grazes an edge or its face: one test counts it, the
     // other does not, or rounds t differently.
     const KHit& nearer = g.prim < 0 || (e.prim >= 0 && e.t <= g.t) ? e : g;
-    if (nearer.prim >= 0 &&
-        (edge_distance(nearer) < edge_tol ||
-         incidence(triangles, nearer, rays[i], placed) < 1e-2)) {
+    if (nearer.prim >= 0 && (edge_distance(nearer) < edge_tol ||
+                             incidence(triangles, nearer, rays[i], placed) < 1e-2)) {
       ++a.edge_ties;
       continue;
     }
@@ -107,9 +107,8 @@ Agreement compare_closest(const std::vector<KTriangle>& triangles, const std::ve
     };
     if (a.mismatches <= 5)
       ADD_FAILURE() << "ray " << i << ": Embree prim " << e.prim << " (instance " << e.instance
-                    << ") t " << e.t << " edge "
-                    << edge_distance(e) << " cos " << cosine(e) << ", OpenCL prim " << g.prim << " (instance "
-                    << g.instance << ")"
+                    << ") t " << e.t << " edge " << edge_distance(e) << " cos " << cosine(e)
+                    << ", OpenCL prim " << g.prim << " (instance " << g.instance << ")"
                     << " t " << g.t << " edge " << edge_distance(g) << " cos " << cosine(g);
   }
   return a;

@@ -76,8 +76,8 @@ FlatBvh build_instanced_bvh(const std::vector<KTriangle>& triangles,
   roots.back() = append_triangle_bvh(triangles, 0, instances.world_triangles, out, d);
   deepest = std::max(deepest, d);
   for (size_t o = 0; o < ranges.size(); ++o) {
-    roots[o] = append_triangle_bvh(triangles, ranges[o].first_triangle, ranges[o].triangle_count,
-                                   out, d);
+    roots[o] =
+        append_triangle_bvh(triangles, ranges[o].first_triangle, ranges[o].triangle_count, out, d);
     deepest = std::max(deepest, d);
   }
   for (KInstance& k : out.instances) k.root = k.object < 0 ? roots.back() : roots[k.object];

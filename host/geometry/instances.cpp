@@ -33,9 +33,9 @@ KInstance kernel_instance(const Placement& p) {
     k.object_from_world[i] = static_cast<float>(inv[i]);
   }
   k.object = p.object;
-  const Eigen::Matrix3d linear = Eigen::Map<const Eigen::Matrix<double, 3, 4, Eigen::RowMajor>>(
-                                     p.world_from_object.data())
-                                     .leftCols<3>();
+  const Eigen::Matrix3d linear =
+      Eigen::Map<const Eigen::Matrix<double, 3, 4, Eigen::RowMajor>>(p.world_from_object.data())
+          .leftCols<3>();
   k.mirrors = linear.determinant() < 0 ? 1 : 0;
   return k;
 }

@@ -30,7 +30,7 @@ struct KernelSceneData {
   std::vector<KTexture> textures;        // per texture and use (kernels/materials/texture.h)
   std::vector<KTexcoords> texcoords;     // per leaf triangle, when the scene has textures
   std::vector<KShadingNormals> normals;  // per leaf triangle, when some shape has shading normals
-  std::vector<KTangent> tangents;        // per leaf triangle, when some rough material is anisotropic
+  std::vector<KTangent> tangents;  // per leaf triangle, when some rough material is anisotropic
   // Light sampling: emitting triangles (leaf order), then the other lights (~index into
   // `lights`), with the CDF of their power, and per emitter the area density
   // p(triangle)/area = pi·Σ Le Δλ / total power (light paths'). Next-event estimation picks

@@ -68,9 +68,8 @@ bool Scene::rough() const {
   return any_used([](const Material& m) { return m.rough(); });
 }
 bool Scene::anisotropic() const {
-  return any_used([](const Material& m) {
-    return m.rough() && m.roughness.alpha_x != m.roughness.alpha_y;
-  });
+  return any_used(
+      [](const Material& m) { return m.rough() && m.roughness.alpha_x != m.roughness.alpha_y; });
 }
 bool Scene::coated() const {
   return any_used([](const Material& m) { return m.coat.has_value(); });
@@ -143,7 +142,8 @@ void Scene::bounding_sphere(Eigen::Vector3d& centre, double& radius) const {
   for (size_t o = 0; o < objects.size(); ++o)
     for (int i = 0; i < instances.objects[o].triangle_count; ++i) {
       const KTriangle& t = triangles[instances.objects[o].first_triangle + i];
-      for (const float* v : {t.v0, t.v1, t.v2}) objects[o].extend(Eigen::Vector3d(v[0], v[1], v[2]));
+      for (const float* v : {t.v0, t.v1, t.v2})
+        objects[o].extend(Eigen::Vector3d(v[0], v[1], v[2]));
     }
   for (const Placement& p : instances.placements) {
     const Eigen::Matrix<double, 3, 4, Eigen::RowMajor> m(p.world_from_object.data());
@@ -911,7 +911,8 @@ static void parse_instances(const JsonNode& root, const LampChoice& lamp_on,
     JsonNode shapes = objects->at(names[k]);
     ObjectRange range{static_cast<int>(scene.triangles.size()), 0};
     TriangleKeys own;  // duplicates within the object; its instances overlap no one's triangles
-    for (size_t s = 0; s < shapes.size(); ++s) parse_shape(shapes[s], lamp_on, own, uses, scene, true);
+    for (size_t s = 0; s < shapes.size(); ++s)
+      parse_shape(shapes[s], lamp_on, own, uses, scene, true);
     range.triangle_count = static_cast<int>(scene.triangles.size()) - range.first_triangle;
     if (range.triangle_count == 0) continue;
     const int object = static_cast<int>(scene.instances.objects.size());

@@ -61,7 +61,7 @@ struct Scene {
   // The triangles' shading normals, scene order; empty unless some shape has them (OBJ `vn`).
   std::vector<TriangleNormals> normals;
   std::vector<Emitter> emitters;
-  std::vector<Light> lights;  // the "lights" that are not shapes
+  std::vector<Light> lights;      // the "lights" that are not shapes
   std::vector<ShapeInfo> shapes;  // the scene's own, then the objects' (triangles in that order)
   // Object instancing (docs/formats.md#instances): an object placed more than once keeps one
   // copy of its triangles, after the scene's own, and each placement; `object_names` by object.
@@ -113,7 +113,6 @@ struct Scene {
   KTriangle hit_triangle(const KHit& hit) const;
   // A normal of the hit's triangle (a shading normal) carried into the world, not normalised.
   Eigen::Vector3d hit_normal(const KHit& hit, const Eigen::Vector3d& n) const;
-
 };
 
 // `grid`, when given, replaces the scene's own "wavelengths" (the same scene on another grid);
