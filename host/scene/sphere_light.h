@@ -1,7 +1,7 @@
 #pragma once
 // Which emitting shapes are sphere lights: triangles tessellating a sphere (every vertex on it),
 // fronts outward, that next-event estimation samples as one light by the solid angle the sphere
-// subtends (docs/lights.md#sphere-lights, kernels/lights/sphere_light.h).
+// subtends (docs/integrators.md#light-sampling, kernels/lights/sphere_light.h).
 #include <Eigen/Geometry>
 #include <optional>
 

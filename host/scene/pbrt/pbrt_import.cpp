@@ -530,7 +530,7 @@ class Importer {
       overridden_objects_.insert(object);
     }
     if (o->second.shapes.empty()) return;
-    // Kept as an instance (docs/pbrt-import.md#instancing): the object's triangles are stored
+    // Kept as an instance (docs/formats.md#instances): the object's triangles are stored
     // once, however often it is placed.
     check_affine(state_.ctm, d.where);
     const std::string at = "/instances/" + std::to_string(instances_.size());
