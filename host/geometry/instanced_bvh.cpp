@@ -10,14 +10,6 @@ namespace kasha {
 
 namespace {
 
-// The box of triangles [first, first + count), in object space.
-void range_box(const std::vector<KTriangle>& tris, const ObjectRange& r, float lo[3], float hi[3]) {
-  for (int c = 0; c < 3; ++c) lo[c] = INFINITY, hi[c] = -INFINITY;
-  for (int i = r.first_triangle; i < r.first_triangle + r.triangle_count; ++i)
-    for (const float* v : {tris[i].v0, tris[i].v1, tris[i].v2})
-      for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], v[c]), hi[c] = std::max(hi[c], v[c]);
-}
-
 // The world box of an instance: its object's box's eight corners placed.
 RTCBuildPrimitive instance_box(const KInstance& k, const float lo[3], const float hi[3],
                                unsigned id) {
@@ -52,11 +44,9 @@ FlatBvh build_instanced_bvh(const std::vector<KTriangle>& triangles,
   out.instances = kernel_instances(instances);
 
   // Object boxes once, instance boxes from them; the top-level tree first, so node 0 is its root.
-  std::vector<std::array<float, 6>> boxes(ranges.size() + 1);
-  range_box(triangles, {0, instances.world_triangles}, boxes.back().data(),
-            boxes.back().data() + 3);
-  for (size_t o = 0; o < ranges.size(); ++o)
-    range_box(triangles, ranges[o], boxes[o].data(), boxes[o].data() + 3);
+  std::vector<std::array<float, 6>> boxes;
+  for (const ObjectRange& r : ranges) boxes.push_back(object_box(triangles, r));
+  boxes.push_back(object_box(triangles, {0, instances.world_triangles}));
   std::vector<RTCBuildPrimitive> prims;
   prims.reserve(out.instances.size());
   for (size_t i = 0; i < out.instances.size(); ++i) {

@@ -1,6 +1,8 @@
 #include "geometry/instances.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
 namespace kasha {
@@ -14,6 +16,14 @@ Affine inverse_affine(const Affine& m) {
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 4; ++c) out[4 * r + c] = inv(r, c);
   return out;
+}
+
+std::array<float, 6> object_box(const std::vector<KTriangle>& triangles, const ObjectRange& r) {
+  std::array<float, 6> b = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY, -INFINITY};
+  for (int i = r.first_triangle; i < r.first_triangle + r.triangle_count; ++i)
+    for (const float* v : {triangles[i].v0, triangles[i].v1, triangles[i].v2})
+      for (int c = 0; c < 3; ++c) b[c] = std::min(b[c], v[c]), b[3 + c] = std::max(b[3 + c], v[c]);
+  return b;
 }
 
 void affine_point(const float* m, const float* p, float* out) {

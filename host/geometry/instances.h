@@ -30,6 +30,8 @@ struct SceneInstances {
 };
 
 Affine inverse_affine(const Affine& m);
+// The box of an object's triangles in object space: lo x, y, z then hi x, y, z (lo > hi: empty).
+std::array<float, 6> object_box(const std::vector<KTriangle>& triangles, const ObjectRange& r);
 // m·p (a point) and m·d (a direction), in float as the kernels do it.
 void affine_point(const float* m, const float* p, float* out);
 void affine_direction(const float* m, const float* d, float* out);

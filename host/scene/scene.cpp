@@ -138,13 +138,11 @@ void Scene::bounding_sphere(Eigen::Vector3d& centre, double& radius) const {
     for (const float* v : {triangles[i].v0, triangles[i].v1, triangles[i].v2})
       box.extend(Eigen::Vector3d(v[0], v[1], v[2]));
   // Each placement's object box, its corners placed: the sphere holds what the kernels meet.
-  std::vector<Eigen::AlignedBox3d> objects(instances.objects.size());
-  for (size_t o = 0; o < objects.size(); ++o)
-    for (int i = 0; i < instances.objects[o].triangle_count; ++i) {
-      const KTriangle& t = triangles[instances.objects[o].first_triangle + i];
-      for (const float* v : {t.v0, t.v1, t.v2})
-        objects[o].extend(Eigen::Vector3d(v[0], v[1], v[2]));
-    }
+  std::vector<Eigen::AlignedBox3d> objects;
+  for (const ObjectRange& r : instances.objects) {
+    const std::array<float, 6> b = object_box(triangles, r);
+    objects.emplace_back(Eigen::Vector3d(b[0], b[1], b[2]), Eigen::Vector3d(b[3], b[4], b[5]));
+  }
   for (const Placement& p : instances.placements) {
     const Eigen::Matrix<double, 3, 4, Eigen::RowMajor> m(p.world_from_object.data());
     const Eigen::AlignedBox3d& b = objects[p.object];
