@@ -11,7 +11,8 @@ namespace kasha {
 struct AlphaCutouts {
   std::vector<KTexcoords> texcoords;  // per triangle, scene order (alpha_texture -1: opaque)
   std::vector<KTexture> textures;     // scalar textures
-  std::vector<float> values;          // their images' texels
+  std::vector<float> values;          // their images' texels, spectra and matrices
+  std::vector<KTexOp> ops;            // texture programs' steps
   bool empty() const { return texcoords.empty(); }
 };
 

@@ -15,17 +15,21 @@ ClTraversal::ClTraversal(ClContext& cl, const FlatBvh& bvh, const AlphaCutouts& 
   std::vector<KTexcoords> texcoords(1);
   std::vector<KTexture> textures(1);
   std::vector<float> values(1);
+  std::vector<KTexOp> ops(1);
   if (!alpha.empty()) {
     texcoords.clear();
     for (const KTriangle& t : bvh.triangles) texcoords.push_back(alpha.texcoords[t.prim]);
     if (!alpha.textures.empty()) textures = alpha.textures;
     if (!alpha.values.empty()) values = alpha.values;
+    if (!alpha.ops.empty()) ops = alpha.ops;
   }
   texcoords_ = upload(cl, texcoords);
   textures_ = upload(cl, textures);
   values_ = upload(cl, values);
+  ops_ = upload(cl, ops);
   KernelDefines defines;
   defines["KASHA_ALPHA"] = alpha.empty() ? "0" : "1";
+  defines["KASHA_TEXTURE_PROGRAMS"] = alpha.ops.empty() ? "0" : "1";
   defines["KASHA_INSTANCES"] = bvh.instances.empty() ? "0" : "1";
   cl::Program program = build_program(cl, assemble_kernel_source("geometry/trace_rays.cl"), defines,
                                       "geometry/trace_rays.cl");
@@ -53,9 +57,10 @@ void ClTraversal::run(cl::Kernel& kernel, const std::vector<KRay>& rays, std::ve
   kernel.setArg(4, texcoords_);
   kernel.setArg(5, textures_);
   kernel.setArg(6, values_);
-  kernel.setArg(7, rays_);
-  kernel.setArg(8, results_);
-  kernel.setArg(9, static_cast<int>(rays.size()));
+  kernel.setArg(7, ops_);
+  kernel.setArg(8, rays_);
+  kernel.setArg(9, results_);
+  kernel.setArg(10, static_cast<int>(rays.size()));
   cl_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(rays.size()), cl::NullRange);
   cl_.queue().enqueueReadBuffer(results_, CL_TRUE, 0, rays.size() * sizeof(Out), out.data());
 }

@@ -45,7 +45,7 @@ RTCGeometry EmbreeScene::triangle_geometry(size_t first, size_t count,
   if (!alpha_.empty()) {
     // The tables seen from this geometry's primIDs (tables_ was reserved: pointers stay).
     tables_.push_back({triangles_.data() + first, alpha_.texcoords.data() + first,
-                       alpha_.textures.data(), alpha_.values.data()});
+                       alpha_.textures.data(), alpha_.values.data(), alpha_.ops.data()});
     rtcSetGeometryUserData(geom, &tables_.back());
     rtcSetGeometryIntersectFilterFunction(geom, alpha_filter);
     rtcSetGeometryOccludedFilterFunction(geom, alpha_filter);

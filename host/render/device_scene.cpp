@@ -11,6 +11,7 @@
 #include "colorimetry/sample_colorimetry.h"
 #include "opencl/device_buffer.h"
 #include "opencl/upload.h"
+#include "render/texture_program.h"
 #include "scene/triangle_dpdu.h"
 #include "spectrum/rgb_spectrum.h"
 
@@ -89,76 +90,118 @@ int KernelSceneData::bin_centres(const Scene& scene) {
   return lambda_;
 }
 
-// The kernels' view of the scene's textures (kernels/materials/texture.h): one KTexture per texture
-// and use (spectral for a reflectance, scalar for a concentration), the texels after the spectra,
-// and each triangle's texture coordinates in leaf order.
-void KernelSceneData::add_textures(const Scene& scene) {
-  // What a texture is used as: a reflectance (spectral), a concentration (scalar in [0, 1]) or
-  // an emission factor (scalar ≥ 0).
-  enum Use { reflectance, concentration, emission };
-  std::map<std::pair<int, int>, int> made;
-  auto texture = [&](int index, Use use) {
-    const bool spectral = use == reflectance;
-    auto found = made.find({index, use});
-    if (found != made.end()) return found->second;
-    const Texture& t = scene.textures[index];
-    KTexture k{};
-    k.type = t.type == TextureType::image ? KASHA_TEXTURE_IMAGE : KASHA_TEXTURE_CHECKERBOARD;
-    k.spectral = spectral;
-    k.uscale = static_cast<float>(t.uscale);
-    k.vscale = static_cast<float>(t.vscale);
-    k.udelta = static_cast<float>(t.udelta);
-    k.vdelta = static_cast<float>(t.vdelta);
+// An image's KTexture: its texels after the spectra, as sigmoid coefficients (spectral) or the
+// mean of R, G and B (scalar; clamped to [0, 1] for a concentration).
+KTexture KernelSceneData::image_texture(const RgbImage& image, TextureWrap wrap, bool bilinear,
+                                        TextureUse use, const Scene& scene) {
+  const bool spectral = use == TextureUse::reflectance;
+  KTexture k{};
+  k.type = KASHA_TEXTURE_IMAGE;
+  k.spectral = spectral;
+  k.uscale = k.vscale = 1.0f;
+  k.data = k.even = k.odd = k.lambda = -1;
+  k.width = image.width;
+  k.height = image.height;
+  k.bilinear = bilinear;
+  k.wrap = wrap == TextureWrap::repeat              ? KASHA_WRAP_REPEAT
+           : wrap == TextureWrap::clamp             ? KASHA_WRAP_CLAMP
+           : wrap == TextureWrap::octahedral_sphere ? KASHA_WRAP_OCTAHEDRAL
+                                                    : KASHA_WRAP_BLACK;
+  k.data = static_cast<int>(spectra.size());
+  const size_t n = image.rgb.size() / 3;
+  for (size_t p = 0; p < n; ++p) {
+    const float* c = &image.rgb[3 * p];
+    if (spectral) {
+      SigmoidCoefficients q = rgb_sigmoid({c[0], c[1], c[2]});
+      for (double v : q) spectra.push_back(static_cast<float>(v));
+      spectra.push_back(0.0f);
+    } else {
+      const float mean = (c[0] + c[1] + c[2]) / 3.0f;
+      spectra.push_back(use == TextureUse::concentration ? std::clamp(mean, 0.0f, 1.0f) : mean);
+    }
+  }
+  if (spectral) k.lambda = bin_centres(scene);
+  return k;
+}
+
+// A (u, v) image or checkerboard of values as the kernels look it up.
+KTexture KernelSceneData::plain_texture(const Texture& t, TextureUse use, const Scene& scene) {
+  KTexture k{};
+  if (t.type == TextureType::image) {
+    k = image_texture(t.image, t.wrap, t.bilinear, use, scene);
+  } else {
+    k.type = KASHA_TEXTURE_CHECKERBOARD;
+    k.spectral = use == TextureUse::reflectance;
     k.data = k.even = k.odd = k.lambda = -1;
-    if (t.type == TextureType::image) {
-      k.width = t.image.width;
-      k.height = t.image.height;
-      k.bilinear = t.bilinear;
-      k.wrap = t.wrap == TextureWrap::repeat              ? KASHA_WRAP_REPEAT
-               : t.wrap == TextureWrap::clamp             ? KASHA_WRAP_CLAMP
-               : t.wrap == TextureWrap::octahedral_sphere ? KASHA_WRAP_OCTAHEDRAL
-                                                          : KASHA_WRAP_BLACK;
-      k.data = static_cast<int>(spectra.size());
-      const size_t n = t.image.rgb.size() / 3;
-      for (size_t p = 0; p < n; ++p) {
-        const float* c = &t.image.rgb[3 * p];
-        if (spectral) {
-          SigmoidCoefficients q = rgb_sigmoid({c[0], c[1], c[2]});
-          for (double v : q) spectra.push_back(static_cast<float>(v));
-          spectra.push_back(0.0f);
-        } else {
-          const float mean = (c[0] + c[1] + c[2]) / 3.0f;
-          spectra.push_back(use == concentration ? std::clamp(mean, 0.0f, 1.0f) : mean);
-        }
-      }
-      if (spectral) k.lambda = bin_centres(scene);
-    } else if (spectral) {
+    if (k.spectral) {
       k.even = append(spectra, scene.grid.resample(*t.even));
       k.odd = append(spectra, scene.grid.resample(*t.odd));
     } else {
       k.even_value = static_cast<float>(t.even_value);
       k.odd_value = static_cast<float>(t.odd_value);
     }
-    textures.push_back(k);
+  }
+  k.uscale = static_cast<float>(t.uscale);
+  k.vscale = static_cast<float>(t.vscale);
+  k.udelta = static_cast<float>(t.udelta);
+  k.vdelta = static_cast<float>(t.vdelta);
+  return k;
+}
+
+// The kernels' view of the scene's textures (kernels/materials/texture.h): one KTexture per texture
+// and use (spectral for a reflectance, scalar for a concentration), the texels after the spectra,
+// and each triangle's texture coordinates in leaf order. A texture of textures is a program
+// (render/texture_program.h) whose images are plain KTextures of their own.
+void KernelSceneData::add_textures(const Scene& scene) {
+  std::map<std::pair<int, TextureUse>, int> made;
+  auto plain = [&](int index, TextureUse use) {
+    auto found = made.find({index, use});
+    if (found != made.end()) return found->second;
+    textures.push_back(plain_texture(scene.textures[index], use, scene));
     return made[{index, use}] = static_cast<int>(textures.size() - 1);
+  };
+  std::map<const RgbImage*, int> palettes;
+  TextureProgramTables tables{
+      tex_ops, spectra,
+      [&](const SpectrumPtr& s) { return append(spectra, scene.grid.resample(*s)); },
+      // An image inside a program: its own value, unclamped (the program combines it).
+      [&](int index, bool spectral) {
+        return plain(index, spectral ? TextureUse::reflectance : TextureUse::emission);
+      },
+      [&](const RgbImage& image) {
+        auto found = palettes.find(&image);
+        if (found != palettes.end()) return found->second;
+        textures.push_back(
+            image_texture(image, TextureWrap::clamp, true, TextureUse::reflectance, scene));
+        return palettes[&image] = static_cast<int>(textures.size() - 1);
+      }};
+  std::map<std::pair<int, TextureUse>, int> programs;
+  auto texture = [&](int index, TextureUse use) {
+    if (!scene.textures[index].program()) return plain(index, use);
+    auto found = programs.find({index, use});
+    if (found != programs.end()) return found->second;
+    KTexture k =
+        compile_texture_program(scene, index, use == TextureUse::reflectance, tables);
+    textures.push_back(k);
+    return programs[{index, use}] = static_cast<int>(textures.size() - 1);
   };
   for (size_t i = 0; i < materials.size(); ++i) {
     const MaterialTextures& mt = scene.material_textures[i];
     if (mt.reflectance >= 0)
-      materials[i].reflectance_texture = texture(mt.reflectance, reflectance);
+      materials[i].reflectance_texture = texture(mt.reflectance, TextureUse::reflectance);
     if (mt.fluorescence >= 0)
-      materials[i].fluorescence_texture = texture(mt.fluorescence, concentration);
+      materials[i].fluorescence_texture = texture(mt.fluorescence, TextureUse::concentration);
     // A mix's amount is a scalar in [0, 1], as a concentration is.
     const auto& mix = scene.materials[i].mix;
     if (mix && mix->amount_texture >= 0)
-      materials[i].mix.amount_texture = texture(mix->amount_texture, concentration);
+      materials[i].mix.amount_texture = texture(mix->amount_texture, TextureUse::concentration);
   }
   std::vector<int> emitter_texture;
   for (const Emitter& e : scene.emitters)
-    emitter_texture.push_back(e.texture >= 0 ? texture(e.texture, emission) : -1);
+    emitter_texture.push_back(e.texture >= 0 ? texture(e.texture, TextureUse::emission) : -1);
   // An alpha is a scalar in [0, 1], as a concentration is.
   const std::vector<int> alpha =
-      alpha_textures(scene, [&](int index) { return texture(index, concentration); });
+      alpha_textures(scene, [&](int index) { return texture(index, TextureUse::concentration); });
   for (const KTriangle& t : bvh.triangles) {
     KTexcoords c{};
     c.emission_texture = t.emitter >= 0 ? emitter_texture[t.emitter] : -1;
@@ -206,6 +249,7 @@ AlphaCutouts alpha_cutouts(const KernelSceneData& data) {
     a.texcoords[data.bvh.triangles[i].prim] = data.texcoords[i];
   a.textures = data.textures;
   a.values = data.spectra;
+  a.ops = data.tex_ops;
   return a;
 }
 
@@ -451,7 +495,8 @@ size_t KernelSceneData::bytes() const {
          light_tri.size() * sizeof(int) + light_spheres.size() * sizeof(KSphereLight) +
          light_bvh.nodes.size() * sizeof(KLightNode) +
          light_bvh.trails.size() * sizeof(std::uint64_t) +
-         bvh.instances.size() * sizeof(KInstance) + tangents.size() * sizeof(KTangent);
+         bvh.instances.size() * sizeof(KInstance) + tangents.size() * sizeof(KTangent) +
+         tex_ops.size() * sizeof(KTexOp);
 }
 
 // Scratch spectra per work item: an environment texel's radiance, then a textured reflectance
@@ -495,6 +540,9 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_SCRATCH_FLOATS"] = std::to_string(scratch_floats(scene));
   d["KASHA_TEXTURES"] = scene.textured() || scene.emission_textured() ? "1" : "0";
   d["KASHA_EMISSION_TEXTURES"] = scene.emission_textured() ? "1" : "0";
+  const bool programs = std::any_of(scene.textures.begin(), scene.textures.end(),
+                                    [](const Texture& t) { return t.program(); });
+  d["KASHA_TEXTURE_PROGRAMS"] = programs ? "1" : "0";
   d["KASHA_ALPHA"] = scene.cut_out() ? "1" : "0";
   d["KASHA_INSTANCES"] = scene.instances.empty() ? "0" : "1";
   d["KASHA_SCRATCH_TEXTURES"] = std::to_string(scratch_texture_offset(scene));
@@ -540,7 +588,8 @@ DeviceScene::DeviceScene(ClContext& cl, const Scene& scene)
            host_table(data_.light_bvh.nodes, p.light_nodes),
            host_table(data_.light_bvh.trails, p.light_trails),
            host_table(data_.bvh.instances, p.instances), host_table(data_.tangents, p.tangents),
-           host_table(data_.light_spheres, p.light_spheres)});
+           host_table(data_.light_spheres, p.light_spheres),
+           host_table(data_.tex_ops, p.tex_ops)});
 }
 
 }  // namespace kasha

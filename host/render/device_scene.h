@@ -28,6 +28,7 @@ struct KernelSceneData {
   std::vector<float> emitter_radiance;   // emitters x N, then the lights' spectra x N
   std::vector<KLight> lights;            // the lights that are not triangles
   std::vector<KTexture> textures;        // per texture and use (kernels/materials/texture.h)
+  std::vector<KTexOp> tex_ops;           // texture programs' steps (shared/texture_program.h)
   std::vector<KTexcoords> texcoords;     // per leaf triangle, when the scene has textures
   std::vector<KShadingNormals> normals;  // per leaf triangle, when some shape has shading normals
   std::vector<KTangent> tangents;  // per leaf triangle, when some rough material is anisotropic
@@ -50,6 +51,12 @@ struct KernelSceneData {
  private:
   KMaterial kernel_material(const Material& m, const Scene& scene, const BinnedObserver& obs);
   void add_coat(const CoatDesc& coat, KMaterial& k);
+  // What a texture is used as: a reflectance (spectral), a concentration (a number in [0, 1])
+  // or an emission factor (a number ≥ 0).
+  enum class TextureUse { reflectance, concentration, emission };
+  KTexture image_texture(const RgbImage& image, TextureWrap wrap, bool bilinear, TextureUse use,
+                         const Scene& scene);
+  KTexture plain_texture(const Texture& t, TextureUse use, const Scene& scene);
   void add_textures(const Scene& scene);
   std::vector<int> alpha_textures(const Scene& scene,
                                   const std::function<int(int)>& scalar_texture);

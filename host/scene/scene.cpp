@@ -520,6 +520,9 @@ static LampChoice choose_lamp(const JsonNode& root, const std::string& requested
 // An emission texture's mean over its image or its squares (light sampling weighs the emitter by
 // it); a checkerboard's values must be numbers ≥ 0 there.
 static double texture_mean(const Texture& t, const JsonNode& where) {
+  if (t.program())
+    where.fail("an emission texture is an image or a (u, v) checkerboard of numbers, not a "
+               "texture of textures");
   if (t.type == TextureType::checkerboard) {
     if (!(t.even_value >= 0 && t.odd_value >= 0))
       where.fail("an emission texture's checkerboard needs numbers ≥ 0 for \"even\" and \"odd\"");
@@ -573,14 +576,15 @@ static void check_material_textures(const Scene& scene) {
                   scene.material_descs[i].name + "\" does not fluoresce");
     if (mt.fluorescence >= 0) {
       const Texture& t = scene.textures[mt.fluorescence];
-      if (t.type == TextureType::checkerboard &&
+      if (t.type == TextureType::checkerboard && !t.program() &&
           !(t.even_value >= 0 && t.even_value <= 1 && t.odd_value >= 0 && t.odd_value <= 1))
         throw Error(t.where + ": a fluorescence texture's \"even\" and \"odd\" are " +
                     "concentrations: numbers in [0, 1]");
     }
     if (mt.reflectance >= 0) {
       const Texture& t = scene.textures[mt.reflectance];
-      if (t.type == TextureType::checkerboard)
+      // A program's value is clamped to [0, 1] where it is looked up, as pbrt-v4 clamps.
+      if (t.type == TextureType::checkerboard && !t.program())
         for (const SpectrumPtr& v : {t.even, t.odd})
           for (double x : scene.grid.resample(*v))
             if (!(x <= 1))
@@ -619,7 +623,7 @@ static void resolve_mixes(Scene& scene) {
       throw Error(mix.where + ": no texture named \"" + printable(mix.amount_texture_name) +
                   "\" in the scene's \"textures\"");
     const Texture& t = scene.textures[mix.amount_texture];
-    if (t.type == TextureType::checkerboard &&
+    if (t.type == TextureType::checkerboard && !t.program() &&
         !(t.even_value >= 0 && t.even_value <= 1 && t.odd_value >= 0 && t.odd_value <= 1))
       throw Error(t.where +
                   ": a mix's amount texture's \"even\" and \"odd\" are numbers in [0, 1]");
@@ -719,6 +723,7 @@ static void parse_textures(const JsonNode& root, Scene& scene) {
     if (!textures->is_object()) textures->fail("expected an object of named textures");
     for (const std::string& name : textures->keys())
       scene.textures.push_back(parse_texture(textures->at(name), name));
+    resolve_texture_inputs(scene.textures);
   }
 }
 

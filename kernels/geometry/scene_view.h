@@ -47,6 +47,7 @@ typedef struct {
   const __global KShadingNormals* normals; /* per leaf triangle, when some shape has them */
   const __global KInstance* instances;     /* KASHA_INSTANCES: the top level's leaves */
   const __global KTangent* tangents;       /* per leaf triangle, KASHA_ANISOTROPIC */
+  const __global KTexOp* tex_ops;          /* texture programs' steps, KASHA_TEXTURE_PROGRAMS */
   RayCounts* rays; /* private: the work item's own counts */
 } SceneView;
 
@@ -82,11 +83,12 @@ typedef struct {
                     KASHA_SCENE_TABLE(KShadingNormals, normals),                                   \
                     KASHA_SCENE_TABLE(KInstance, instances),                                       \
                     KASHA_SCENE_TABLE(KTangent, tangents),                                         \
+                    KASHA_SCENE_TABLE(KTexOp, tex_ops),                                            \
                     &name##_rays}
 
 /* The tables the traversal's alpha test reads (shared/alpha_test.h): leaf order. */
 inline AlphaTables scene_alpha(const SceneView* s) {
-  AlphaTables a = {s->tris, s->texcoords, s->textures, s->spectra};
+  AlphaTables a = {s->tris, s->texcoords, s->textures, s->spectra, s->tex_ops};
   return a;
 }
 

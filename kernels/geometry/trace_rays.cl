@@ -5,13 +5,13 @@
 #define KASHA_TRACE_PARAMS                                                                                   \
   __global const KBvhNode *nodes, __global const KBvhLeaf *leaves, __global const KInstance *instances,      \
       __global const KTriangle *tris, __global const KTexcoords *texcoords, __global const KTexture *textures, \
-      __global const float *values, __global const KRay *rays
+      __global const float *values, __global const KTexOp *ops, __global const KRay *rays
 
 __kernel void trace_closest(KASHA_TRACE_PARAMS, __global KHit* hits, int count) {
   int i = get_global_id(0);
   if (i >= count) return;
   const __global KRay* r = &rays[i];
-  AlphaTables alpha = {tris, texcoords, textures, values};
+  AlphaTables alpha = {tris, texcoords, textures, values, ops};
   BvhTables bvh = {nodes, leaves, instances};
   float t, u = 0.0f, v = 0.0f;
   int inst;
@@ -31,7 +31,7 @@ __kernel void trace_occluded(KASHA_TRACE_PARAMS, __global int* occluded, int cou
   int i = get_global_id(0);
   if (i >= count) return;
   const __global KRay* r = &rays[i];
-  AlphaTables alpha = {tris, texcoords, textures, values};
+  AlphaTables alpha = {tris, texcoords, textures, values, ops};
   BvhTables bvh = {nodes, leaves, instances};
   occluded[i] = bvh_occluded(&bvh, &alpha, load_float3(r->org), load_float3(r->dir), r->tmin, r->tmax) ? 1 : 0;
 }

@@ -9,7 +9,7 @@
 
 #include "geometry/scene_view.h"
 #include "shared/alpha_test.h"
-#include "shared/texture_lookup.h"
+#include "shared/texture_program.h"
 
 #ifndef KASHA_MIX
 #define KASHA_MIX 0 /* some shape's material is a mix */
@@ -29,6 +29,14 @@ inline float mix_hash(float3 x, int a, int b) {
 inline float mix_amount(const SceneView* s, const __global KMix* m, int tri, float2 b) {
 #if KASHA_TEXTURES
   if (m->amount_texture >= 0) {
+#if KASHA_TEXTURE_PROGRAMS
+    const __global KTexture* tex = &s->textures[m->amount_texture];
+    if (tex->type == KASHA_TEXTURE_PROGRAM) {
+      TexPoint at = triangle_tex_point(&s->tris[tri], &s->texcoords[tri], b.x, b.y);
+      TexTables tt = {s->textures, s->tex_ops, s->spectra};
+      return texture_scalar_at(&tt, tex, &at);
+    }
+#endif
     const __global float* t = s->texcoords[tri].uv;
     float b0 = 1.0f - b.x - b.y;
     return texture_scalar_uv(&s->textures[m->amount_texture], s->spectra, b0 * t[0] + b.x * t[2] + b.y * t[4],

@@ -14,6 +14,7 @@
 #include "materials/rgb_spectrum.h"
 #include "materials/surface.h"
 #include "shared/texture_lookup.h"
+#include "shared/texture_program.h"
 
 #ifndef KASHA_EMISSION_TEXTURES
 #define KASHA_EMISSION_TEXTURES 0 /* some emitter's radiance is multiplied by a texture */
@@ -68,6 +69,74 @@ inline void texture_multiply(const SceneView* s, const __global KTexture* t, flo
   }
 }
 
+#if KASHA_TEXTURE_PROGRAMS
+inline TexTables scene_texture_tables(const SceneView* s) {
+  TexTables tt = {s->textures, s->tex_ops, s->spectra};
+  return tt;
+}
+
+/* The texture point of a hit (shared/texture_program.h). */
+inline TexPoint hit_tex_point(const SceneView* s, const HitPoint* h) {
+  return triangle_tex_point(&s->tris[h->tri], &s->texcoords[h->tri], h->b.x, h->b.y);
+}
+
+/* out = y ∘ T: a spectral program's terms summed bin by bin (each a slot's value times a constant
+ * spectrum or an image's texel blend), clamped to [0, 1] as pbrt-v4 clamps a reflectance. */
+inline void texture_program_multiply(const SceneView* s, const __global KTexture* t, const TexPoint* at,
+                                     const __global float* y, __global float* out) {
+  TexTables tt = scene_texture_tables(s);
+  float vals[KASHA_TEXTURE_SLOTS];
+  texture_program_run(&tt, t, at, vals);
+  for (int i = 0; i < KASHA_BINS; ++i) out[i] = 0.0f;
+  for (int k = 0; k < t->terms; ++k) {
+    const __global KTexOp* op = &s->tex_ops[t->first_term + k];
+    float w = vals[op->a];
+    if (w == 0.0f) continue;
+    if (op->type == KASHA_TEXOP_TERM_SPECTRUM) {
+      const __global float* v = s->spectra + op->ref;
+      for (int i = 0; i < KASHA_BINS; ++i) out[i] += w * v[i];
+      continue;
+    }
+    const __global KTexture* image = &s->textures[op->ref];
+    int idx[4];
+    float tw[4];
+    int n = texture_taps_st(image, vals[op->b], vals[op->c], idx, tw);
+    for (int i = 0; i < KASHA_BINS; ++i) {
+      float nm = s->spectra[image->lambda + i], v = 0.0f;
+      for (int j = 0; j < n; ++j)
+        if (idx[j] >= 0) v += tw[j] * rgb_sigmoid(s->spectra + image->data + 4 * idx[j], nm);
+      out[i] += w * v;
+    }
+  }
+  for (int i = 0; i < KASHA_BINS; ++i) out[i] = y[i] * clamp(out[i], 0.0f, 1.0f);
+}
+#endif
+
+/* out = y ∘ T at the hit: a program where the texture is one, else the lookup at uv. */
+inline void texture_multiply_at(const SceneView* s, const __global KTexture* t, const HitPoint* h, float2 uv,
+                                const __global float* y, __global float* out) {
+#if KASHA_TEXTURE_PROGRAMS
+  if (t->type == KASHA_TEXTURE_PROGRAM) {
+    TexPoint at = hit_tex_point(s, h);
+    texture_program_multiply(s, t, &at, y, out);
+    return;
+  }
+#endif
+  texture_multiply(s, t, uv, y, out);
+}
+
+/* A scalar texture's value at the hit. */
+inline float texture_scalar_at_hit(const SceneView* s, const __global KTexture* t, const HitPoint* h, float2 uv) {
+#if KASHA_TEXTURE_PROGRAMS
+  if (t->type == KASHA_TEXTURE_PROGRAM) {
+    TexPoint at = hit_tex_point(s, h);
+    TexTables tt = scene_texture_tables(s);
+    return texture_scalar_at(&tt, t, &at);
+  }
+#endif
+  return texture_scalar(s, t, uv);
+}
+
 #if KASHA_EMISSION_TEXTURES
 /* What an emission texture multiplies the emitter's radiance by at barycentrics (b1, b2) of
  * leaf triangle tri (1 without one). */
@@ -85,19 +154,19 @@ inline void load_textured_surface(const SceneView* s, const HitPoint* h, Surface
   float2 uv = hit_uv(s, h);
   __global float* slot = s->scratch + KASHA_SCRATCH_TEXTURES;
   if (m->reflectance_texture >= 0) {
-    texture_multiply(s, &s->textures[m->reflectance_texture], uv, surf->rho, slot);
+    texture_multiply_at(s, &s->textures[m->reflectance_texture], h, uv, surf->rho, slot);
     surf->rho = slot;
 #if KASHA_TRANSMISSION
     /* The reflectance texture colours the transmittance alike (docs/materials.md). */
     if (surf->share_t > 0.0f) {
-      texture_multiply(s, &s->textures[m->reflectance_texture], uv, surf->tau, slot + 2 * KASHA_BINS);
+      texture_multiply_at(s, &s->textures[m->reflectance_texture], h, uv, surf->tau, slot + 2 * KASHA_BINS);
       surf->tau = slot + 2 * KASHA_BINS;
     }
 #endif
   }
 #if KASHA_FLUORESCENCE
   if (m->fluorescence_texture >= 0) {
-    float k = texture_scalar(s, &s->textures[m->fluorescence_texture], uv);
+    float k = clamp(texture_scalar_at_hit(s, &s->textures[m->fluorescence_texture], h, uv), 0.0f, 1.0f);
     __global float* a = slot + KASHA_BINS;
     for (int i = 0; i < KASHA_BINS; ++i) a[i] = surf->a[i] * k;
     surf->a = a;

@@ -7,7 +7,7 @@
 #ifndef KASHA_ALPHA_TEST_H
 #define KASHA_ALPHA_TEST_H
 
-#include "shared/texture_lookup.h"
+#include "shared/texture_program.h"
 
 #ifndef __OPENCL_VERSION__
 #include <cstring>
@@ -28,6 +28,7 @@ typedef struct {
   const KASHA_GLOBAL KTexcoords* texcoords;
   const KASHA_GLOBAL KTexture* textures;
   const KASHA_GLOBAL float* values; /* an image's scalar texels */
+  const KASHA_GLOBAL KTexOp* ops;   /* texture programs' steps */
 } AlphaTables;
 
 /* MurmurHash3's 64-bit finalizer over each of the n words in turn: a uniform value in [0, 1)
@@ -59,7 +60,15 @@ inline float alpha_at(const AlphaTables* a, int tri, float b1, float b2) {
   if (c->alpha_texture < 0) return 1.0f;
   float b0 = 1.0f - b1 - b2;
   float u = b0 * c->uv[0] + b1 * c->uv[2] + b2 * c->uv[4], v = b0 * c->uv[1] + b1 * c->uv[3] + b2 * c->uv[5];
-  return texture_scalar_uv(&a->textures[c->alpha_texture], a->values, u, v);
+  const KASHA_GLOBAL KTexture* t = &a->textures[c->alpha_texture];
+#if KASHA_TEXTURE_PROGRAMS
+  if (t->type == KASHA_TEXTURE_PROGRAM) {
+    TexPoint at = triangle_tex_point(&a->tris[tri], c, b1, b2);
+    TexTables tt = {a->textures, a->ops, a->values};
+    return texture_scalar_at(&tt, t, &at);
+  }
+#endif
+  return texture_scalar_uv(t, a->values, u, v);
 }
 
 /* Whether the candidate hit at (b1, b2) of triangle tri by the ray (origin, direction: 6 floats)

@@ -177,13 +177,13 @@ typedef struct {
   KCamera camera;
   ulong nodes, leaves, tris, materials, spectra, lobes, emitter_radiance, emitter_area_pdf, light_tri,
       light_cdf, lights, textures, texcoords, normals, light_nodes, light_trails, instances,
-      tangents, light_spheres; /* see SceneView */
+      tangents, light_spheres, tex_ops; /* see SceneView */
   int light_count;     /* entries of light_tri and light_cdf */
   float bin_nm;
   int light_sources;   /* entries of lights */
   int light_triangles; /* the emitting triangles: the first entries of light_tri */
 } KSceneParams;
-KASHA_STATIC_SIZE(KSceneParams, 392);
+KASHA_STATIC_SIZE(KSceneParams, 400);
 
 /* What a material is: the measured model (gloss lobe or mirror, passive and fluorescent Lambert
  * parts), or an ideal specular interface — a dielectric or a conductor (docs/materials.md). */
@@ -248,6 +248,7 @@ KASHA_STATIC_SIZE(KMaterial, 128);
  * numbers. */
 #define KASHA_TEXTURE_IMAGE 0
 #define KASHA_TEXTURE_CHECKERBOARD 1
+#define KASHA_TEXTURE_PROGRAM 2 /* a texture of textures (shared/texture_program.h) */
 #define KASHA_WRAP_REPEAT 0
 #define KASHA_WRAP_CLAMP 1
 #define KASHA_WRAP_BLACK 2
@@ -265,8 +266,50 @@ typedef struct {
   float uscale, vscale, udelta, vdelta; /* (s, t) = (u·uscale + udelta, v·vscale + vdelta) */
   int even, odd;     /* spectral checkerboard: offsets of its two spectra */
   float even_value, odd_value; /* scalar checkerboard */
+  int first_op, ops;     /* program: its scalar steps, KTexOps [first_op, first_op + ops) */
+  int first_term, terms; /* spectral program: its terms, KTexOps [first_term, first_term + terms) */
 } KTexture;
-KASHA_STATIC_SIZE(KTexture, 64);
+KASHA_STATIC_SIZE(KTexture, 80);
+
+/* One step of a texture program (docs/textures.md#textures-of-textures): pbrt-v4's textures of
+ * textures (mix, scale, checkerboard of textures, dots, bilerp, the noise textures, mappings other
+ * than (u, v)) compiled by the host into steps over a few private slots, so the kernels evaluate a
+ * tree without recursion. A scalar step writes slot dst (a mapping writes dst, dst + 1 and, in
+ * 3D, dst + 2) from the slots a, b, c it reads. A spectral program ends in terms: each adds slot
+ * a's value times a spectrum (a constant one, or an image's texel blend at slots b, c). */
+#define KASHA_TEXOP_CONST 0     /* f[0] */
+#define KASHA_TEXOP_MAP_UV 1    /* (u·f0 + f2, v·f1 + f3) */
+#define KASHA_TEXOP_MAP_SPHERE 2 /* pbrt-v4's spherical mapping of the point by the matrix at ref */
+#define KASHA_TEXOP_MAP_CYLINDER 3
+#define KASHA_TEXOP_MAP_PLANE 4  /* (f6 + p·(f0 f1 f2), f7 + p·(f3 f4 f5)), p by the matrix */
+#define KASHA_TEXOP_MAP_3D 5     /* the point by the matrix at ref: three slots */
+#define KASHA_TEXOP_IMAGE 6      /* scalar image KTexture ref at (a, b) */
+#define KASHA_TEXOP_CHECKER_2D 7 /* 1 on the odd squares at (a, b), 0 on the even */
+#define KASHA_TEXOP_CHECKER_3D 8 /* 1 on the odd cubes at (a, a + 1, a + 2) */
+#define KASHA_TEXOP_DOTS 9       /* 1 inside pbrt-v4's polka dots at (a, b), 0 outside */
+#define KASHA_TEXOP_BILERP 10    /* f0..f3 = v00, v01, v10, v11 at (a, b) */
+#define KASHA_TEXOP_FBM 11       /* at (a, a + 1, a + 2): octaves, f0 = roughness (ω) */
+#define KASHA_TEXOP_WRINKLED 12  /* pbrt-v4's Turbulence, as FBM */
+#define KASHA_TEXOP_WINDY 13
+#define KASHA_TEXOP_MARBLE 14    /* the marble's spline parameter in [0, 1]: octaves, f0 ω, f1 scale,
+                                  * f2 variation */
+#define KASHA_TEXOP_DIRECTION 15 /* |n · (f0 f1 f2)| */
+#define KASHA_TEXOP_MUL 16       /* a · b */
+#define KASHA_TEXOP_LERP 17      /* (1 − a)·b + a·c */
+#define KASHA_TEXOP_ONE_MINUS 18 /* 1 − a */
+#define KASHA_TEXOP_TERM_SPECTRUM 19 /* term: slot a times the spectrum at offset ref */
+#define KASHA_TEXOP_TERM_IMAGE 20    /* term: slot a times spectral image KTexture ref at (b, c) */
+#define KASHA_TEXTURE_SLOTS 32 /* the most slots a program uses (the host refuses more) */
+typedef struct {
+  int type; /* KASHA_TEXOP_* */
+  int dst;
+  int a, b, c;
+  int ref;     /* a KTexture, a spectrum's offset, or a 3×4 matrix's (texture from world) */
+  int octaves; /* the noise steps' */
+  int pad_op;
+  float f[8];
+} KTexOp;
+KASHA_STATIC_SIZE(KTexOp, 64);
 
 /* A triangle's texture coordinates, in leaf order like KTriangle: (u, v) at v0, v1, v2; the
  * texture its emission is multiplied by and the scalar texture of its shape's alpha cut-out

@@ -428,8 +428,10 @@ class Importer {
       const std::string tex = string_arg(tokens, d), kind = string_arg(tokens, d),
                         cls = string_arg(tokens, d);
       const PbrtParameters params = read_parameters(tokens, "texture");
-      pbrt_define_texture(tex, kind, cls, params, d.where, textures_, base_dir_);
-      sources_["/textures/" + pointer_segment("pbrt " + kind + " texture " + tex)] = d.where.str();
+      pbrt_define_texture(tex, kind, cls, params, d.where, state_.ctm, textures_, base_dir_);
+      for (const std::string& made : textures_.added)
+        sources_["/textures/" + pointer_segment(made)] = d.where.str();
+      textures_.added.clear();
     } else if (name == "Material") {
       const std::string type = string_arg(tokens, d);
       const PbrtParameters params = read_parameters(tokens, "material");

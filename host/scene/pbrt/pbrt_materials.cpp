@@ -14,156 +14,6 @@ namespace kasha {
 
 namespace {
 
-const PbrtTexture& texture_named(const PbrtParameter& p,
-                                 const std::map<std::string, PbrtTexture>& in, const char* kind) {
-  if (p.strings.size() != 1) pbrt_fail(p.where, in_quotes(p.declaration()) + " names one texture");
-  auto t = in.find(p.strings[0]);
-  if (t == in.end())
-    pbrt_fail(p.where, in_quotes(p.declaration()) + ": no " + kind + " texture named " +
-                           in_quotes(p.strings[0]) + " was defined before");
-  return t->second;
-}
-
-// A texture's constant value from a spectrum-or-texture parameter given as a value.
-nlohmann::json checker_value(const PbrtParameters& params, const char* name, double fallback,
-                             const std::string& kind, const PbrtTextures& textures,
-                             const std::filesystem::path& base_dir) {
-  const PbrtParameter* p =
-      params.find(name, kind == "float" ? "float texture" : "float rgb spectrum blackbody texture");
-  if (!p) return fallback;
-  if (p->type == "texture") {
-    const PbrtTexture& t =
-        texture_named(*p, kind == "float" ? textures.scalar : textures.spectrum, kind.c_str());
-    if (!t.kasha_name.empty())
-      pbrt_fail(p->where, in_quotes(p->declaration()) +
-                              ": a checkerboard of textures is not built in kasha (its squares "
-                              "take values)");
-    return pbrt_texture_constant(t, PbrtSpectrumUse::kAlbedo, base_dir);
-  }
-  return pbrt_spectrum(*p, PbrtSpectrumUse::kAlbedo, base_dir);
-}
-
-// v times f: a number multiplied, a spectrum object given a "scale".
-nlohmann::json scaled(nlohmann::json v, double f, const PbrtLocation& where) {
-  if (f == 1) return v;
-  if (v.is_number()) return v.get<double>() * f;
-  if (!v.is_object())
-    pbrt_fail(where, "a named spectrum scaled by a \"scale\" texture is not built in kasha");
-  v["scale"] = v.value("scale", 1.0) * f;
-  return v;
-}
-
-// The (s, t) mapping parameters shared by pbrt's 2D textures.
-void uv_mapping(const PbrtParameters& params, const PbrtLocation& where, nlohmann::json& out) {
-  const std::string mapping = params.get_string("mapping", "uv");
-  if (mapping != "uv")
-    pbrt_fail(where,
-              "texture mapping " + in_quotes(mapping) + " is not built in kasha (only \"uv\")");
-  out["uscale"] = params.get_float("uscale", 1);
-  out["vscale"] = params.get_float("vscale", 1);
-  out["udelta"] = params.get_float("udelta", 0);
-  out["vdelta"] = params.get_float("vdelta", 0);
-  if (out["uscale"] == 0 || out["vscale"] == 0) pbrt_fail(where, "a texture scale of 0");
-}
-
-// pbrt-v4's imagemap (textures.cpp): its filter (point, bilinear; trilinear and EWA, which
-// filter by the footprint, approximated by bilinear), wrap, scale, invert and encoding (which
-// pbrt-v4 applies to PNGs only: other 8-bit formats are sRGB, float formats linear).
-nlohmann::json imagemap(const std::string& name, const PbrtParameters& params,
-                        const PbrtLocation& where, PbrtTextures& textures, PbrtTexture& t) {
-  nlohmann::json image = {{"type", "image"}};
-  const std::string file = params.get_string("filename", "");
-  if (file.empty())
-    pbrt_fail(where, "imagemap texture " + in_quotes(name) + " has no \"filename\"");
-  image["file"] = file;  // relative to the scene's folder, as the scene's JSON resolves it
-  const std::string filter = params.get_string("filter", "bilinear");
-  image["filter"] = filter == "point" ? "nearest" : "bilinear";
-  if (filter != "point" && filter != "bilinear" && filter != "trilinear" && filter != "ewa")
-    pbrt_warn(where, "texture " + in_quotes(name) + ": unknown filter " + in_quotes(filter) +
-                         ": bilinear, as pbrt-v4 falls back");
-  else if ((filter == "trilinear" || filter == "ewa") && !textures.filter_warned) {
-    textures.filter_warned = true;
-    pbrt_warn(where, "texture " + in_quotes(name) + ": filter " + in_quotes(filter) +
-                         " (and every later trilinear or EWA texture) is approximated by "
-                         "kasha's bilinear lookup");
-  }
-  const std::string wrap = params.get_string("wrap", "repeat");
-  if (wrap != "repeat" && wrap != "clamp" && wrap != "black" && wrap != "octahedralsphere")
-    pbrt_fail(where, "texture " + in_quotes(name) + ": unknown wrap mode " + in_quotes(wrap) +
-                         " (repeat, clamp, black, octahedralsphere)");
-  image["wrap"] = wrap == "octahedralsphere" ? "octahedral_sphere" : wrap;
-  std::string ext = std::filesystem::path(file).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  const std::string encoding = params.get_string("encoding", ext == ".png" ? "sRGB" : "linear");
-  try {
-    parse_color_encoding(encoding);
-  } catch (const Error& e) {
-    pbrt_fail(where, "texture " + in_quotes(name) + ": " + e.what());
-  }
-  if (ext == ".png") image["encoding"] = encoding;
-  params.get_float("maxanisotropy", 8);  // a filter setting: kasha does not filter by footprint
-  uv_mapping(params, where, image);
-  // pbrt-v4 inverts the scaled value; without inversion the scale is the texture's factor.
-  const double scale = params.get_float("scale", 1);
-  if (params.get_bool("invert", false)) {
-    image["invert"] = true;
-    image["scale"] = scale;
-  } else {
-    t.factor = scale;
-  }
-  return image;
-}
-
-}  // namespace
-
-void pbrt_define_texture(const std::string& name, const std::string& kind, const std::string& cls,
-                         const PbrtParameters& params, const PbrtLocation& where,
-                         PbrtTextures& textures, const std::filesystem::path& base_dir) {
-  if (kind != "spectrum" && kind != "float")
-    pbrt_fail(where, "texture " + in_quotes(name) + ": unknown texture type " + in_quotes(kind) +
-                         " (\"spectrum\" or \"float\")");
-  auto& table = kind == "float" ? textures.scalar : textures.spectrum;
-  PbrtTexture t;
-  const std::string kasha_name = "pbrt " + kind + " texture " + name;
-  if (cls == "constant") {
-    const PbrtParameter* v =
-        params.find("value", kind == "float" ? "float" : "float rgb spectrum blackbody");
-    // pbrt-v4 makes an albedo version of every spectrum texture: an RGB above 1 is refused here.
-    if (v) pbrt_spectrum(*(t.value = *v), PbrtSpectrumUse::kAlbedo, base_dir);
-  } else if (cls == "scale") {
-    // tex × scale, each a value or a texture; kasha keeps at most one texture times a number.
-    const PbrtParameter* tex = params.find(
-        "tex", kind == "float" ? "float texture" : "float rgb spectrum blackbody texture");
-    const double factor = pbrt_float_value(params, "scale", textures).value_or(1);
-    if (tex && tex->type == "texture") {
-      t = texture_named(*tex, table, kind.c_str());
-    } else if (tex) {
-      pbrt_spectrum(*(t.value = *tex), PbrtSpectrumUse::kAlbedo, base_dir);
-    }
-    t.factor *= factor;
-  } else if (cls == "imagemap") {
-    nlohmann::json image = imagemap(name, params, where, textures, t);
-    textures.kasha[kasha_name] = image;
-    t.kasha_name = kasha_name;
-  } else if (cls == "checkerboard") {
-    if (params.get_int("dimension", 2) != 2)
-      pbrt_fail(where, "texture " + in_quotes(name) + ": a 3D checkerboard is not built in kasha");
-    nlohmann::json checker = {{"type", "checkerboard"}};
-    checker["even"] = checker_value(params, "tex1", 1, kind, textures, base_dir);
-    checker["odd"] = checker_value(params, "tex2", 0, kind, textures, base_dir);
-    uv_mapping(params, where, checker);
-    t.kasha_name = kasha_name;
-    textures.kasha[kasha_name] = checker;
-  } else {
-    pbrt_fail(where, "texture " + in_quotes(name) + ": the texture class " + in_quotes(cls) +
-                         " is not built in kasha (imagemap, checkerboard, scale, constant)");
-  }
-  params.warn_unused("Texture " + in_quotes(name));
-  table[name] = t;
-}
-
-namespace {
-
 // A reflectance given as a value or a spectrum texture: sets material["passive"]["reflectance"]
 // and, for a texture, material["textures"]["reflectance"].
 void reflectance(const PbrtParameters& params, const PbrtTextures& textures,
@@ -177,7 +27,7 @@ void reflectance(const PbrtParameters& params, const PbrtTextures& textures,
     material["passive"]["reflectance"] = pbrt_spectrum(*p, PbrtSpectrumUse::kAlbedo, base_dir);
     return;
   }
-  const PbrtTexture& t = texture_named(*p, textures.spectrum, "spectrum");
+  const PbrtTexture& t = pbrt_texture_named(*p, textures.spectrum, "spectrum");
   if (t.kasha_name.empty()) {
     material["passive"]["reflectance"] =
         pbrt_texture_constant(t, PbrtSpectrumUse::kAlbedo, base_dir);
@@ -201,7 +51,7 @@ void diffuse_transmission(const PbrtParameters& params, const PbrtTextures& text
     const PbrtParameter* p = given[k] = params.find(name, "float rgb spectrum texture");
     if (!p) return 0.25;  // pbrt-v4's default
     if (p->type != "texture") return pbrt_spectrum(*p, PbrtSpectrumUse::kAlbedo, base_dir);
-    const PbrtTexture& t = texture_named(*p, textures.spectrum, "spectrum");
+    const PbrtTexture& t = pbrt_texture_named(*p, textures.spectrum, "spectrum");
     if (t.kasha_name.empty()) return pbrt_texture_constant(t, PbrtSpectrumUse::kAlbedo, base_dir);
     texture[k] = t.kasha_name;
     return t.factor;
@@ -241,7 +91,7 @@ nlohmann::json spectrum_value(const PbrtParameter& p, PbrtSpectrumUse use,
   if (p.type != "texture") return pbrt_spectrum(p, use, base_dir);
   const bool scalar = p.strings.size() == 1 && textures.scalar.count(p.strings[0]) &&
                       !textures.spectrum.count(p.strings[0]);
-  const PbrtTexture& t = texture_named(p, scalar ? textures.scalar : textures.spectrum, "spectrum");
+  const PbrtTexture& t = pbrt_texture_named(p, scalar ? textures.scalar : textures.spectrum, "spectrum");
   if (!t.kasha_name.empty())
     pbrt_fail(p.where, in_quotes(p.declaration()) + ": a texture that varies over the surface " +
                            "is not built in kasha here (it takes one spectrum)");
@@ -316,7 +166,7 @@ nlohmann::json conductor(const PbrtParameters& params, const PbrtLocation& where
               "refuses it too)");
   if (r) {
     if (r->type == "texture" &&
-        !texture_named(*r, textures.spectrum, "spectrum").kasha_name.empty())
+        !pbrt_texture_named(*r, textures.spectrum, "spectrum").kasha_name.empty())
       pbrt_fail(r->where, in_quotes(r->declaration()) + ": a conductor's reflectance texture is " +
                               "not built in kasha (its η and k take one spectrum each)");
     c["eta"] = 1.0;
@@ -395,7 +245,7 @@ nlohmann::json mix(const PbrtParameters& params, const PbrtLocation& where,
   nlohmann::json out = {{"materials", names->strings}};
   const PbrtParameter* amount = params.find("amount", "float texture");
   if (amount && amount->type == "texture") {
-    const PbrtTexture& t = texture_named(*amount, textures.scalar, "float");
+    const PbrtTexture& t = pbrt_texture_named(*amount, textures.scalar, "float");
     if (!t.kasha_name.empty()) {
       if (t.factor != 1)
         pbrt_fail(amount->where, in_quotes(amount->declaration()) +
@@ -409,29 +259,6 @@ nlohmann::json mix(const PbrtParameters& params, const PbrtLocation& where,
 }
 
 }  // namespace
-
-nlohmann::json pbrt_texture_constant(const PbrtTexture& t, PbrtSpectrumUse use,
-                                     const std::filesystem::path& base_dir) {
-  const nlohmann::json v = t.value ? pbrt_spectrum(*t.value, use, base_dir) : nlohmann::json(1.0);
-  return scaled(v, t.factor, t.value ? t.value->where : PbrtLocation{});
-}
-
-std::optional<double> pbrt_float_value(const PbrtParameters& params, const std::string& name,
-                                       const PbrtTextures& textures) {
-  const PbrtParameter* p = params.find(name, "float texture");
-  if (!p) return std::nullopt;
-  if (p->type != "texture") {
-    if (p->numbers.size() != 1)
-      pbrt_fail(p->where, in_quotes(p->declaration()) + " takes one value");
-    return p->numbers[0];
-  }
-  const PbrtTexture& t = texture_named(*p, textures.scalar, "float");
-  if (!t.kasha_name.empty())
-    pbrt_fail(p->where, in_quotes(p->declaration()) + ": a texture that varies over the surface " +
-                            "is not built in kasha here (it takes one number)");
-  const double factor = t.factor;
-  return t.value ? t.value->numbers.at(0) * factor : factor;
-}
 
 nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& params,
                              const PbrtLocation& where, const PbrtTextures& textures,
