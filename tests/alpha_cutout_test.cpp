@@ -108,6 +108,31 @@ TEST(AlphaCutout, ACheckerboardStopsExactlyItsSolidSquaresBehindALeaf) {
   EXPECT_GT(through, rays.size() / 3);
 }
 
+TEST(AlphaCutout, ATextureOfTexturesCutsWhereItsPatternSays) {
+  // A 3D checkerboard of alpha 1 and 0 in a texture space scaled by 0.5 and lifted by 0.3 (the
+  // floor z = 0 is mid-cube there): a program evaluated at the point, in both traversals alike.
+  const char* const cubes = R"("textures": {"cubes": {"type": "checkerboard", "dimension": 3,
+      "even": 1, "odd": 0, "transform": {"scale": 0.5, "translate": [0, 0, 0.3]}}})";
+  const std::string path = floor_scene("alpha_program", kGrey, kSky, cubes, R"("alpha": "cubes")");
+  const std::vector<KRay> rays = down_rays(20000, 4);
+  Scene scene = load_scene(path);
+  KernelSceneData data(scene);
+  AlphaCutouts alpha = alpha_cutouts(data);
+  ASSERT_FALSE(alpha.ops.empty());
+  EmbreeScene embree(scene.triangles, alpha);
+  ClTraversal traversal(device(), data.bvh, alpha);
+  std::vector<KHit> got = traversal.closest(rays);
+  size_t wrong = 0;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    EXPECT_EQ(got[i].prim, embree.intersect(rays[i]).prim) << "ray " << i;
+    const int cell = static_cast<int>(std::floor(rays[i].org[0] / 0.5)) +
+                     static_cast<int>(std::floor(rays[i].org[1] / 0.5)) +
+                     static_cast<int>(std::floor(-0.3 / 0.5));
+    if ((got[i].prim >= 0) != (cell % 2 == 0)) ++wrong;
+  }
+  EXPECT_EQ(wrong, 0u);
+}
+
 TEST(AlphaCutout, TheSkyIsSeenThroughTheHoles) {
   const std::string scene =
       floor_scene("alpha_render", kGrey, kSky, kChecker, R"("alpha": "holes")");

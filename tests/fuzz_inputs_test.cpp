@@ -362,6 +362,17 @@ MakeNamedMaterial "brushed" "string type" "conductor" "rgb eta" [0.2 0.9 1.1] "r
 MakeNamedMaterial "varnish" "string type" "coatedconductor" "spectrum conductor.eta" "metal-Au-eta" "spectrum conductor.k" "metal-Au-k" "float interface.eta" 1.4 "float thickness" 0.05
 Texture "holes" "float" "checkerboard" "float uscale" 8 "float vscale" 8 "float tex1" 1 "float tex2" 0
 MakeNamedMaterial "worn" "string type" "mix" "string materials" ["lacquer" "gold"] "texture amount" "holes"
+AttributeBegin
+  Scale 2 2 2
+  Texture "noise" "float" "fbm" "integer octaves" 3
+AttributeEnd
+Texture "cloud" "spectrum" "mix" "texture tex1" "checks" "rgb tex2" [0.2 0.3 0.4] "texture amount" "noise"
+Texture "spots" "spectrum" "dots" "texture inside" "cloud" "rgb outside" [0.5 0.5 0.5] "string mapping" "planar"
+Texture "stone" "spectrum" "marble" "float variation" 0.3
+Texture "veins" "spectrum" "scale" "texture tex" "stone" "texture scale" "noise"
+Texture "cut" "float" "checkerboard" "integer dimension" 3 "float tex1" 1 "texture tex2" "noise"
+MakeNamedMaterial "dotted" "string type" "diffuse" "texture reflectance" "spots"
+MakeNamedMaterial "marbled" "string type" "diffuse" "texture reflectance" "veins"
 LightSource "point" "point3 from" [0 2 0] "blackbody I" 4000 "float scale" 2
 LightSource "spot" "point3 from" [1 2 1] "point3 to" [0 0 0] "rgb I" [0.5 0.6 0.7] "float coneangle" 25
 LightSource "distant" "point3 from" [0 1 0] "point3 to" [0.2 0 0.1] "spectrum L" [400 1 700 2] "float scale" 0.3
@@ -391,6 +402,17 @@ AttributeBegin
   NamedMaterial "worn"
   Translate -0.5 0.3 0.6
   Shape "sphere" "float radius" 0.15
+AttributeEnd
+AttributeBegin
+  NamedMaterial "marbled"
+  Translate 0 0.3 -0.6
+  Shape "sphere" "float radius" 0.15 "texture alpha" "cut"
+AttributeEnd
+AttributeBegin
+  NamedMaterial "dotted"
+  Translate 0 0.01 1
+  Rotate -90 1 0 0
+  Shape "disk" "float radius" 0.3
 AttributeEnd
 ObjectBegin "thing"
   NamedMaterial "paper"

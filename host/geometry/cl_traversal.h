@@ -26,8 +26,9 @@ class ClTraversal {
 
   ClContext& cl_;
   cl::Buffer nodes_, leaves_, instances_, triangles_;
-  cl::Buffer texcoords_, textures_, values_, ops_;  // the alpha tables, leaf order (one entry without)
-  cl::Buffer rays_, results_;                 // kept between batches, grown when a batch needs more
+  cl::Buffer texcoords_, textures_, values_,
+      ops_;                    // the alpha tables, leaf order (one entry without)
+  cl::Buffer rays_, results_;  // kept between batches, grown when a batch needs more
   size_t ray_capacity_ = 0, result_bytes_ = 0;
   cl::Kernel closest_, occluded_;
 };

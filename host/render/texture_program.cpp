@@ -196,7 +196,9 @@ class TextureCompiler {
         r = lerp(c, scalar_input(input(t, "even")), scalar_input(input(t, "odd")));
         break;
       }
-      case TextureType::constant: r = scalar_input(input(t, "value")); break;
+      case TextureType::constant:
+        r = scalar_input(input(t, "value"));
+        break;
       case TextureType::scale:
         r = mul(scalar_input(input(t, "tex")), scalar_input(input(t, "scale")));
         break;
@@ -230,9 +232,15 @@ class TextureCompiler {
         r = lerp(d, scalar_input(input(t, "outside")), scalar_input(input(t, "inside")));
         break;
       }
-      case TextureType::fbm: r = noise(index, KASHA_TEXOP_FBM); break;
-      case TextureType::wrinkled: r = noise(index, KASHA_TEXOP_WRINKLED); break;
-      case TextureType::windy: r = noise(index, KASHA_TEXOP_WINDY); break;
+      case TextureType::fbm:
+        r = noise(index, KASHA_TEXOP_FBM);
+        break;
+      case TextureType::wrinkled:
+        r = noise(index, KASHA_TEXOP_WRINKLED);
+        break;
+      case TextureType::windy:
+        r = noise(index, KASHA_TEXOP_WINDY);
+        break;
       case TextureType::marble:
         fail(t.where, "a marble texture is a colour, and a number is needed here");
     }
@@ -278,7 +286,8 @@ class TextureCompiler {
         spectral_input(input(t, "odd"), mul(w, c));
         return;
       }
-      case TextureType::constant: return spectral_input(input(t, "value"), w);
+      case TextureType::constant:
+        return spectral_input(input(t, "value"), w);
       case TextureType::scale:
         return spectral_input(input(t, "tex"), mul(w, scalar_input(input(t, "scale"))));
       case TextureType::mix: {

@@ -18,9 +18,9 @@ namespace kasha {
 struct TextureProgramTables {
   std::vector<KTexOp>& ops;
   std::vector<float>& data;  // the spectra buffer: matrices and constant spectra
-  std::function<int(const SpectrumPtr&)> spectrum;        // its binned values' offset in data
-  std::function<int(int texture, bool spectral)> image;   // a scene image's plain KTexture
-  std::function<int(const RgbImage&)> palette;            // a spectral clamped image's KTexture
+  std::function<int(const SpectrumPtr&)> spectrum;       // its binned values' offset in data
+  std::function<int(int texture, bool spectral)> image;  // a scene image's plain KTexture
+  std::function<int(const RgbImage&)> palette;           // a spectral clamped image's KTexture
 };
 
 // The program's root record (KASHA_TEXTURE_PROGRAM) for the scene's texture `texture` used as a

@@ -521,8 +521,9 @@ static LampChoice choose_lamp(const JsonNode& root, const std::string& requested
 // it); a checkerboard's values must be numbers ≥ 0 there.
 static double texture_mean(const Texture& t, const JsonNode& where) {
   if (t.program())
-    where.fail("an emission texture is an image or a (u, v) checkerboard of numbers, not a "
-               "texture of textures");
+    where.fail(
+        "an emission texture is an image or a (u, v) checkerboard of numbers, not a "
+        "texture of textures");
   if (t.type == TextureType::checkerboard) {
     if (!(t.even_value >= 0 && t.odd_value >= 0))
       where.fail("an emission texture's checkerboard needs numbers ≥ 0 for \"even\" and \"odd\"");

@@ -64,10 +64,10 @@ struct Texture {
   std::map<std::string, TextureInput> inputs;
   TextureMapping mapping = TextureMapping::uv;
   Eigen::Affine3d texture_from_world = Eigen::Affine3d::Identity();  // the inverse "transform"
-  Eigen::Vector3d v1{1, 0, 0}, v2{0, 1, 0};  // planar mapping
-  Eigen::Vector3d dir{0, 1, 0};              // directionmix: in world space, unit
-  int dimension = 2;                         // checkerboard
-  int octaves = 8;                           // fbm, wrinkled, marble
+  Eigen::Vector3d v1{1, 0, 0}, v2{0, 1, 0};                          // planar mapping
+  Eigen::Vector3d dir{0, 1, 0};  // directionmix: in world space, unit
+  int dimension = 2;             // checkerboard
+  int octaves = 8;               // fbm, wrinkled, marble
   double roughness = 0.5, marble_scale = 1, variation = 0.2;
 
   // Whether the kernels evaluate it as a program (everything but a plain (u, v) image or

@@ -91,7 +91,8 @@ nlohmann::json spectrum_value(const PbrtParameter& p, PbrtSpectrumUse use,
   if (p.type != "texture") return pbrt_spectrum(p, use, base_dir);
   const bool scalar = p.strings.size() == 1 && textures.scalar.count(p.strings[0]) &&
                       !textures.spectrum.count(p.strings[0]);
-  const PbrtTexture& t = pbrt_texture_named(p, scalar ? textures.scalar : textures.spectrum, "spectrum");
+  const PbrtTexture& t =
+      pbrt_texture_named(p, scalar ? textures.scalar : textures.spectrum, "spectrum");
   if (!t.kasha_name.empty())
     pbrt_fail(p.where, in_quotes(p.declaration()) + ": a texture that varies over the surface " +
                            "is not built in kasha here (it takes one spectrum)");

@@ -299,7 +299,6 @@ std::optional<double> pbrt_float_value(const PbrtParameters& params, const std::
   return t.value ? t.value->numbers.at(0) * factor : factor;
 }
 
-
 std::string pbrt_kasha_texture(const PbrtTexture& t, PbrtTextures& textures) {
   if (t.kasha_name.empty() || t.factor == 1) return t.kasha_name;
   std::ostringstream name;
