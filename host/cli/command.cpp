@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <new>
 
 #include "core/interrupt.h"
 #include "opencl/failure_text.h"
@@ -36,6 +37,11 @@ int report_failure() {
     throw;
   } catch (const Interrupted&) {
     return report_interrupt();
+  } catch (const std::bad_alloc&) {
+    // Nothing may be allocated here: the message is a literal.
+    std::fputs("kasha: error: out of memory (the input needs more memory than kasha may take)\n",
+               stderr);
+    return 1;
   } catch (...) {
     if (interrupt_requested()) return report_interrupt();
     std::fprintf(stderr, "kasha: error: %s\n", failure_text().c_str());

@@ -5,8 +5,9 @@
 
 namespace kasha {
 
-Film::Film(int width, int height, const WavelengthGrid& grid, bool spectral)
-    : width_(width),
+Film::Film(int width, int height, const WavelengthGrid& grid, bool spectral, double exposure)
+    : exposure_(exposure),
+      width_(width),
       height_(height),
       grid_(grid),
       spectral_(spectral),
@@ -50,6 +51,7 @@ Image Film::image() const {
     for (int r = 0; r < R; ++r) {
       value[r] = sum_[p * R + r] * inv;
       if (!kept.empty()) value[r] += kept[p * R + r];
+      value[r] *= exposure_;
     }
     if (spectral_) {
       for (int i = 0; i < R; ++i) img.spectral[p * R + i] = static_cast<float>(value[i]);

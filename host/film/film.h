@@ -14,7 +14,8 @@ namespace kasha {
 
 class Film {
  public:
-  Film(int width, int height, const WavelengthGrid& grid, bool spectral);
+  // exposure: what image() multiplies the estimate by (the camera's "exposure").
+  Film(int width, int height, const WavelengthGrid& grid, bool spectral, double exposure = 1);
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -34,6 +35,7 @@ class Film {
   Image image() const;  // the current estimate
 
  private:
+  double exposure_ = 1;
   int width_, height_;
   WavelengthGrid grid_;
   bool spectral_;

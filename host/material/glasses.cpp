@@ -2,6 +2,9 @@
 
 #include <cmath>
 
+#include "core/csv_table.h"
+#include "core/embedded_file.h"
+
 namespace kasha {
 
 double sellmeier_index(const std::vector<double>& B, const std::vector<double>& C_um2, double nm) {
@@ -69,18 +72,42 @@ const std::vector<Glass>& glasses() {
   };
   return all;
 }
+
+// pbrt-v4's other named glasses, as its tables give them (host/data/glass_NAME.csv).
+const std::vector<std::string>& tabulated_glasses() {
+  static const std::vector<std::string> names = {"BAF10", "FK51A", "LASF9", "SF5", "SF10"};
+  return names;
+}
+
+// A tabulated index, linear between samples and its end values beyond them (an index of 0 is no
+// glass).
+SpectrumPtr glass_table(const std::string& name) {
+  const std::string file = "glass_" + name + ".csv";
+  const CsvTable table = parse_csv_table(embedded_data(file), file);
+  std::vector<double> nm = {1.0}, n = {table.rows.front().at(1)};
+  for (const auto& row : table.rows) {
+    nm.push_back(row.at(0));
+    n.push_back(row.at(1));
+  }
+  nm.push_back(1e5);
+  n.push_back(n.back());
+  return std::make_shared<PiecewiseLinearSpectrum>(nm, n);
+}
 }  // namespace
 
 SpectrumPtr named_glass(const std::string& name) {
   for (const Glass& g : glasses())
     if (name == g.name)
       return index_spectrum([g](double nm) { return sellmeier_index(g.B, g.C_um2, nm); });
+  for (const std::string& t : tabulated_glasses())
+    if (name == t) return glass_table(t);
   return nullptr;
 }
 
 std::vector<std::string> named_glass_names() {
   std::vector<std::string> names;
   for (const Glass& g : glasses()) names.push_back(g.name);
+  for (const std::string& t : tabulated_glasses()) names.push_back(t);
   return names;
 }
 

@@ -6,7 +6,8 @@
 namespace kasha {
 
 std::vector<std::string> builtin_metal_names() {
-  return {"Ag", "Al", "Au", "Cu"};
+  // pbrt-v4's named metals (util/spectrum.cpp's tables, host/data/SOURCES.md).
+  return {"Ag", "Al", "Au", "Cu", "CuZn", "MgO", "TiO2"};
 }
 
 MetalIndex builtin_metal(const std::string& name) {

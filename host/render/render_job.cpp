@@ -18,7 +18,8 @@ RenderJob::RenderJob(const std::vector<RenderLane>& lanes, const Scene& scene,
                      const std::string& integrator, const IntegratorSettings& settings,
                      bool spectral_film, const std::vector<Integrator*>& remote,
                      const IntegratorTestHooks& hooks)
-    : film_(scene.camera.width, scene.camera.height, scene.grid, spectral_film),
+    : film_(scene.camera.width, scene.camera.height, scene.grid, spectral_film,
+            scene.camera.exposure),
       remote_(remote.size()) {
   if (lanes.empty()) throw Error("render: no device to render on");
   lit(scene, lanes[0].scene, integrator);

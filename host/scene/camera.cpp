@@ -71,6 +71,10 @@ Camera parse_camera(const JsonNode& node) {
   if (auto h = node.find("height")) c.height = h->integer_in(1, 16384);
   if (auto m = node.find("mirror")) c.mirror = m->boolean();
   if (auto f = node.find("filter")) c.filter = parse_pixel_filter(*f);
+  if (auto e = node.find("exposure")) {
+    c.exposure = e->number_in(0, 1e12);
+    if (!(c.exposure > 0)) e->fail("\"exposure\" must be positive");
+  }
   parse_projection(node, &c);
   node.finish();
   Eigen::Vector3d forward = vec(c.look_at) - vec(c.position);

@@ -25,7 +25,8 @@ struct Camera {
   // pbrt-v4's screen window (x0, x1, y0, y1): in units of tan(fov/2) (perspective) or of the
   // world (orthographic); unset: the shorter side spans [−1, 1].
   std::optional<std::array<double, 4>> screen_window;
-  PixelFilter filter;  // kasha's unit box unless "filter" names one of pbrt-v4's
+  PixelFilter filter;   // kasha's unit box unless "filter" names one of pbrt-v4's
+  double exposure = 1;  // what the image's values are multiplied by (pbrt-v4's imaging ratio)
 
   KCamera to_kernel() const;
 };

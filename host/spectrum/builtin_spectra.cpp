@@ -10,8 +10,12 @@ namespace kasha {
 namespace {
 const std::map<std::string, std::string>& table_files() {
   static const std::map<std::string, std::string> files = {
-      {"A", "CIE_A.csv"},    {"D50", "CIE_D50.csv"}, {"D65", "CIE_D65.csv"},
-      {"F2", "CIE_FL2.csv"}, {"F7", "CIE_FL7.csv"},  {"F11", "CIE_FL11.csv"},
+      {"A", "CIE_A.csv"},           {"D50", "CIE_D50.csv"},  {"D65", "CIE_D65.csv"},
+      {"F1", "CIE_FL1.csv"},        {"F2", "CIE_FL2.csv"},   {"F3", "CIE_FL3.csv"},
+      {"F4", "CIE_FL4.csv"},        {"F5", "CIE_FL5.csv"},   {"F6", "CIE_FL6.csv"},
+      {"F7", "CIE_FL7.csv"},        {"F8", "CIE_FL8.csv"},   {"F9", "CIE_FL9.csv"},
+      {"F10", "CIE_FL10.csv"},      {"F11", "CIE_FL11.csv"}, {"F12", "CIE_FL12.csv"},
+      {"ACES_D60", "ACES_D60.csv"},
   };
   return files;
 }

@@ -128,15 +128,19 @@ class Importer {
     if (uses_default_material_)
       materials_[kDefaultMaterial] = {{"passive", {{"reflectance", 0.5}}}};
     camera_["filter"] = filter_;
-    nlohmann::json scene = {
-        {"kasha_scene", 1}, {"camera", camera_}, {"materials", materials_}, {"shapes", shapes_}};
-    if (!lights_.empty()) scene["lights"] = lights_;
-    if (!textures_.kasha.empty()) scene["textures"] = textures_.kasha;
-    if (max_depth_) scene["max_depth"] = *max_depth_;
+    if (exposure_time_ * iso_ / 100 != 1) camera_["exposure"] = exposure_time_ * iso_ / 100;
+    // Moved, not copied: a scene of millions of shapes or instances is held once.
+    nlohmann::json scene = {{"kasha_scene", 1}};
+    scene["camera"] = std::move(camera_);
+    scene["materials"] = std::move(materials_);
     if (!instances_.empty()) {
       scene["objects"] = placed_objects();
-      scene["instances"] = instances_;
+      scene["instances"] = std::move(instances_);
     }
+    scene["shapes"] = std::move(shapes_);
+    if (!lights_.empty()) scene["lights"] = std::move(lights_);
+    if (!textures_.kasha.empty()) scene["textures"] = std::move(textures_.kasha);
+    if (max_depth_) scene["max_depth"] = *max_depth_;
     return scene;
   }
 
@@ -206,6 +210,11 @@ class Importer {
                 "shutter, so transforms for the end time are ignored");
       return;
     }
+    // A transform of the start time alone makes start and end differ: the scene moves.
+    if (start_time_only_)
+      warn_once(d.where, "motion",
+                "motion blur is not built in kasha: the scene is rendered at the start of the "
+                "shutter");
     state_.ctm = state_.ctm * m;
   }
 
@@ -353,6 +362,7 @@ class Importer {
                 "at the start of the shutter");
     } else if (d.text == "ActiveTransform") {
       PbrtToken which = tokens.next();
+      start_time_only_ = which.text == "StartTime";
       if (which.text == "StartTime" || which.text == "All")
         end_time_only_ = false;
       else if (which.text == "EndTime")
@@ -631,8 +641,12 @@ class Importer {
     camera_["mirror"] = right.dot(forward.cross(up)) < 0;
     camera_["type"] = type;
     camera_projection(type, params, where);
-    params.get_float("shutteropen", 0);
-    params.get_float("shutterclose", 1);
+    // pbrt-v4's exposure time, a factor of the film's imaging ratio (PixelSensor::Create).
+    // pbrt-v4 swaps a shutter that closes before it opens.
+    exposure_time_ =
+        std::abs(params.get_float("shutterclose", 1) - params.get_float("shutteropen", 0));
+    if (!(exposure_time_ > 0))
+      pbrt_fail(where, "Camera: the shutter opens and closes at once (no exposure)");
     params.warn_unused("Camera " + in_quotes(type));
     if (!state_.outside_medium.empty())
       pbrt_fail(where, "the camera is inside medium " + in_quotes(state_.outside_medium) +
@@ -694,13 +708,16 @@ class Importer {
     params.get_string("filename", "");  // kasha writes where -o says
     if (params.find("cropwindow", "float") || params.find("pixelbounds", "integer"))
       pbrt_warn(where, "a crop window is not built in kasha: the whole frame renders");
-    const double iso = params.get_float("iso", 100);
+    // pbrt-v4's imaging ratio, exposure time × ISO / 100, scales the image (camera "exposure");
+    // another sensor's curves and a white balance are not built.
+    iso_ = params.get_float("iso", 100);
+    if (!(iso_ > 0)) pbrt_fail(where, "Film: \"iso\" must be positive");
     const std::string sensor = params.get_string("sensor", "cie1931");
     const double white = params.get_float("whitebalance", 0);
-    if (iso != 100 || sensor != "cie1931" || white != 0)
+    if (sensor != "cie1931" || white != 0)
       pbrt_warn(where,
-                "the film's sensor settings (iso, sensor, whitebalance) are not built in "
-                "kasha: it records XYZ as pbrt-v4's default cie1931 sensor at ISO 100");
+                "the film's \"sensor\" and \"whitebalance\" are not built in kasha: it records "
+                "XYZ as pbrt-v4's default cie1931 sensor (its ISO and exposure time are applied)");
     for (const char* ignored : {"maxcomponentvalue", "diagonal"}) params.get_float(ignored, 0);
     params.get_bool("savefp16", true);
     // The film's own output space: kasha's film records XYZ and writes its own (formats.md).
@@ -782,9 +799,12 @@ class Importer {
         l["image"] = file;
         l["mapping"] = "equal_area";
         l["scale"] = scale / pbrt_d65_photometric();
-        // Any invertible transform, as pbrt-v4 applies it to directions (normalised after it).
+        // Any invertible transform, as pbrt-v4 applies it to directions (normalised after it):
+        // its 3 × 3 part alone, so a translation or a projective bottom row changes nothing.
         Matrix rot = m;
         rot.topRightCorner<3, 1>().setZero();
+        rot.bottomLeftCorner<1, 3>().setZero();
+        rot(3, 3) = 1;
         const Eigen::Matrix3d r = rot.topLeftCorner<3, 3>();
         if (!(std::abs(r.determinant()) > 1e-12 * std::pow(r.norm(), 3)))
           pbrt_fail(where, "an environment image's transform is not invertible");
@@ -888,10 +908,12 @@ class Importer {
   std::vector<SavedState> stack_;
   std::map<std::string, Matrix> named_frames_;
   bool end_time_only_ = false;
+  bool start_time_only_ = false;  // ActiveTransform StartTime: what moves the scene
   bool camera_seen_ = false;
   std::optional<int> max_depth_ = kPbrtDefaultMaxDepth;  // the Integrator's (pbrt_integrator.h)
   bool world_begun_ = false;
   nlohmann::json camera_ = nlohmann::json::object();
+  double exposure_time_ = 1, iso_ = 100;  // pbrt-v4's imaging ratio: their product / 100
   // pbrt-v4's default filter (filters.cpp): a gaussian of radius 1.5 and sigma 0.5.
   nlohmann::json filter_ = {{"type", "gaussian"}, {"radius", {1.5, 1.5}}, {"sigma", 0.5}};
   nlohmann::json materials_ = nlohmann::json::object();

@@ -124,8 +124,8 @@ nlohmann::json index_of_refraction(const PbrtParameters& params, const PbrtTextu
 std::string metal_of(const PbrtParameter* p, const char* suffix) {
   if (!p || p->type != "spectrum" || p->strings.size() != 1) return "";
   const std::string& s = p->strings[0];
-  for (const char* m : {"Ag", "Al", "Au", "Cu"})
-    if (s == std::string("metal-") + m + "-" + suffix) return m;
+  for (const std::string& m : builtin_metal_names())
+    if (s == "metal-" + m + "-" + suffix) return m;
   return "";
 }
 

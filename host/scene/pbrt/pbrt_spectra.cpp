@@ -20,11 +20,16 @@ namespace {
 // pbrt-v4's named spectra that kasha has under another name: CIE illuminants and glasses. Its
 // metals are taken by the conductor (pbrt_materials.cpp), which knows both η and k.
 const std::map<std::string, std::string>& named_spectra() {
-  static const std::map<std::string, std::string> names = {
-      {"stdillum-A", "A"},   {"stdillum-D50", "D50"}, {"stdillum-D65", "D65"},
-      {"stdillum-F2", "F2"}, {"stdillum-F7", "F7"},   {"stdillum-F11", "F11"},
-      {"glass-BK7", "BK7"},  {"glass-F11", "SF11"},
-  };
+  static const std::map<std::string, std::string> names = [] {
+    std::map<std::string, std::string> n = {
+        {"stdillum-A", "A"},           {"stdillum-D50", "D50"},  {"stdillum-D65", "D65"},
+        {"illum-acesD60", "ACES_D60"}, {"glass-BK7", "BK7"},     {"glass-F11", "SF11"},
+        {"glass-BAF10", "BAF10"},      {"glass-FK51A", "FK51A"}, {"glass-LASF9", "LASF9"},
+        {"glass-F5", "SF5"},           {"glass-F10", "SF10"},
+    };
+    for (int f = 1; f <= 12; ++f) n["stdillum-F" + std::to_string(f)] = "F" + std::to_string(f);
+    return n;
+  }();
   return names;
 }
 
@@ -102,8 +107,10 @@ nlohmann::json pbrt_spectrum(const PbrtParameter& p, PbrtSpectrumUse use,
       name.rfind("stdillum-", 0) == 0 || name.rfind("illum-", 0) == 0 ||
       name.rfind("canon_", 0) == 0 || name.rfind("nikon_", 0) == 0 || name.rfind("sony_", 0) == 0)
     pbrt_fail(p.where, what + ": the named spectrum \"" + printable(name) +
-                           "\" is not among kasha's (stdillum-A, -D50, -D65, -F2, -F7, -F11, "
-                           "glass-BK7, glass-F11, and metal-Ag/Al/Au/Cu for a conductor)");
+                           "\" is not among kasha's (pbrt-v4's stdillum-A, -D50, -D65, "
+                           "-F1…F12, illum-acesD60, glass-BK7, -BAF10, -FK51A, -LASF9, -F5, "
+                           "-F10, -F11, and metal-Ag/Al/Au/Cu/CuZn/MgO/TiO2 for a conductor; no "
+                           "camera sensor curves)");
   // A file of wavelength-value pairs, relative to the scene's folder (as the scene's JSON
   // resolves it).
   (void)base_dir;
