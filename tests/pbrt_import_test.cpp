@@ -344,6 +344,44 @@ Material "dielectric" "spectrum eta" "glass-LASF9"
   EXPECT_NEAR(named_glass("BAF10")->value(587.56), 1.670, 2e-3);
 }
 
+// Textures of textures (pbrt_textures.cpp): a reflectance scaled above 1 and a scaled float
+// texture become kasha's scale textures (programs) instead of refusals; a 3D texture keeps the
+// transform where it was defined.
+TEST(PbrtImport, ScaledTexturesAndTexturesOfTexturesBecomeKashaTextures) {
+  const nlohmann::json s = import_text("tt.pbrt", scene(R"(
+Texture "img" "spectrum" "imagemap" "string filename" "print.png"
+Texture "bright" "spectrum" "scale" "texture tex" "img" "float scale" 1.5
+Texture "ink" "float" "imagemap" "string filename" "ink.png" "float scale" 0.5
+AttributeBegin
+Scale 2 2 2
+Texture "noise" "float" "fbm" "integer octaves" 4
+AttributeEnd
+Texture "cloudy" "spectrum" "mix" "texture tex1" "bright" "rgb tex2" [0.1 0.2 0.3] "texture amount" "noise"
+Texture "polka" "spectrum" "dots" "rgb inside" [1 0 0] "rgb outside" [0 0 1]
+MakeNamedMaterial "a" "string type" "diffuse" "texture reflectance" "bright"
+MakeNamedMaterial "b" "string type" "diffuse" "texture reflectance" "cloudy"
+MakeNamedMaterial "m" "string type" "mix" "string materials" ["a" "b"] "texture amount" "ink"
+NamedMaterial "m"
+)" + std::string(kQuad)));
+  const nlohmann::json& t = s.at("textures");
+  const std::string bright = s.at("materials").at("a").at("textures").at("reflectance");
+  EXPECT_EQ(t.at(bright).at("type"), "scale");
+  EXPECT_EQ(t.at(bright).at("scale"), 1.5);
+  EXPECT_EQ(t.at(bright).at("tex").at("texture"), "pbrt spectrum texture img");
+  const std::string ink = s.at("materials").at("m").at("mix").at("amount");
+  EXPECT_EQ(t.at(ink).at("type"), "scale");
+  EXPECT_EQ(t.at(ink).at("scale"), 0.5);
+  const nlohmann::json& cloudy = t.at("pbrt spectrum texture cloudy");
+  EXPECT_EQ(cloudy.at("type"), "mix");
+  EXPECT_EQ(cloudy.at("tex1").at("texture"), bright);
+  EXPECT_EQ(cloudy.at("amount").at("texture"), "pbrt float texture noise");
+  expect_matrix(t.at("pbrt float texture noise").at("transform").at("matrix"),
+                {2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 1}, "fbm");
+  // pbrt-v4 hands "inside" to the dots' background (DotsTexture::Create's argument order).
+  const nlohmann::json& polka = t.at("pbrt spectrum texture polka");
+  EXPECT_EQ(polka.at("outside").at("rgb"), (std::vector<double>{1, 0, 0}));
+}
+
 // pbrt-v4's imaging ratio, exposure time × ISO / 100 (PixelSensor::Create), scales the image.
 TEST(PbrtImport, FilmIsoAndShutterTimeAreTheCamerasExposure) {
   const nlohmann::json s = import_text(

@@ -33,9 +33,7 @@ void reflectance(const PbrtParameters& params, const PbrtTextures& textures,
         pbrt_texture_constant(t, PbrtSpectrumUse::kAlbedo, base_dir);
     return;
   }
-  if (t.factor > 1)
-    pbrt_fail(p->where, in_quotes(p->declaration()) + ": a texture scaled by " +
-                            std::to_string(t.factor) + " may exceed a reflectance of 1");
+  // A factor above 1 was made a scale texture where the texture was defined (pbrt_textures.cpp).
   material["passive"]["reflectance"] = t.factor;
   material["textures"]["reflectance"] = t.kasha_name;
 }
@@ -247,10 +245,7 @@ nlohmann::json mix(const PbrtParameters& params, const PbrtLocation& where,
   const PbrtParameter* amount = params.find("amount", "float texture");
   if (amount && amount->type == "texture") {
     const PbrtTexture& t = pbrt_texture_named(*amount, textures.scalar, "float");
-    if (!t.kasha_name.empty()) {
-      if (t.factor != 1)
-        pbrt_fail(amount->where, in_quotes(amount->declaration()) +
-                                     ": a scaled texture as a mix's amount is not built in kasha");
+    if (!t.kasha_name.empty()) {  // a float texture's factor is in it (pbrt_textures.cpp)
       out["amount"] = t.kasha_name;
       return out;
     }

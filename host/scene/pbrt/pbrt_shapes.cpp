@@ -271,9 +271,7 @@ void pbrt_shape_alpha(const PbrtParameters& params, const PbrtTextures& textures
   if (a->type == "texture" && a->strings.size() == 1) {
     auto t = textures.scalar.find(a->strings[0]);
     if (t != textures.scalar.end() && !t->second.kasha_name.empty()) {
-      if (t->second.factor != 1)
-        pbrt_warn(a->where, "a scaled alpha texture is read unscaled in kasha");
-      shape["alpha"] = t->second.kasha_name;
+      shape["alpha"] = t->second.kasha_name;  // its factor is in it (pbrt_textures.cpp)
       return;
     }
   }

@@ -272,6 +272,12 @@ void pbrt_define_texture(const std::string& name, const std::string& kind, const
     add(std::move(made));
   }
   if (!t.kasha_name.empty()) textures.added.push_back(t.kasha_name);
+  // A factor kasha's uses cannot take as a number becomes a scale texture (a program, clamped
+  // where it is a reflectance, as pbrt-v4 clamps): a spectrum's above 1, any on a number's.
+  if (!t.kasha_name.empty() && (kind == "float" ? t.factor != 1 : t.factor > 1)) {
+    t.kasha_name = pbrt_kasha_texture(t, textures);
+    t.factor = 1;
+  }
   params.warn_unused("Texture " + in_quotes(name));
   table[name] = t;
 }
