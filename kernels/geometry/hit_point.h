@@ -27,7 +27,8 @@
 #endif
 
 /* With shading normals (KASHA_SHADING_NORMALS, docs/formats.md#shading-normals), ns is the
- * interpolated shading normal (turned to the geometric front's hemisphere, then to the ray's side)
+ * interpolated shading normal, or the material's normal map's (materials/normal_map.h), turned to
+ * the geometric front's hemisphere, then to the ray's side,
  * and ng the geometric one on the ray's side: surfaces scatter about ns, while offsets, the side a
  * new ray leaves by and the check against light leaks use ng. Without them ns is the geometric
  * normal and hit_ng returns it. */
