@@ -609,26 +609,20 @@ DeviceScene::DeviceScene(ClContext& cl, const Scene& scene)
   p.bin_nm = data_.bin_nm;
   p.light_sources = static_cast<int>(data_.lights.size());
   p.light_triangles = data_.light_triangles;
-  tables_ = upload_tables(cl, {host_table(data_.bvh.nodes, p.nodes),
-                               host_table(data_.bvh.leaves, p.leaves),
-                               host_table(data_.bvh.triangles, p.tris),
-                               host_table(data_.materials, p.materials),
-                               host_table(data_.spectra, p.spectra),
-                               host_table(data_.lobes, p.lobes),
-                               host_table(data_.emitter_radiance, p.emitter_radiance),
-                               host_table(data_.emitter_area_pdf, p.emitter_area_pdf),
-                               host_table(data_.light_tri, p.light_tri),
-                               host_table(data_.light_cdf, p.light_cdf),
-                               host_table(data_.lights, p.lights),
-                               host_table(data_.textures, p.textures),
-                               host_table(data_.texcoords, p.texcoords),
-                               host_table(data_.normals, p.normals),
-                               host_table(data_.light_bvh.nodes, p.light_nodes),
-                               host_table(data_.light_bvh.trails, p.light_trails),
-                               host_table(data_.bvh.instances, p.instances),
-                               host_table(data_.tangents, p.tangents),
-                               host_table(data_.light_spheres, p.light_spheres),
-                               host_table(data_.tex_ops, p.tex_ops)});
+  tables_ = upload_tables(
+      cl, {host_table(data_.bvh.nodes, p.nodes), host_table(data_.bvh.leaves, p.leaves),
+           host_table(data_.bvh.triangles, p.tris), host_table(data_.materials, p.materials),
+           host_table(data_.spectra, p.spectra), host_table(data_.lobes, p.lobes),
+           host_table(data_.emitter_radiance, p.emitter_radiance),
+           host_table(data_.emitter_area_pdf, p.emitter_area_pdf),
+           host_table(data_.light_tri, p.light_tri), host_table(data_.light_cdf, p.light_cdf),
+           host_table(data_.lights, p.lights), host_table(data_.textures, p.textures),
+           host_table(data_.texcoords, p.texcoords), host_table(data_.normals, p.normals),
+           host_table(data_.light_bvh.nodes, p.light_nodes),
+           host_table(data_.light_bvh.trails, p.light_trails),
+           host_table(data_.bvh.instances, p.instances), host_table(data_.tangents, p.tangents),
+           host_table(data_.light_spheres, p.light_spheres),
+           host_table(data_.tex_ops, p.tex_ops)});
 }
 
 }  // namespace kasha
