@@ -43,11 +43,12 @@ static int run_info(const std::string& scene_path, bool spectral, const std::str
   auto yes = [](bool b) { return b ? "yes" : "no"; };
   std::printf(
       "features: fluorescence %s, gloss %s, dielectric %s, conductor %s, dispersion %s, rough %s, "
-      "coated %s, shading normals %s, textures %s, emission textures %s, environment %s\n",
+      "coated %s, shading normals %s, normal maps %s, textures %s, emission textures %s, "
+      "environment %s\n",
       yes(scene.fluorescent()), yes(scene.glossy()), yes(scene.uses(MaterialKind::dielectric)),
       yes(scene.uses(MaterialKind::conductor)), yes(scene.dispersive()), yes(scene.rough()),
-      yes(scene.coated()), yes(scene.shading_normals()), yes(scene.textured()),
-      yes(scene.emission_textured()), yes(scene.has_environment()));
+      yes(scene.coated()), yes(scene.shading_normals()), yes(scene.normal_mapped()),
+      yes(scene.textured()), yes(scene.emission_textured()), yes(scene.has_environment()));
   std::printf("materials: %zu; shapes: %zu; triangles: %zu; emitters: %zu (%d triangles)\n",
               scene.materials.size(), scene.shapes.size(), scene.triangles.size(),
               scene.emitters.size(), emitting_triangles);

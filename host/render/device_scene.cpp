@@ -260,9 +260,13 @@ KernelSceneData::KernelSceneData(const Scene& scene)
   // The zero spectrum that kernels read in place of a material's absent part (offset 0).
   spectra.assign(scene.grid.bins, 0.0f);
   for (const Material& m : scene.materials) materials.push_back(kernel_material(m, scene, obs));
-  if (scene.textured() || scene.emission_textured() || scene.cut_out()) add_textures(scene);
+  // A normal map is looked up at the texture coordinates, in the frame of ∂p/∂u.
+  const bool normal_mapped = scene.normal_mapped();
+  if (scene.textured() || scene.emission_textured() || scene.cut_out() || normal_mapped)
+    add_textures(scene);
+  if (normal_mapped) add_normal_maps(scene);
   if (scene.shading_normals()) add_shading_normals(scene);
-  if (scene.anisotropic()) add_tangents(scene);
+  if (scene.anisotropic() || normal_mapped) add_tangents(scene);
   for (const Emitter& e : scene.emitters) append(emitter_radiance, e.per_bin);
   for (const Light& l : scene.lights) append(emitter_radiance, l.per_bin);
   add_light_sampling(scene);
@@ -330,7 +334,7 @@ KMaterial KernelSceneData::kernel_material(const Material& m, const Scene& scene
   k.coat_table = -1;
   if (m.coat) add_coat(*m.coat, k);
   albedo_xyz(m, scene.grid, obs, k.albedo_xyz);
-  k.reflectance_texture = k.fluorescence_texture = -1;
+  k.reflectance_texture = k.fluorescence_texture = k.normal_map = -1;
   return k;
 }
 
@@ -349,6 +353,32 @@ void KernelSceneData::add_coat(const CoatDesc& c, KMaterial& k) {
   } else {
     k.coat_internal = static_cast<float>(coat_internal_reflectance(c));
     k.coat_albedo = static_cast<float>(coat_mean_transmission(c) / (c.eta * c.eta));
+  }
+}
+
+// Each normal map a used material has, as a KTexture of three floats a texel (the image's RGB,
+// kernels/materials/normal_map.h), repeating and bilinear as pbrt-v4 looks normal maps up.
+void KernelSceneData::add_normal_maps(const Scene& scene) {
+  std::vector<int> made(scene.normal_maps.size(), -1);
+  for (int i : scene.used_materials()) {
+    const int map = scene.material_textures[i].normal_map;
+    if (map < 0) continue;
+    if (made[map] < 0) {
+      const RgbImage& image = scene.normal_maps[map].image;
+      KTexture k{};
+      k.type = KASHA_TEXTURE_IMAGE;
+      k.width = image.width;
+      k.height = image.height;
+      k.wrap = KASHA_WRAP_REPEAT;
+      k.bilinear = 1;
+      k.uscale = k.vscale = 1.0f;
+      k.even = k.odd = k.lambda = -1;
+      k.data = static_cast<int>(spectra.size());
+      spectra.insert(spectra.end(), image.rgb.begin(), image.rgb.end());
+      textures.push_back(k);
+      made[map] = static_cast<int>(textures.size()) - 1;
+    }
+    materials[i].normal_map = made[map];
   }
 }
 
@@ -549,7 +579,10 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_TRANSMISSION"] = scene.transmissive() ? "1" : "0";
   d["KASHA_THIN"] = scene.thin() ? "1" : "0";
   d["KASHA_MIX"] = scene.mixed() ? "1" : "0";
-  d["KASHA_SHADING_NORMALS"] = scene.shading_normals() ? "1" : "0";
+  // A normal map shades about a normal of its own, as vertex normals do.
+  d["KASHA_SHADING_NORMALS"] = scene.shading_normals() || scene.normal_mapped() ? "1" : "0";
+  d["KASHA_VERTEX_NORMALS"] = scene.shading_normals() ? "1" : "0";
+  d["KASHA_NORMAL_MAPS"] = scene.normal_mapped() ? "1" : "0";
   d["KASHA_SCRATCH_COAT"] = std::to_string(scratch_coat_offset(scene));
   return d;
 }

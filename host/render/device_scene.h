@@ -31,7 +31,8 @@ struct KernelSceneData {
   std::vector<KTexOp> tex_ops;           // texture programs' steps (shared/texture_program.h)
   std::vector<KTexcoords> texcoords;     // per leaf triangle, when the scene has textures
   std::vector<KShadingNormals> normals;  // per leaf triangle, when some shape has shading normals
-  std::vector<KTangent> tangents;  // per leaf triangle, when some rough material is anisotropic
+  // Per leaf triangle, when some rough material is anisotropic or some material normal-mapped.
+  std::vector<KTangent> tangents;
   // Light sampling: emitting triangles (leaf order), then the other lights (~index into
   // `lights`), with the CDF of their power, and per emitter the area density
   // p(triangle)/area = pi·Σ Le Δλ / total power (light paths'). Next-event estimation picks
@@ -60,6 +61,7 @@ struct KernelSceneData {
   void add_textures(const Scene& scene);
   std::vector<int> alpha_textures(const Scene& scene,
                                   const std::function<int(int)>& scalar_texture);
+  void add_normal_maps(const Scene& scene);
   void add_shading_normals(const Scene& scene);
   void add_tangents(const Scene& scene);
   void add_light_sampling(const Scene& scene);

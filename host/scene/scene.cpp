@@ -107,6 +107,12 @@ bool Scene::textured() const {
   return false;
 }
 
+bool Scene::normal_mapped() const {
+  for (int m : used_materials())
+    if (material_textures[m].normal_map >= 0) return true;
+  return false;
+}
+
 bool Scene::emission_textured() const {
   for (const Emitter& e : emitters)
     if (e.texture >= 0) return true;
@@ -564,6 +570,9 @@ static void check_material_textures(const Scene& scene) {
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     const MaterialTextures& mt = scene.material_textures[i];
     const Material& m = scene.materials[i];
+    // pbrt-v4's mix has none: the material it picks shades with its own.
+    if (mt.normal_map >= 0 && m.mix)
+      throw Error(mt.normal_map_where + ": a mix's normal maps are its materials' own");
     if (mt.reflectance < 0 && mt.fluorescence < 0) continue;
     if (m.mix) throw Error(mt.where + ": a mix's textures are its materials' own");
     if (m.kind != MaterialKind::measured)
@@ -638,6 +647,10 @@ static void parse_materials(const JsonNode& materials, Scene& scene) {
     JsonNode m = materials.at(name);
     if (!m.is_object()) m.fail("expected a material object or {\"file\": ...}");
     scene.material_textures.push_back(parse_material_textures(m, scene));
+    if (auto normal_map = m.find("normal_map")) {
+      scene.material_textures.back().normal_map = read_normal_map(*normal_map, scene.normal_maps);
+      scene.material_textures.back().normal_map_where = normal_map->where();
+    }
     if (auto file = m.find("file")) {
       std::filesystem::path p = relative_to(m, file->string());
       auto coat = m.find("coat");  // a measured material under a lacquer

@@ -10,6 +10,7 @@
 #include "material/material.h"
 #include "scene/camera.h"
 #include "scene/light.h"
+#include "scene/normal_map.h"
 #include "scene/pbrt/pbrt_import.h"
 #include "scene/shape_mesh.h"
 #include "scene/sphere_light.h"
@@ -56,6 +57,7 @@ struct Scene {
   std::vector<Material> materials;                  // on `grid`, same order as material_descs
   std::vector<Texture> textures;                    // the scene's "textures"
   std::vector<MaterialTextures> material_textures;  // same order as material_descs
+  std::vector<NormalMap> normal_maps;               // the materials' "normal_map" images
   std::vector<KTriangle> triangles;                 // scene order: prim == index
   std::vector<TriangleUv> uvs;  // the triangles' texture coordinates, scene order
   // The triangles' shading normals, scene order; empty unless some shape has them (OBJ `vn`).
@@ -85,6 +87,7 @@ struct Scene {
   bool thin() const;                   // some shape's material is a thin dielectric
   bool mixed() const;                  // some shape's material is a mix (docs/materials.md#mixes)
   bool shading_normals() const { return !normals.empty(); }  // some shape has them
+  bool normal_mapped() const;  // some shape's material has a normal map (its ∂p/∂u frame)
   // Some used material scatters by a delta lobe: an ideal mirror, a smooth dielectric or
   // conductor, or a smooth coat's reflection.
   bool has_delta_surfaces() const;

@@ -87,7 +87,9 @@ void resolve_texture_inputs(std::vector<Texture>& textures);
 // The textures a scene material carries, by index into the scene's textures (-1: none).
 struct MaterialTextures {
   int reflectance = -1, fluorescence = -1;
-  std::string where;  // file: JSON path of the material's "textures"
+  std::string where;    // file: JSON path of the material's "textures"
+  int normal_map = -1;  // its "normal_map": the scene's normal_maps index (-1: none)
+  std::string normal_map_where;
 };
 
 }  // namespace kasha

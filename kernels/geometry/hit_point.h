@@ -6,6 +6,7 @@
 #include "geometry/bvh_traversal.h"
 #include "geometry/scene_view.h"
 #include "materials/mix.h"
+#include "materials/normal_map.h"
 
 #ifndef KASHA_TEXTURES
 #define KASHA_TEXTURES 0
@@ -16,9 +17,18 @@
 #ifndef KASHA_SHADING_NORMALS
 #define KASHA_SHADING_NORMALS 0
 #endif
+/* Shading normals from the vertices' normals (KShadingNormals); without them a normal map's
+ * shading normal starts from the geometric one. */
+#ifndef KASHA_VERTEX_NORMALS
+#define KASHA_VERTEX_NORMALS KASHA_SHADING_NORMALS
+#endif
+#ifndef KASHA_ANISOTROPIC
+#define KASHA_ANISOTROPIC 0
+#endif
 
 /* With shading normals (KASHA_SHADING_NORMALS, docs/formats.md#shading-normals), ns is the
- * interpolated shading normal (turned to the geometric front's hemisphere, then to the ray's side)
+ * interpolated shading normal, or the material's normal map's (materials/normal_map.h), turned to
+ * the geometric front's hemisphere, then to the ray's side,
  * and ng the geometric one on the ray's side: surfaces scatter about ns, while offsets, the side a
  * new ray leaves by and the check against light leaks use ng. Without them ns is the geometric
  * normal and hit_ng returns it. */
@@ -46,6 +56,17 @@ typedef struct {
   float cos_in;  /* |cos| of the arriving ray to the normal: a coat's Fresnel reflectance there */
 #endif
 } HitPoint;
+
+#if KASHA_ANISOTROPIC || KASHA_NORMAL_MAPS
+/* ∂p/∂u at the hit, in world space (a direction: the instance's linear part carries it). */
+inline float3 hit_dpdu(const SceneView* s, const HitPoint* h) {
+  float3 d = load_float3(s->tangents[h->tri].dpdu);
+#if KASHA_INSTANCES
+  d = affine_direction(s->instances[h->instance].world_from_object, d);
+#endif
+  return d;
+}
+#endif
 
 /* γ(n) = n·u / (1 − n·u), u = 2^-24: the relative bound on n float roundings (pbrt-v4). */
 #define KASHA_GAMMA(n) ((n) * 5.9604645e-8f / (1.0f - (n) * 5.9604645e-8f))
@@ -86,6 +107,7 @@ inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint
   h->ns = h->front ? h->n : -h->n;
 #if KASHA_SHADING_NORMALS
   {
+#if KASHA_VERTEX_NORMALS
     const __global float* sn = s->normals[hit].n;
     float3 n = (1.0f - u - v) * (float3)(sn[0], sn[1], sn[2]) + u * (float3)(sn[3], sn[4], sn[5]) +
                v * (float3)(sn[6], sn[7], sn[8]);
@@ -96,6 +118,9 @@ inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint
     /* A degenerate interpolation shades flat; a normal against the winding is turned to the front. */
     n = len > 1e-6f ? n / len : h->n;
     if (dot(n, h->n) < 0.0f) n = -n;
+#else
+    float3 n = h->n;
+#endif
     h->nf = n;
     h->ng = h->ns;
     h->ns = h->front ? n : -n;
@@ -110,6 +135,14 @@ inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint
   h->tri = hit;
 #if KASHA_TEXTURES
   h->b = (float2)(u, v);
+#endif
+#if KASHA_NORMAL_MAPS
+  /* The material's normal map, once the mix has chosen it (materials/normal_map.h). */
+  int map = h->material >= 0 ? s->materials[h->material].normal_map : -1;
+  if (map >= 0) {
+    h->nf = normal_map_normal(s, &s->textures[map], hit, (float2)(u, v), hit_dpdu(s, h), h->nf, h->n);
+    h->ns = h->front ? h->nf : -h->nf;
+  }
 #endif
 #if KASHA_COATED
   h->cos_in = fmax(0.0f, -dot(h->ns, dir));

@@ -46,7 +46,7 @@ typedef struct {
   const __global KTexcoords* texcoords; /* per leaf triangle, when textures need them */
   const __global KShadingNormals* normals; /* per leaf triangle, when some shape has them */
   const __global KInstance* instances;     /* KASHA_INSTANCES: the top level's leaves */
-  const __global KTangent* tangents;       /* per leaf triangle, KASHA_ANISOTROPIC */
+  const __global KTangent* tangents;       /* per leaf triangle, KASHA_ANISOTROPIC or KASHA_NORMAL_MAPS */
   const __global KTexOp* tex_ops;          /* texture programs' steps, KASHA_TEXTURE_PROGRAMS */
   RayCounts* rays; /* private: the work item's own counts */
 } SceneView;

@@ -8,17 +8,6 @@
 #include "materials/surface.h"
 #include "materials/texture.h"
 
-#if KASHA_ANISOTROPIC
-/* ∂p/∂u at the hit, in world space (a direction: the instance's linear part carries it). */
-inline float3 hit_dpdu(const SceneView* s, const HitPoint* h) {
-  float3 d = load_float3(s->tangents[h->tri].dpdu);
-#if KASHA_INSTANCES
-  d = affine_direction(s->instances[h->instance].world_from_object, d);
-#endif
-  return d;
-}
-#endif
-
 inline void load_surface_at(const SceneView* s, const HitPoint* h, Surface* surf) {
   load_textured_surface(s, h, surf);
 #if KASHA_ANISOTROPIC

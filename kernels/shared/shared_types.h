@@ -105,7 +105,8 @@ KASHA_STATIC_SIZE(KHit, 20);
 
 /* A triangle's ∂p/∂u as pbrt-v4 derives it from its texture coordinates (in object space for an
  * instanced object's): the x axis of an anisotropic roughness (materials/surface.h). Per leaf
- * triangle, only where some used rough material is anisotropic (KASHA_ANISOTROPIC). */
+ * triangle, only where some used rough material is anisotropic (KASHA_ANISOTROPIC) or some used
+ * material has a normal map (KASHA_NORMAL_MAPS: the x axis of its tangent frame). */
 typedef struct {
   float dpdu[3];
   float pad;
@@ -233,7 +234,7 @@ typedef struct {
   int transmittance;    /* tau(lambda): Lambert transmission to the other side; -1: none */
   float transmit_share; /* the share of Lambert samples sent through (surface.h); 0 without tau */
   int thin;             /* a dielectric: 1 for a thin sheet (fresnel.h's thin_dielectric_reflectance) */
-  int pad_material;
+  int normal_map;       /* KTexture of its normal map (materials/normal_map.h), -1: none */
   KMix mix;             /* KASHA_KIND_MIX: what it mixes */
 } KMaterial;
 KASHA_STATIC_SIZE(KMaterial, 128);
@@ -257,7 +258,7 @@ KASHA_STATIC_SIZE(KMaterial, 128);
 typedef struct {
   int type;          /* KASHA_TEXTURE_* */
   int data;          /* image: offset of its texels in the spectra buffer (4 floats each if
-                      * spectral, 1 if scalar), row 0 at the top */
+                      * spectral, 1 if scalar, 3 for a normal map), row 0 at the top */
   int width, height; /* image */
   int wrap;          /* KASHA_WRAP_* */
   int bilinear;      /* image: 1 bilinear, 0 nearest */

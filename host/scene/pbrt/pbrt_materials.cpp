@@ -254,6 +254,18 @@ nlohmann::json mix(const PbrtParameters& params, const PbrtLocation& where,
   return out;
 }
 
+// pbrt-v4's "string normalmap": the file, relative to the scene's folder as pbrt-v4 resolves it
+// and as the scene's JSON resolves it. pbrt-v4's mix takes none (the material it picks shades).
+void normal_map(const std::string& type, const PbrtParameters& params, nlohmann::json& m) {
+  const PbrtParameter* n = params.find("normalmap", "string");
+  if (!n) return;
+  const std::string file = params.get_string("normalmap", "");
+  if (type == "mix")
+    pbrt_warn(n->where, "pbrt-v4 ignores a mix's normal map (its materials' own apply)");
+  else if (!file.empty())
+    m["normal_map"] = file;
+}
+
 }  // namespace
 
 nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& params,
@@ -263,8 +275,6 @@ nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& para
   nlohmann::json m = nlohmann::json::object();
   if (const PbrtParameter* d = params.find("displacement", "float texture"))
     pbrt_warn(d->where, "displacement is not built in kasha: the surface is rendered flat");
-  if (const PbrtParameter* n = params.find("normalmap", "string"))
-    pbrt_warn(n->where, "normal maps are not built in kasha: the surface is shaded without it");
   if (type == "diffuse") {
     reflectance(params, textures, base_dir, m);
   } else if (type == "coateddiffuse") {
@@ -300,6 +310,7 @@ nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& para
   } else {
     pbrt_fail(where, "unknown material type " + in_quotes(type));
   }
+  normal_map(type, params, m);
   params.warn_unused("Material " + in_quotes(type));
   return m;
 }
