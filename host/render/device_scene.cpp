@@ -180,8 +180,7 @@ void KernelSceneData::add_textures(const Scene& scene) {
     if (!scene.textures[index].program()) return plain(index, use);
     auto found = programs.find({index, use});
     if (found != programs.end()) return found->second;
-    KTexture k =
-        compile_texture_program(scene, index, use == TextureUse::reflectance, tables);
+    KTexture k = compile_texture_program(scene, index, use == TextureUse::reflectance, tables);
     textures.push_back(k);
     return programs[{index, use}] = static_cast<int>(textures.size() - 1);
   };
@@ -195,6 +194,12 @@ void KernelSceneData::add_textures(const Scene& scene) {
     const auto& mix = scene.materials[i].mix;
     if (mix && mix->amount_texture >= 0)
       materials[i].mix.amount_texture = texture(mix->amount_texture, TextureUse::concentration);
+    // A roughness too is a number in [0, 1].
+    const Material& m = scene.materials[i];
+    for (int axis = 0; axis < 2; ++axis)
+      if (m.rough() && m.roughness.texture[axis] >= 0)
+        materials[i].alpha_texture[axis] =
+            texture(m.roughness.texture[axis], TextureUse::concentration);
   }
   std::vector<int> emitter_texture;
   for (const Emitter& e : scene.emitters)
@@ -328,6 +333,8 @@ KMaterial KernelSceneData::kernel_material(const Material& m, const Scene& scene
     k.alpha[0] = static_cast<float>(m.roughness.alpha_x);
     k.alpha[1] = static_cast<float>(m.roughness.alpha_y);
   }
+  k.alpha_texture[0] = k.alpha_texture[1] = -1;  // set by add_textures
+  k.remap_alpha = m.roughness.remap ? 1 : 0;
   k.coat_table = -1;
   if (m.coat) add_coat(*m.coat, k);
   albedo_xyz(m, scene.grid, obs, k.albedo_xyz);
@@ -528,6 +535,7 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_DISPERSION"] = scene.dispersive() ? "1" : "0";
   d["KASHA_ROUGH"] = scene.rough() ? "1" : "0";
   d["KASHA_ANISOTROPIC"] = scene.anisotropic() ? "1" : "0";
+  d["KASHA_ROUGHNESS_TEXTURES"] = scene.roughness_textured() ? "1" : "0";
   // Each light kind's code only where the scene has one (docs/lights.md).
   d["KASHA_LIGHT_SOURCES"] = scene.lights.empty() ? "0" : "1";
   d["KASHA_SPOT_LIGHTS"] = scene.has_light(LightType::spot) ? "1" : "0";
@@ -576,20 +584,26 @@ DeviceScene::DeviceScene(ClContext& cl, const Scene& scene)
   p.bin_nm = data_.bin_nm;
   p.light_sources = static_cast<int>(data_.lights.size());
   p.light_triangles = data_.light_triangles;
-  tables_ = upload_tables(
-      cl, {host_table(data_.bvh.nodes, p.nodes), host_table(data_.bvh.leaves, p.leaves),
-           host_table(data_.bvh.triangles, p.tris), host_table(data_.materials, p.materials),
-           host_table(data_.spectra, p.spectra), host_table(data_.lobes, p.lobes),
-           host_table(data_.emitter_radiance, p.emitter_radiance),
-           host_table(data_.emitter_area_pdf, p.emitter_area_pdf),
-           host_table(data_.light_tri, p.light_tri), host_table(data_.light_cdf, p.light_cdf),
-           host_table(data_.lights, p.lights), host_table(data_.textures, p.textures),
-           host_table(data_.texcoords, p.texcoords), host_table(data_.normals, p.normals),
-           host_table(data_.light_bvh.nodes, p.light_nodes),
-           host_table(data_.light_bvh.trails, p.light_trails),
-           host_table(data_.bvh.instances, p.instances), host_table(data_.tangents, p.tangents),
-           host_table(data_.light_spheres, p.light_spheres),
-           host_table(data_.tex_ops, p.tex_ops)});
+  tables_ = upload_tables(cl, {host_table(data_.bvh.nodes, p.nodes),
+                               host_table(data_.bvh.leaves, p.leaves),
+                               host_table(data_.bvh.triangles, p.tris),
+                               host_table(data_.materials, p.materials),
+                               host_table(data_.spectra, p.spectra),
+                               host_table(data_.lobes, p.lobes),
+                               host_table(data_.emitter_radiance, p.emitter_radiance),
+                               host_table(data_.emitter_area_pdf, p.emitter_area_pdf),
+                               host_table(data_.light_tri, p.light_tri),
+                               host_table(data_.light_cdf, p.light_cdf),
+                               host_table(data_.lights, p.lights),
+                               host_table(data_.textures, p.textures),
+                               host_table(data_.texcoords, p.texcoords),
+                               host_table(data_.normals, p.normals),
+                               host_table(data_.light_bvh.nodes, p.light_nodes),
+                               host_table(data_.light_bvh.trails, p.light_trails),
+                               host_table(data_.bvh.instances, p.instances),
+                               host_table(data_.tangents, p.tangents),
+                               host_table(data_.light_spheres, p.light_spheres),
+                               host_table(data_.tex_ops, p.tex_ops)});
 }
 
 }  // namespace kasha
