@@ -1,4 +1,4 @@
-// kasha's images of the five pbrt-v4 test scenes (scenes/pbrt/) against pbrt-v4's own renders of
+// kasha's images of the six pbrt-v4 test scenes (scenes/pbrt/) against pbrt-v4's own renders of
 // the same files (tests/data/pbrt-v4/, how they were made: tests/data/SOURCES.md): in every region
 // of at least 100 pixels that sees one material, the mean X, Y and Z agree within 1 % — the issue's
 // bound for an imported scene. Backward at 32 passes, about 5 s a scene; pbrt-v4 at 1024 samples
@@ -69,7 +69,10 @@ INSTANTIATE_TEST_SUITE_P(
                       // The rough copper's glossy reflections are the noisiest region.
                       ReferenceCase{"rough_metals", {}, 64}, ReferenceCase{"glass", {}},
                       ReferenceCase{"textured", {"textured.pbrt:38"}},
-                      ReferenceCase{"coated_metals", {}}),
+                      ReferenceCase{"coated_metals", {}},
+                      // Its rough glass block (554 pixels, lit through its nearly smooth
+                      // squares) is too noisy at 64 passes: +5 % at 2 standard errors.
+                      ReferenceCase{"rough_textures", {"rough_textures.pbrt:46"}, 64}),
     [](const auto& info) { return info.param.scene; });
 
 // --max-depth N as pbrt-v4's maxdepth: the Cornell box with direct light alone (1) and one bounce
