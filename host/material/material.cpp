@@ -79,7 +79,7 @@ static double roughness_value(const JsonNode& key, Roughness& r, int axis) {
   const JsonNode name = key.at("texture");
   r.texture_name[axis] = name.string();
   if (r.texture_name[axis].empty()) name.fail("expected a texture's name");
-  r.where = key.where();
+  r.where[axis] = key.where();
   key.finish();
   return 0;
 }
@@ -94,6 +94,7 @@ static Roughness parse_roughness(const JsonNode& node) {
   if (both) {
     u = v = roughness_value(*both, r, 0);
     r.texture_name[1] = r.texture_name[0];
+    r.where[1] = r.where[0];
   }
   if (ru) u = roughness_value(*ru, r, 0);
   if (rv) v = roughness_value(*rv, r, 1);

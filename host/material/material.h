@@ -48,7 +48,7 @@ struct Roughness {
   std::string texture_name[2];
   int texture[2] = {-1, -1};
   bool remap = true;
-  std::string where;           // of the textured key, for messages
+  std::string where[2];        // of each textured key, for messages
   bool may_be_smooth = false;  // textured: some point may be smooth (set by the scene)
   bool textured() const { return !texture_name[0].empty() || !texture_name[1].empty(); }
   // A textured axis may be smooth at some points and rough at others: the kernels decide per

@@ -655,7 +655,7 @@ static void resolve_roughness_textures(Scene& scene) {
       for (size_t i = 0; i < scene.textures.size(); ++i)
         if (scene.textures[i].name == r.texture_name[axis]) r.texture[axis] = static_cast<int>(i);
       if (r.texture[axis] < 0)
-        throw Error(r.where + ": no texture named \"" + printable(r.texture_name[axis]) +
+        throw Error(r.where[axis] + ": no texture named \"" + printable(r.texture_name[axis]) +
                     "\" in the scene's \"textures\"");
       const Texture& t = scene.textures[r.texture[axis]];
       check_unit_texture(t, "a roughness");
