@@ -1,7 +1,8 @@
 /* Textures at a hit (docs/textures.md): a material's reflectance texture multiplies its passive
  * reflectance ρ(λ) bin by bin, its fluorescence texture scales its excitation a(λ) (an ink's
- * concentration), its roughness textures set its GGX alpha there (roughness_at). The textured spectra are computed into the work item's scratch spectra, so
- * the rest of the kernels read them through the Surface's pointers as any other spectrum.
+ * concentration), its roughness textures set its GGX alpha there (roughness_at). The textured
+ * spectra are computed into the work item's scratch spectra, so the rest of the kernels read them
+ * through the Surface's pointers as any other spectrum.
  * Lookups follow pbrt-v4: (s, t) = (u·uscale + udelta, v·vscale + vdelta); an image's t runs up
  * from its bottom row; bilinear filtering between texel centres (or the nearest texel); wrap by
  * repeating, clamping to the edge, black outside [0, 1)², or mirrored as pbrt-v4's octahedral
