@@ -86,6 +86,10 @@ void warn_what_it_cannot_see(const Scene& scene, const std::string& integrator) 
     warn(integrator + ": a mix with a smooth (delta) material stores photons on only its " +
          "other material's share of the surface, so merges there fall short (backward and bpt " +
          "are unbiased on it; docs/materials.md#mixes)");
+  if (scene.partly_smooth_conductor() && traits.direct_by_merges)
+    warn(integrator + ": a metal whose roughness texture is smooth at some points stores " +
+         "photons on only its rough points, so merges near the smooth ones fall short " +
+         "(backward and bpt are unbiased on it; docs/materials.md#rough-surfaces)");
   if (scene.has_light(LightType::infinite) && !traits.sees_camera_mirrors)
     warn(integrator + ": an infinite light seen directly by the camera is out of its reach " +
          "and shows black (backward and photon see it)");

@@ -72,20 +72,35 @@ static SpectrumPtr parse_index_spectrum(const JsonNode& eta) {
   return parse_spectrum(eta);
 }
 
-// pbrt-v4's roughness parameters, each in [0, 1].
+// A roughness key: a number in [0, 1], or {"texture": NAME}, one of the scene's textures whose
+// value at each point is the roughness there (resolved by the scene).
+static double roughness_value(const JsonNode& key, Roughness& r, int axis) {
+  if (!key.is_object()) return key.number_in(0.0, 1.0);
+  const JsonNode name = key.at("texture");
+  r.texture_name[axis] = name.string();
+  if (r.texture_name[axis].empty()) name.fail("expected a texture's name");
+  r.where[axis] = key.where();
+  key.finish();
+  return 0;
+}
+
+// pbrt-v4's roughness parameters, each in [0, 1] or a texture's value.
 static Roughness parse_roughness(const JsonNode& node) {
+  Roughness r;
   double u = 0, v = 0;
   auto both = node.find("roughness"), ru = node.find("uroughness"), rv = node.find("vroughness");
   if (both && (ru || rv))
     both->fail("give \"roughness\" or \"uroughness\" and \"vroughness\", not both");
-  if (both) u = v = both->number_in(0.0, 1.0);
-  if (ru) u = ru->number_in(0.0, 1.0);
-  if (rv) v = rv->number_in(0.0, 1.0);
-  bool remap = true;
-  if (auto r = node.find("remap_roughness")) remap = r->boolean();
-  Roughness r;
-  r.alpha_x = remap ? std::sqrt(u) : u;
-  r.alpha_y = remap ? std::sqrt(v) : v;
+  if (both) {
+    u = v = roughness_value(*both, r, 0);
+    r.texture_name[1] = r.texture_name[0];
+    r.where[1] = r.where[0];
+  }
+  if (ru) u = roughness_value(*ru, r, 0);
+  if (rv) v = roughness_value(*rv, r, 1);
+  if (auto remap = node.find("remap_roughness")) r.remap = remap->boolean();
+  r.alpha_x = r.remap ? std::sqrt(u) : u;
+  r.alpha_y = r.remap ? std::sqrt(v) : v;
   return r;
 }
 
@@ -99,6 +114,8 @@ static CoatDesc parse_coat(const JsonNode& node) {
   }
   if (auto d = node.find("thickness")) c.thickness = d->number_in(0.0, 1e3);
   const Roughness r = parse_roughness(node);
+  if (r.textured())
+    node.fail("a coat's roughness is one number (the coat's tables are per material)");
   if (r.alpha_x != r.alpha_y)
     node.fail(
         "an anisotropic coat is not built: give \"roughness\" (or equal \"uroughness\" and "

@@ -43,7 +43,20 @@ struct DielectricDesc {
 // "remap_roughness" is false. Below alpha 1e-3 the surface is smooth.
 struct Roughness {
   double alpha_x = 0, alpha_y = 0;
-  bool rough() const { return std::max(alpha_x, alpha_y) >= 1e-3; }
+  // An axis may take a scalar texture's value instead, per point, remapped as a number is
+  // (pbrt-v4's "texture roughness"): "" for the number; the index once the scene resolves it.
+  std::string texture_name[2];
+  int texture[2] = {-1, -1};
+  bool remap = true;
+  std::string where[2];        // of each textured key, for messages
+  bool may_be_smooth = false;  // textured: some point may be smooth (set by the scene)
+  bool textured() const { return !texture_name[0].empty() || !texture_name[1].empty(); }
+  // A textured axis may be smooth at some points and rough at others: the kernels decide per
+  // point, and everything else takes the material as rough.
+  bool rough() const { return textured() || std::max(alpha_x, alpha_y) >= 1e-3; }
+  bool anisotropic() const {
+    return texture_name[0] != texture_name[1] || (!textured() && alpha_x != alpha_y);
+  }
 };
 
 // A smooth conductor: complex index eta + i k over the outside medium's (air).

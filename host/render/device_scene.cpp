@@ -194,6 +194,12 @@ void KernelSceneData::add_textures(const Scene& scene) {
     const auto& mix = scene.materials[i].mix;
     if (mix && mix->amount_texture >= 0)
       materials[i].mix.amount_texture = texture(mix->amount_texture, TextureUse::concentration);
+    // A roughness too is a number in [0, 1].
+    const Material& m = scene.materials[i];
+    for (int axis = 0; axis < 2; ++axis)
+      if (m.rough() && m.roughness.texture[axis] >= 0)
+        materials[i].alpha_texture[axis] =
+            texture(m.roughness.texture[axis], TextureUse::concentration);
   }
   std::vector<int> emitter_texture;
   for (const Emitter& e : scene.emitters)
@@ -331,6 +337,8 @@ KMaterial KernelSceneData::kernel_material(const Material& m, const Scene& scene
     k.alpha[0] = static_cast<float>(m.roughness.alpha_x);
     k.alpha[1] = static_cast<float>(m.roughness.alpha_y);
   }
+  k.alpha_texture[0] = k.alpha_texture[1] = -1;  // set by add_textures
+  k.remap_alpha = m.roughness.remap ? 1 : 0;
   k.coat_table = -1;
   if (m.coat) add_coat(*m.coat, k);
   albedo_xyz(m, scene.grid, obs, k.albedo_xyz);
@@ -557,6 +565,7 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_DISPERSION"] = scene.dispersive() ? "1" : "0";
   d["KASHA_ROUGH"] = scene.rough() ? "1" : "0";
   d["KASHA_ANISOTROPIC"] = scene.anisotropic() ? "1" : "0";
+  d["KASHA_ROUGHNESS_TEXTURES"] = scene.roughness_textured() ? "1" : "0";
   // Each light kind's code only where the scene has one (docs/lights.md).
   d["KASHA_LIGHT_SOURCES"] = scene.lights.empty() ? "0" : "1";
   d["KASHA_SPOT_LIGHTS"] = scene.has_light(LightType::spot) ? "1" : "0";

@@ -68,8 +68,7 @@ bool Scene::rough() const {
   return any_used([](const Material& m) { return m.rough(); });
 }
 bool Scene::anisotropic() const {
-  return any_used(
-      [](const Material& m) { return m.rough() && m.roughness.alpha_x != m.roughness.alpha_y; });
+  return any_used([](const Material& m) { return m.rough() && m.roughness.anisotropic(); });
 }
 bool Scene::coated() const {
   return any_used([](const Material& m) { return m.coat.has_value(); });
@@ -81,9 +80,11 @@ bool Scene::transmissive() const {
   return any_used([](const Material& m) { return m.transmissive(); });
 }
 namespace {
+// A roughness texture may be smooth (a delta lobe) at some points: such a material may scatter by
+// delta too.
 bool scatters_by_delta(const Material& m) {
-  return (m.specular() && !m.rough()) || (m.gloss && m.gloss->mirror) ||
-         (m.coat && !m.coat->rough());
+  return (m.specular() && (!m.rough() || m.roughness.may_be_smooth)) ||
+         (m.gloss && m.gloss->mirror) || (m.coat && !m.coat->rough());
 }
 }  // namespace
 
@@ -102,7 +103,8 @@ bool Scene::mixes_delta() const {
 bool Scene::textured() const {
   for (int m : used_materials())
     if (material_textures[m].reflectance >= 0 || material_textures[m].fluorescence >= 0 ||
-        (materials[m].mix && materials[m].mix->amount_texture >= 0))
+        (materials[m].mix && materials[m].mix->amount_texture >= 0) ||
+        (materials[m].rough() && materials[m].roughness.textured()))
       return true;
   return false;
 }
@@ -111,6 +113,16 @@ bool Scene::normal_mapped() const {
   for (int m : used_materials())
     if (material_textures[m].normal_map >= 0) return true;
   return false;
+}
+
+bool Scene::roughness_textured() const {
+  return any_used([](const Material& m) { return m.rough() && m.roughness.textured(); });
+}
+
+bool Scene::partly_smooth_conductor() const {
+  return any_used([](const Material& m) {
+    return m.kind == MaterialKind::conductor && m.rough() && m.roughness.may_be_smooth;
+  });
 }
 
 bool Scene::emission_textured() const {
@@ -615,6 +627,52 @@ static void check_mix_nesting(const Scene& scene, int m, int depth) {
   for (int k : d.mix->materials) check_mix_nesting(scene, k, depth + 1);
 }
 
+// A texture of numbers in [0, 1] where the scene takes a share or a roughness: a checkerboard of
+// values must have its two there (other textures are clamped to it where they are looked up).
+static void check_unit_texture(const Texture& t, const std::string& use) {
+  if (t.type == TextureType::checkerboard && !t.program() &&
+      !(t.even_value >= 0 && t.even_value <= 1 && t.odd_value >= 0 && t.odd_value <= 1))
+    throw Error(t.where + ": " + use + " texture's \"even\" and \"odd\" are numbers in [0, 1]");
+}
+
+// Whether a roughness texture may give alpha below 1e-3 (smooth) somewhere: a (u, v) checkerboard
+// or an image (its texels' mean of R, G and B, bilinear between them) whose every value is above
+// is not; a texture of textures may be.
+static bool may_be_smooth(const Texture& t, bool remap) {
+  const double least = (remap ? 1e-6 : 1e-3) * 1.01;  // a little above: float lookups
+  if (t.program()) return true;
+  if (t.type == TextureType::checkerboard) return std::min(t.even_value, t.odd_value) < least;
+  if (t.wrap == TextureWrap::black) return true;
+  const std::vector<float>& c = t.image.rgb;
+  for (size_t p = 0; p + 2 < c.size(); p += 3)
+    if ((c[p] + c[p + 1] + c[p + 2]) / 3 < least) return true;
+  return false;
+}
+
+// A rough dielectric's or conductor's roughness textures as the scene's indices; a point is
+// smooth only where both axes are.
+static void resolve_roughness_textures(Scene& scene) {
+  for (MaterialDesc& d : scene.material_descs) {
+    Roughness& r = d.roughness;
+    if (!r.textured()) continue;
+    r.may_be_smooth = true;
+    for (int axis = 0; axis < 2; ++axis) {
+      if (r.texture_name[axis].empty()) {
+        r.may_be_smooth = r.may_be_smooth && (axis == 0 ? r.alpha_x : r.alpha_y) < 1e-3;
+        continue;
+      }
+      for (size_t i = 0; i < scene.textures.size(); ++i)
+        if (scene.textures[i].name == r.texture_name[axis]) r.texture[axis] = static_cast<int>(i);
+      if (r.texture[axis] < 0)
+        throw Error(r.where[axis] + ": no texture named \"" + printable(r.texture_name[axis]) +
+                    "\" in the scene's \"textures\"");
+      const Texture& t = scene.textures[r.texture[axis]];
+      check_unit_texture(t, "a roughness");
+      r.may_be_smooth = r.may_be_smooth && may_be_smooth(t, r.remap);
+    }
+  }
+}
+
 // A mix's material and texture names as the scene's indices.
 static void resolve_mixes(Scene& scene) {
   for (MaterialDesc& d : scene.material_descs) {
@@ -632,11 +690,7 @@ static void resolve_mixes(Scene& scene) {
     if (mix.amount_texture < 0)
       throw Error(mix.where + ": no texture named \"" + printable(mix.amount_texture_name) +
                   "\" in the scene's \"textures\"");
-    const Texture& t = scene.textures[mix.amount_texture];
-    if (t.type == TextureType::checkerboard && !t.program() &&
-        !(t.even_value >= 0 && t.even_value <= 1 && t.odd_value >= 0 && t.odd_value <= 1))
-      throw Error(t.where +
-                  ": a mix's amount texture's \"even\" and \"odd\" are numbers in [0, 1]");
+    check_unit_texture(scene.textures[mix.amount_texture], "a mix's amount");
   }
   for (size_t m = 0; m < scene.material_descs.size(); ++m)
     check_mix_nesting(scene, static_cast<int>(m), 0);
@@ -662,6 +716,7 @@ static void parse_materials(const JsonNode& materials, Scene& scene) {
     }
   }
   resolve_mixes(scene);
+  resolve_roughness_textures(scene);
 }
 
 // Vertices must be finite and well inside float range after transforms: squared distances of

@@ -97,10 +97,13 @@ struct Scene {
   bool mixes_delta() const;
   int material_index(const std::string& name) const;  // -1 when absent
   bool has_light(LightType type) const;
-  bool has_environment() const;    // some infinite light has an image
-  bool textured() const;           // some shape's material carries a texture
-  bool emission_textured() const;  // some emitter's radiance is multiplied by a texture
-  bool cut_out() const;            // some shape has an alpha cut-out
+  bool has_environment() const;     // some infinite light has an image
+  bool textured() const;            // some shape's material carries a texture
+  bool emission_textured() const;   // some emitter's radiance is multiplied by a texture
+  bool roughness_textured() const;  // some rough material's roughness is a texture's value
+  // Some conductor's roughness texture may be smooth (a delta lobe) somewhere.
+  bool partly_smooth_conductor() const;
+  bool cut_out() const;  // some shape has an alpha cut-out
   // The bounding sphere of the triangles as placed (as the kernels see them), where distant and
   // infinite lights send their photons from.
   void bounding_sphere(Eigen::Vector3d& centre, double& radius) const;

@@ -1,7 +1,8 @@
 /* Textures at a hit (docs/textures.md): a material's reflectance texture multiplies its passive
  * reflectance ρ(λ) bin by bin, its fluorescence texture scales its excitation a(λ) (an ink's
- * concentration). The textured spectra are computed into the work item's scratch spectra, so
- * the rest of the kernels read them through the Surface's pointers as any other spectrum.
+ * concentration), its roughness textures set its GGX alpha there (roughness_at). The textured
+ * spectra are computed into the work item's scratch spectra, so the rest of the kernels read them
+ * through the Surface's pointers as any other spectrum.
  * Lookups follow pbrt-v4: (s, t) = (u·uscale + udelta, v·vscale + vdelta); an image's t runs up
  * from its bottom row; bilinear filtering between texel centres (or the nearest texel); wrap by
  * repeating, clamping to the edge, black outside [0, 1)², or mirrored as pbrt-v4's octahedral
@@ -18,6 +19,9 @@
 
 #ifndef KASHA_EMISSION_TEXTURES
 #define KASHA_EMISSION_TEXTURES 0 /* some emitter's radiance is multiplied by a texture */
+#endif
+#ifndef KASHA_ROUGHNESS_TEXTURES
+#define KASHA_ROUGHNESS_TEXTURES 0 /* some rough material's roughness is a texture's value */
 #endif
 #ifndef KASHA_SCRATCH_TEXTURES
 #define KASHA_SCRATCH_TEXTURES 0 /* where the textured spectra start in the scratch */
@@ -146,9 +150,42 @@ inline float emission_factor(const SceneView* s, int tri, float b1, float b2) {
 }
 #endif
 
+#if KASHA_ROUGHNESS_TEXTURES
+/* The GGX alpha at the hit of a material whose roughness is textured: each textured axis's value
+ * there, clamped to [0, 1] and remapped as a constant is (pbrt-v4's RoughnessToAlpha: sqrt). The
+ * point is smooth or rough by this alpha alone (surface_rough), so every integrator decides alike;
+ * where it is rough, both axes stay at least 1e-4 as pbrt-v4's TrowbridgeReitzDistribution keeps
+ * them (D would divide by a zero alpha). */
+inline void roughness_at(const SceneView* s, const HitPoint* h, Surface* surf) {
+  const __global KMaterial* m = surf->m;
+  if (m->alpha_texture[0] < 0 && m->alpha_texture[1] < 0) return;
+  float2 uv = hit_uv(s, h);
+  float a[2] = {m->alpha[0], m->alpha[1]};
+  for (int k = 0; k < 2; ++k) {
+    int t = m->alpha_texture[k];
+    if (t < 0) continue;
+    if (k == 1 && t == m->alpha_texture[0]) {
+      a[1] = a[0]; /* isotropic: one lookup */
+      continue;
+    }
+    float r = clamp(texture_scalar_at_hit(s, &s->textures[t], h, uv), 0.0f, 1.0f);
+    a[k] = m->remap_alpha ? sqrt(r) : r;
+  }
+  if (fmax(a[0], a[1]) >= KASHA_SMOOTH_ALPHA) {
+    a[0] = fmax(a[0], 1e-4f);
+    a[1] = fmax(a[1], 1e-4f);
+  }
+  surf->alpha.ax = a[0];
+  surf->alpha.ay = a[1];
+}
+#endif
+
 /* The hit's surface with its material's textures applied. */
 inline void load_textured_surface(const SceneView* s, const HitPoint* h, Surface* surf) {
   load_surface(s, h->material, surf);
+#if KASHA_ROUGHNESS_TEXTURES
+  roughness_at(s, h, surf);
+#endif
   const __global KMaterial* m = surf->m;
   if (m->reflectance_texture < 0 && m->fluorescence_texture < 0) return;
   float2 uv = hit_uv(s, h);

@@ -235,9 +235,13 @@ typedef struct {
   float transmit_share; /* the share of Lambert samples sent through (surface.h); 0 without tau */
   int thin;             /* a dielectric: 1 for a thin sheet (fresnel.h's thin_dielectric_reflectance) */
   int normal_map;       /* KTexture of its normal map (materials/normal_map.h), -1: none */
+  int alpha_texture[2]; /* scalar KTextures whose values are alpha[0], alpha[1]'s roughness at a point
+                         * (materials/texture.h), -1: the constant alpha */
+  int remap_alpha;      /* 1: a texture's roughness r gives alpha sqrt(r) (pbrt-v4's RoughnessToAlpha) */
+  int pad_material;
   KMix mix;             /* KASHA_KIND_MIX: what it mixes */
 } KMaterial;
-KASHA_STATIC_SIZE(KMaterial, 128);
+KASHA_STATIC_SIZE(KMaterial, 144);
 
 /* Entries of a rough coat's tables (host/material/coat.h's kCoatTableSize). */
 #define KASHA_COAT_TABLE 64

@@ -732,6 +732,10 @@ class Importer {
   void define_material(const std::string& key, const std::string& type,
                        const PbrtParameters& params, const PbrtLocation& where) {
     nlohmann::json m = pbrt_material(type, params, where, textures_, base_dir_);
+    // A scaled texture the material made for itself (a roughness texture's) is the material's.
+    for (const std::string& made : textures_.added)
+      sources_["/textures/" + pointer_segment(made)] = where.str();
+    textures_.added.clear();
     if (m.is_null()) {
       interfaces_.insert(key);
     } else {

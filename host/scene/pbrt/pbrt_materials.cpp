@@ -64,17 +64,38 @@ void diffuse_transmission(const PbrtParameters& params, const PbrtTextures& text
   material["transmission"]["scale"] = params.get_float("scale", 1);
 }
 
+// One roughness parameter: its number, or a float texture that varies over the surface as
+// {"texture": NAME} (kasha evaluates it per point). A coat's roughness is one number per material
+// (its tables are): there a varying texture is refused.
+std::optional<nlohmann::json> roughness_param(const PbrtParameters& params, const std::string& name,
+                                              PbrtTextures& textures, bool per_point) {
+  const PbrtParameter* p = params.find(name, "float texture");
+  if (p && p->type == "texture") {
+    const PbrtTexture& t = pbrt_texture_named(*p, textures.scalar, "float");
+    if (!t.kasha_name.empty()) {
+      if (!per_point)
+        pbrt_fail(p->where, in_quotes(p->declaration()) +
+                                ": a coat's roughness texture is not built in kasha (a coat takes "
+                                "one roughness)");
+      return nlohmann::json{{"texture", pbrt_kasha_texture(t, textures)}};
+    }
+  }
+  const std::optional<double> v = pbrt_float_value(params, name, textures);
+  if (!v) return std::nullopt;
+  return nlohmann::json(*v);
+}
+
 // Roughness as pbrt-v4 names it (after `prefix`: coatedconductor's "interface." and
-// "conductor."), into kasha's keys (the same names).
-void roughness(const PbrtParameters& params, const PbrtTextures& textures, nlohmann::json& out,
-               const std::string& prefix = "") {
-  const std::optional<double> r = pbrt_float_value(params, prefix + "roughness", textures);
-  const std::optional<double> u = pbrt_float_value(params, prefix + "uroughness", textures);
-  const std::optional<double> v = pbrt_float_value(params, prefix + "vroughness", textures);
-  const double rough = r.value_or(0);
-  const double ur = u.value_or(rough), vr = v.value_or(rough);
+// "conductor."), into kasha's keys (the same names); `per_point` false for a coat's.
+void roughness(const PbrtParameters& params, PbrtTextures& textures, nlohmann::json& out,
+               const std::string& prefix = "", bool per_point = true) {
+  const auto r = roughness_param(params, prefix + "roughness", textures, per_point);
+  const auto u = roughness_param(params, prefix + "uroughness", textures, per_point);
+  const auto v = roughness_param(params, prefix + "vroughness", textures, per_point);
+  const nlohmann::json rough = r.value_or(nlohmann::json(0.0));
+  const nlohmann::json ur = u.value_or(rough), vr = v.value_or(rough);
   if (ur == vr) {
-    if (ur != 0) out["roughness"] = ur;
+    if (ur != nlohmann::json(0.0)) out["roughness"] = ur;
   } else {
     out["uroughness"] = ur;
     out["vroughness"] = vr;
@@ -152,7 +173,7 @@ nlohmann::json metal_part(const PbrtParameter* p, const char* part, const PbrtTe
 // pbrt-v4's ConductorMaterial; `prefix` "conductor." for CoatedConductorMaterial's (whose
 // "reflectance" has none).
 nlohmann::json conductor(const PbrtParameters& params, const PbrtLocation& where,
-                         const PbrtTextures& textures, const std::filesystem::path& base_dir,
+                         PbrtTextures& textures, const std::filesystem::path& base_dir,
                          const std::string& prefix = "") {
   nlohmann::json c = nlohmann::json::object();
   const PbrtParameter* r = params.find("reflectance", "float rgb spectrum blackbody texture");
@@ -187,7 +208,7 @@ nlohmann::json conductor(const PbrtParameters& params, const PbrtLocation& where
 // A coat as pbrt-v4's coateddiffuse and coatedconductor take it: the index `eta_name` (a number
 // in kasha), "thickness" (0.01), roughness after `prefix`, and a clear layer: "albedo" 0.
 nlohmann::json coat_layer(const std::string& type, const PbrtParameters& params,
-                          const PbrtLocation& where, const PbrtTextures& textures,
+                          const PbrtLocation& where, PbrtTextures& textures,
                           const std::filesystem::path& base_dir, const std::string& eta_name,
                           const std::string& prefix) {
   nlohmann::json coat = nlohmann::json::object();
@@ -195,7 +216,7 @@ nlohmann::json coat_layer(const std::string& type, const PbrtParameters& params,
   if (!eta.is_number()) pbrt_fail(where, type + ": a coat's index must be a number in kasha");
   coat["eta"] = eta;
   coat["thickness"] = pbrt_float_value(params, "thickness", textures).value_or(0.01);
-  roughness(params, textures, coat, prefix);
+  roughness(params, textures, coat, prefix, false);
   const PbrtParameter* albedo = params.find("albedo", "float rgb spectrum blackbody texture");
   if (albedo && !is_black(spectrum_value(*albedo, PbrtSpectrumUse::kAlbedo, textures, base_dir)))
     pbrt_fail(albedo->where, type + ": a scattering coat (\"albedo\" > 0) is not built in kasha");
@@ -211,9 +232,11 @@ nlohmann::json coat_layer(const std::string& type, const PbrtParameters& params,
 // material.h and pbrt-v4's EffectivelySmooth).
 bool rough(const nlohmann::json& r) {
   const bool remap = r.value("remap_roughness", true);
-  for (const char* key : {"roughness", "uroughness", "vroughness"})
-    if (r.contains(key) && (remap ? std::sqrt(r[key].get<double>()) : r[key].get<double>()) >= 1e-3)
-      return true;
+  for (const char* key : {"roughness", "uroughness", "vroughness"}) {
+    if (!r.contains(key)) continue;
+    if (r[key].is_object()) return true;  // a texture: kasha takes it as rough
+    if ((remap ? std::sqrt(r[key].get<double>()) : r[key].get<double>()) >= 1e-3) return true;
+  }
   return false;
 }
 
@@ -221,7 +244,7 @@ bool rough(const nlohmann::json& r) {
 // "reflectance", copper by default) under a dielectric coat ("interface.eta" 1.5, "thickness").
 // kasha builds it with both interfaces smooth (docs/materials.md#coated-conductors).
 void coated_conductor(const PbrtParameters& params, const PbrtLocation& where,
-                      const PbrtTextures& textures, const std::filesystem::path& base_dir,
+                      PbrtTextures& textures, const std::filesystem::path& base_dir,
                       nlohmann::json& m) {
   m["conductor"] = conductor(params, where, textures, base_dir, "conductor.");
   m["coat"] = coat_layer("coatedconductor", params, where, textures, base_dir, "interface.eta",
@@ -269,7 +292,7 @@ void normal_map(const std::string& type, const PbrtParameters& params, nlohmann:
 }  // namespace
 
 nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& params,
-                             const PbrtLocation& where, const PbrtTextures& textures,
+                             const PbrtLocation& where, PbrtTextures& textures,
                              const std::filesystem::path& base_dir) {
   if (type == "interface" || type == "none" || type.empty()) return nullptr;
   nlohmann::json m = nlohmann::json::object();

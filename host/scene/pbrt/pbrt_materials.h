@@ -18,7 +18,7 @@ namespace kasha {
 // The kasha material for pbrt material `type` with `params`; null for a shape that is no surface
 // (`interface`, "none": a medium's boundary, left out by the caller with a warning).
 nlohmann::json pbrt_material(const std::string& type, const PbrtParameters& params,
-                             const PbrtLocation& where, const PbrtTextures& textures,
+                             const PbrtLocation& where, PbrtTextures& textures,
                              const std::filesystem::path& base_dir);
 
 }  // namespace kasha
