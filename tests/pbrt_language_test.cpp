@@ -127,10 +127,6 @@ TEST(PbrtLanguage, RefusalsOfTypesAndTexturesNameTheirLine) {
   const std::string h = kHeader;  // four lines: the body starts on line 5
   EXPECT_EQ(error_tail(h + "Texture \"t\" \"spectrum\" \"constant\" \"rgb value\" [1.5 1 1]"),
             "blocks.pbrt:5: \"rgb value\" has a component above 1 (a reflectance)");
-  EXPECT_EQ(error_tail(h + "Texture \"c\" \"float\" \"checkerboard\"\n"
-                           "Material \"coateddiffuse\" \"texture roughness\" \"c\""),
-            "blocks.pbrt:6: \"texture roughness\": a coat's roughness texture is not built in "
-            "kasha (a coat takes one roughness)");
   EXPECT_EQ(error_tail(h + "Texture \"c\" \"spectrum\" \"checkerboard\"\n"
                            "Material \"conductor\" \"texture reflectance\" \"c\""),
             "blocks.pbrt:6: \"texture reflectance\": a conductor's reflectance texture is not "

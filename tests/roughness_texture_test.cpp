@@ -80,8 +80,10 @@ TEST(RoughnessTexture, ParsedResolvedAndRefused) {
             std::string::npos);
   EXPECT_NE(refused(R"({"conductor": {"roughness": {"texture": "r", "scale": 2}}})").find("scale"),
             std::string::npos);
-  EXPECT_NE(refused(R"({"passive": {"reflectance": 0.5}, "coat": {"roughness": {"texture": "r"}}})")
-                .find("a coat's roughness is one number"),
+  // A coat takes one roughness, a texture's mean: a texture of textures has none kasha takes.
+  EXPECT_NE(refused(R"({"passive": {"reflectance": 0.5}, "coat": {"roughness": {"texture": "r"}}})",
+                    R"({"r": {"type": "fbm"}})")
+                .find("a coat takes one roughness: its texture must be an image or a checkerboard"),
             std::string::npos);
   EXPECT_NE(refused(R"({"dielectric": {"thin": true, "roughness": {"texture": "r"}}})")
                 .find("a thin dielectric is smooth"),
@@ -238,16 +240,25 @@ NamedMaterial "c"
   EXPECT_EQ(d.at("remap_roughness"), false);
   const Scene loaded = load_scene(path);
   EXPECT_TRUE(loaded.roughness_textured());
-  // A coat's roughness is one number: a varying texture there is refused, with its line.
-  const std::string e = error_of([&] {
-    load_scene(
-        write_file("rtex_coat.pbrt", std::string(kHead) + R"(Texture "checks" "float" "checkerboard"
+  // A coat takes one roughness: a texture there is read as its mean (the checkerboard's 1 and
+  // 0: 0.5, remapped to alpha √0.5), with a warning naming its line.
+  const std::string coat_file =
+      write_file("rtex_coat.pbrt", std::string(kHead) + R"(Texture "checks" "float" "checkerboard"
 Material "coateddiffuse" "texture roughness" "checks"
-)" + kQuad));
-  });
-  EXPECT_NE(e.find("rtex_coat.pbrt:6: \"texture roughness\": a coat's roughness texture"),
+)" + kQuad);
+  const Scene coated = load_scene(coat_file);
+  bool found = false;
+  for (const Material& m : coated.materials)
+    if (m.coat) {
+      EXPECT_NEAR(m.coat->alpha, std::sqrt(0.5), 1e-12);
+      found = true;
+    }
+  EXPECT_TRUE(found);
+  CommandResult r = run_kasha("info " + coat_file);
+  EXPECT_NE(r.err.find("rtex_coat.pbrt:6: a coat takes one roughness in kasha: its texture is read "
+                       "as its mean, 0.5"),
             std::string::npos)
-      << e;
+      << r.err;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // depth `thickness` along the normal. A Lambert base makes the light under the coat diffuse after
 // its first bounce, so the bounces between coat and base sum to a geometric series in two numbers
 // per coat: the internal reflectance R̄ and the mean transmittance τ̄ below.
+#include <string>
 #include <vector>
 
 namespace kasha {
@@ -12,6 +13,10 @@ struct CoatDesc {
   double eta = 1.5;         // the coat's index over the outside's (pbrt-v4's default)
   double thickness = 0.01;  // optical depth along the normal (pbrt-v4's default)
   double alpha = 0;         // GGX roughness of its interface (isotropic); below 1e-3: smooth
+  // A roughness texture's name (pbrt-v4's "texture roughness" on a coat): the coat's tables take
+  // one roughness, so the scene sets alpha from the texture's mean (scene.cpp).
+  std::string alpha_texture, alpha_where;
+  bool alpha_remap = true;
   bool rough() const { return alpha >= 1e-3; }
 };
 

@@ -114,9 +114,14 @@ static CoatDesc parse_coat(const JsonNode& node) {
   }
   if (auto d = node.find("thickness")) c.thickness = d->number_in(0.0, 1e3);
   const Roughness r = parse_roughness(node);
-  if (r.textured())
-    node.fail("a coat's roughness is one number (the coat's tables are per material)");
-  if (r.alpha_x != r.alpha_y)
+  if (r.textured()) {
+    // One texture for both axes: the scene reads it as its mean (resolve_coat_roughness).
+    if (r.texture_name[0] != r.texture_name[1])
+      node.fail("an anisotropic coat is not built: give \"roughness\" (one texture or number)");
+    c.alpha_texture = r.texture_name[0];
+    c.alpha_where = r.where[0];
+    c.alpha_remap = r.remap;
+  } else if (r.alpha_x != r.alpha_y)
     node.fail(
         "an anisotropic coat is not built: give \"roughness\" (or equal \"uroughness\" and "
         "\"vroughness\")");
@@ -182,7 +187,8 @@ void apply_coat(MaterialDesc& m, const JsonNode& coat) {
   m.coat = parse_coat(coat);
   // Both smooth, the layer's walk stays on the mirror direction and sums in closed form
   // (docs/materials.md#coated-conductors); a rough layer over a metal is not built.
-  if (m.kind == MaterialKind::conductor && (m.coat->rough() || m.roughness.rough()))
+  if (m.kind == MaterialKind::conductor &&
+      (m.coat->rough() || !m.coat->alpha_texture.empty() || m.roughness.rough()))
     coat.fail(
         "a coat over a conductor is built smooth over a smooth conductor only (a rough coat or "
         "a rough conductor under a coat is not built)");

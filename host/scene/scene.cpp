@@ -673,6 +673,41 @@ static void resolve_roughness_textures(Scene& scene) {
   }
 }
 
+// A coat's roughness texture read as its mean (the coat's tables take one roughness per
+// material), with a warning: an image's texels (their mean of R, G and B, clamped to [0, 1]) or a
+// checkerboard's two numbers; a texture of textures is refused.
+static void resolve_coat_roughness(Scene& scene) {
+  for (MaterialDesc& d : scene.material_descs) {
+    if (!d.coat || d.coat->alpha_texture.empty()) continue;
+    CoatDesc& c = *d.coat;
+    const Texture* t = nullptr;
+    for (const Texture& candidate : scene.textures)
+      if (candidate.name == c.alpha_texture) t = &candidate;
+    if (!t)
+      throw Error(c.alpha_where + ": no texture named \"" + printable(c.alpha_texture) +
+                  "\" in the scene's \"textures\"");
+    check_unit_texture(*t, "a roughness");
+    if (t->program())
+      throw Error(c.alpha_where +
+                  ": a coat takes one roughness: its texture must be an image or "
+                  "a checkerboard of numbers, whose mean kasha takes");
+    double mean = 0;
+    if (t->type == TextureType::checkerboard) {
+      mean = (t->even_value + t->odd_value) / 2;
+    } else {
+      const std::vector<float>& rgb = t->image.rgb;
+      for (size_t p = 0; p + 2 < rgb.size(); p += 3)
+        mean += std::clamp((rgb[p] + rgb[p + 1] + rgb[p + 2]) / 3.0, 0.0, 1.0);
+      mean /= std::max<size_t>(1, rgb.size() / 3);
+    }
+    c.alpha = c.alpha_remap ? std::sqrt(mean) : mean;
+    char v[96];
+    std::snprintf(v, sizeof v, "%.4g (GGX alpha %.4g)", mean, c.alpha);
+    warn(c.alpha_where +
+         ": a coat takes one roughness in kasha: its texture is read as its mean, " + v);
+  }
+}
+
 // A mix's material and texture names as the scene's indices.
 static void resolve_mixes(Scene& scene) {
   for (MaterialDesc& d : scene.material_descs) {
@@ -717,6 +752,7 @@ static void parse_materials(const JsonNode& materials, Scene& scene) {
   }
   resolve_mixes(scene);
   resolve_roughness_textures(scene);
+  resolve_coat_roughness(scene);
 }
 
 // Vertices must be finite and well inside float range after transforms: squared distances of

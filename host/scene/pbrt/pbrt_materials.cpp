@@ -65,20 +65,15 @@ void diffuse_transmission(const PbrtParameters& params, const PbrtTextures& text
 }
 
 // One roughness parameter: its number, or a float texture that varies over the surface as
-// {"texture": NAME} (kasha evaluates it per point). A coat's roughness is one number per material
-// (its tables are): there a varying texture is refused.
+// {"texture": NAME} (kasha evaluates it per point; a coat, whose tables take one roughness, its
+// mean).
 std::optional<nlohmann::json> roughness_param(const PbrtParameters& params, const std::string& name,
-                                              PbrtTextures& textures, bool per_point) {
+                                              PbrtTextures& textures) {
   const PbrtParameter* p = params.find(name, "float texture");
   if (p && p->type == "texture") {
     const PbrtTexture& t = pbrt_texture_named(*p, textures.scalar, "float");
-    if (!t.kasha_name.empty()) {
-      if (!per_point)
-        pbrt_fail(p->where, in_quotes(p->declaration()) +
-                                ": a coat's roughness texture is not built in kasha (a coat takes "
-                                "one roughness)");
-      return nlohmann::json{{"texture", pbrt_kasha_texture(t, textures)}};
-    }
+    // A coat's texture too: kasha reads it as its mean, with a warning (scene.cpp).
+    if (!t.kasha_name.empty()) return nlohmann::json{{"texture", pbrt_kasha_texture(t, textures)}};
   }
   const std::optional<double> v = pbrt_float_value(params, name, textures);
   if (!v) return std::nullopt;
@@ -86,12 +81,12 @@ std::optional<nlohmann::json> roughness_param(const PbrtParameters& params, cons
 }
 
 // Roughness as pbrt-v4 names it (after `prefix`: coatedconductor's "interface." and
-// "conductor."), into kasha's keys (the same names); `per_point` false for a coat's.
+// "conductor."), into kasha's keys (the same names).
 void roughness(const PbrtParameters& params, PbrtTextures& textures, nlohmann::json& out,
-               const std::string& prefix = "", bool per_point = true) {
-  const auto r = roughness_param(params, prefix + "roughness", textures, per_point);
-  const auto u = roughness_param(params, prefix + "uroughness", textures, per_point);
-  const auto v = roughness_param(params, prefix + "vroughness", textures, per_point);
+               const std::string& prefix = "") {
+  const auto r = roughness_param(params, prefix + "roughness", textures);
+  const auto u = roughness_param(params, prefix + "uroughness", textures);
+  const auto v = roughness_param(params, prefix + "vroughness", textures);
   const nlohmann::json rough = r.value_or(nlohmann::json(0.0));
   const nlohmann::json ur = u.value_or(rough), vr = v.value_or(rough);
   if (ur == vr) {
@@ -216,7 +211,7 @@ nlohmann::json coat_layer(const std::string& type, const PbrtParameters& params,
   if (!eta.is_number()) pbrt_fail(where, type + ": a coat's index must be a number in kasha");
   coat["eta"] = eta;
   coat["thickness"] = pbrt_float_value(params, "thickness", textures).value_or(0.01);
-  roughness(params, textures, coat, prefix, false);
+  roughness(params, textures, coat, prefix);
   const PbrtParameter* albedo = params.find("albedo", "float rgb spectrum blackbody texture");
   if (albedo && !is_black(spectrum_value(*albedo, PbrtSpectrumUse::kAlbedo, textures, base_dir)))
     pbrt_fail(albedo->where, type + ": a scattering coat (\"albedo\" > 0) is not built in kasha");
