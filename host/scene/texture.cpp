@@ -70,10 +70,6 @@ bool Texture::program() const {
   return false;
 }
 
-bool Texture::scalar_only() const {
-  return type == TextureType::fbm || type == TextureType::wrinkled || type == TextureType::windy;
-}
-
 namespace {
 
 // An operand: {"texture": NAME}, a number or a spectrum value.

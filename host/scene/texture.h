@@ -73,8 +73,6 @@ struct Texture {
   // Whether the kernels evaluate it as a program (everything but a plain (u, v) image or
   // checkerboard of values).
   bool program() const;
-  // fbm, wrinkled and windy are numbers only (a spectral use takes them as a grey).
-  bool scalar_only() const;
 };
 
 // One entry of the scene's "textures" object.
