@@ -186,12 +186,16 @@ void apply_coat(MaterialDesc& m, const JsonNode& coat) {
   if (m.gloss) coat.fail("a coated material has no \"gloss\" part: the coat is its gloss");
   m.coat = parse_coat(coat);
   // Both smooth, the layer's walk stays on the mirror direction and sums in closed form
-  // (docs/materials.md#coated-conductors); a rough layer over a metal is not built.
-  if (m.kind == MaterialKind::conductor &&
-      (m.coat->rough() || !m.coat->alpha_texture.empty() || m.roughness.rough()))
+  // (docs/materials.md#coated-conductors); a rough metal under a smooth coat the scene splits
+  // into parts (material/layered_metal.h), which take one roughness for the metal. A rough coat
+  // over a metal is not built: pbrt-v4's walk loses far more at its single-scattering rough
+  // interface than kasha's layer would (docs/materials.md#rough-coated-conductors).
+  if (m.kind == MaterialKind::conductor && (m.coat->rough() || !m.coat->alpha_texture.empty()))
+    coat.fail("a rough coat over a conductor is not built (a smooth one over a rough metal is)");
+  if (m.kind == MaterialKind::conductor && m.roughness.textured())
     coat.fail(
-        "a coat over a conductor is built smooth over a smooth conductor only (a rough coat or "
-        "a rough conductor under a coat is not built)");
+        "a conductor under a coat takes a roughness number, not a texture (the layer's tables "
+        "are made for one)");
 }
 
 // {"transmittance": SPECTRUM, "scale": k}: Lambert transmission beside the passive reflectance
@@ -301,6 +305,8 @@ Material discretize_material(const MaterialDesc& desc, const WavelengthGrid& gri
   m.gloss = desc.gloss;
   m.coat = desc.coat;
   m.mix = desc.mix;
+  m.under_coat = desc.under_coat;
+  m.layer_scale = desc.layer_scale;
   m.kind = desc.kind;
   m.eta = desc.dielectric.eta;
   m.thin = desc.dielectric.thin;

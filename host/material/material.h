@@ -82,6 +82,10 @@ struct MaterialDesc {
   std::optional<GlossDesc> gloss;
   std::optional<CoatDesc> coat;    // a dielectric coat over the Lambert parts or the conductor
   std::optional<MaterialMix> mix;  // kind mix: its two materials and amount
+  // A rough layered metal's parts (material/layered_metal.h), which the scene makes: the metal
+  // under the coat (a conductor), and both parts' reflectance over the share they are chosen at.
+  bool under_coat = false;
+  double layer_scale = 1;
 
   bool fluorescent() const { return excitation != nullptr; }
 };
@@ -101,6 +105,8 @@ struct Material {
   std::optional<GlossDesc> gloss;
   std::optional<CoatDesc> coat;
   std::optional<MaterialMix> mix;  // kind mix (its indices set by the scene)
+  bool under_coat = false;         // MaterialDesc::under_coat
+  double layer_scale = 1;          // MaterialDesc::layer_scale
 
   bool fluorescent() const { return !a.empty(); }
   bool transmissive() const { return !tau.empty(); }

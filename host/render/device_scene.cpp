@@ -341,6 +341,8 @@ KMaterial KernelSceneData::kernel_material(const Material& m, const Scene& scene
   k.remap_alpha = m.roughness.remap ? 1 : 0;
   k.coat_table = -1;
   if (m.coat) add_coat(*m.coat, k);
+  k.under_coat = m.under_coat ? 1 : 0;
+  k.layer_scale = static_cast<float>(m.layer_scale);
   albedo_xyz(m, scene.grid, obs, k.albedo_xyz);
   k.reflectance_texture = k.fluorescence_texture = k.normal_map = -1;
   return k;

@@ -14,6 +14,7 @@
 #include "core/input_file.h"
 #include "core/printable.h"
 #include "core/warning.h"
+#include "material/layered_metal.h"
 #include "scene/limits.h"
 #include "scene/mesh_file.h"
 #include "scene/shape_mesh.h"
@@ -731,6 +732,63 @@ static void resolve_mixes(Scene& scene) {
     check_mix_nesting(scene, static_cast<int>(m), 0);
 }
 
+// A rough layered metal (a conductor under a coat, either rough) becomes a mix of its two parts
+// (material/layered_metal.h): the metal seen through the coat, and a coated Lambert part that
+// carries the coat's reflection. Their spectra and shares need the grid: finish_layered_metals.
+static void split_layered_metals(Scene& scene) {
+  const size_t count = scene.material_descs.size();
+  for (size_t i = 0; i < count; ++i) {
+    const MaterialDesc d = scene.material_descs[i];
+    if (d.kind != MaterialKind::conductor || !d.coat || !(d.coat->rough() || d.roughness.rough()))
+      continue;
+    MaterialDesc metal = d, layer;
+    metal.name = d.name + " (its metal)";
+    metal.under_coat = true;
+    metal.roughness.alpha_x = layered_metal_alpha(*d.coat, d.roughness.alpha_x);
+    metal.roughness.alpha_y = layered_metal_alpha(*d.coat, d.roughness.alpha_y);
+    layer.name = d.name + " (its layer)";
+    layer.where = d.where;
+    layer.coat = d.coat;
+    MaterialMix mix;
+    mix.names[0] = metal.name;
+    mix.names[1] = layer.name;
+    mix.materials[0] = static_cast<int>(scene.material_descs.size());
+    mix.materials[1] = mix.materials[0] + 1;
+    mix.where = d.where;
+    MaterialDesc& parent = scene.material_descs[i];
+    parent.kind = MaterialKind::mix;
+    parent.mix = mix;
+    parent.coat.reset();
+    parent.roughness = Roughness{};
+    // The parts carry the normal map (a mix's are its materials' own).
+    MaterialTextures parts;
+    parts.normal_map = scene.material_textures[i].normal_map;
+    parts.normal_map_where = scene.material_textures[i].normal_map_where;
+    scene.material_textures[i].normal_map = -1;
+    scene.material_descs.push_back(metal);
+    scene.material_descs.push_back(layer);
+    scene.material_textures.push_back(parts);
+    scene.material_textures.push_back(parts);
+  }
+}
+
+// The parts' spectra and shares on the grid (material/layered_metal.h).
+static void finish_layered_metals(Scene& scene) {
+  for (size_t i = 0; i < scene.materials.size(); ++i) {
+    Material& m = scene.materials[i];
+    if (!m.mix || !scene.materials[m.mix->materials[0]].under_coat) continue;
+    Material& metal = scene.materials[m.mix->materials[0]];
+    Material& layer = scene.materials[m.mix->materials[1]];
+    const double alpha = std::sqrt(metal.roughness.alpha_x * metal.roughness.alpha_y);
+    const LayeredMetalParts parts = layered_metal_parts(*metal.coat, alpha, metal.eta_c, metal.k_c);
+    layer.rho = parts.scattered;
+    layer.layer_scale = 1 / parts.lambert_share;
+    metal.layer_scale = 1 / (1 - parts.lambert_share);
+    m.mix->amount = parts.lambert_share;
+    scene.material_descs[i].mix->amount = parts.lambert_share;
+  }
+}
+
 static void parse_materials(const JsonNode& materials, Scene& scene) {
   for (const std::string& name : materials.keys()) {
     JsonNode m = materials.at(name);
@@ -753,6 +811,7 @@ static void parse_materials(const JsonNode& materials, Scene& scene) {
   resolve_mixes(scene);
   resolve_roughness_textures(scene);
   resolve_coat_roughness(scene);
+  split_layered_metals(scene);
 }
 
 // Vertices must be finite and well inside float range after transforms: squared distances of
@@ -960,6 +1019,7 @@ static void discretize(const GridRequest& request, const std::vector<bool>& mate
 
   for (const MaterialDesc& d : scene.material_descs)
     scene.materials.push_back(discretize_material(d, scene.grid));
+  finish_layered_metals(scene);
   for (Emitter& e : scene.emitters) e.per_bin = scene.grid.resample(*e.radiance);
   for (Light& l : scene.lights) {
     l.per_bin = scene.grid.resample(*l.spectrum);

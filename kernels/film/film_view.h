@@ -28,7 +28,7 @@ inline void film_rows(const FilmView* f, const float* x, const __global float* y
 /* rows += scale · C·(x∘y∘F), F a conductor's reflectance in each bin at the cosine cos_m, bare or
  * under the coat `coat` (coated_conductor.h), computed bin by bin. */
 inline void film_rows_conductor(const FilmView* f, const float* x, const __global float* y, const __global float* eta,
-                                const __global float* k, float2 coat, float cos_m, float scale, float* rows) {
+                                const __global float* k, float4 coat, float cos_m, float scale, float* rows) {
   for (int i = 0; i < KASHA_BINS; ++i) {
     float v = scale * (x ? x[i] : 1.0f) * (y ? y[i] : 1.0f) * conductor_reflectance(cos_m, eta[i], k[i], coat);
 #if KASHA_SPECTRAL_FILM

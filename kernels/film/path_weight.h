@@ -185,7 +185,7 @@ inline int pw_choose_bin(PathWeight* p, const FilmView* f, float u) {
  * coated_conductor.h) is computed bin by bin at the cosine cos_m (next-event estimation at a rough
  * conductor). */
 inline void pw_add_conductor(const PathWeight* p, const FilmView* f, const __global float* y, const __global float* eta,
-                             const __global float* k, float2 coat, float cos_m, float scale, float* rows) {
+                             const __global float* k, float4 coat, float cos_m, float scale, float* rows) {
 #if KASHA_FULL_MATRIX
   for (int i = 0; i < KASHA_BINS; ++i) {
     float v = scale * PW_FACTOR(y, i) * conductor_reflectance(cos_m, eta[i], k[i], coat);
@@ -207,7 +207,7 @@ inline void pw_add_conductor(const PathWeight* p, const FilmView* f, const __glo
 /* T ← T·diag(F): a smooth conductor's reflection, F_i its reflectance in bin i at the cosine cos_i
  * (bare or under `coat`, coated_conductor.h), computed bin by bin so no spectrum is held in
  * private memory. */
-inline void pw_scatter_conductor(PathWeight* p, const __global float* eta, const __global float* k, float2 coat,
+inline void pw_scatter_conductor(PathWeight* p, const __global float* eta, const __global float* k, float4 coat,
                                  float cos_i) {
 #if KASHA_FULL_MATRIX
   for (int i = 0; i < KASHA_BINS; ++i) {

@@ -38,7 +38,7 @@ inline void splat_rough(const SceneView* s, const FilmView* f, SplatTarget* t, c
   float scale = k / s->bin_nm;
 #if KASHA_CONDUCTOR
   if (surf->kind == KASHA_KIND_CONDUCTOR) {
-    float fv = rough_conductor_eval(wo, wi, surf->alpha, &pdf, &cos_m);
+    float fv = conductor_lobe_eval(surf, wo, wi, &pdf, &cos_m);
     if (!(fv > 0.0f)) return;
     film_rows_conductor(f, p->power, 0, surf->eta_c, surf->k_c, surf->coat_c, cos_m, fv * scale, rows);
     splat_rows(t, pixel, rows);

@@ -54,7 +54,7 @@ inline void coat_at(const SceneView* sv, Surface* s, float cos_o) {
   float R = m->coat_internal;
   /* A smooth coat's mirror reflection, or a rough one's GGX lobe (coat_lobe_*): its albedo. */
   s->mirror = !coat_rough(s);
-  s->g = s->mirror ? fresnel_dielectric(cos_o, m->coat_eta) : coat_table_at(s, 0, cos_o);
+  s->g = (s->mirror ? fresnel_dielectric(cos_o, m->coat_eta) : coat_table_at(s, 0, cos_o)) * m->layer_scale;
   float t = coat_transmission(s, cos_o);
   s->lambert_out = t / (m->coat_eta * m->coat_eta);
   s->lambert_albedo = t * m->coat_albedo;
@@ -83,7 +83,12 @@ inline void coat_at(const SceneView* sv, Surface* s, float cos_o) {
     s->a_sum = a_sum;
   }
 #endif
-  if (s->passive) s->rho = rho;
+  if (s->passive) {
+    /* A rough layered metal's scattered part is chosen at a share of points (layered_metal.h). */
+    if (m->layer_scale != 1.0f)
+      for (int i = 0; i < KASHA_BINS; ++i) rho[i] *= m->layer_scale;
+    s->rho = rho;
+  }
 }
 
 /* A rough coat's reflection lobe (pbrt-v4's rough DielectricBxDF, reflection only) in a local
@@ -92,7 +97,7 @@ inline float coat_lobe_eval(const Surface* s, float3 wo, float3 wi, float* pdf) 
   Ggx a = {s->m->coat_alpha, s->m->coat_alpha};
   float cos_m;
   float f = rough_conductor_eval(wo, wi, a, pdf, &cos_m);
-  return f > 0.0f ? f * fresnel_dielectric(cos_m, s->m->coat_eta) : 0.0f;
+  return f > 0.0f ? f * fresnel_dielectric(cos_m, s->m->coat_eta) * s->m->layer_scale : 0.0f;
 }
 
 /* A direction from the lobe: a visible normal, the mirror direction about it; *weight is
@@ -103,7 +108,7 @@ inline bool coat_lobe_sample(const Surface* s, float3 wo, float2 u, float3* wi, 
   if (!rough_conductor_sample(wo, a, u, &smp) || !(smp.pdf > 0.0f)) return false;
   *wi = smp.wi;
   *pdf = smp.pdf;
-  *weight = smp.weight * fresnel_dielectric(smp.cos_m, s->m->coat_eta);
+  *weight = smp.weight * fresnel_dielectric(smp.cos_m, s->m->coat_eta) * s->m->layer_scale;
   return true;
 }
 

@@ -8,6 +8,9 @@
  * pbrt-v4's walk stops at maxdepth (10 scattering events: 5 at the metal), which drops the
  * series' terms past (F Fc A)^4: a share (F Fc A)^5 of the metal's part: below 1e-5 up to 60° at
  * η 1.5, under 1 % at 80°. kasha sums them all.
+ * A rough layered metal's metal part (coat.z = 1, materials/metal_under_coat.h) is seen through
+ * its coat, whose factors that lobe carries: here only the metal's own Fresnel reflectance under
+ * the coat, index (n + ik) / η, at the facet's cosine inside, times the part's layer_scale.
  * Defines: KASHA_COATED (0: no coat anywhere, and this is fresnel_conductor). */
 #ifndef KASHA_COATED_CONDUCTOR_H
 #define KASHA_COATED_CONDUCTOR_H
@@ -18,10 +21,11 @@
 #define KASHA_COATED 0
 #endif
 
-/* coat: (the coat's index over the outside's, its optical depth along the normal); index 0: a
- * bare conductor. eta, k: the conductor's index over the outside's. */
-inline float conductor_reflectance(float cos_i, float eta, float k, float2 coat) {
+/* coat: (the coat's index over the outside's, its optical depth along the normal, under_coat,
+ * layer_scale); index 0: a bare conductor. eta, k: the conductor's index over the outside's. */
+inline float conductor_reflectance(float cos_i, float eta, float k, float4 coat) {
 #if KASHA_COATED
+  if (coat.z > 0.0f) return coat.w * fresnel_conductor(clamp(cos_i, 0.0f, 1.0f), eta / coat.x, k / coat.x);
   if (coat.x > 0.0f) {
     float ci = clamp(cos_i, 0.0f, 1.0f);
     float F = fresnel_dielectric(ci, coat.x);

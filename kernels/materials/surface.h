@@ -51,7 +51,9 @@ typedef struct {
 #if KASHA_CONDUCTOR
   const __global float* eta_c; /* the conductor's eta(lambda) and k(lambda) */
   const __global float* k_c;
-  float2 coat_c; /* a coated conductor's (coat index, thickness); (0, 0): bare (coated_conductor.h) */
+  /* A coated conductor's (coat index, thickness, under_coat, layer_scale); index 0: bare
+   * (coated_conductor.h). */
+  float4 coat_c;
 #endif
 #if KASHA_ROUGH
   Ggx alpha; /* a rough dielectric's or conductor's roughness; (0, 0) when smooth */
@@ -122,7 +124,7 @@ inline void load_surface(const SceneView* s, int material, Surface* out) {
 #if KASHA_CONDUCTOR
   out->eta_c = s->spectra + max(m->eta_spectrum, 0);
   out->k_c = s->spectra + max(m->k_spectrum, 0);
-  out->coat_c = (float2)(m->coat_eta, m->coat_thickness);
+  out->coat_c = (float4)(m->coat_eta, m->coat_thickness, (float)m->under_coat, m->layer_scale);
 #endif
 #if KASHA_COATED
   /* A conductor's coat is in its reflectance (coat_c), not over Lambert parts. */

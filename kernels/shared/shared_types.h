@@ -238,10 +238,14 @@ typedef struct {
   int alpha_texture[2]; /* scalar KTextures whose values are alpha[0], alpha[1]'s roughness at a point
                          * (materials/texture.h), -1: the constant alpha */
   int remap_alpha;      /* 1: a texture's roughness r gives alpha sqrt(r) (pbrt-v4's RoughnessToAlpha) */
-  int pad_material;
+  int under_coat;       /* a conductor: 1 for the metal seen through its rough layer's coat, one
+                         * scattering (materials/metal_under_coat.h); 0: bare or both smooth */
   KMix mix;             /* KASHA_KIND_MIX: what it mixes */
+  float layer_scale;    /* a rough layered metal's part (host/material/layered_metal.h): its
+                         * reflectance over the share of points it is chosen at; else 1 */
+  float pad_material[3];
 } KMaterial;
-KASHA_STATIC_SIZE(KMaterial, 144);
+KASHA_STATIC_SIZE(KMaterial, 160);
 
 /* Entries of a rough coat's tables (host/material/coat.h's kCoatTableSize). */
 #define KASHA_COAT_TABLE 64

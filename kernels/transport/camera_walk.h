@@ -12,6 +12,7 @@
 #include "lights/next_event.h"
 #include "film/path_weight.h"
 #include "materials/rough_interface.h"
+#include "materials/metal_under_coat.h"
 #include "sampling/roulette.h"
 #include "sampling/sampler.h"
 #include "geometry/scene_view.h"
@@ -247,7 +248,7 @@ inline void walk_rough_next_event(const CameraWalk* w, const SceneView* s, const
   if (surf->kind == KASHA_KIND_DIELECTRIC)
     fv = rough_dielectric_eval(wo_l, wi_l, eta, surf->alpha, true, &pdf);
   else
-    fv = rough_conductor_eval(wo_l, wi_l, surf->alpha, &pdf, &cos_m);
+    fv = conductor_lobe_eval(surf, wo_l, wi_l, &pdf, &cos_m);
   if (!(fv > 0.0f)) return;
 #if KASHA_SHADING_NORMALS
   /* Offset by the geometric side the light lies on, and no light through the wrong one. */
@@ -284,7 +285,7 @@ inline bool walk_rough_scatter(CameraWalk* w, const CameraVertex* v, float eta) 
   InterfaceSample smp;
   bool ok = surf->kind == KASHA_KIND_DIELECTRIC
                 ? rough_dielectric_sample(wo, eta, surf->alpha, true, v->u_choice.x, v->u_dir, &smp)
-                : rough_conductor_sample(wo, surf->alpha, v->u_dir, &smp);
+                : conductor_lobe_sample(surf, wo, v->u_dir, &smp);
   if (!ok || !(smp.pdf > 0.0f)) return false;
 #if KASHA_CONDUCTOR
   if (surf->kind == KASHA_KIND_CONDUCTOR) pw_scatter_conductor(&w->p, surf->eta_c, surf->k_c, surf->coat_c, smp.cos_m);

@@ -9,6 +9,7 @@
 #include "materials/gloss_lobe.h"
 #include "lights/lights.h"
 #include "materials/rough_interface.h"
+#include "materials/metal_under_coat.h"
 #include "sampling/roulette.h"
 #include "sampling/sampler.h"
 #include "sampling/sampling.h"
@@ -179,7 +180,7 @@ inline int scatter_rough(Photon* p, const Surface* s, float3 x, float3 n, float 
   float3 wo = to_local(&fr, -p->direction);
   InterfaceSample smp;
   bool ok = s->kind == KASHA_KIND_DIELECTRIC ? rough_dielectric_sample(wo, eta, s->alpha, false, u_choice.x, u_dir, &smp)
-                                             : rough_conductor_sample(wo, s->alpha, u_dir, &smp);
+                                             : conductor_lobe_sample(s, wo, u_dir, &smp);
   if (!ok || !(smp.pdf > 0.0f)) return BRANCH_ABSORBED;
 #if KASHA_CONDUCTOR
   if (s->kind == KASHA_KIND_CONDUCTOR)

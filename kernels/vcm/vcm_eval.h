@@ -48,7 +48,7 @@ inline VcmF vcm_eval(const SceneView* s, const Surface* surf, float3 ns, float3 
     float3 o = to_local(&fr, wo), i = to_local(&fr, wi);
 #if KASHA_CONDUCTOR
     if (surf->kind == KASHA_KIND_CONDUCTOR) {
-      r.conductor = rough_conductor_eval(o, i, surf->alpha, &pdf, &r.cos_m);
+      r.conductor = conductor_lobe_eval(surf, o, i, &pdf, &r.cos_m);
       return r;
     }
 #endif

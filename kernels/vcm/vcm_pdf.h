@@ -44,7 +44,8 @@ inline float vcm_lambert_mean(const Surface* surf) {
 inline float vcm_share(const Surface* surf, float lambert, float mu) {
 #if KASHA_COATED
   if (surf->coated) {
-    float g = coat_rough(surf) ? coat_table_at(surf, 0, mu) : fresnel_dielectric(mu, surf->m->coat_eta);
+    float g = (coat_rough(surf) ? coat_table_at(surf, 0, mu) : fresnel_dielectric(mu, surf->m->coat_eta)) *
+              surf->m->layer_scale;
     float l = lambert * coat_transmission(surf, mu) * surf->m->coat_albedo;
     return g + l > 0.0f ? g / (g + l) : 0.0f;
   }
@@ -70,7 +71,7 @@ inline float vcm_pdf(const SceneView* s, const Surface* surf, float lambert, flo
       return pdf;
     }
 #endif
-    rough_conductor_eval(wo, wi, surf->alpha, &pdf, &cos_m);
+    conductor_lobe_eval(surf, wo, wi, &pdf, &cos_m);
     return pdf;
   }
 #endif
