@@ -109,19 +109,21 @@ std::string refusal(const std::string& json) {
   return error_of([&] { parsed(json); });
 }
 
-TEST(CoatedConductor, ParsedWithItsCoatAndARoughCoatRefused) {
+TEST(CoatedConductor, ParsedWithItsCoatRoughOrSmooth) {
   const Material m = parsed(R"({"conductor": {"metal": "Au"}, "coat": {"thickness": 0.2}})");
   EXPECT_EQ(m.kind, MaterialKind::conductor);
   ASSERT_TRUE(m.coat.has_value());
   EXPECT_DOUBLE_EQ(m.coat->eta, 1.5);
   EXPECT_DOUBLE_EQ(m.coat->thickness, 0.2);
-  // A rough metal under a smooth coat is a rough layered metal (layered_metal_test.cpp); a rough
-  // coat over a metal is refused.
-  const Material rough = parsed(R"({"conductor": {"metal": "Au", "roughness": 0.1}, "coat": {}})");
+  // Either rough is a rough layered metal (layered_metal_test.cpp), whose metal takes a number.
+  const Material rough =
+      parsed(R"({"conductor": {"metal": "Au", "roughness": 0.1}, "coat": {"roughness": 0.05}})");
   EXPECT_TRUE(rough.rough());
   ASSERT_TRUE(rough.coat.has_value());
-  const std::string e = refusal(R"({"conductor": {"metal": "Au"}, "coat": {"roughness": 0.1}})");
-  EXPECT_NE(e.find("a rough coat over a conductor is not built"), std::string::npos) << e;
+  EXPECT_TRUE(rough.coat->rough());
+  const std::string e =
+      refusal(R"({"conductor": {"metal": "Au", "roughness": {"texture": "t"}}, "coat": {}})");
+  EXPECT_NE(e.find("a conductor under a coat takes a roughness number"), std::string::npos) << e;
   EXPECT_NE(e.find("/coat"), std::string::npos) << e;
   const std::string glass = refusal(R"({"dielectric": {"eta": 1.5}, "coat": {}})");
   EXPECT_NE(glass.find("a dielectric takes no coat"), std::string::npos) << glass;
@@ -168,9 +170,6 @@ TEST(CoatedConductor, ImportedWithPbrtV4sParametersAndDefaults) {
 }
 
 TEST(CoatedConductor, ImportRefusalsNameTheirLine) {
-  EXPECT_EQ(import_error("Material \"coatedconductor\" \"float interface.roughness\" 0.1"),
-            "cc_bad.pbrt:4: coatedconductor: a rough interface is not built in kasha (a smooth "
-            "one over a rough or smooth conductor is: interface.roughness 0)");
   EXPECT_EQ(import_error("Texture \"s\" \"float\" \"checkerboard\" \"float tex1\" 0.1 "
                          "\"float tex2\" 0.2\n"
                          "Material \"coatedconductor\" \"texture conductor.roughness\" \"s\""),

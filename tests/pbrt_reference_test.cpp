@@ -74,7 +74,10 @@ INSTANTIATE_TEST_SUITE_P(
                       ReferenceCase{"procedural_textures", {}, 16},
                       // Its rough glass block (554 pixels, lit through its nearly smooth
                       // squares) is too noisy at 64 passes: +5 % at 2 standard errors.
-                      ReferenceCase{"rough_textures", {"rough_textures.pbrt:46"}, 64}),
+                      ReferenceCase{"rough_textures", {"rough_textures.pbrt:46"}, 64},
+                      // Rough layered metals in a uniform sky, where kasha's split of the
+                      // layer's light keeps its energy exactly (docs/materials.md).
+                      ReferenceCase{"layered_metals", {}, 32}),
     [](const auto& info) { return info.param.scene; });
 
 // --max-depth N as pbrt-v4's maxdepth: the Cornell box with direct light alone (1) and one bounce

@@ -25,13 +25,16 @@ double layered_metal_alpha(const CoatDesc& coat, double alpha_metal);
 struct LayeredMetalParts {
   std::vector<double> scattered;  // per bin: the coated Lambert part's reflectance ρ under the coat
   double lambert_share = 0;       // of points, the share that takes the coated Lambert part
+  double once_scale = 1;          // the once-scattered lobe's factor (1 under a smooth coat)
 };
 
-// The parts for a metal of index eta + ik per bin (over the outside's) under `coat`, its lobe of
-// GGX alpha `alpha` (layered_metal_alpha's). The random walk (fixed seed) gives, for light
-// arriving cosine-weighted, the albedo of the light that leaves after more than one metal
-// bounce per bin; the coated Lambert part's ρ gives the same albedo under uniform light.
-LayeredMetalParts layered_metal_parts(const CoatDesc& coat, double alpha,
+// The parts for a metal of index eta + ik per bin (over the outside's) and GGX alpha alpha_metal
+// under `coat`; `alpha` is its lobe's seen through the coat (layered_metal_alpha's). A random
+// walk through the layer as pbrt-v4 takes it (rough interfaces scattering once at each crossing,
+// every bounce kept; fixed seed) gives, for light arriving cosine-weighted, the albedo of what
+// leaves the layer per bin; the coated Lambert part's ρ makes up what the once-scattered lobe
+// does not give of it, under uniform light.
+LayeredMetalParts layered_metal_parts(const CoatDesc& coat, double alpha_metal, double alpha,
                                       const std::vector<double>& eta, const std::vector<double>& k);
 
 }  // namespace kasha

@@ -186,12 +186,8 @@ void apply_coat(MaterialDesc& m, const JsonNode& coat) {
   if (m.gloss) coat.fail("a coated material has no \"gloss\" part: the coat is its gloss");
   m.coat = parse_coat(coat);
   // Both smooth, the layer's walk stays on the mirror direction and sums in closed form
-  // (docs/materials.md#coated-conductors); a rough metal under a smooth coat the scene splits
-  // into parts (material/layered_metal.h), which take one roughness for the metal. A rough coat
-  // over a metal is not built: pbrt-v4's walk loses far more at its single-scattering rough
-  // interface than kasha's layer would (docs/materials.md#rough-coated-conductors).
-  if (m.kind == MaterialKind::conductor && (m.coat->rough() || !m.coat->alpha_texture.empty()))
-    coat.fail("a rough coat over a conductor is not built (a smooth one over a rough metal is)");
+  // (docs/materials.md#coated-conductors); either rough, the scene splits it into parts
+  // (material/layered_metal.h), which take one roughness for the metal.
   if (m.kind == MaterialKind::conductor && m.roughness.textured())
     coat.fail(
         "a conductor under a coat takes a roughness number, not a texture (the layer's tables "

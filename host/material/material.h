@@ -86,6 +86,7 @@ struct MaterialDesc {
   // under the coat (a conductor), and both parts' reflectance over the share they are chosen at.
   bool under_coat = false;
   double layer_scale = 1;
+  double layered_alpha = 0;  // the metal's own GGX alpha (isotropic mean) under the coat
 
   bool fluorescent() const { return excitation != nullptr; }
 };

@@ -744,6 +744,7 @@ static void split_layered_metals(Scene& scene) {
     MaterialDesc metal = d, layer;
     metal.name = d.name + " (its metal)";
     metal.under_coat = true;
+    metal.layered_alpha = std::sqrt(d.roughness.alpha_x * d.roughness.alpha_y);
     metal.roughness.alpha_x = layered_metal_alpha(*d.coat, d.roughness.alpha_x);
     metal.roughness.alpha_y = layered_metal_alpha(*d.coat, d.roughness.alpha_y);
     layer.name = d.name + " (its layer)";
@@ -779,11 +780,13 @@ static void finish_layered_metals(Scene& scene) {
     if (!m.mix || !scene.materials[m.mix->materials[0]].under_coat) continue;
     Material& metal = scene.materials[m.mix->materials[0]];
     Material& layer = scene.materials[m.mix->materials[1]];
+    const MaterialDesc& given = scene.material_descs[m.mix->materials[0]];
     const double alpha = std::sqrt(metal.roughness.alpha_x * metal.roughness.alpha_y);
-    const LayeredMetalParts parts = layered_metal_parts(*metal.coat, alpha, metal.eta_c, metal.k_c);
+    const LayeredMetalParts parts =
+        layered_metal_parts(*metal.coat, given.layered_alpha, alpha, metal.eta_c, metal.k_c);
     layer.rho = parts.scattered;
     layer.layer_scale = 1 / parts.lambert_share;
-    metal.layer_scale = 1 / (1 - parts.lambert_share);
+    metal.layer_scale = parts.once_scale / (1 - parts.lambert_share);
     m.mix->amount = parts.lambert_share;
     scene.material_descs[i].mix->amount = parts.lambert_share;
   }

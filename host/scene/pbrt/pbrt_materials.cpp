@@ -237,20 +237,15 @@ bool rough(const nlohmann::json& r) {
 
 // pbrt-v4's CoatedConductorMaterial: a conductor ("conductor.eta"/"conductor.k" or
 // "reflectance", copper by default) under a dielectric coat ("interface.eta" 1.5, "thickness").
-// Both smooth sum in closed form (docs/materials.md#coated-conductors); a rough conductor under
-// the smooth interface is kasha's rough layered metal (docs/materials.md#rough-coated-conductors),
-// whose metal takes one roughness (a conductor.roughness texture is refused); a rough interface
-// is refused.
+// Both smooth sum in closed form (docs/materials.md#coated-conductors); either rough is kasha's
+// rough layered metal (docs/materials.md#rough-coated-conductors), whose metal takes one
+// roughness (a conductor.roughness texture is refused).
 void coated_conductor(const PbrtParameters& params, const PbrtLocation& where,
                       PbrtTextures& textures, const std::filesystem::path& base_dir,
                       nlohmann::json& m) {
   m["conductor"] = conductor(params, where, textures, base_dir, "conductor.");
   m["coat"] = coat_layer("coatedconductor", params, where, textures, base_dir, "interface.eta",
                          "interface.");
-  if (rough(m["coat"]))
-    pbrt_fail(where,
-              "coatedconductor: a rough interface is not built in kasha (a smooth one over a "
-              "rough or smooth conductor is: interface.roughness 0)");
   for (const char* key : {"roughness", "uroughness", "vroughness"})
     if (m["conductor"].contains(key) && m["conductor"][key].is_object())
       pbrt_fail(where,
