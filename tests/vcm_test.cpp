@@ -2,9 +2,10 @@
 // weighted techniques together must estimate what one unweighted technique estimates alone — the
 // weights of every path sum to one. The reference is path tracing without next-event estimation
 // (the vcm kernel's emission-only hook), in a box lit by a large lamp so that it converges; a
-// weight with one technique's density left out must fail the same comparison. The furnaces and
-// the agreement with backward are in the registry-wide tests (integrator_furnace_test.cpp,
-// integrator_agreement_test.cpp).
+// weight with one technique's density left out must fail the same comparison. A distant light,
+// which no camera path hits, is checked against backward instead, on normal-mapped surfaces. The
+// furnaces and the agreement with backward are in the registry-wide tests
+// (integrator_furnace_test.cpp, integrator_agreement_test.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -89,6 +90,62 @@ const Image& plain(int length, bool mirror = false) {
                      render_length("bpt", length, 128, true, false, 0, Merges::first, mirror).image)
             .first;
   return it->second;
+}
+
+// A rough copper card filling the view, its back to a distant light, lit by the sunlit grey floor
+// in front of it: what the camera sees is the sun's light through one bounce on the floor and one
+// on the card, which next-event estimation at the floor, connections of the card to light
+// vertices on the floor and light tracing share (the floor small, so that the connections'
+// share is large). Both surfaces carry a normal map whose 4 × 4 texels (blended bilinearly) lean
+// 40° to 60°, within 40° of the way ∂p/∂u runs, so the shading normal is far from the geometric
+// one everywhere, and leans one way on the whole: each technique takes its densities, cosines and
+// adjoint factors about one or the other.
+std::string mapped_card_behind_sunlit_floor() {
+  std::string pfm = "PF\n4 4\n-1.0\n";
+  for (int k = 0; k < 16; ++k) {
+    const double tilt = (40 + 20 * ((7 * k) % 16) / 15.0) * M_PI / 180,
+                 azimuth = (-40 + 80 * ((5 * k) % 16) / 15.0) * M_PI / 180;
+    const float rgb[3] = {static_cast<float>((std::sin(tilt) * std::cos(azimuth) + 1) / 2),
+                          static_cast<float>((std::sin(tilt) * std::sin(azimuth) + 1) / 2),
+                          static_cast<float>((std::cos(tilt) + 1) / 2)};
+    pfm.append(reinterpret_cast<const char*>(rgb), sizeof rgb);
+  }
+  const std::string map = write_file("vcm_steep_map.pfm", pfm);
+  return write_file("vcm_mapped_card.json", R"({"kasha_scene": 1,
+    "camera": {"position": [0.2, -2.2, 0.9], "look_at": [0, 0, 0.6], "fov_deg": 28,
+               "width": 48, "height": 48},
+    "materials": {"grey": {"passive": {"reflectance": 0.8}, "normal_map": ")" +
+                                                map + R"("},
+                  "copper": {"conductor": {"roughness": 0.5}, "normal_map": ")" +
+                                                map + R"("}},
+    "shapes": [{"type": "quad", "corner": [-1, -1.5, 0], "u": [2, 0, 0], "v": [0, 1.5, 0],
+                "material": "grey"},
+               {"type": "quad", "corner": [-0.8, 0, 0.05], "u": [1.6, 0, 0], "v": [0, 0, 1.2],
+                "material": "copper"}],
+    "lights": [{"type": "distant", "from": [0.3, 0.5, 1.5], "to": [0, 0, 0], "irradiance": 1}]})");
+}
+
+RenderResult render_card(const std::string& integrator, Sampler sampler) {
+  RenderSettings s;
+  s.integrator = integrator;
+  s.passes = 32;
+  s.spectral = false;
+  s.integrator_settings.sampler = sampler;
+  s.integrator_settings.seed = 2;
+  return render_scene(mapped_card_behind_sunlit_floor(), s);
+}
+
+// Per XYZ row: the mean of (image − backward's) over its standard error, and over backward's mean
+// in *relative.
+std::array<double, 3> against_backward(const Image& image, const Image& backward,
+                                       std::array<double, 3>* relative) {
+  BinStats t = pixel_statistics(backward, false), d = difference_statistics(image, backward, false);
+  std::array<double, 3> z{};
+  for (int k = 0; k < 3; ++k) {
+    z[k] = d.mean[k] / d.standard_error[k];
+    (*relative)[k] = d.mean[k] / t.mean[k];
+  }
+  return z;
 }
 
 }  // namespace
@@ -186,4 +243,26 @@ TEST(Vcm, AWeightWithADensityDroppedFails) {
       "  length 2, density dropped: bpt / plain - 1 = %+.2f %% (Y, %+.1f standard errors)\n",
       100 * relative[1], z[1]);
   EXPECT_GT(z[1], 6.0);
+}
+
+// A delta light has no plain estimate (no camera path hits it), so backward, which reaches it by
+// next-event estimation alone, is the reference: bpt's techniques weighed against each other on
+// the normal-mapped card must add up to it, with Sobol points and with independent samples (light
+// tracing's full share). Measured +0.19 % and −0.20 % (0.7 and 0.5 standard errors); the distant
+// light's cosine at the first hit taken about the shading normal in next-event estimation's weight
+// fails it (+3.5 %, 13.5 standard errors), so do the light subpath's turn to area about the
+// shading normal (−3.2 %, 12.8) and the card's GGX density in a connection's weight about the
+// geometric normal (−2.6 %, 9.8). The +6 % once reported for bpt on pbrt-v4's normal-mapped
+// copper card (docs/materials.md#normal-maps) is not there.
+TEST(Vcm, BptAgreesWithBackwardUnderADistantLightOnNormalMappedSurfaces) {
+  const Image backward = render_card("backward", Sampler::sobol).image;
+  for (Sampler sampler : {Sampler::sobol, Sampler::independent}) {
+    std::array<double, 3> relative;
+    std::array<double, 3> z =
+        against_backward(render_card("bpt", sampler).image, backward, &relative);
+    std::printf("  %s: bpt / backward - 1 = %+.2f %% (Y, %+.1f standard errors)\n",
+                choice_name(sampler).c_str(), 100 * relative[1], z[1]);
+    for (int k = 0; k < 3; ++k)
+      EXPECT_LT(std::abs(z[k]), 4.0) << choice_name(sampler) << " row " << k;
+  }
 }
