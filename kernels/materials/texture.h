@@ -74,11 +74,6 @@ inline void texture_multiply(const SceneView* s, const __global KTexture* t, flo
 }
 
 #if KASHA_TEXTURE_PROGRAMS
-inline TexTables scene_texture_tables(const SceneView* s) {
-  TexTables tt = {s->textures, s->tex_ops, s->spectra};
-  return tt;
-}
-
 /* The texture point of a hit (shared/texture_program.h). */
 inline TexPoint hit_tex_point(const SceneView* s, const HitPoint* h) {
   return triangle_tex_point(&s->tris[h->tri], &s->texcoords[h->tri], h->b.x, h->b.y);
