@@ -6,6 +6,7 @@
 #include "shared/color_constants.h"
 #include "film/film_view.h"
 #include "geometry/hit_point.h"
+#include "materials/hit_material.h"
 #include "sampling/sampler.h"
 #include "geometry/scene_view.h"
 
@@ -35,7 +36,7 @@ __kernel void render_debug(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
     sampler_next_sample(&sampler, pass * (uint)spp + (uint)k);
     HitPoint h;
     float3 o, d = camera_ray(&s.camera, pixel, &sampler, &o);
-    if (!intersect_scene(&s, o, d, &h))
+    if (!intersect_surface(&s, o, d, &h))
       continue;
     if (view == VIEW_EMISSION) {
       /* Emitters radiate from their front side only. */

@@ -9,6 +9,7 @@
 #include "film/camera_splat.h"
 #include "film/film_view.h"
 #include "geometry/hit_point.h"
+#include "materials/hit_material.h"
 #include "transport/photon_transport.h"
 #include "geometry/scene_view.h"
 
@@ -173,7 +174,7 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunc
     bool alive = true;
     for (int depth = 0; depth < max_depth && alive; ++depth) {
       HitPoint h;
-      if (!intersect_scene(&s, p.position, p.direction, &h)) {
+      if (!intersect_surface(&s, p.position, p.direction, &h)) {
         escaped += photon_total(&p);
         alive = false;
         break;

@@ -5,8 +5,6 @@
 
 #include "geometry/bvh_traversal.h"
 #include "geometry/scene_view.h"
-#include "materials/mix.h"
-#include "materials/normal_map.h"
 
 #ifndef KASHA_TEXTURES
 #define KASHA_TEXTURES 0
@@ -25,9 +23,15 @@
 #ifndef KASHA_ANISOTROPIC
 #define KASHA_ANISOTROPIC 0
 #endif
+#ifndef KASHA_NORMAL_MAPS
+#define KASHA_NORMAL_MAPS 0 /* some shape's material has a normal map */
+#endif
+#ifndef KASHA_MIX
+#define KASHA_MIX 0 /* some shape's material is a mix */
+#endif
 
 /* With shading normals (KASHA_SHADING_NORMALS, docs/formats.md#shading-normals), ns is the
- * interpolated shading normal, or the material's normal map's (materials/normal_map.h), turned to
+ * interpolated shading normal, or the material's normal map's (materials/hit_material.h), turned to
  * the geometric front's hemisphere, then to the ray's side,
  * and ng the geometric one on the ray's side: surfaces scatter about ns, while offsets, the side a
  * new ray leaves by and the check against light leaks use ng. Without them ns is the geometric
@@ -43,14 +47,14 @@ typedef struct {
   bool front;    /* the ray arrived on the front side */
   float t;       /* distance along the (unit) direction */
   float eps;     /* how far off the surface new rays start: x's own rounding bound (surface_offset) */
-  int material;
+  int material;  /* the triangle's; a mix's choice once materials/hit_material.h resolves it */
   int emitter;   /* -1: the triangle does not emit */
   int tri;       /* the triangle, in leaf order */
 #if KASHA_INSTANCES
   int instance;  /* the instance it was met in (its vertices are the object's) */
 #endif
-#if KASHA_TEXTURES
-  float2 b;      /* the barycentrics of v1 and v2, for texture coordinates */
+#if KASHA_TEXTURES || KASHA_MIX || KASHA_NORMAL_MAPS
+  float2 b;      /* the barycentrics of v1 and v2: texture coordinates, a mix's amount, a normal map */
 #endif
 #if KASHA_COATED
   float cos_in;  /* |cos| of the arriving ray to the normal: a coat's Fresnel reflectance there */
@@ -81,6 +85,8 @@ inline float surface_offset(float3 v0, float3 v1, float3 v2, float b0, float b1,
   return 2.0f * KASHA_GAMMA(7) * (dot(fabs(n), err) + length(v1 - v0) + length(v2 - v0));
 }
 
+/* The closest hit's geometry, its material the triangle's: integrators meet surfaces through
+ * materials/hit_material.h's intersect_surface, which resolves a mix and a normal map there. */
 inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint* h) {
   float t, u, v;
   ++s->rays->closest;
@@ -130,22 +136,11 @@ inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint
   h->x = (1.0f - u - v) * v0 + u * v1 + v * v2;
   h->eps = surface_offset(v0, v1, v2, 1.0f - u - v, u, v, h->n);
   h->t = t;
-  h->material = resolve_material(s, tri->material, h->x, hit, (float2)(u, v));
+  h->material = tri->material;
   h->emitter = tri->emitter;
   h->tri = hit;
-#if KASHA_TEXTURES
+#if KASHA_TEXTURES || KASHA_MIX || KASHA_NORMAL_MAPS
   h->b = (float2)(u, v);
-#endif
-#if KASHA_NORMAL_MAPS
-  /* The material's normal map, once the mix has chosen it (materials/normal_map.h). */
-  int map = h->material >= 0 ? s->materials[h->material].normal_map : -1;
-  if (map >= 0) {
-    h->nf = normal_map_normal(s, &s->textures[map], hit, (float2)(u, v), hit_dpdu(s, h), h->nf, h->n);
-    h->ns = h->front ? h->nf : -h->nf;
-  }
-#endif
-#if KASHA_COATED
-  h->cos_in = fmax(0.0f, -dot(h->ns, dir));
 #endif
   return true;
 }

@@ -8,6 +8,7 @@
 #include "geometry/bvh_traversal.h"
 #include "shared/alpha_test.h"
 #include "shared/shared_types.h"
+#include "shared/texture_program.h"
 
 #ifndef KASHA_SCRATCH_FLOATS
 #define KASHA_SCRATCH_FLOATS 0
@@ -90,6 +91,12 @@ typedef struct {
 inline AlphaTables scene_alpha(const SceneView* s) {
   AlphaTables a = {s->tris, s->texcoords, s->textures, s->spectra, s->tex_ops};
   return a;
+}
+
+/* The tables a texture program reads (shared/texture_program.h). */
+inline TexTables scene_texture_tables(const SceneView* s) {
+  TexTables tt = {s->textures, s->tex_ops, s->spectra};
+  return tt;
 }
 
 /* The tables the traversal reads. */

@@ -33,7 +33,7 @@ inline float mix_amount(const SceneView* s, const __global KMix* m, int tri, flo
     const __global KTexture* tex = &s->textures[m->amount_texture];
     if (tex->type == KASHA_TEXTURE_PROGRAM) {
       TexPoint at = triangle_tex_point(&s->tris[tri], &s->texcoords[tri], b.x, b.y);
-      TexTables tt = {s->textures, s->tex_ops, s->spectra};
+      TexTables tt = scene_texture_tables(s);
       return texture_scalar_at(&tt, tex, &at);
     }
 #endif

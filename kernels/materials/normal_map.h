@@ -2,7 +2,7 @@
  * blend's rgb at the hit's (u, v) (bilinear, repeating; t runs up from the bottom row as every
  * image lookup's) is the tangent-space normal 2·rgb − 1 in the frame x = ∂p/∂u made orthogonal to
  * the shading normal, y = n × x, z = n (Frame::FromXZ); pbrt-v4's SetShadingGeometry then turns it
- * to the geometric normal's side. Applied where a hit is made (geometry/hit_point.h), so camera
+ * to the geometric normal's side. Applied where a hit is made (materials/hit_material.h), so camera
  * and light paths, and vcm's stored light vertices, see one shading normal at a point. */
 #ifndef KASHA_NORMAL_MAP_H
 #define KASHA_NORMAL_MAP_H

@@ -53,13 +53,12 @@ inline float texture_scalar(const SceneView* s, const __global KTexture* t, floa
   return texture_scalar_uv(t, s->spectra, uv.x, uv.y);
 }
 
-/* out = y ∘ T(uv): a spectral texture applied bin by bin to the spectrum y. */
-inline void texture_multiply(const SceneView* s, const __global KTexture* t, float2 uv, const __global float* y,
-                             __global float* out) {
+/* T(uv) bin by bin into out: a checkerboard's spectrum or an image's texel blend. */
+inline void texture_factor(const SceneView* s, const __global KTexture* t, float2 uv, __global float* out) {
   float2 st = texture_st(t, uv);
   if (t->type == KASHA_TEXTURE_CHECKERBOARD) {
     const __global float* v = s->spectra + (checker_odd(st) ? t->odd : t->even);
-    for (int i = 0; i < KASHA_BINS; ++i) out[i] = y[i] * v[i];
+    for (int i = 0; i < KASHA_BINS; ++i) out[i] = v[i];
     return;
   }
   int idx[4];
@@ -69,25 +68,16 @@ inline void texture_multiply(const SceneView* s, const __global KTexture* t, flo
     float nm = s->spectra[t->lambda + i], v = 0.0f;
     for (int k = 0; k < n; ++k)
       if (idx[k] >= 0) v += w[k] * rgb_sigmoid(s->spectra + t->data + 4 * idx[k], nm);
-    out[i] = y[i] * v;
+    out[i] = v;
   }
 }
 
 #if KASHA_TEXTURE_PROGRAMS
-inline TexTables scene_texture_tables(const SceneView* s) {
-  TexTables tt = {s->textures, s->tex_ops, s->spectra};
-  return tt;
-}
-
-/* The texture point of a hit (shared/texture_program.h). */
-inline TexPoint hit_tex_point(const SceneView* s, const HitPoint* h) {
-  return triangle_tex_point(&s->tris[h->tri], &s->texcoords[h->tri], h->b.x, h->b.y);
-}
-
-/* out = y ∘ T: a spectral program's terms summed bin by bin (each a slot's value times a constant
- * spectrum or an image's texel blend), clamped to [0, 1] as pbrt-v4 clamps a reflectance. */
-inline void texture_program_multiply(const SceneView* s, const __global KTexture* t, const TexPoint* at,
-                                     const __global float* y, __global float* out) {
+/* T at the point into out: a spectral program's terms summed bin by bin (each a slot's value times
+ * a constant spectrum or an image's texel blend), clamped to [0, 1] as pbrt-v4 clamps a
+ * reflectance. */
+inline void texture_program_factor(const SceneView* s, const __global KTexture* t, const TexPoint* at,
+                                   __global float* out) {
   TexTables tt = scene_texture_tables(s);
   float vals[KASHA_TEXTURE_SLOTS];
   texture_program_run(&tt, t, at, vals);
@@ -112,33 +102,40 @@ inline void texture_program_multiply(const SceneView* s, const __global KTexture
       out[i] += w * v;
     }
   }
-  for (int i = 0; i < KASHA_BINS; ++i) out[i] = y[i] * clamp(out[i], 0.0f, 1.0f);
+  for (int i = 0; i < KASHA_BINS; ++i) out[i] = clamp(out[i], 0.0f, 1.0f);
 }
 #endif
 
-/* out = y ∘ T at the hit: a program where the texture is one, else the lookup at uv. */
-inline void texture_multiply_at(const SceneView* s, const __global KTexture* t, const HitPoint* h, float2 uv,
-                                const __global float* y, __global float* out) {
+/* Where a hit's textures are looked up, built once a hit: its (u, v), and with texture programs
+ * its point and normal too (shared/texture_program.h); without them nothing reads those. */
+inline TexPoint hit_tex_point(const SceneView* s, const HitPoint* h) {
+#if KASHA_TEXTURE_PROGRAMS
+  return triangle_tex_point(&s->tris[h->tri], &s->texcoords[h->tri], h->b.x, h->b.y);
+#else
+  TexPoint at;
+  float2 uv = hit_uv(s, h);
+  at.u = uv.x;
+  at.v = uv.y;
+  return at;
+#endif
+}
+
+/* A spectral texture's factor T bin by bin at the point into out: a program where the texture is
+ * one, else the lookup at (u, v). */
+inline void texture_factor_at(const SceneView* s, const __global KTexture* t, const TexPoint* at,
+                              __global float* out) {
 #if KASHA_TEXTURE_PROGRAMS
   if (t->type == KASHA_TEXTURE_PROGRAM) {
-    TexPoint at = hit_tex_point(s, h);
-    texture_program_multiply(s, t, &at, y, out);
+    texture_program_factor(s, t, at, out);
     return;
   }
 #endif
-  texture_multiply(s, t, uv, y, out);
+  texture_factor(s, t, (float2)(at->u, at->v), out);
 }
 
-/* A scalar texture's value at the hit. */
-inline float texture_scalar_at_hit(const SceneView* s, const __global KTexture* t, const HitPoint* h, float2 uv) {
-#if KASHA_TEXTURE_PROGRAMS
-  if (t->type == KASHA_TEXTURE_PROGRAM) {
-    TexPoint at = hit_tex_point(s, h);
-    TexTables tt = scene_texture_tables(s);
-    return texture_scalar_at(&tt, t, &at);
-  }
-#endif
-  return texture_scalar(s, t, uv);
+/* out = y ∘ T, T a factor texture_factor_at wrote (out may be T itself). */
+inline void texture_apply(const __global float* y, const __global float* factor, __global float* out) {
+  for (int i = 0; i < KASHA_BINS; ++i) out[i] = y[i] * factor[i];
 }
 
 #if KASHA_EMISSION_TEXTURES
@@ -151,15 +148,15 @@ inline float emission_factor(const SceneView* s, int tri, float b1, float b2) {
 #endif
 
 #if KASHA_ROUGHNESS_TEXTURES
-/* The GGX alpha at the hit of a material whose roughness is textured: each textured axis's value
+/* The GGX alpha at the point of a material whose roughness is textured: each textured axis's value
  * there, clamped to [0, 1] and remapped as a constant is (pbrt-v4's RoughnessToAlpha: sqrt). The
  * point is smooth or rough by this alpha alone (surface_rough), so every integrator decides alike;
  * where it is rough, both axes stay at least 1e-4 as pbrt-v4's TrowbridgeReitzDistribution keeps
  * them (D would divide by a zero alpha). */
-inline void roughness_at(const SceneView* s, const HitPoint* h, Surface* surf) {
+inline void roughness_at(const SceneView* s, const TexPoint* at, Surface* surf) {
   const __global KMaterial* m = surf->m;
   if (m->alpha_texture[0] < 0 && m->alpha_texture[1] < 0) return;
-  float2 uv = hit_uv(s, h);
+  TexTables tt = scene_texture_tables(s);
   float a[2] = {m->alpha[0], m->alpha[1]};
   for (int k = 0; k < 2; ++k) {
     int t = m->alpha_texture[k];
@@ -168,7 +165,7 @@ inline void roughness_at(const SceneView* s, const HitPoint* h, Surface* surf) {
       a[1] = a[0]; /* isotropic: one lookup */
       continue;
     }
-    float r = clamp(texture_scalar_at_hit(s, &s->textures[t], h, uv), 0.0f, 1.0f);
+    float r = clamp(texture_scalar_at(&tt, &s->textures[t], at), 0.0f, 1.0f);
     a[k] = m->remap_alpha ? sqrt(r) : r;
   }
   if (fmax(a[0], a[1]) >= KASHA_SMOOTH_ALPHA) {
@@ -180,30 +177,40 @@ inline void roughness_at(const SceneView* s, const HitPoint* h, Surface* surf) {
 }
 #endif
 
-/* The hit's surface with its material's textures applied. */
+/* Whether some texture of the material applies at its points. */
+inline bool material_textured(const __global KMaterial* m) {
+#if KASHA_ROUGHNESS_TEXTURES
+  if (m->alpha_texture[0] >= 0 || m->alpha_texture[1] >= 0) return true;
+#endif
+  return m->reflectance_texture >= 0 || m->fluorescence_texture >= 0;
+}
+
+/* The hit's surface with its material's textures applied, all looked up at one TexPoint. */
 inline void load_textured_surface(const SceneView* s, const HitPoint* h, Surface* surf) {
   load_surface(s, h->material, surf);
-#if KASHA_ROUGHNESS_TEXTURES
-  roughness_at(s, h, surf);
-#endif
   const __global KMaterial* m = surf->m;
-  if (m->reflectance_texture < 0 && m->fluorescence_texture < 0) return;
-  float2 uv = hit_uv(s, h);
+  if (!material_textured(m)) return;
+  TexPoint at = hit_tex_point(s, h);
+#if KASHA_ROUGHNESS_TEXTURES
+  roughness_at(s, &at, surf);
+#endif
   __global float* slot = s->scratch + KASHA_SCRATCH_TEXTURES;
   if (m->reflectance_texture >= 0) {
-    texture_multiply_at(s, &s->textures[m->reflectance_texture], h, uv, surf->rho, slot);
-    surf->rho = slot;
+    texture_factor_at(s, &s->textures[m->reflectance_texture], &at, slot);
 #if KASHA_TRANSMISSION
-    /* The reflectance texture colours the transmittance alike (docs/materials.md). */
+    /* The reflectance texture colours the transmittance alike (docs/materials.md): one factor. */
     if (surf->share_t > 0.0f) {
-      texture_multiply_at(s, &s->textures[m->reflectance_texture], h, uv, surf->tau, slot + 2 * KASHA_BINS);
+      texture_apply(surf->tau, slot, slot + 2 * KASHA_BINS);
       surf->tau = slot + 2 * KASHA_BINS;
     }
 #endif
+    texture_apply(surf->rho, slot, slot);
+    surf->rho = slot;
   }
 #if KASHA_FLUORESCENCE
   if (m->fluorescence_texture >= 0) {
-    float k = clamp(texture_scalar_at_hit(s, &s->textures[m->fluorescence_texture], h, uv), 0.0f, 1.0f);
+    TexTables tt = scene_texture_tables(s);
+    float k = clamp(texture_scalar_at(&tt, &s->textures[m->fluorescence_texture], &at), 0.0f, 1.0f);
     __global float* a = slot + KASHA_BINS;
     for (int i = 0; i < KASHA_BINS; ++i) a[i] = surf->a[i] * k;
     surf->a = a;

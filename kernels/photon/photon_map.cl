@@ -12,6 +12,7 @@
 #include "transport/camera_walk.h"
 #include "film/film_view.h"
 #include "geometry/hit_point.h"
+#include "materials/hit_material.h"
 #include "shared/photon_layout.h"
 #include "transport/photon_transport.h"
 #include "geometry/scene_view.h"
@@ -52,7 +53,7 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KPhotonTra
       if (depth >= KASHA_DEPTH_CAP) break;
 #endif
       HitPoint h;
-      if (!intersect_scene(&s, p.position, p.direction, &h)) break;
+      if (!intersect_surface(&s, p.position, p.direction, &h)) break;
       float3 ns = hit_ng(&h), x = h.x;
 #if KASHA_SHADING_NORMALS
       /* From below the shading normal's hemisphere: the surface does not scatter it (hit_seen). */

@@ -8,6 +8,7 @@
 #include "film/film_view.h"
 #include "materials/gloss_lobe.h"
 #include "geometry/hit_point.h"
+#include "materials/hit_material.h"
 #include "lights/lights.h"
 #include "lights/next_event.h"
 #include "film/path_weight.h"
@@ -86,7 +87,7 @@ inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sa
                         float* rows) {
   if (w->depth == KASHA_MAX_PATH_DEPTH) return false;
   HitPoint* h = &v->h;
-  if (!intersect_scene(s, w->org, w->dir, h)) {
+  if (!intersect_surface(s, w->org, w->dir, h)) {
 #if KASHA_INFINITE_LIGHTS
     walk_escaped(w, s, f, rows);
 #endif

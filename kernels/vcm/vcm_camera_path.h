@@ -112,7 +112,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
   bool delta_only = true; /* every bounce so far was delta (vcm_seen_light's paths) */
   while (c.w.depth < KASHA_MAX_PATH_DEPTH) {
     HitPoint* h = &v.h;
-    if (!intersect_scene(s, c.w.org, c.w.dir, h)) {
+    if (!intersect_surface(s, c.w.org, c.w.dir, h)) {
 #if KASHA_INFINITE_LIGHTS
       if (own && !(seen_apart && delta_only)) vcm_escaped(&c, s, f, rows);
 #endif

@@ -22,7 +22,7 @@ inline void vcm_light_surface(const SceneView* s, const __global KVcmLightVertex
   *ns = load_float3(y->shading);
   *ng = load_float3(y->normal);
   *nf = (y->flags & KASHA_VCM_FRONT) ? *ns : -*ns;
-#if KASHA_TEXTURES
+#if KASHA_TEXTURES || KASHA_MIX || KASHA_NORMAL_MAPS
   h.b = (float2)(y->barycentrics[0], y->barycentrics[1]);
 #endif
 #if KASHA_COATED

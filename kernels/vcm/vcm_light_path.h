@@ -148,7 +148,7 @@ inline float vcm_light_path(const SceneView* s, const FilmView* f, const KVcmIte
     if (depth >= KASHA_DEPTH_CAP) break;
 #endif
     HitPoint h;
-    if (!intersect_scene(s, p.position, p.direction, &h)) break;
+    if (!intersect_surface(s, p.position, p.direction, &h)) break;
     vcm_arrived(far_start && depth == 0 ? 1.0f : h.t, fabs(dot(h.n, p.direction)), &dvcm, &dvc, &dvm, &dvc_merge);
     /* dVCM's next-event density (SmallVCM's directPdfA, by area above) as it truly is from here. */
     if (depth == 0 && o.tri >= 0)

@@ -15,7 +15,7 @@ inline float vcm_seen_light(const SceneView* s, const FilmView* f, int pixel, Sa
   CameraVertex v;
   while (w.depth < KASHA_MAX_PATH_DEPTH) {
     HitPoint* h = &v.h;
-    if (!intersect_scene(s, w.org, w.dir, h)) {
+    if (!intersect_surface(s, w.org, w.dir, h)) {
 #if KASHA_INFINITE_LIGHTS
       if (VCM_LENGTH_COUNTS(w.depth + 1)) walk_escaped(&w, s, f, rows); /* whole: w.specular */
 #endif
