@@ -360,6 +360,7 @@ MakeNamedMaterial "leaf" "string type" "diffusetransmission" "rgb transmittance"
 MakeNamedMaterial "sheet" "string type" "thindielectric" "float eta" 1.4
 MakeNamedMaterial "brushed" "string type" "conductor" "rgb eta" [0.2 0.9 1.1] "rgb k" [3.9 2.4 2.2] "float roughness" 0.2
 MakeNamedMaterial "varnish" "string type" "coatedconductor" "spectrum conductor.eta" "metal-Au-eta" "spectrum conductor.k" "metal-Au-k" "float interface.eta" 1.4 "float thickness" 0.05
+MakeNamedMaterial "paint" "string type" "coatedconductor" "spectrum conductor.eta" "metal-Al-eta" "spectrum conductor.k" "metal-Al-k" "float conductor.roughness" 0.05 "float interface.roughness" 0.02
 Texture "holes" "float" "checkerboard" "float uscale" 8 "float vscale" 8 "float tex1" 1 "float tex2" 0
 MakeNamedMaterial "worn" "string type" "mix" "string materials" ["lacquer" "gold"] "texture amount" "holes"
 AttributeBegin
@@ -396,6 +397,11 @@ Shape "sphere" "float radius" 0.2
 AttributeBegin
   NamedMaterial "varnish"
   Translate 0.5 0.3 0.6
+  Shape "sphere" "float radius" 0.1
+AttributeEnd
+AttributeBegin
+  NamedMaterial "paint"
+  Translate 0.8 0.3 0.2
   Shape "sphere" "float radius" 0.1
 AttributeEnd
 AttributeBegin

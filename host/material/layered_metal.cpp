@@ -1,9 +1,14 @@
 #include "material/layered_metal.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <map>
+#include <mutex>
 #include <random>
+#include <tuple>
 
 #include "material/ggx.h"
 
@@ -130,63 +135,157 @@ double once_scattered(const CoatView& c, const HostGgx& ggx, double mu, double u
   return c.transmission(mu) * ggx.g(v, r) / ggx.g1(v) * c.transmission(std::sqrt(1 - sin2_out));
 }
 
-}  // namespace
-
-LayeredMetalParts layered_metal_parts(const CoatDesc& coat, double alpha_metal, double alpha,
-                                      const std::vector<double>& eta,
-                                      const std::vector<double>& k) {
-  const CoatView c{coat, coat.rough() ? rough_coat_tables(coat) : CoatTables{}};
-  const HostGgx top{coat.alpha}, metal{std::max(alpha_metal, 1e-4)}, lobe{alpha};
-  const int paths = 1 << 15, bins = static_cast<int>(eta.size());
-  std::mt19937_64 rng(0x6b617368);
-  std::uniform_real_distribution<double> u(0, 1);
-  // Per bin: the walk's light that leaves the layer, and what the kernels' once-scattered lobe
-  // gives; the coated Lambert part carries the difference.
-  std::vector<double> layer(bins, 0), once(bins, 0), first(bins, 0);
+// Per bin, over the walks: the light that leaves the layer, that part of it after one metal
+// bounce, and what the kernels' once-scattered lobe gives; and the coat's reflection.
+// And per band of incidence cosines (kBands equal bands), the paths, and their layer's and
+// once-scattered light over the bins: the angular shape of what the Lambert part carries.
+constexpr int kBands = 16;
+struct WalkSums {
+  std::vector<double> layer, first, once;
   double reflect = 0;
-  for (int p = 0; p < paths; ++p) {
-    const double mu = std::sqrt((p + u(rng)) / paths);  // cosine-weighted incidence, stratified
-    reflect += c.reflection(mu);
-    const Exit e = walk(coat, top, metal, mu, rng);
-    double cos_m;
-    const double o = once_scattered(c, lobe, mu, u(rng), u(rng), &cos_m);
-    for (int i = 0; i < bins; ++i) {
-      const double n = eta[i] / coat.eta, kk = k[i] / coat.eta;
-      if (o > 0) once[i] += o * fresnel_complex(cos_m, n, kk);
-      if (e.coat || e.weight == 0) continue;
-      double w = e.weight;
-      for (double cm : e.cos_m) w *= fresnel_complex(cm, n, kk);
-      layer[i] += w;
-      if (e.cos_m.size() == 1) first[i] += w;
+  double band_paths[kBands] = {}, band_layer[kBands] = {}, band_once[kBands] = {};
+  explicit WalkSums(int bins) : layer(bins, 0), first(bins, 0), once(bins, 0) {}
+  void add(const WalkSums& o) {
+    for (size_t i = 0; i < layer.size(); ++i) {
+      layer[i] += o.layer[i];
+      first[i] += o.first[i];
+      once[i] += o.once[i];
+    }
+    reflect += o.reflect;
+    for (int b = 0; b < kBands; ++b) {
+      band_paths[b] += o.band_paths[b];
+      band_layer[b] += o.band_layer[b];
+      band_once[b] += o.band_once[b];
     }
   }
+};
+
+// Walks in chunks of their own seeds (the result does not depend on the threads), incidence
+// cosine-weighted and stratified over all of them.
+WalkSums walk_sums(const CoatView& c, const HostGgx& top, const HostGgx& metal, const HostGgx& lobe,
+                   const std::vector<double>& eta, const std::vector<double>& k) {
+  const int chunks = 128, per_chunk = 512, paths = chunks * per_chunk;
+  const int bins = static_cast<int>(eta.size());
+  std::vector<WalkSums> parts(chunks, WalkSums(bins));
+  tbb::parallel_for(0, chunks, [&](int chunk) {
+    std::mt19937_64 rng(0x6b617368u + chunk);
+    std::uniform_real_distribution<double> u(0, 1);
+    WalkSums& s = parts[chunk];
+    for (int j = 0; j < per_chunk; ++j) {
+      const double mu = std::sqrt((chunk + j * chunks + u(rng)) / paths);
+      s.reflect += c.reflection(mu);
+      const Exit e = walk(c.coat, top, metal, mu, rng);
+      double cos_m;
+      const double o = once_scattered(c, lobe, mu, u(rng), u(rng), &cos_m);
+      const int band = std::min(kBands - 1, static_cast<int>(mu * kBands));
+      s.band_paths[band] += 1;
+      for (int i = 0; i < bins; ++i) {
+        const double n = eta[i] / c.coat.eta, kk = k[i] / c.coat.eta;
+        if (o > 0) {
+          const double once = o * fresnel_complex(cos_m, n, kk);
+          s.once[i] += once;
+          s.band_once[band] += once / bins;
+        }
+        if (e.coat || e.weight == 0) continue;
+        double w = e.weight;
+        for (double cm : e.cos_m) w *= fresnel_complex(cm, n, kk);
+        s.layer[i] += w;
+        s.band_layer[band] += w / bins;
+        if (e.cos_m.size() == 1) s.first[i] += w;
+      }
+    }
+  });
+  WalkSums sums(bins);
+  for (const WalkSums& p : parts) sums.add(p);
+  const double scale = 1.0 / paths;
+  for (int i = 0; i < bins; ++i) {
+    sums.layer[i] *= scale;
+    sums.first[i] *= scale;
+    sums.once[i] *= scale;
+  }
+  sums.reflect *= scale;
+  return sums;
+}
+
+// t(μ) = η s(μ) at kCoatTableSize cosines: the remaining light's albedo per band (at the bands'
+// centres, linear between them), normalised so that ∫ s 2μ dμ = 1 on the nodes as the device
+// integrates it.
+std::vector<double> lambert_shape(const WalkSums& w, double once_scale, double eta) {
+  double rest[kBands];
+  for (int b = 0; b < kBands; ++b)
+    rest[b] = w.band_paths[b] > 0
+                  ? std::max(0.0, w.band_layer[b] - once_scale * w.band_once[b]) / w.band_paths[b]
+                  : 0.0;
+  std::vector<double> t(kCoatTableSize);
+  double mean = 0;
+  for (int i = 0; i < kCoatTableSize; ++i) {
+    const double mu = static_cast<double>(i) / (kCoatTableSize - 1);
+    const double x = std::clamp(mu * kBands - 0.5, 0.0, kBands - 1.0);
+    const int b = std::min(kBands - 2, static_cast<int>(x));
+    t[i] = rest[b] + (x - b) * (rest[b + 1] - rest[b]);
+    if (i > 0)
+      mean += (t[i - 1] * (mu - 1.0 / (kCoatTableSize - 1)) + t[i] * mu) / (kCoatTableSize - 1);
+  }
+  for (double& v : t) v = mean > 0 ? eta * v / mean : eta;
+  return t;
+}
+
+LayeredMetalParts compute_parts(const CoatDesc& coat, double alpha_metal, double alpha,
+                                const std::vector<double>& eta, const std::vector<double>& k) {
+  const CoatView c{coat, coat.rough() ? rough_coat_tables(coat) : CoatTables{}};
+  const HostGgx top{coat.alpha}, metal{std::max(alpha_metal, 1e-4)}, lobe{alpha};
+  const int bins = static_cast<int>(eta.size());
+  const WalkSums w = walk_sums(c, top, metal, lobe, eta, k);
   // The once-scattered lobe crosses the coat by smooth refraction; through a rough coat the walk's
   // light that meets the metal once leaves less (facets that turn it back, masking at both
   // crossings): the lobe is scaled to the walk's share, the same at every wavelength (it varies by
-  // under 0.5 % between bins for gold).
+  // under 0.5 % between bins for gold; the walk's noise in it is about 0.3 %).
   double first_sum = 0, once_sum = 0;
   for (int i = 0; i < bins; ++i) {
-    first_sum += first[i];
-    once_sum += once[i];
+    first_sum += w.first[i];
+    once_sum += w.once[i];
   }
   LayeredMetalParts parts;
-  parts.once_scale = once_sum > 0 ? first_sum / once_sum : 1.0;
-  // A coated Lambert part of ρ' = ρ / (1 − R̄ρ) has albedo τ̄² ρ' / η² under uniform light.
-  const double tau = coat.rough() ? c.tables.mean : coat_mean_transmission(coat);
-  const double internal = coat.rough() ? c.tables.internal : coat_internal_reflectance(coat);
+  // Under a smooth coat the lobe is the walk's once-scattered light exactly: no factor (the
+  // walk's estimate of 1 is within about 1 % of it).
+  if (coat.rough() && once_sum > 0) parts.once_scale = first_sum / once_sum;
+  // The Lambert part, f = ρ(λ) s(μo) s(μi) / π with ∫ s(μ) 2μ dμ = 1 (reciprocal, albedo ρ s(μo)):
+  // ρ the layer's remaining light per bin under uniform light, s its shape over the incidence
+  // bands, the same at every wavelength. In the coat's form t(μo) t(μi) / (π η²) ρ: t = η s.
   double once_mean = 0, rest_mean = 0;
   for (int i = 0; i < bins; ++i) {
-    const double rest = std::max(0.0, layer[i] - parts.once_scale * once[i]) / paths;
-    once_mean += parts.once_scale * once[i] / paths / bins;
+    const double rest = std::max(0.0, w.layer[i] - parts.once_scale * w.once[i]);
+    once_mean += parts.once_scale * w.once[i] / bins;
     rest_mean += rest / bins;
-    const double rho_eff = rest * coat.eta * coat.eta / (tau * tau);
-    parts.scattered.push_back(rho_eff / (1 + internal * rho_eff));
+    parts.scattered.push_back(rest);
   }
+  parts.shape = lambert_shape(w, parts.once_scale, coat.eta);
   // Each part is chosen at points in proportion to its albedo (within [0.1, 0.9]), so neither
   // scale is large.
-  const double lambert = reflect / paths + rest_mean;
+  const double lambert = w.reflect + rest_mean;
   parts.lambert_share = std::clamp(lambert / std::max(1e-9, lambert + once_mean), 0.1, 0.9);
   return parts;
+}
+
+}  // namespace
+
+// Scenes give many materials one layered metal (and the fuzz harness one scene many times):
+// each distinct one is walked once.
+LayeredMetalParts layered_metal_parts(const CoatDesc& coat, double alpha_metal, double alpha,
+                                      const std::vector<double>& eta,
+                                      const std::vector<double>& k) {
+  using Key =
+      std::tuple<double, double, double, double, double, std::vector<double>, std::vector<double>>;
+  static std::mutex mutex;
+  static std::map<Key, LayeredMetalParts> cache;
+  const Key key{coat.eta, coat.thickness, coat.alpha, alpha_metal, alpha, eta, k};
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (auto it = cache.find(key); it != cache.end()) return it->second;
+  }
+  LayeredMetalParts parts = compute_parts(coat, alpha_metal, alpha, eta, k);
+  std::lock_guard<std::mutex> lock(mutex);
+  return cache.emplace(key, std::move(parts)).first->second;
 }
 
 }  // namespace kasha

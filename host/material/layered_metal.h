@@ -23,9 +23,10 @@ namespace kasha {
 double layered_metal_alpha(const CoatDesc& coat, double alpha_metal);
 
 struct LayeredMetalParts {
-  std::vector<double> scattered;  // per bin: the coated Lambert part's reflectance ρ under the coat
+  std::vector<double> scattered;  // per bin: the Lambert part's ρ (no internal reflectance)
   double lambert_share = 0;       // of points, the share that takes the coated Lambert part
   double once_scale = 1;          // the once-scattered lobe's factor (1 under a smooth coat)
+  std::vector<double> shape;      // the Lambert part's t(μ) = η s(μ) at kCoatTableSize cosines
 };
 
 // The parts for a metal of index eta + ik per bin (over the outside's) and GGX alpha alpha_metal

@@ -108,6 +108,9 @@ struct Material {
   std::optional<MaterialMix> mix;  // kind mix (its indices set by the scene)
   bool under_coat = false;         // MaterialDesc::under_coat
   double layer_scale = 1;          // MaterialDesc::layer_scale
+  // A layered metal's Lambert part: its own t(μ) at kCoatTableSize cosines, no internal
+  // reflectance (its ρ is the layer's light per bin already); empty otherwise.
+  std::vector<double> lambert_transmission;
 
   bool fluorescent() const { return !a.empty(); }
   bool transmissive() const { return !tau.empty(); }

@@ -341,6 +341,7 @@ KMaterial KernelSceneData::kernel_material(const Material& m, const Scene& scene
   k.remap_alpha = m.roughness.remap ? 1 : 0;
   k.coat_table = -1;
   if (m.coat) add_coat(*m.coat, k);
+  if (!m.lambert_transmission.empty()) add_lambert_shape(*m.coat, m.lambert_transmission, k);
   k.under_coat = m.under_coat ? 1 : 0;
   k.layer_scale = static_cast<float>(m.layer_scale);
   albedo_xyz(m, scene.grid, obs, k.albedo_xyz);
@@ -364,6 +365,29 @@ void KernelSceneData::add_coat(const CoatDesc& c, KMaterial& k) {
     k.coat_internal = static_cast<float>(coat_internal_reflectance(c));
     k.coat_albedo = static_cast<float>(coat_mean_transmission(c) / (c.eta * c.eta));
   }
+}
+
+// A layered metal's Lambert part (material/layered_metal.h): the coat's E(μ) (a smooth coat's
+// F(μ), which the kernels do not read) and the part's own t(μ) as its coat table, no internal
+// reflectance, and τ̄ / η² from that t(μ).
+void KernelSceneData::add_lambert_shape(const CoatDesc& c, const std::vector<double>& t,
+                                        KMaterial& k) {
+  std::vector<double> reflect(kCoatTableSize);
+  const CoatTables rough = c.rough() ? rough_coat_tables(c) : CoatTables{};
+  double mean = 0;
+  for (int i = 0; i < kCoatTableSize; ++i) {
+    const double mu = static_cast<double>(i) / (kCoatTableSize - 1);
+    reflect[i] = c.rough() ? rough.reflect[i] : fresnel_dielectric(mu, c.eta);
+    // ∫ t 2μ dμ by the trapezoid rule on the nodes (t is linear between them).
+    if (i > 0) {
+      const double mu0 = static_cast<double>(i - 1) / (kCoatTableSize - 1);
+      mean += (t[i - 1] * mu0 + t[i] * mu) / (kCoatTableSize - 1);
+    }
+  }
+  k.coat_table = append(spectra, reflect);
+  append(spectra, t);
+  k.coat_internal = 0;
+  k.coat_albedo = static_cast<float>(mean / (c.eta * c.eta));
 }
 
 // Each normal map a used material has, as a KTexture of three floats a texel (the image's RGB,

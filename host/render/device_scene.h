@@ -52,6 +52,7 @@ struct KernelSceneData {
  private:
   KMaterial kernel_material(const Material& m, const Scene& scene, const BinnedObserver& obs);
   void add_coat(const CoatDesc& coat, KMaterial& k);
+  void add_lambert_shape(const CoatDesc& c, const std::vector<double>& t, KMaterial& k);
   // What a texture is used as: a reflectance (spectral), a concentration (a number in [0, 1])
   // or an emission factor (a number ≥ 0).
   enum class TextureUse { reflectance, concentration, emission };

@@ -785,6 +785,7 @@ static void finish_layered_metals(Scene& scene) {
     const LayeredMetalParts parts =
         layered_metal_parts(*metal.coat, given.layered_alpha, alpha, metal.eta_c, metal.k_c);
     layer.rho = parts.scattered;
+    layer.lambert_transmission = parts.shape;
     layer.layer_scale = 1 / parts.lambert_share;
     metal.layer_scale = parts.once_scale / (1 - parts.lambert_share);
     m.mix->amount = parts.lambert_share;

@@ -24,7 +24,7 @@
 #endif
 
 #if KASHA_COATED
-/* A rough coat's table (E(μ) at 0, t(μ) at KASHA_COAT_TABLE) at μ, linear between its nodes. */
+/* A coat's table (E(μ) at 0, t(μ) at KASHA_COAT_TABLE) at μ, linear between its nodes. */
 inline float coat_table_at(const Surface* s, int which, float mu) {
   float x = clamp(mu, 0.0f, 1.0f) * (float)(KASHA_COAT_TABLE - 1);
   int k = min((int)x, KASHA_COAT_TABLE - 2);
@@ -32,11 +32,12 @@ inline float coat_table_at(const Surface* s, int which, float mu) {
   return t[k] + (x - (float)k) * (t[k + 1] - t[k]);
 }
 
-inline bool coat_rough(const Surface* s) { return s->m->coat_table >= 0; }
+inline bool coat_rough(const Surface* s) { return s->m->coat_alpha > 0.0f; }
 
-/* t(θ) at cos θ on the outside. */
+/* t(θ) at cos θ on the outside: a rough coat's table, or a layered metal's Lambert part's own
+ * (host/material/layered_metal.h), else the smooth coat's. */
 inline float coat_transmission(const Surface* s, float cos_theta) {
-  if (coat_rough(s)) return coat_table_at(s, 1, cos_theta);
+  if (s->m->coat_table >= 0) return coat_table_at(s, 1, cos_theta);
   float eta = s->m->coat_eta;
   cos_theta = clamp(cos_theta, 0.0f, 1.0f);
   float sin2_t = (1.0f - cos_theta * cos_theta) / (eta * eta);

@@ -63,7 +63,7 @@ typedef struct {
 #endif
 #if KASHA_COATED
   bool coated;          /* a coat over the Lambert parts (coat.h; set up there by coat_at) */
-  const __global float* coat_table; /* a rough coat's E(μ) and t(μ) */
+  const __global float* coat_table; /* a coat's E(μ) and t(μ) (coat.h) */
   float lambert_out;    /* t(θ) / η² on the side the surface was met from */
   float lambert_albedo; /* t(θ) τ̄ / η² */
 #endif

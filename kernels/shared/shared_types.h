@@ -230,7 +230,8 @@ typedef struct {
   float coat_albedo;    /* τ̄ / η²: the diffuse part's albedo per unit of outgoing transmission */
   float coat_alpha;     /* a rough coat's GGX roughness; 0: smooth */
   int coat_table;       /* a rough coat's E(μ) then t(μ), KASHA_COAT_TABLE values each at
-                         * μ = k / (KASHA_COAT_TABLE − 1); -1: smooth */
+                         * μ = k / (KASHA_COAT_TABLE − 1) (a layered metal's Lambert part: its own
+                         * t(μ), host/material/layered_metal.h); -1: a smooth coat's formulas */
   int transmittance;    /* tau(lambda): Lambert transmission to the other side; -1: none */
   float transmit_share; /* the share of Lambert samples sent through (surface.h); 0 without tau */
   int thin;             /* a dielectric: 1 for a thin sheet (fresnel.h's thin_dielectric_reflectance) */
