@@ -771,6 +771,9 @@ static void split_layered_metals(Scene& scene) {
     scene.material_textures.push_back(parts);
     scene.material_textures.push_back(parts);
   }
+  // A layered metal inside a mix is one mix deeper than it was written.
+  if (scene.material_descs.size() > count)
+    for (size_t m = 0; m < count; ++m) check_mix_nesting(scene, static_cast<int>(m), 0);
 }
 
 // The parts' spectra and shares on the grid (material/layered_metal.h).
