@@ -126,7 +126,8 @@ Exit walk(const CoatDesc& coat, const HostGgx& top, const HostGgx& metal, double
 double once_scattered(const CoatView& c, const HostGgx& ggx, double mu, double u0, double u1,
                       double* cos_m) {
   const double eta = c.coat.eta, s = std::sqrt(std::max(0.0, 1 - mu * mu)) / eta;
-  const Vec v(s, 0, std::sqrt(std::max(0.0, 1 - s * s)));
+  if (s >= 1) return 0;  // a coat below the outside's index: no way in at this angle
+  const Vec v(s, 0, std::sqrt(1 - s * s));
   const Vec m = ggx.sample_visible(v, u0, u1);
   *cos_m = v.dot(m);
   const Vec r = -v + 2 * *cos_m * m;

@@ -776,11 +776,13 @@ static void split_layered_metals(Scene& scene) {
     for (size_t m = 0; m < count; ++m) check_mix_nesting(scene, static_cast<int>(m), 0);
 }
 
-// The parts' spectra and shares on the grid (material/layered_metal.h).
-static void finish_layered_metals(Scene& scene) {
+// The parts' spectra and shares on the grid (material/layered_metal.h), for the used ones (the
+// walk is the cost).
+static void finish_layered_metals(const std::vector<bool>& material_used, Scene& scene) {
   for (size_t i = 0; i < scene.materials.size(); ++i) {
     Material& m = scene.materials[i];
     if (!m.mix || !scene.materials[m.mix->materials[0]].under_coat) continue;
+    if (!material_used[m.mix->materials[0]]) continue;
     Material& metal = scene.materials[m.mix->materials[0]];
     Material& layer = scene.materials[m.mix->materials[1]];
     const MaterialDesc& given = scene.material_descs[m.mix->materials[0]];
@@ -1026,7 +1028,7 @@ static void discretize(const GridRequest& request, const std::vector<bool>& mate
 
   for (const MaterialDesc& d : scene.material_descs)
     scene.materials.push_back(discretize_material(d, scene.grid));
-  finish_layered_metals(scene);
+  finish_layered_metals(material_used, scene);
   for (Emitter& e : scene.emitters) e.per_bin = scene.grid.resample(*e.radiance);
   for (Light& l : scene.lights) {
     l.per_bin = scene.grid.resample(*l.spectrum);
