@@ -176,7 +176,7 @@ WalkSums walk_sums(const CoatView& c, const HostGgx& top, const HostGgx& metal, 
       const double mu = std::sqrt((chunk + j * chunks + u(rng)) / paths);
       s.reflect += c.reflection(mu);
       const Exit e = walk(c.coat, top, metal, mu, rng);
-      double cos_m;
+      double cos_m = 0;
       const double o = once_scattered(c, lobe, mu, u(rng), u(rng), &cos_m);
       const int band = std::min(kBands - 1, static_cast<int>(mu * kBands));
       s.band_paths[band] += 1;
