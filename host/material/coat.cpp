@@ -118,18 +118,23 @@ CoatTables compute_rough_coat_tables(const CoatDesc& coat) {
     inside[k] = ri;
   });
   // Linear in μ between the nodes, integrated with the layer's exp(−2d/μ) on a fine grid.
-  auto at = [&](const std::vector<double>& v, double mu) {
-    const double x = mu * (K - 1);
-    const int k = std::min(K - 2, static_cast<int>(x));
-    return v[k] + (x - k) * (v[k + 1] - v[k]);
-  };
-  out.internal =
-      cosine_mean([&](double mu) { return at(inside, mu) * layer(2 * coat.thickness, mu); });
-  out.mean = cosine_mean([&](double mu) { return at(out.transmit, mu); });
+  out.internal = cosine_mean(
+      [&](double mu) { return coat_table_at(inside, mu) * layer(2 * coat.thickness, mu); });
+  out.mean = coat_table_mean(out.transmit);
   return out;
 }
 
 }  // namespace
+
+double coat_table_at(const std::vector<double>& table, double mu) {
+  const double x = std::clamp(mu, 0.0, 1.0) * (kCoatTableSize - 1);
+  const int k = std::min(kCoatTableSize - 2, static_cast<int>(x));
+  return table[k] + (x - k) * (table[k + 1] - table[k]);
+}
+
+double coat_table_mean(const std::vector<double>& table) {
+  return cosine_mean([&](double mu) { return coat_table_at(table, mu); });
+}
 
 // Scenes give many materials one coat (Bitterli's kitchen: dozens of rough coateddiffuse
 // materials with a few roughnesses): each distinct coat's tables are computed once.

@@ -51,4 +51,9 @@ struct CoatTables {
 };
 CoatTables rough_coat_tables(const CoatDesc& coat);
 
+// A coat table's value at μ: linear between its kCoatTableSize nodes, as the kernels read it
+// (kernels/materials/coat.h); and ∫₀¹ t(μ) 2μ dμ of a table read so.
+double coat_table_at(const std::vector<double>& table, double mu);
+double coat_table_mean(const std::vector<double>& table);
+
 }  // namespace kasha

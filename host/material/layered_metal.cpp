@@ -36,16 +36,11 @@ double fresnel_complex(double cos_i, double eta, double k) {
 struct CoatView {
   const CoatDesc& coat;
   CoatTables tables;
-  double at(const std::vector<double>& v, double mu) const {
-    const double x = std::clamp(mu, 0.0, 1.0) * (kCoatTableSize - 1);
-    const int i = std::min(kCoatTableSize - 2, static_cast<int>(x));
-    return v[i] + (x - i) * (v[i + 1] - v[i]);
-  }
   double transmission(double mu) const {
-    return coat.rough() ? at(tables.transmit, mu) : coat_transmission(coat, mu);
+    return coat.rough() ? coat_table_at(tables.transmit, mu) : coat_transmission(coat, mu);
   }
   double reflection(double mu) const {
-    return coat.rough() ? at(tables.reflect, mu) : fresnel_dielectric(mu, coat.eta);
+    return coat.rough() ? coat_table_at(tables.reflect, mu) : fresnel_dielectric(mu, coat.eta);
   }
 };
 
@@ -209,8 +204,7 @@ WalkSums walk_sums(const CoatView& c, const HostGgx& top, const HostGgx& metal, 
 }
 
 // t(μ) = η s(μ) at kCoatTableSize cosines: the remaining light's albedo per band (at the bands'
-// centres, linear between them), normalised so that ∫ s 2μ dμ = 1 on the nodes as the device
-// integrates it.
+// centres, linear between them), normalised so that ∫ s 2μ dμ = 1 as the kernels read the table.
 std::vector<double> lambert_shape(const WalkSums& w, double once_scale, double eta) {
   double rest[kBands];
   for (int b = 0; b < kBands; ++b)
@@ -218,15 +212,13 @@ std::vector<double> lambert_shape(const WalkSums& w, double once_scale, double e
                   ? std::max(0.0, w.band_layer[b] - once_scale * w.band_once[b]) / w.band_paths[b]
                   : 0.0;
   std::vector<double> t(kCoatTableSize);
-  double mean = 0;
   for (int i = 0; i < kCoatTableSize; ++i) {
     const double mu = static_cast<double>(i) / (kCoatTableSize - 1);
     const double x = std::clamp(mu * kBands - 0.5, 0.0, kBands - 1.0);
     const int b = std::min(kBands - 2, static_cast<int>(x));
     t[i] = rest[b] + (x - b) * (rest[b + 1] - rest[b]);
-    if (i > 0)
-      mean += (t[i - 1] * (mu - 1.0 / (kCoatTableSize - 1)) + t[i] * mu) / (kCoatTableSize - 1);
   }
+  const double mean = coat_table_mean(t);
   for (double& v : t) v = mean > 0 ? eta * v / mean : eta;
   return t;
 }

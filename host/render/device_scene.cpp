@@ -374,20 +374,14 @@ void KernelSceneData::add_lambert_shape(const CoatDesc& c, const std::vector<dou
                                         KMaterial& k) {
   std::vector<double> reflect(kCoatTableSize);
   const CoatTables rough = c.rough() ? rough_coat_tables(c) : CoatTables{};
-  double mean = 0;
-  for (int i = 0; i < kCoatTableSize; ++i) {
-    const double mu = static_cast<double>(i) / (kCoatTableSize - 1);
-    reflect[i] = c.rough() ? rough.reflect[i] : fresnel_dielectric(mu, c.eta);
-    // ∫ t 2μ dμ by the trapezoid rule on the nodes (t is linear between them).
-    if (i > 0) {
-      const double mu0 = static_cast<double>(i - 1) / (kCoatTableSize - 1);
-      mean += (t[i - 1] * mu0 + t[i] * mu) / (kCoatTableSize - 1);
-    }
-  }
+  for (int i = 0; i < kCoatTableSize; ++i)
+    reflect[i] = c.rough()
+                     ? rough.reflect[i]
+                     : fresnel_dielectric(static_cast<double>(i) / (kCoatTableSize - 1), c.eta);
   k.coat_table = append(spectra, reflect);
   append(spectra, t);
   k.coat_internal = 0;
-  k.coat_albedo = static_cast<float>(mean / (c.eta * c.eta));
+  k.coat_albedo = static_cast<float>(coat_table_mean(t) / (c.eta * c.eta));
 }
 
 // Each normal map a used material has, as a KTexture of three floats a texel (the image's RGB,

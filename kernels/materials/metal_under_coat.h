@@ -22,6 +22,12 @@ inline float3 coat_inside(float3 w, float eta) {
   return v;
 }
 
+/* The density of wi (outside, cosine mu_i; mu_i' inside) from the visible normal wm of o: the
+ * reflection's density inside times the refraction's Jacobian μi / (η² μi'). */
+inline float metal_under_coat_pdf(Ggx a, float3 o, float3 wm, float cos_m, float mu_i, float mu_i_in, float eta) {
+  return ggx_visible_pdf(a, o, wm) / (4.0f * cos_m) * mu_i / (eta * eta * mu_i_in);
+}
+
 /* f(wo, wi) without Fc; *pdf the density of metal_under_coat_sample; *cos_m Fc's cosine. */
 inline float metal_under_coat_eval(const Surface* s, float3 wo, float3 wi, float* pdf, float* cos_m) {
   *pdf = 0.0f;
@@ -35,7 +41,7 @@ inline float metal_under_coat_eval(const Surface* s, float3 wo, float3 wi, float
   if (!(o.z > 0.0f && i.z > 0.0f)) return 0.0f;
   float3 wm = normalize(o + i);
   *cos_m = dot(o, wm);
-  *pdf = ggx_visible_pdf(s->alpha, o, wm) / (4.0f * *cos_m) * wi.z / (eta * eta * i.z);
+  *pdf = metal_under_coat_pdf(s->alpha, o, wm, *cos_m, wi.z, i.z, eta);
   float t = coat_transmission(s, wo.z) * coat_transmission(s, wi.z);
   return t / (eta * eta) * ggx_d(s->alpha, wm) * ggx_g(s->alpha, o, i) / (4.0f * o.z * i.z);
 }
@@ -57,7 +63,7 @@ inline bool metal_under_coat_sample(const Surface* s, float3 wo, float2 u, Inter
   if (sin2 >= 1.0f) return false;
   wi.z = sqrt(1.0f - sin2);
   smp->cos_m = fabs(dot(o, wm));
-  smp->pdf = ggx_visible_pdf(s->alpha, o, wm) / (4.0f * smp->cos_m) * wi.z / (eta * eta * i.z);
+  smp->pdf = metal_under_coat_pdf(s->alpha, o, wm, smp->cos_m, wi.z, i.z, eta);
   smp->weight = coat_transmission(s, wo.z) * coat_transmission(s, wi.z) * ggx_g(s->alpha, o, i) / ggx_g1(s->alpha, o);
   smp->transmitted = false;
   wi.z *= side;
