@@ -173,18 +173,26 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
     {"type": "quad", "corner": [-0.3, 0.99, 0.2], "u": [0.6, 0, 0], "v": [0, 0, 0.6],
      "material": "lamp", "emission": {"csv": "lamp.csv", "scale": 0.02}},
     {"type": "sphere", "center": [0.5, 0.5, 1.0], "radius": 0.2, "material": "paper"},
-    {"type": "sphere", "center": [-0.5, -0.6, 0.9], "radius": 0.2, "segments": 12, "material": "glass"},
+    {"type": "sphere", "center": [-0.5, -0.6, 0.9], "radius": 0.2, "segments": 12, "material": "glass",
+     "medium": {"inside": "ink", "outside": null}},
+    {"type": "sphere", "center": [0, 0.2, 0.8], "radius": 0.15, "segments": 8, "interface": true,
+     "medium": {"inside": "haze"}},
     {"type": "box", "min": [0.4, -1, 0.2], "max": [0.7, -0.7, 0.5], "material": "metal"},
     {"type": "box", "min": [-0.8, -1, 1.1], "max": [-0.5, -0.8, 1.4], "material": "lacquer"},
     {"type": "mesh", "file": "mesh.ply", "material": "lacquer", "transform": {"scale": 0.2, "translate": [0.2, -0.9, 0.3]}},
     {"type": "mesh", "file": "mesh.glb", "material": "wall", "transform": {"scale": 0.2, "translate": [-0.4, -0.9, 0.3]}}
   ],
+  "media": {
+    "ink": {"type": "homogeneous", "sigma_a": {"nm": [380, 780], "value": [4, 0.5]}, "sigma_s": 0, "scale": 2},
+    "haze": {"sigma_a": 0.3, "sigma_s": 0, "g": 0.2}
+  },
   "textures": {
     "print": {"type": "image", "file": "sky.png", "filter": "bilinear", "wrap": "repeat", "uscale": 2},
     "ink": {"type": "checkerboard", "even": 1, "odd": 0.25, "uscale": 4, "vscale": 4}
   },
   "lights": [
-    {"type": "point", "position": [0.2, 0.8, 0.9], "intensity": {"rgb_illuminant": [0.01, 0.02, 0.01]}},
+    {"type": "point", "position": [0.2, 0.8, 0.9], "intensity": {"rgb_illuminant": [0.01, 0.02, 0.01]},
+     "medium": null},
     {"type": "spot", "from": [-0.5, 0.9, 0.5], "to": [0, -1, 1], "intensity": 0.01, "cone_deg": 25,
      "cone_delta_deg": 5},
     {"type": "distant", "from": [0, 1, 0], "to": [0.1, 0, 0.2], "irradiance": {"rgb": [0.2, 0.5, 0.3]}},
@@ -408,6 +416,20 @@ AttributeBegin
   NamedMaterial "worn"
   Translate -0.5 0.3 0.6
   Shape "sphere" "float radius" 0.15
+AttributeEnd
+MakeNamedMedium "ink" "string type" "homogeneous" "rgb sigma_a" [0.5 2 4] "rgb sigma_s" [0 0 0] "float scale" 2
+MakeNamedMedium "haze" "string type" "homogeneous" "spectrum sigma_a" [400 0.1 830 0.3] "float sigma_s" 0 "float g" 0.3
+AttributeBegin
+  MediumInterface "ink" ""
+  NamedMaterial "glass"
+  Translate -0.3 0.3 0.3
+  Shape "sphere" "float radius" 0.12
+AttributeEnd
+AttributeBegin
+  MediumInterface "haze" ""
+  Material "interface"
+  Translate 0.3 0.4 -0.3
+  Shape "sphere" "float radius" 0.2
 AttributeEnd
 AttributeBegin
   NamedMaterial "marbled"

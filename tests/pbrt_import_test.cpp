@@ -437,7 +437,11 @@ TEST(PbrtImport, BadInputIsOneLineWithItsFileAndLine) {
       {"Material \"diffuse\" \"texture reflectance\" \"nope\"",
        "b.pbrt:5: \"texture reflectance\": no spectrum texture named \"nope\" was defined before"},
       {"MediumInterface \"fog\" \"\"\n" + std::string(kQuad),
-       "b.pbrt:6: a shape with a medium (MediumInterface \"fog\" \"\")"},
+       "b.pbrt:6: no medium named \"fog\" (MakeNamedMedium)"},
+      {"MakeNamedMedium \"smoke\" \"string type\" \"uniformgrid\"\nMediumInterface \"smoke\" \"\"\n" +
+           std::string(kQuad),
+       "b.pbrt:7: MakeNamedMedium \"smoke\" (b.pbrt:5) is a \"uniformgrid\" medium, which kasha does "
+       "not build"},
       {"AttributeEnd", "b.pbrt:5: AttributeEnd without its AttributeBegin"},
       {"AttributeBegin", "b.pbrt:5: AttributeBegin without its AttributeEnd"},
       {"Include \"missing.pbrt\"", "b.pbrt:5: "},

@@ -46,6 +46,7 @@ class JsonNode {
   bool is_number() const { return json_->is_number(); }
   bool is_string() const { return json_->is_string(); }
   bool is_bool() const { return json_->is_boolean(); }
+  bool is_null() const { return json_->is_null(); }
 
   bool has(const std::string& key) const;
   JsonNode at(const std::string& key) const;  // required key of an object

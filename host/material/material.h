@@ -25,7 +25,8 @@ struct GlossDesc {
 };
 
 // What a material is (KASHA_KIND_* in the kernels); a mix picks one of two others per point.
-enum class MaterialKind { measured, dielectric, conductor, mix };
+// interface: no surface at all, only the boundary of media (a shape's "interface": true).
+enum class MaterialKind { measured, dielectric, conductor, mix, interface };
 
 // A smooth dielectric interface: eta is the index on the back side of its surfaces over the
 // index on the front side (1.5: glass in air; below 1: an air bubble in water or glass).

@@ -276,6 +276,9 @@ KernelSceneData::KernelSceneData(const Scene& scene)
   for (const Emitter& e : scene.emitters) append(emitter_radiance, e.per_bin);
   for (const Light& l : scene.lights) append(emitter_radiance, l.per_bin);
   add_light_sampling(scene);
+  media = device_media(scene, bvh.triangles, spectra);
+  camera_medium = scene.camera_medium;
+  for (size_t k = 0; k < lights.size(); ++k) lights[k].medium = scene.light_media[k];
 }
 
 // pbrt-v4's ∂p/∂u of each leaf triangle, from its texture coordinates (scene/triangle_dpdu.h).
@@ -321,6 +324,7 @@ KMaterial KernelSceneData::kernel_material(const Material& m, const Scene& scene
   k.kind = m.kind == MaterialKind::dielectric  ? KASHA_KIND_DIELECTRIC
            : m.kind == MaterialKind::conductor ? KASHA_KIND_CONDUCTOR
            : m.kind == MaterialKind::mix       ? KASHA_KIND_MIX
+           : m.kind == MaterialKind::interface ? KASHA_KIND_INTERFACE
                                                : KASHA_KIND_MEASURED;
   static_assert(kMaxMixDepth == KASHA_MIX_DEPTH, "mix depths differ");
   k.mix.materials[0] = k.mix.materials[1] = k.mix.amount_texture = -1;
@@ -553,7 +557,8 @@ size_t KernelSceneData::bytes() const {
          light_bvh.nodes.size() * sizeof(KLightNode) +
          light_bvh.trails.size() * sizeof(std::uint64_t) +
          bvh.instances.size() * sizeof(KInstance) + tangents.size() * sizeof(KTangent) +
-         tex_ops.size() * sizeof(KTexOp);
+         tex_ops.size() * sizeof(KTexOp) + media.media.size() * sizeof(KMedium) +
+         media.tri_media.size() * sizeof(KTriMedia);
 }
 
 // Scratch spectra per work item: an environment texel's radiance, then a textured reflectance
@@ -569,8 +574,13 @@ static int scratch_coat_offset(const Scene& scene) {
   return scratch_texture_offset(scene) + (scene.textured() ? slots * scene.grid.bins : 0);
 }
 
-int scratch_floats(const Scene& scene) {
+static int scratch_media_offset(const Scene& scene) {
   return scratch_coat_offset(scene) + (scene.coated() ? 3 * scene.grid.bins : 0);
+}
+
+// After the coat's: a shadow ray's transmittance through media (kernels/media/medium.h).
+int scratch_floats(const Scene& scene) {
+  return scratch_media_offset(scene) + (scene.has_media() ? scene.grid.bins : 0);
 }
 
 KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
@@ -613,6 +623,11 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_VERTEX_NORMALS"] = scene.shading_normals() ? "1" : "0";
   d["KASHA_NORMAL_MAPS"] = scene.normal_mapped() ? "1" : "0";
   d["KASHA_SCRATCH_COAT"] = std::to_string(scratch_coat_offset(scene));
+  // Media only where a ray can travel in one (docs/media.md): other scenes keep their kernels.
+  d["KASHA_MEDIA"] = scene.has_media() ? "1" : "0";
+  d["KASHA_MEDIUM_BOUNDARIES"] = scene.triangle_media.empty() ? "0" : "1";
+  d["KASHA_MEDIA_COUNT"] = std::to_string(std::max<size_t>(1, scene.media.size()));
+  d["KASHA_SCRATCH_MEDIA"] = std::to_string(scratch_media_offset(scene));
   return d;
 }
 
@@ -637,6 +652,7 @@ DeviceScene::DeviceScene(ClContext& cl, const Scene& scene)
   p.bin_nm = data_.bin_nm;
   p.light_sources = static_cast<int>(data_.lights.size());
   p.light_triangles = data_.light_triangles;
+  p.camera_medium = data_.camera_medium;
   tables_ = upload_tables(cl, {host_table(data_.bvh.nodes, p.nodes),
                                host_table(data_.bvh.leaves, p.leaves),
                                host_table(data_.bvh.triangles, p.tris),
@@ -656,7 +672,9 @@ DeviceScene::DeviceScene(ClContext& cl, const Scene& scene)
                                host_table(data_.bvh.instances, p.instances),
                                host_table(data_.tangents, p.tangents),
                                host_table(data_.light_spheres, p.light_spheres),
-                               host_table(data_.tex_ops, p.tex_ops)});
+                               host_table(data_.tex_ops, p.tex_ops),
+                               host_table(data_.media.media, p.media),
+                               host_table(data_.media.tri_media, p.tri_media)});
 }
 
 }  // namespace kasha

@@ -10,6 +10,7 @@
 #include "geometry/instanced_bvh.h"
 #include "opencl/device.h"
 #include "opencl/kernel_program.h"
+#include "render/device_media.h"
 #include "render/light_bvh.h"
 #include "scene/scene.h"
 
@@ -44,6 +45,8 @@ struct KernelSceneData {
   // Per emitting triangle, its sphere light (radius 0: none); empty without sphere lights.
   std::vector<KSphereLight> light_spheres;
   LightBvh light_bvh;
+  DeviceMedia media;  // participating media (docs/media.md); empty without them
+  int camera_medium = -1;
   double total_power = 0;  // W: Σ over emitting triangles of area·pi·Σ Le Δλ and the lights' power
 
   explicit KernelSceneData(const Scene& scene);

@@ -77,6 +77,13 @@ bool Scene::coated() const {
 bool Scene::thin() const {
   return any_used([](const Material& m) { return m.thin; });
 }
+bool Scene::has_media() const {
+  if (camera_medium >= 0 || !triangle_media.empty()) return true;
+  for (int m : light_media)
+    if (m >= 0) return true;
+  return false;
+}
+
 bool Scene::transmissive() const {
   return any_used([](const Material& m) { return m.transmissive(); });
 }
@@ -900,10 +907,27 @@ static void parse_textures(const JsonNode& root, Scene& scene) {
   }
 }
 
+// The scene's "media" (docs/media.md), and the camera's.
+static void parse_media(const JsonNode& root, const JsonNode& camera, Scene& scene) {
+  if (auto media = root.find("media")) {
+    if (!media->is_object()) media->fail("expected an object of named media");
+    for (const std::string& name : media->keys()) {
+      if (name.empty()) media->fail("a medium's name must not be empty (\"\" is vacuum)");
+      scene.medium_descs.push_back(parse_medium(media->at(name), name));
+    }
+  }
+  if (auto m = camera.find("medium")) scene.camera_medium = medium_index(*m, scene.medium_descs);
+}
+
 static void parse_lights(const JsonNode& root, Scene& scene) {
   if (auto lights = root.find("lights")) {
     if (!lights->is_array()) lights->fail("expected an array of lights");
-    for (size_t i = 0; i < lights->size(); ++i) scene.lights.push_back(parse_light((*lights)[i]));
+    for (size_t i = 0; i < lights->size(); ++i) {
+      const JsonNode l = (*lights)[i];
+      std::optional<JsonNode> medium = l.is_object() ? l.find("medium") : std::nullopt;
+      scene.light_media.push_back(medium ? medium_index(*medium, scene.medium_descs) : -1);
+      scene.lights.push_back(parse_light(l));
+    }
   }
 }
 
@@ -975,6 +999,8 @@ static void mark_mix_used(const Scene& scene, int m, ShapeUses& uses) {
     for (int k : mix->materials) mark_mix_used(scene, k, uses);
 }
 
+static int shape_material(const JsonNode& shape, ShapeUses& uses, Scene& scene);
+
 // One shape of the scene's "shapes" (or of an object's, `placed` by its one instance when it has
 // one): its triangles, material and emission added to the scene.
 static void parse_shape(const JsonNode& shape, const LampChoice& lamp_on,
@@ -987,10 +1013,7 @@ static void parse_shape(const JsonNode& shape, const LampChoice& lamp_on,
           "a shape of an object does not emit (an instance is not a light): give the shape "
           "in the scene's \"shapes\"");
   std::string type = shape.at("type").string();
-  std::string material_name = shape.at("material").string();
-  int material = scene.material_index(material_name);
-  if (material < 0) shape.at("material").fail("no material named \"" + material_name + "\"");
-  uses.materials[material] = true;
+  const int material = shape_material(shape, uses, scene);
   ShapeMesh mesh = shape_triangles(shape, type);
   if (placed) transform_triangles(mesh, *placed);
   check_vertices(mesh.tris, shape);
@@ -1006,12 +1029,51 @@ static void parse_shape(const JsonNode& shape, const LampChoice& lamp_on,
   info.first_triangle = static_cast<int>(scene.triangles.size());
   info.triangle_count = static_cast<int>(mesh.tris.size());
   if (auto alpha = shape.find("alpha")) parse_shape_alpha(*alpha, scene, info);
+  if (auto medium = shape.find("medium")) info.medium = parse_medium_interface(*medium, scene.medium_descs);
+  if (scene.material_descs[material].kind == MaterialKind::interface) {
+    if (emitter >= 0) shape.at("interface").fail("an interface has no surface to emit from");
+    if (!info.medium.transition())
+      shape.at("interface").fail("an interface bounds media: give its \"medium\" two different sides");
+  }
   // Read whether or not it emits ("sphere" is a key like any other).
   std::optional<SphereBound> sphere = shape_sphere_light(shape, type, mesh);
   if (emitter >= 0 && !info.cut_out()) info.sphere_light = sphere;
   shape.finish();
   scene.shapes.push_back(info);
+  const size_t before = scene.triangles.size();
   append_triangles(mesh, material, emitter, scene);
+  // Kept per triangle from the first boundary on (the triangles before it bound nothing).
+  if (info.medium.transition() || !scene.triangle_media.empty()) {
+    scene.triangle_media.resize(before);
+    scene.triangle_media.resize(scene.triangles.size(), info.medium);
+  }
+}
+
+// A shape's material: the one its "material" names, or, for "interface": true, the scene's one
+// interface material (added when a shape first asks for it).
+static int shape_material(const JsonNode& shape, ShapeUses& uses, Scene& scene) {
+  if (auto in = shape.find("interface")) {
+    if (!in->boolean()) in->fail("expected true (a shape that only bounds media), or leave it out");
+    if (shape.has("material")) in->fail("an interface has no material: give one or the other");
+    int m = scene.material_index(kInterfaceMaterial);
+    if (m < 0) {
+      MaterialDesc d;
+      d.name = kInterfaceMaterial;
+      d.where = in->where();
+      d.kind = MaterialKind::interface;
+      scene.material_descs.push_back(d);
+      scene.material_textures.emplace_back();
+      uses.materials.push_back(false);
+      m = static_cast<int>(scene.material_descs.size()) - 1;
+    }
+    uses.materials[m] = true;
+    return m;
+  }
+  const std::string material_name = shape.at("material").string();
+  const int material = scene.material_index(material_name);
+  if (material < 0) shape.at("material").fail("no material named \"" + material_name + "\"");
+  uses.materials[material] = true;
+  return material;
 }
 
 // The grid covers what the emitters and the materials in use need; materials, emitters and
@@ -1036,6 +1098,25 @@ static void discretize(const GridRequest& request, const std::vector<bool>& mate
     if (l.environment)
       l.environment_data = std::make_shared<const EnvironmentData>(
           environment_data(*l.environment, l.per_bin, scene.grid));
+  }
+}
+
+// The media on the scene's grid. Scattering is not rendered yet: a medium that scatters is refused
+// where it is declared rather than rendered as if it only absorbed.
+static void discretize_media(Scene& scene) {
+  std::vector<bool> used(scene.medium_descs.size(), false);
+  const auto use = [&](int m) {
+    if (m >= 0) used[m] = true;
+  };
+  use(scene.camera_medium);
+  for (int m : scene.light_media) use(m);
+  for (const ShapeInfo& shape : scene.shapes) use(shape.medium.inside), use(shape.medium.outside);
+  for (size_t k = 0; k < scene.medium_descs.size(); ++k) {
+    const MediumDesc& d = scene.medium_descs[k];
+    scene.media.push_back(discretize_medium(d, scene.grid));
+    if (used[k] && scene.media.back().scatters())
+      throw Error(d.where + ": a medium that scatters (sigma_s > 0) is not rendered yet: kasha's "
+                  "media only absorb so far (give \"sigma_s\": 0)");
   }
 }
 
@@ -1118,7 +1199,9 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
   GridRequest request;
   if (auto w = root.find("wavelengths")) request = parse_grid_request(*w);
   if (grid) request = *grid;
-  scene.camera = parse_camera(root.at("camera"));
+  const JsonNode camera = root.at("camera");
+  parse_media(root, camera, scene);  // before the camera, which may be in one
+  scene.camera = parse_camera(camera);
   const LampChoice lamp_on = choose_lamp(root, lamp, scene);
   parse_textures(root, scene);
   parse_materials(root.at("materials"), scene);
@@ -1146,6 +1229,7 @@ Scene load_scene(const std::string& path, const std::optional<GridRequest>& grid
     if (uses.materials[m] && scene.material_descs[m].mix)
       mark_mix_used(scene, static_cast<int>(m), uses);
   discretize(request, uses.materials, scene);
+  discretize_media(scene);
   check_emitters(scene);
   check_material_textures(scene);
   return scene;

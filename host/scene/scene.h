@@ -10,6 +10,7 @@
 #include "material/material.h"
 #include "scene/camera.h"
 #include "scene/light.h"
+#include "scene/medium.h"
 #include "scene/normal_map.h"
 #include "scene/pbrt/pbrt_import.h"
 #include "scene/shape_mesh.h"
@@ -36,6 +37,9 @@ struct Emitter {
 // `t` (its float vertices, as the kernels see them). The light CDF and the load check share it.
 double emitted_power(const KTriangle& t, double radiance);
 
+// The material of the shapes that are only boundaries of media ("interface": true).
+constexpr const char* kInterfaceMaterial = "(interface)";
+
 struct ShapeInfo {
   std::string type;  // obj, quad, box, sphere
   bool inward = false;
@@ -46,6 +50,7 @@ struct ShapeInfo {
   int alpha_texture = -1;
   // An emitting sphere that next-event estimation samples as one light (scene/sphere_light.h).
   std::optional<SphereBound> sphere_light;
+  MediumInterface medium;  // its "medium" (docs/media.md); vacuum on both sides by default
   bool cut_out() const { return alpha < 1 || alpha_texture >= 0; }
 };
 
@@ -64,6 +69,13 @@ struct Scene {
   std::vector<TriangleNormals> normals;
   std::vector<Emitter> emitters;
   std::vector<Light> lights;      // the "lights" that are not shapes
+  // Participating media (docs/media.md): as given, on the grid, and which one the camera is in.
+  std::vector<MediumDesc> medium_descs;
+  std::vector<Medium> media;
+  int camera_medium = -1;
+  std::vector<int> light_media;  // per light, the medium it is in (-1: vacuum)
+  // Per triangle (scene order), its shape's medium interface; empty when no shape has one.
+  std::vector<MediumInterface> triangle_media;
   std::vector<ShapeInfo> shapes;  // the scene's own, then the objects' (triangles in that order)
   // Object instancing (docs/formats.md#instances): an object placed more than once keeps one
   // copy of its triangles, after the scene's own, and each placement; `object_names` by object.
@@ -87,6 +99,8 @@ struct Scene {
   bool thin() const;                   // some shape's material is a thin dielectric
   bool mixed() const;                  // some shape's material is a mix (docs/materials.md#mixes)
   bool shading_normals() const { return !normals.empty(); }  // some shape has them
+  // Some ray can travel in a medium: the camera or a light is in one, or a shape bounds one.
+  bool has_media() const;
   bool normal_mapped() const;  // some shape's material has a normal map (its ∂p/∂u frame)
   // Some used material scatters by a delta lobe: an ideal mirror, a smooth dielectric or
   // conductor, or a smooth coat's reflection.

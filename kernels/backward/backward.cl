@@ -20,7 +20,7 @@
 inline float trace_camera_path(const SceneView* s, const FilmView* f, float3 org, float3 dir, Sampler* sampler,
                                float* rows) {
   CameraWalk w;
-  walk_start(&w, f, org, dir);
+  walk_start(&w, s, f, org, dir);
   CameraVertex v;
   while (walk_vertex(&w, s, f, sampler, &v, rows)) {
 #if KASHA_DIELECTRIC || KASHA_CONDUCTOR
@@ -45,7 +45,7 @@ inline float trace_camera_path(const SceneView* s, const FilmView* f, float3 org
 #endif
 #endif
     }
-    if (!walk_on(&w, f, &v)) return 0.0f;
+    if (!walk_on(&w, s, f, &v)) return 0.0f;
   }
   return walk_cut(&w, f);
 }

@@ -7,6 +7,7 @@
 #include "film/film_view.h"
 #include "geometry/hit_point.h"
 #include "geometry/scene_view.h"
+#include "media/medium.h"
 
 typedef struct {
   __global ulong* film; /* 2 words (lo, hi) per pixel and row, film_splat.h */
@@ -15,8 +16,12 @@ typedef struct {
 } SplatTarget;
 
 /* Whether x (normal ns on the lit side) sees the camera: its pixel, and the factor cos·importance
- * that turns radiance leaving x (per nm, before that factor) into the pixel's average. */
-inline bool camera_connection(const SceneView* s, float3 x, float3 ns, float eps, int* pixel, float* k) {
+ * that turns radiance leaving x (per nm, before that factor) into the pixel's average. In a scene
+ * with media the connection leaves x in `medium` and passes interfaces, *tr its transmittance per
+ * bin (media/medium.h's segment_clear); *tr is null where no medium attenuates it. */
+inline bool camera_connection(const SceneView* s, float3 x, float3 ns, float eps, int medium, int* pixel, float* k,
+                              const __global float** tr) {
+  *tr = 0;
   float importance;
   float3 at = camera_point(&s->camera, x);
   *pixel = camera_pixel(&s->camera, x, at, &importance);
@@ -27,10 +32,14 @@ inline bool camera_connection(const SceneView* s, float3 x, float3 ns, float eps
   float cos_x = dot(ns, dir);
   if (cos_x <= 0.0f) return false;
   if (dist - eps <= 0.0f) return false;
+#if KASHA_MEDIA
+  if (!segment_clear(s, x, ns, eps, dir, dist, 0.0f, medium, tr)) return false;
+#else
   ++s->rays->shadow;
   AlphaTables alpha = scene_alpha(s);
   BvhTables bvh = scene_bvh(s);
   if (bvh_occluded(&bvh, &alpha, x + ns * eps, dir, 0.0f, dist - eps)) return false;
+#endif
   *k = cos_x * importance;
   return true;
 }

@@ -23,14 +23,16 @@ inline void splat_rough(const SceneView* s, const FilmView* f, SplatTarget* t, c
   float3 to_camera = normalize(camera_point(&s->camera, x) - x);
   int pixel;
   float k;
+  const __global float* tr;
+  int medium = photon_medium_towards(s, p, h, to_camera);
 #if KASHA_SHADING_NORMALS
   /* The camera on the geometric side the shading normal puts it on (no leak), the connection off
    * the geometric surface, and the arrival half of the adjoint correction (photon_transport.h). */
   if ((dot(to_camera, n) > 0.0f) != (dot(to_camera, h->n) > 0.0f)) return;
-  if (!camera_connection(s, x, dot(to_camera, h->n) >= 0.0f ? h->n : -h->n, h->eps, &pixel, &k)) return;
+  if (!camera_connection(s, x, dot(to_camera, h->n) >= 0.0f ? h->n : -h->n, h->eps, medium, &pixel, &k, &tr)) return;
   k *= photon_arrival_correction(h, p->direction);
 #else
-  if (!camera_connection(s, x, dot(to_camera, n) >= 0.0f ? n : -n, h->eps, &pixel, &k)) return;
+  if (!camera_connection(s, x, dot(to_camera, n) >= 0.0f ? n : -n, h->eps, medium, &pixel, &k, &tr)) return;
 #endif
   Frame fr = surface_frame(surf, n);
   float3 wo = to_local(&fr, to_camera), wi = to_local(&fr, -p->direction);
@@ -41,7 +43,7 @@ inline void splat_rough(const SceneView* s, const FilmView* f, SplatTarget* t, c
   if (surf->kind == KASHA_KIND_CONDUCTOR) {
     float fv = conductor_lobe_eval(surf, wo, wi, &pdf, &cos_m);
     if (!(fv > 0.0f)) return;
-    film_rows_conductor(f, p->power, 0, surf->eta_c, surf->k_c, surf->coat_c, cos_m, fv * scale, rows);
+    film_rows_conductor(f, p->power, tr, surf->eta_c, surf->k_c, surf->coat_c, cos_m, fv * scale, rows);
     splat_rows(t, pixel, rows);
     return;
   }
@@ -51,7 +53,7 @@ inline void splat_rough(const SceneView* s, const FilmView* f, SplatTarget* t, c
   if (surf->dispersive) {
     for (int i = 0; i < KASHA_BINS; ++i) {
       if (p->power[i] == 0.0f) continue;
-      float v = p->power[i] * scale * rough_dielectric_eval(wo, wi, surf->eta_bins[i], surf->alpha, true, &pdf);
+      float v = p->power[i] * PW_FACTOR(tr, i) * scale * rough_dielectric_eval(wo, wi, surf->eta_bins[i], surf->alpha, true, &pdf);
 #if KASHA_SPECTRAL_FILM
       rows[i] += v;
 #else
@@ -64,7 +66,7 @@ inline void splat_rough(const SceneView* s, const FilmView* f, SplatTarget* t, c
 #endif
   float fv = rough_dielectric_eval(wo, wi, surf->eta, surf->alpha, true, &pdf);
   if (!(fv > 0.0f)) return;
-  film_rows(f, p->power, 0, 0, fv * scale, rows);
+  film_rows(f, p->power, tr, 0, fv * scale, rows);
   splat_rows(t, pixel, rows);
 #endif
 }
@@ -76,6 +78,7 @@ inline void splat_surface(const SceneView* s, const FilmView* f, SplatTarget* ta
                           const HitPoint* h, const Photon* p, float* rows) {
   int pixel;
   float k;
+  const __global float* tr;
   float3 ns = hit_ng(h), x = h->x;
   const __global float* rho = surf->rho;
   bool through = false;
@@ -98,7 +101,8 @@ inline void splat_surface(const SceneView* s, const FilmView* f, SplatTarget* ta
 #else
   const bool coat_lobe = false;
 #endif
-  if ((surface_has_lambert(surf) || glossy || coat_lobe) && camera_connection(s, x, ns, h->eps, &pixel, &k)) {
+  int medium = photon_medium_towards(s, p, h, camera_point(&s->camera, x) - x);
+  if ((surface_has_lambert(surf) || glossy || coat_lobe) && camera_connection(s, x, ns, h->eps, medium, &pixel, &k, &tr)) {
     /* Radiance per nm leaving x per unit flux: (ρ_i Φ_i + ê_i (a·Φ)) / (π Δλ). */
     film_rows_clear(rows);
 #if KASHA_SHADING_NORMALS
@@ -111,16 +115,16 @@ inline void splat_surface(const SceneView* s, const FilmView* f, SplatTarget* ta
     /* Under a coat, t(θi) t(θo) / η² (coat.h). */
     if (surf->coated) lambert *= surface_lambert_weight(surf, dot(normalize(camera_point(&s->camera, x) - x), h->ns));
 #endif
-    film_rows(f, p->power, rho, 0, lambert, rows);
+    film_rows(f, p->power, rho, tr, lambert, rows);
 #if KASHA_FLUORESCENCE
-    if (surf->fluorescent) film_rows(f, 0, surf->ehat, 0, spectrum_dot(KASHA_BINS, p->power, surf->a, 0) * lambert, rows);
+    if (surf->fluorescent) film_rows(f, 0, surf->ehat, tr, spectrum_dot(KASHA_BINS, p->power, surf->a, 0) * lambert, rows);
 #endif
 #if KASHA_GLOSS
     if (glossy) {
       /* A tabulated lobe can be evaluated towards the camera: white, f_g Φ / Δλ. */
       float3 to_camera = normalize(camera_point(&s->camera, x) - x);
       float fg = surf->g * lobe_brdf(surf->m, s->lobes, to_camera, -p->direction, h->ns);
-      if (fg > 0.0f) film_rows(f, p->power, 0, 0, fg * k / s->bin_nm, rows);
+      if (fg > 0.0f) film_rows(f, p->power, tr, 0, fg * k / s->bin_nm, rows);
     }
 #endif
 #if KASHA_COATED
@@ -130,7 +134,7 @@ inline void splat_surface(const SceneView* s, const FilmView* f, SplatTarget* ta
       float pdf;
       float fc = coat_lobe_eval(surf, to_local(&fr, normalize(camera_point(&s->camera, x) - x)),
                                 to_local(&fr, -p->direction), &pdf);
-      if (fc > 0.0f) film_rows(f, p->power, 0, 0, fc * k / s->bin_nm, rows);
+      if (fc > 0.0f) film_rows(f, p->power, tr, 0, fc * k / s->bin_nm, rows);
     }
 #endif
     splat_rows(target, pixel, rows);
@@ -161,12 +165,13 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunc
     /* The light point seen directly: Le cos / (p_area · photons). */
     int pixel;
     float k;
-    if (camera_connection(&s, p.position, o.normal, o.eps, &pixel, &k)) {
+    const __global float* tr;
+    if (camera_connection(&s, p.position, o.normal, o.eps, photon_medium(&p), &pixel, &k, &tr)) {
       film_rows_clear(rows);
 #if KASHA_EMISSION_TEXTURES
       k *= o.scale;
 #endif
-      film_rows(&f, 0, emitter_spectrum(&s, o.emitter), 0, k / (o.area_pdf * (float)photons), rows);
+      film_rows(&f, 0, emitter_spectrum(&s, o.emitter), tr, k / (o.area_pdf * (float)photons), rows);
       splat_rows(&target, pixel, rows);
     }
     p.position += o.normal * o.eps;
@@ -174,7 +179,10 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunc
     bool alive = true;
     for (int depth = 0; depth < max_depth && alive; ++depth) {
       HitPoint h;
-      if (!intersect_surface(&s, p.position, p.direction, &h)) {
+      float flying = photon_total(&p);
+      bool hit = photon_intersect(&s, &p, &h);
+      absorbed += flying - photon_total(&p); /* by the media on the way (none without them) */
+      if (!hit) {
         escaped += photon_total(&p);
         alive = false;
         break;

@@ -85,15 +85,15 @@ inline float surface_offset(float3 v0, float3 v1, float3 v2, float b0, float b1,
   return 2.0f * KASHA_GAMMA(7) * (dot(fabs(n), err) + length(v1 - v0) + length(v2 - v0));
 }
 
-/* The closest hit's geometry, its material the triangle's: integrators meet surfaces through
- * materials/hit_material.h's intersect_surface, which resolves a mix and a normal map there. */
-inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint* h) {
+/* The closest hit's geometry within tmax, its material the triangle's: integrators meet surfaces
+ * through materials/hit_material.h's intersect_surface, which resolves a mix and a normal map
+ * there. Not counted (intersect_scene counts a ray; media/medium.h counts its shadow rays). */
+inline bool intersect_scene_within(const SceneView* s, float3 org, float3 dir, float tmax, HitPoint* h) {
   float t, u, v;
-  ++s->rays->closest;
   AlphaTables alpha = scene_alpha(s);
   BvhTables bvh = scene_bvh(s);
   int inst;
-  int hit = bvh_closest(&bvh, &alpha, org, dir, 0.0f, INFINITY, &t, &u, &v, &inst);
+  int hit = bvh_closest(&bvh, &alpha, org, dir, 0.0f, tmax, &t, &u, &v, &inst);
   if (hit < 0) return false;
   const __global KTriangle* tri = &s->tris[hit];
   float3 v0 = load_float3(tri->v0), v1 = load_float3(tri->v1), v2 = load_float3(tri->v2);
@@ -143,6 +143,12 @@ inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint
   h->b = (float2)(u, v);
 #endif
   return true;
+}
+
+/* The closest hit along the whole ray, counted as a traced ray. */
+inline bool intersect_scene(const SceneView* s, float3 org, float3 dir, HitPoint* h) {
+  ++s->rays->closest;
+  return intersect_scene_within(s, org, dir, INFINITY, h);
 }
 
 /* The geometric normal on the side the ray arrived from (ns itself without shading normals). */

@@ -49,6 +49,9 @@ typedef struct {
   const __global KInstance* instances;     /* KASHA_INSTANCES: the top level's leaves */
   const __global KTangent* tangents;       /* per leaf triangle, KASHA_ANISOTROPIC or KASHA_NORMAL_MAPS */
   const __global KTexOp* tex_ops;          /* texture programs' steps, KASHA_TEXTURE_PROGRAMS */
+  const __global KMedium* media;           /* KASHA_MEDIA: the participating media */
+  const __global KTriMedia* tri_media;     /* KASHA_MEDIA: per leaf triangle, its medium interface */
+  int camera_medium;                       /* the medium the camera is in, -1: vacuum */
   RayCounts* rays; /* private: the work item's own counts */
 } SceneView;
 
@@ -85,6 +88,9 @@ typedef struct {
                     KASHA_SCENE_TABLE(KInstance, instances),                                       \
                     KASHA_SCENE_TABLE(KTangent, tangents),                                         \
                     KASHA_SCENE_TABLE(KTexOp, tex_ops),                                            \
+                    KASHA_SCENE_TABLE(KMedium, media),                                             \
+                    KASHA_SCENE_TABLE(KTriMedia, tri_media),                                       \
+                    scene_params.camera_medium,                                                    \
                     &name##_rays}
 
 /* The tables the traversal's alpha test reads (shared/alpha_test.h): leaf order. */

@@ -15,14 +15,16 @@
 #include "sampling/sampling.h"
 #include "geometry/scene_view.h"
 #include "materials/surface.h"
+#include "media/medium.h"
 
 /* probs: the branch probabilities (gloss, passive, fluorescent) of the strategies that could also
  * reach the light from x; 0 for a part whose branch never continues to an emitter (photon mapping
  * ends camera paths at their Lambert vertex), which then takes the whole light sample.
- * At x (shading normal ns and geometric normal ng on the viewer's side, wo towards the viewer):
- * rows += T·(light). */
-inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* f, const Surface* surf, float3 x,
-                       float3 ns, float3 ng, float eps, float3 wo, float3 probs, float2 u_light, float* rows) {
+ * At the hit h (wo towards the viewer, who arrived in `medium`): rows += T·(light). */
+inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* f, const Surface* surf,
+                       const HitPoint* h, int medium, float3 wo, float3 probs, float2 u_light, float* rows) {
+  float3 x = h->x, ns = h->ns, ng = hit_ng(h);
+  float eps = h->eps;
   float pdf_light;
   LightPoint lp = sample_light_from(s, x, u_light, &pdf_light);
   if (!(pdf_light > 0.0f)) return;
@@ -49,8 +51,13 @@ inline void next_event(const PathWeight* p, const SceneView* s, const FilmView* 
   /* The light point's rounding along its normal is lp.eps: along a ray meeting its surface at
    * cos_l it is lp.eps / cos_l, what the shadow ray must stop short by (at grazing angles the
    * light's own surface would block it otherwise). */
-  if (segment_occluded(s, x, ng, eps, wi, dist, lp.eps / cos_l)) return;
   const __global float* le = light_point_spectrum(s, &lp);
+#if KASHA_MEDIA
+  le = segment_light(s, x, ng, eps, wi, dist, lp.eps / cos_l, medium_after(s, h->tri, h->n, wi, medium), le);
+  if (!le) return;
+#else
+  if (segment_occluded(s, x, ng, eps, wi, dist, lp.eps / cos_l)) return;
+#endif
   float lambert_pdf = cosine_hemisphere_pdf(cos_x);
   float base = cos_x / pdf_light;
 #if KASHA_LIGHT_SOURCES || KASHA_EMISSION_TEXTURES

@@ -53,7 +53,7 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KPhotonTra
       if (depth >= KASHA_DEPTH_CAP) break;
 #endif
       HitPoint h;
-      if (!intersect_surface(&s, p.position, p.direction, &h)) break;
+      if (!photon_intersect(&s, &p, &h)) break;
       float3 ns = hit_ng(&h), x = h.x;
 #if KASHA_SHADING_NORMALS
       /* From below the shading normal's hemisphere: the surface does not scatter it (hit_seen). */
@@ -104,7 +104,7 @@ inline float camera_path(const SceneView* s, const FilmView* f, int pixel, Sampl
                          float* rows) {
   CameraWalk w;
   float3 o, d = camera_ray(&s->camera, pixel, sampler, &o);
-  walk_start(&w, f, o, d);
+  walk_start(&w, s, f, o, d);
   float travelled = 0.0f;
   CameraVertex v;
   while (walk_vertex(&w, s, f, sampler, &v, rows)) {
@@ -158,7 +158,7 @@ inline float camera_path(const SceneView* s, const FilmView* f, int pixel, Sampl
       }
       return 0.0f;
     }
-    if (!walk_gloss(&w, s, &v, sampler) || !walk_on(&w, f, &v)) return 0.0f;
+    if (!walk_gloss(&w, s, &v, sampler) || !walk_on(&w, s, f, &v)) return 0.0f;
   }
   return walk_cut(&w, f);
 }

@@ -178,13 +178,34 @@ typedef struct {
   KCamera camera;
   ulong nodes, leaves, tris, materials, spectra, lobes, emitter_radiance, emitter_area_pdf, light_tri,
       light_cdf, lights, textures, texcoords, normals, light_nodes, light_trails, instances,
-      tangents, light_spheres, tex_ops; /* see SceneView */
+      tangents, light_spheres, tex_ops, media, tri_media; /* see SceneView */
   int light_count;     /* entries of light_tri and light_cdf */
   float bin_nm;
   int light_sources;   /* entries of lights */
   int light_triangles; /* the emitting triangles: the first entries of light_tri */
+  int camera_medium;   /* the medium the camera is in (KMedium index), -1: vacuum */
+  int pad_params;
 } KSceneParams;
-KASHA_STATIC_SIZE(KSceneParams, 400);
+KASHA_STATIC_SIZE(KSceneParams, 424);
+
+/* A homogeneous participating medium (kernels/media/medium.h, docs/media.md): offsets in the
+ * spectra buffer of its extinction σt = σa + σs and scattering σs per bin (per scene unit of
+ * length), and its Henyey–Greenstein g. Uploaded only for scenes with media (KASHA_MEDIA). */
+typedef struct {
+  int sigma_t;
+  int sigma_s;
+  float g;
+  int pad;
+} KMedium;
+KASHA_STATIC_SIZE(KMedium, 16);
+
+/* Per leaf triangle (KASHA_MEDIA), its shape's media: inside (behind the front side) and outside,
+ * KMedium indices, -1 for vacuum. Equal sides are no boundary: a ray keeps its medium there. */
+typedef struct {
+  int inside;
+  int outside;
+} KTriMedia;
+KASHA_STATIC_SIZE(KTriMedia, 8);
 
 /* What a material is: the measured model (gloss lobe or mirror, passive and fluorescent Lambert
  * parts), or an ideal specular interface — a dielectric or a conductor (docs/materials.md). */
@@ -192,6 +213,7 @@ KASHA_STATIC_SIZE(KSceneParams, 400);
 #define KASHA_KIND_DIELECTRIC 1
 #define KASHA_KIND_CONDUCTOR 2
 #define KASHA_KIND_MIX 3 /* one of two other materials per point (materials/mix.h) */
+#define KASHA_KIND_INTERFACE 4 /* no surface: only a boundary between media (media/medium.h) */
 #define KASHA_MIX_DEPTH 8 /* mixes nest at most this deep (host/material/mix.h's kMaxMixDepth) */
 
 /* A mix's two materials (indices into the material table) and the second's share at a point: the
@@ -369,7 +391,8 @@ typedef struct {
   int distribution;  /* infinite: offset of the image's sampling distribution, -1: uniform sphere */
   int lambda;        /* infinite with an image: offset of the bins' centre wavelengths (nm) */
   int general;       /* infinite: to_light is not orthogonal (its inverse and Jacobian are used) */
-  float pad[4];
+  int medium;        /* point, spot: the medium it is in (KMedium index), -1: vacuum */
+  float pad[3];
 } KLight;
 KASHA_STATIC_SIZE(KLight, 128);
 

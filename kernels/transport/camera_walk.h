@@ -20,6 +20,7 @@
 #include "materials/surface.h"
 #include "materials/surface_at.h"
 #include "materials/texture.h"
+#include "media/medium.h"
 
 /* Dimension pairs of the sampler per path vertex: (branch choice, roulette), the light (triangle
  * and point), the direction, and (the lobe's azimuth, —) drawn only for a lobe; pair 0 is the
@@ -40,6 +41,9 @@ typedef struct {
 #if KASHA_DISPERSION
   int bin; /* the one bin the path carries after a dispersive interface, -1 before */
 #endif
+#if KASHA_MEDIA
+  int medium; /* the medium the path travels in (media/medium.h), -1: vacuum */
+#endif
 } CameraWalk;
 
 /* A vertex of the walk: the hit, its surface, the branch probabilities (gloss, passive,
@@ -51,7 +55,7 @@ typedef struct {
   float2 u_choice, u_light, u_dir;
 } CameraVertex;
 
-inline void walk_start(CameraWalk* w, const FilmView* f, float3 org, float3 dir) {
+inline void walk_start(CameraWalk* w, const SceneView* s, const FilmView* f, float3 org, float3 dir) {
   pw_init(&w->p, f);
   w->start = pw_magnitude(&w->p, f);
   w->org = org;
@@ -63,6 +67,50 @@ inline void walk_start(CameraWalk* w, const FilmView* f, float3 org, float3 dir)
   w->eta_scale = 1.0f;
 #if KASHA_DISPERSION
   w->bin = -1;
+#endif
+#if KASHA_MEDIA
+  w->medium = s->camera_medium;
+#endif
+}
+
+#if KASHA_MEDIA
+/* T ← T·diag(transmittance): the path's colour through the media of the trail. */
+inline void pw_attenuate(PathWeight* p, const SceneView* s, const MediaTrail* t) {
+  if (trail_empty(t)) return;
+#if KASHA_FULL_MATRIX
+  for (int i = 0; i < KASHA_BINS; ++i) {
+    float tr = trail_transmittance(s, t, i);
+    for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->T[r][i] *= tr;
+  }
+#else
+#if KASHA_FLUORESCENCE
+  if (p->rank1) {
+    /* b stays normalised to a maximum of 1 (path_weight.h), its scale going to c. */
+    float m = 0.0f;
+    for (int i = 0; i < KASHA_BINS; ++i) m = fmax(m, p->b[i] *= trail_transmittance(s, t, i));
+    if (m > 0.0f)
+      for (int i = 0; i < KASHA_BINS; ++i) p->b[i] /= m;
+    for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->c[r] *= m;
+    return;
+  }
+#endif
+  for (int i = 0; i < KASHA_BINS; ++i) p->w[i] *= trail_transmittance(s, t, i);
+#endif
+}
+
+#endif
+
+/* The walk's next surface (intersect_surface); in a scene with media, through interfaces, the
+ * path's colour attenuated by the media on the way (media/medium.h). */
+inline bool walk_intersect(CameraWalk* w, const SceneView* s, HitPoint* h) {
+#if KASHA_MEDIA
+  MediaTrail trail;
+  trail_clear(&trail);
+  bool hit = intersect_through(s, w->org, w->dir, &w->medium, &trail, h);
+  pw_attenuate(&w->p, s, &trail);
+  return hit;
+#else
+  return intersect_surface(s, w->org, w->dir, h);
 #endif
 }
 
@@ -87,7 +135,7 @@ inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sa
                         float* rows) {
   if (w->depth == KASHA_MAX_PATH_DEPTH) return false;
   HitPoint* h = &v->h;
-  if (!intersect_surface(s, w->org, w->dir, h)) {
+  if (!walk_intersect(w, s, h)) {
 #if KASHA_INFINITE_LIGHTS
     walk_escaped(w, s, f, rows);
 #endif
@@ -120,13 +168,22 @@ inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sa
   return true;
 }
 
+/* The medium the walk arrived in (-1 without media), which next-event estimation leaves by. */
+inline int walk_medium(const CameraWalk* w) {
+#if KASHA_MEDIA
+  return w->medium;
+#else
+  return -1;
+#endif
+}
+
 /* Next-event estimation at the vertex where a Lambert part (`lambert`) or the gloss lobe takes
  * light, MIS against the branches `probs` that could also reach it (next_event.h). */
 inline void walk_next_event(const CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v,
                             bool lambert, float3 probs, float* rows) {
   const Surface* surf = &v->surf;
   if (s->light_count > 0 && (lambert || (surf->g > 0.0f && !surf->mirror)))
-    next_event(&w->p, s, f, surf, v->h.x, v->h.ns, hit_ng(&v->h), v->h.eps, -w->dir, probs, v->u_light, rows);
+    next_event(&w->p, s, f, surf, &v->h, walk_medium(w), -w->dir, probs, v->u_light, rows);
 }
 
 /* The gloss branch, chosen with probability probs.x: white, weight g over that (times the lobe's
@@ -258,7 +315,14 @@ inline void walk_rough_next_event(const CameraWalk* w, const SceneView* s, const
 #else
   float3 toward = wi_l.z > 0.0f ? v->h.n : -v->h.n;
 #endif
+  const __global float* le = light_point_spectrum(s, &lp);
+#if KASHA_MEDIA
+  le = segment_light(s, v->h.x, toward, v->h.eps, wi, dist, lp.eps / cos_l,
+                     medium_after(s, v->h.tri, v->h.n, wi, w->medium), le);
+  if (!le) return;
+#else
   if (segment_occluded(s, v->h.x, toward, v->h.eps, wi, dist, lp.eps / cos_l)) return;
+#endif
 #if KASHA_LIGHT_SOURCES
   float scale = fv * fabs(wi_l.z) / pdf_light * lp.scale * mis_weight(pdf_light, lp.delta ? 0.0f : pdf);
 #elif KASHA_EMISSION_TEXTURES
@@ -266,7 +330,6 @@ inline void walk_rough_next_event(const CameraWalk* w, const SceneView* s, const
 #else
   float scale = fv * fabs(wi_l.z) / pdf_light * mis_weight(pdf_light, pdf);
 #endif
-  const __global float* le = light_point_spectrum(s, &lp);
 #if KASHA_CONDUCTOR
   if (surf->kind == KASHA_KIND_CONDUCTOR) {
     pw_add_conductor(&w->p, f, le, surf->eta_c, surf->k_c, surf->coat_c, cos_m, scale, rows);
@@ -356,7 +419,7 @@ inline void passive_bounce(CameraWalk* w, const CameraVertex* v, float prob) {
 /* After the vertex's bounce: the end of a path that would leak through the surface (hit_no_leak),
  * Russian roulette from the path's KASHA_CAMERA_ROULETTE_FROM-th vertex
  * on (false: the path ends), then the next ray's origin just off the surface. */
-inline bool walk_on(CameraWalk* w, const FilmView* f, const CameraVertex* v) {
+inline bool walk_on(CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v) {
   if (!hit_no_leak(&v->h, w->dir)) return false;
   if (w->depth >= KASHA_CAMERA_ROULETTE_FROM) {
     float keep = roulette(pw_magnitude(&w->p, f) * w->eta_scale / w->start, v->u_choice.y);
@@ -368,6 +431,9 @@ inline bool walk_on(CameraWalk* w, const FilmView* f, const CameraVertex* v) {
   float3 ng = hit_ng(&v->h);
   float side = dot(w->dir, ng) >= 0.0f ? v->h.eps : -v->h.eps;
   w->org = v->h.x + ng * side;
+#if KASHA_MEDIA
+  w->medium = medium_after(s, v->h.tri, v->h.n, w->dir, w->medium);
+#endif
   ++w->depth;
   return true;
 }
@@ -379,9 +445,9 @@ inline bool walk_on(CameraWalk* w, const FilmView* f, const CameraVertex* v) {
 inline bool walk_interface(CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v,
                            Sampler* sampler, float* rows) {
 #if KASHA_ROUGH
-  if (surface_rough(&v->surf)) return walk_rough(w, s, f, v, sampler, rows) && walk_on(w, f, v);
+  if (surface_rough(&v->surf)) return walk_rough(w, s, f, v, sampler, rows) && walk_on(w, s, f, v);
 #endif
-  return walk_specular(w, f, v) && walk_on(w, f, v);
+  return walk_specular(w, f, v) && walk_on(w, s, f, v);
 }
 #endif
 

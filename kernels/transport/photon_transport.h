@@ -18,6 +18,7 @@
 #include "materials/surface.h"
 #include "materials/surface_at.h"
 #include "materials/texture.h"
+#include "media/medium.h"
 
 typedef struct {
   float3 position;
@@ -25,6 +26,9 @@ typedef struct {
   float start; /* the power it left its light with (W), Russian roulette's yardstick */
 #if KASHA_DISPERSION
   int bin; /* the one bin it carries after a dispersive interface, -1 before */
+#endif
+#if KASHA_MEDIA
+  int medium; /* the medium it travels in (media/medium.h), -1: vacuum */
 #endif
   float power[KASHA_BINS];
 } Photon;
@@ -88,6 +92,9 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
 #if KASHA_DISPERSION
     p.bin = -1;
 #endif
+#if KASHA_MEDIA
+    p.medium = light_medium(s, -1, l);
+#endif
     return p;
   }
 #endif
@@ -118,7 +125,43 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
 #if KASHA_DISPERSION
   p.bin = -1;
 #endif
+#if KASHA_MEDIA
+  p.medium = light_medium(s, tri, 0);
+#endif
   return p;
+}
+
+/* The medium the photon travels in (-1 without media). */
+inline int photon_medium(const Photon* p) {
+#if KASHA_MEDIA
+  return p->medium;
+#else
+  return -1;
+#endif
+}
+
+/* The medium of the connection from the photon's hit h towards `to` (media/medium.h). */
+inline int photon_medium_towards(const SceneView* s, const Photon* p, const HitPoint* h, float3 to) {
+#if KASHA_MEDIA
+  return medium_after(s, h->tri, h->n, to, p->medium);
+#else
+  return -1;
+#endif
+}
+
+/* The photon's next surface (intersect_surface); in a scene with media, through interfaces, its
+ * power attenuated by the media on the way (media/medium.h). */
+inline bool photon_intersect(const SceneView* s, Photon* p, HitPoint* h) {
+#if KASHA_MEDIA
+  MediaTrail trail;
+  trail_clear(&trail);
+  bool hit = intersect_through(s, p->position, p->direction, &p->medium, &trail, h);
+  if (!trail_empty(&trail))
+    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= trail_transmittance(s, &trail, i);
+  return hit;
+#else
+  return intersect_surface(s, p->position, p->direction, h);
+#endif
 }
 
 /* Dimension pairs of the sampler: (light choice, —), the light point and the direction at the
@@ -369,8 +412,8 @@ inline int scatter_photon_about(Photon* p, const Surface* s, const SceneView* sc
  * power takes Veach's correction for flux (adjoint) transport through a shading normal,
  * |wi·ns| |wo·ng| / (|wi·ng| |wo·ns|) for arrival wi and departure wo, so that light tracing and
  * photon mapping agree with camera paths; the new ray leaves off the geometric surface. */
-inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, const HitPoint* h, Sampler* sampler,
-                          int depth) {
+inline int scatter_photon_at(Photon* p, const Surface* s, const SceneView* scene, const HitPoint* h, Sampler* sampler,
+                             int depth) {
 #if KASHA_SHADING_NORMALS
   float3 d_in = p->direction;
   int branch = scatter_photon_about(p, s, scene, h->x, h->ns, h->front, h->eps, sampler, depth);
@@ -385,6 +428,16 @@ inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, c
 #else
   return scatter_photon_about(p, s, scene, h->x, h->ns, h->front, h->eps, sampler, depth);
 #endif
+}
+
+/* scatter_photon_at, the photon then in the medium its new direction leaves into. */
+inline int scatter_photon(Photon* p, const Surface* s, const SceneView* scene, const HitPoint* h, Sampler* sampler,
+                          int depth) {
+  int branch = scatter_photon_at(p, s, scene, h, sampler, depth);
+#if KASHA_MEDIA
+  if (branch != BRANCH_ABSORBED) p->medium = medium_after(scene, h->tri, h->n, p->direction, p->medium);
+#endif
+  return branch;
 }
 
 /* Light arriving along d and followed as flux (a photon stored, or connected to the camera) meets

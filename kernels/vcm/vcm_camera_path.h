@@ -105,14 +105,14 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
   float travelled = 0.0f;
   VcmCamera c;
   float3 o, dir = camera_ray(&s->camera, pixel, sampler, &o);
-  walk_start(&c.w, f, o, dir);
+  walk_start(&c.w, s, f, o, dir);
   vcm_camera_start(s, dir, (float)in->it->paths, in->it->spp, &c);
   CameraVertex v;
   bool met = false;       /* a vertex that is not delta is behind */
   bool delta_only = true; /* every bounce so far was delta (vcm_seen_light's paths) */
   while (c.w.depth < KASHA_MAX_PATH_DEPTH) {
     HitPoint* h = &v.h;
-    if (!intersect_surface(s, c.w.org, c.w.dir, h)) {
+    if (!walk_intersect(&c.w, s, h)) {
 #if KASHA_INFINITE_LIGHTS
       if (own && !(seen_apart && delta_only)) vcm_escaped(&c, s, f, rows);
 #endif
@@ -166,7 +166,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
       vcm_camera_decide(&c, true);
       vcm_scattered(s, &v.surf, 0.0f, h->ns, cv.nf, cv.ng, eye, c.w.dir, true, false, vm, vc, &c.dvcm, &c.dvc,
                     &c.dvm, &c.dvc_merge);
-      if (!walk_on(&c.w, f, &v)) return 0.0f;
+      if (!walk_on(&c.w, s, f, &v)) return 0.0f;
       continue;
     }
 #endif
@@ -179,7 +179,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
                        &c.dvcm, &c.dvc, &c.dvm, &c.dvc_merge))
       return 0.0f;
     delta_only = delta_only && c.w.specular;
-    if (!walk_on(&c.w, f, &v)) return 0.0f;
+    if (!walk_on(&c.w, s, f, &v)) return 0.0f;
   }
   return walk_cut(&c.w, f);
 }

@@ -80,8 +80,18 @@ inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* 
                       vcm_camera_dvc(c) * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, dir, eye));
     float weight = 1.0f / (w_light + 1.0f + w_camera);
     if (!(weight > 0.0f)) continue;
+#if KASHA_MEDIA
+    const __global float* tr;
+    if (!segment_clear(s, x, vcm_toward(cv->ng, dir), v->h.eps, dir, dist, lv->eps / cos_y,
+                       medium_after(s, v->h.tri, v->h.n, dir, c->w.medium), &tr))
+      continue;
+    vcm_light_apply(&sy, fl, vcm_vertex_power(lv), out);
+    if (tr)
+      for (int i = 0; i < KASHA_BINS; ++i) out[i] *= tr[i];
+#else
     if (segment_occluded(s, x, vcm_toward(cv->ng, dir), v->h.eps, dir, dist, lv->eps / cos_y)) continue;
     vcm_light_apply(&sy, fl, vcm_vertex_power(lv), out);
+#endif
     vcm_camera_apply(&c->w.p, f, surf, fc, out, stride * weight * cos_s * cos_y / dist2 * paths / s->bin_nm, rows);
   }
 }

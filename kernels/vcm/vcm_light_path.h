@@ -20,7 +20,9 @@ inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, con
   float3 nf = hit_front(h), ng = hit_ng(h);
   /* Off the geometric side the camera lies on, which the shading normal must agree with. */
   if (!hit_no_leak(h, to)) return;
-  if (!camera_connection(s, h->x, vcm_toward(ng, to), h->eps, &pixel, &k)) return;
+  const __global float* tr;
+  if (!camera_connection(s, h->x, vcm_toward(ng, to), h->eps, photon_medium_towards(s, p, h, to), &pixel, &k, &tr))
+    return;
   VcmF fv = vcm_eval(s, surf, h->ns, nf, to, from, to, vcm_light_eta(surf));
   float nee = KASHA_VCM_DROP_DENSITY ? 0.0f : dvcm;
   float w_light = k * spp / (KASHA_VCM_TRACING_SHARE * paths) *
@@ -31,26 +33,26 @@ inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, con
   film_rows_clear(rows);
 #if KASHA_CONDUCTOR
   if (fv.conductor > 0.0f)
-    film_rows_conductor(f, p->power, 0, surf->eta_c, surf->k_c, surf->coat_c, fv.cos_m, scale * fv.conductor, rows);
+    film_rows_conductor(f, p->power, tr, surf->eta_c, surf->k_c, surf->coat_c, fv.cos_m, scale * fv.conductor, rows);
 #endif
   if (fv.lambert > 0.0f) {
 #if KASHA_TRANSMISSION
-    if (fv.through) film_rows(f, p->power, surf->tau, 0, scale * fv.lambert, rows);
+    if (fv.through) film_rows(f, p->power, surf->tau, tr, scale * fv.lambert, rows);
     else
 #endif
-    if (surf->passive) film_rows(f, p->power, surf->rho, 0, scale * fv.lambert, rows);
+    if (surf->passive) film_rows(f, p->power, surf->rho, tr, scale * fv.lambert, rows);
 #if KASHA_FLUORESCENCE
     if (surf->fluorescent)
-      film_rows(f, 0, surf->ehat, 0, spectrum_dot(KASHA_BINS, p->power, surf->a, 0) * scale * fv.lambert, rows);
+      film_rows(f, 0, surf->ehat, tr, spectrum_dot(KASHA_BINS, p->power, surf->a, 0) * scale * fv.lambert, rows);
 #endif
   }
-  if (fv.white > 0.0f) film_rows(f, p->power, 0, 0, scale * fv.white, rows);
+  if (fv.white > 0.0f) film_rows(f, p->power, tr, 0, scale * fv.white, rows);
 #if KASHA_DISPERSION
   if (fv.per_bin) {
     float pdf;
     for (int i = 0; i < KASHA_BINS; ++i) {
       if (p->power[i] == 0.0f) continue;
-      float v = p->power[i] * scale * rough_dielectric_eval(fv.o, fv.i, surf->eta_bins[i], surf->alpha, true, &pdf);
+      float v = p->power[i] * PW_FACTOR(tr, i) * scale * rough_dielectric_eval(fv.o, fv.i, surf->eta_bins[i], surf->alpha, true, &pdf);
 #if KASHA_SPECTRAL_FILM
       rows[i] += v;
 #else
@@ -148,7 +150,7 @@ inline float vcm_light_path(const SceneView* s, const FilmView* f, const KVcmIte
     if (depth >= KASHA_DEPTH_CAP) break;
 #endif
     HitPoint h;
-    if (!intersect_surface(s, p.position, p.direction, &h)) break;
+    if (!photon_intersect(s, &p, &h)) break;
     vcm_arrived(far_start && depth == 0 ? 1.0f : h.t, fabs(dot(h.n, p.direction)), &dvcm, &dvc, &dvm, &dvc_merge);
     /* dVCM's next-event density (SmallVCM's directPdfA, by area above) as it truly is from here. */
     if (depth == 0 && o.tri >= 0)

@@ -39,10 +39,17 @@ inline void vcm_next_event(const VcmCamera* c, const SceneView* s, const FilmVie
                    ((cv->merges && !KASHA_VCM_MERGE_CAUSTIC ? vm : 0.0f) + c->dvcm +
                     vcm_camera_dvc(c) * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, wi, eye));
   float weight = 1.0f / (w_light + 1.0f + w_camera);
+  const __global float* le = light_point_spectrum(s, &lp);
+#if KASHA_MEDIA
+  le = segment_light(s, x, vcm_toward(cv->ng, wi), v->h.eps, wi, dist, lp.eps / cos_l,
+                     medium_after(s, v->h.tri, v->h.n, wi, c->w.medium), le);
+  if (!le) return;
+#else
   if (segment_occluded(s, x, vcm_toward(cv->ng, wi), v->h.eps, wi, dist, lp.eps / cos_l)) return;
+#endif
   float scale = cos_x / pdf_light * weight;
 #if KASHA_LIGHT_SOURCES || KASHA_EMISSION_TEXTURES
   scale *= lp.scale;
 #endif
-  vcm_camera_apply(&c->w.p, f, surf, fv, light_point_spectrum(s, &lp), scale, rows);
+  vcm_camera_apply(&c->w.p, f, surf, fv, le, scale, rows);
 }

@@ -11,11 +11,11 @@
 inline float vcm_seen_light(const SceneView* s, const FilmView* f, int pixel, Sampler* sampler, float* rows) {
   CameraWalk w;
   float3 o, d = camera_ray(&s->camera, pixel, sampler, &o);
-  walk_start(&w, f, o, d);
+  walk_start(&w, s, f, o, d);
   CameraVertex v;
   while (w.depth < KASHA_MAX_PATH_DEPTH) {
     HitPoint* h = &v.h;
-    if (!intersect_surface(s, w.org, w.dir, h)) {
+    if (!walk_intersect(&w, s, h)) {
 #if KASHA_INFINITE_LIGHTS
       if (VCM_LENGTH_COUNTS(w.depth + 1)) walk_escaped(&w, s, f, rows); /* whole: w.specular */
 #endif
@@ -47,7 +47,7 @@ inline float vcm_seen_light(const SceneView* s, const FilmView* f, int pixel, Sa
       w.dir = reflect_dir(w.dir, h->ns);
       pw_scatter_diagonal(&w.p, 0, v.surf.g);
     }
-    if (!walk_on(&w, f, &v)) return 0.0f;
+    if (!walk_on(&w, s, f, &v)) return 0.0f;
   }
   return walk_cut(&w, f);
 }

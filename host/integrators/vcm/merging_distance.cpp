@@ -72,7 +72,8 @@ MergingVertices probe_merging_vertices(const Scene& scene, const EmbreeScene& em
         travelled += h.t;
         const KTriangle t = scene.hit_triangle(h);
         const Eigen::Vector3f n = triangle_normal(t);
-        if (t.material < 0 || !delta_surface(scene.materials[t.material])) {
+        const bool through = t.material >= 0 && scene.materials[t.material].kind == MaterialKind::interface;
+        if (!through && (t.material < 0 || !delta_surface(scene.materials[t.material]))) {
           distances.push_back(travelled);
           if (t.emitter < 0 && !lit_directly(embree, lamps, org + h.t * dir,
                                              n.dot(dir) < 0 ? n : Eigen::Vector3f(-n)))
@@ -80,7 +81,8 @@ MergingVertices probe_merging_vertices(const Scene& scene, const EmbreeScene& em
           break;
         }
         org += h.t * dir;
-        if (scene.materials[t.material].kind != MaterialKind::dielectric) dir -= 2 * n.dot(dir) * n;
+        // An interface (a boundary of media) passes the ray on; a dielectric refracts it straight.
+        if (!through && scene.materials[t.material].kind != MaterialKind::dielectric) dir -= 2 * n.dot(dir) * n;
         // Off the surface by a relative epsilon, on the side the path leaves by.
         org += (n.dot(dir) > 0 ? 1e-4f : -1e-4f) * std::max(1.0f, org.norm()) * n;
       }

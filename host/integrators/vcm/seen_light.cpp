@@ -53,7 +53,7 @@ bool reaches_light(const Scene& scene, const EmbreeScene& embree, bool infinite,
     if (t.emitter >= 0 && front) return true;
     if (t.material < 0 || p.bounces == kMostBounces) continue;
     const Material& m = scene.materials[t.material];
-    if (!has_delta_lobe(m)) continue;
+    if (!has_delta_lobe(m) && m.kind != MaterialKind::interface) continue;
     const Eigen::Vector3f at = p.org + h.t * p.dir;
     if (!scene.normals.empty()) {
       // The shading normal the kernels bounce about (kernels/geometry/hit_point.h).
@@ -65,6 +65,10 @@ bool reaches_light(const Scene& scene, const EmbreeScene& embree, bool infinite,
     if (!front) n = -n;  // on the ray's side
     const float cos_i = -n.dot(p.dir);
     const float eps = 1e-4f * std::max(1.0f, at.norm());
+    if (m.kind == MaterialKind::interface) {  // a boundary of media: straight on
+      stack.push_back({at - eps * n, p.dir, p.bounces + 1});
+      continue;
+    }
     stack.push_back({at + eps * n, p.dir + 2 * cos_i * n, p.bounces + 1});
     if (m.kind == MaterialKind::dielectric) {
       // Snell's law into the far side (total internal reflection: the reflection alone).

@@ -139,6 +139,8 @@ class Importer {
     }
     scene["shapes"] = std::move(shapes_);
     if (!lights_.empty()) scene["lights"] = std::move(lights_);
+    check_medium_uses();
+    if (!media_.empty()) scene["media"] = std::move(media_);
     if (!textures_.kasha.empty()) scene["textures"] = std::move(textures_.kasha);
     if (max_depth_) scene["max_depth"] = *max_depth_;
     return scene;
@@ -416,8 +418,8 @@ class Importer {
                              " is ignored: kasha's --integrator, --spp " +
                              "and --passes decide (docs/pbrt-import.md)");
     } else if (name == "MakeNamedMedium") {
-      pbrt_warn(d.where, "MakeNamedMedium " + in_quotes(skipped_directive(tokens, d)) +
-                             ": participating media are not built in kasha");
+      const std::string medium = string_arg(tokens, d);
+      make_medium(medium, PbrtParameters::read(tokens), d.where);
     } else if (name == "WorldBegin") {
       if (!camera_seen_) make_camera(Matrix::Identity(), "perspective", PbrtParameters{}, d.where);
       state_.ctm = Matrix::Identity();
@@ -648,9 +650,9 @@ class Importer {
     if (!(exposure_time_ > 0))
       pbrt_fail(where, "Camera: the shutter opens and closes at once (no exposure)");
     params.warn_unused("Camera " + in_quotes(type));
+    // pbrt-v4's CameraMedium: the current outside medium.
     if (!state_.outside_medium.empty())
-      pbrt_fail(where, "the camera is inside medium " + in_quotes(state_.outside_medium) +
-                           ": participating media are not built in kasha");
+      camera_["medium"] = used_medium(state_.outside_medium, where);
     if (!camera_.contains("width")) {
       camera_["width"] = 1280;  // pbrt-v4's film defaults, unless a Film came first
       camera_["height"] = 720;
@@ -744,6 +746,54 @@ class Importer {
     }
   }
 
+  // MakeNamedMedium (pbrt-v4's media.cpp): a homogeneous medium as kasha's "media" entry; the
+  // other types are read but refused where a shape, the camera or a light is put in one.
+  void make_medium(const std::string& name, const PbrtParameters& params, const PbrtLocation& where) {
+    const std::string type = params.get_string("type", "");
+    if (type.empty()) pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) + ": no \"type\"");
+    if (name.empty()) pbrt_fail(where, "MakeNamedMedium: a medium's name must not be empty");
+    if (type != "homogeneous") {
+      refused_media_[name] = "MakeNamedMedium " + in_quotes(name) + " (" + where.str() + ") is a \"" +
+                             type + "\" medium, which kasha does not build (homogeneous)";
+      media_.erase(name);
+      return;
+    }
+    if (params.find("preset", "string"))
+      pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) +
+                           ": \"preset\" is not built in kasha: give \"sigma_a\" and \"sigma_s\"");
+    if (const PbrtParameter* le = params.find("Le", "rgb spectrum blackbody float")) {
+      const nlohmann::json v = pbrt_spectrum(*le, PbrtSpectrumUse::kIlluminant, base_dir_);
+      if (!(v.is_number() && v.get<double>() == 0) && params.get_float("Lescale", 1) != 0)
+        pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) + ": an emitting medium (\"Le\") is not built in kasha");
+    }
+    nlohmann::json m = {{"type", "homogeneous"}};
+    for (const char* key : {"sigma_a", "sigma_s"})
+      if (const PbrtParameter* p = params.find(key, "rgb spectrum blackbody float"))
+        m[key] = pbrt_spectrum(*p, PbrtSpectrumUse::kUnbounded, base_dir_);
+    m["scale"] = params.get_float("scale", 1);
+    m["g"] = params.get_float("g", 0);
+    params.warn_unused("MakeNamedMedium " + in_quotes(name));
+    media_[name] = m;
+    refused_media_.erase(name);
+    sources_["/media/" + pointer_segment(name)] = where.str();
+  }
+
+  // A medium that a shape, the camera or a light is put in: its name, or null for vacuum ("").
+  // pbrt-v4 resolves the names once the whole file is read (check_medium_uses).
+  nlohmann::json used_medium(const std::string& name, const PbrtLocation& where) {
+    if (name.empty()) return nullptr;
+    medium_uses_.emplace(name, where);
+    return name;
+  }
+
+  void check_medium_uses() const {
+    for (const auto& [name, where] : medium_uses_) {
+      if (auto r = refused_media_.find(name); r != refused_media_.end()) pbrt_fail(where, r->second);
+      if (!media_.contains(name))
+        pbrt_fail(where, "no medium named " + in_quotes(name) + " (MakeNamedMedium)");
+    }
+  }
+
   void light(const std::string& type, const PbrtParameters& params, const PbrtLocation& where) {
     if (object_) pbrt_fail(where, "LightSource inside an object definition");
     const double scale = params.get_float("scale", 1);
@@ -825,6 +875,9 @@ class Importer {
       pbrt_fail(where, "unknown light type " + in_quotes(type));
     }
     params.warn_unused("LightSource " + in_quotes(type));
+    // pbrt-v4 puts a light in the current outside medium; only a point or spot is inside the scene.
+    if ((type == "point" || type == "spot") && !state_.outside_medium.empty())
+      l["medium"] = used_medium(state_.outside_medium, where);
     sources_["/lights/" + std::to_string(lights_.size())] = where.str();
     lights_.push_back(l);
   }
@@ -843,17 +896,22 @@ class Importer {
       material = kDefaultMaterial;
       uses_default_material_ = true;
     }
+    // A boundary between two media (pbrt-v4 keeps a ray's medium across any other shape).
+    const bool transition = state_.inside_medium != state_.outside_medium;
+    if (transition)
+      s["medium"] = {{"inside", used_medium(state_.inside_medium, where)},
+                     {"outside", used_medium(state_.outside_medium, where)}};
     if (interfaces_.count(material)) {
-      warn_once(where, "interface",
-                "shapes with material \"interface\" (media boundaries) are "
-                "left out: media are not built in kasha");
-      return;
+      if (state_.area_light) pbrt_fail(where, "an area light on an \"interface\" (no surface)");
+      if (!transition) {
+        warn_once(where, "interface", "an \"interface\" shape between the same media on both "
+                                      "sides bounds nothing: left out");
+        return;
+      }
+      s["interface"] = true;
+    } else {
+      s["material"] = material;
     }
-    if (!state_.inside_medium.empty() || !state_.outside_medium.empty())
-      pbrt_fail(where, "a shape with a medium (MediumInterface " + in_quotes(state_.inside_medium) +
-                           " " + in_quotes(state_.outside_medium) +
-                           "): participating media are not built in kasha");
-    s["material"] = material;
     // A mesh's own normals decide its front in pbrt-v4 (pbrt_shapes.cpp turned the winding to
     // them), whatever ReverseOrientation says; every other shape is turned.
     const bool normals_decide =
@@ -927,6 +985,9 @@ class Importer {
   bool uses_default_material_ = false;
   PbrtTextures textures_;
   nlohmann::json lights_ = nlohmann::json::array();
+  nlohmann::json media_ = nlohmann::json::object();   // MakeNamedMedium's homogeneous media
+  std::map<std::string, std::string> refused_media_;  // the others: why each is refused
+  std::multimap<std::string, PbrtLocation> medium_uses_;
   nlohmann::json shapes_ = nlohmann::json::array();
   nlohmann::json instances_ = nlohmann::json::array();
   std::map<std::string, ObjectDefinition> objects_;

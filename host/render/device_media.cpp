@@ -1,0 +1,31 @@
+#include "render/device_media.h"
+
+namespace kasha {
+
+static int append_spectrum(std::vector<float>& spectra, const std::vector<double>& v) {
+  const int at = static_cast<int>(spectra.size());
+  for (double x : v) spectra.push_back(static_cast<float>(x));
+  return at;
+}
+
+DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_triangles,
+                         std::vector<float>& spectra) {
+  DeviceMedia d;
+  for (const Medium& m : scene.media) {
+    std::vector<double> sigma_t(m.sigma_a.size());
+    for (size_t i = 0; i < sigma_t.size(); ++i) sigma_t[i] = m.sigma_a[i] + m.sigma_s[i];
+    KMedium k{};
+    k.sigma_t = append_spectrum(spectra, sigma_t);
+    k.sigma_s = append_spectrum(spectra, m.sigma_s);
+    k.g = static_cast<float>(m.g);
+    d.media.push_back(k);
+  }
+  if (!scene.triangle_media.empty())
+    for (const KTriangle& t : leaf_triangles) {
+      const MediumInterface& mi = scene.triangle_media[t.prim];
+      d.tri_media.push_back({mi.inside, mi.outside});
+    }
+  return d;
+}
+
+}  // namespace kasha

@@ -1,0 +1,51 @@
+#pragma once
+// Participating media (docs/media.md): what fills the space between surfaces. A medium is
+// homogeneous, with spectral absorption σa(λ) and scattering σs(λ) coefficients (per scene unit of
+// length, both times "scale") and a Henyey–Greenstein phase function of asymmetry g. Surfaces
+// bound media through their shape's medium interface (the medium inside, behind the front side,
+// and outside); a shape that is only a boundary has no material ("interface": true).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/json_node.h"
+#include "spectrum/spectrum.h"
+#include "spectrum/wavelength_grid.h"
+
+namespace kasha {
+
+// A medium as the scene gives it (JSON "media", pbrt-v4's MakeNamedMedium "homogeneous").
+struct MediumDesc {
+  std::string name;
+  std::string where;  // FILE: JSON path of its entry, for messages
+  SpectrumPtr sigma_a, sigma_s;
+  double scale = 1;
+  double g = 0;  // Henyey–Greenstein asymmetry, |g| < 1
+};
+
+// On the scene's wavelength grid: per bin, scale·σa and scale·σs.
+struct Medium {
+  std::vector<double> sigma_a, sigma_s;
+  double g = 0;
+  bool scatters() const;  // σs > 0 in some bin
+};
+
+// A shape's media (-1: vacuum): inside is behind its front side. A shape whose two media are the
+// same is no boundary, and a ray crossing it stays in the medium it was in (pbrt-v4's rule).
+struct MediumInterface {
+  int inside = -1, outside = -1;
+  bool transition() const { return inside != outside; }
+};
+
+// One entry of the scene's "media" (an object of named media).
+MediumDesc parse_medium(const JsonNode& node, const std::string& name);
+
+// The index of the medium a JSON string names in `media` ("" or null: vacuum, -1).
+int medium_index(const JsonNode& node, const std::vector<MediumDesc>& media);
+
+// A shape's "medium": {"inside": NAME, "outside": NAME} (either may be null or left out: vacuum).
+MediumInterface parse_medium_interface(const JsonNode& node, const std::vector<MediumDesc>& media);
+
+Medium discretize_medium(const MediumDesc& desc, const WavelengthGrid& grid);
+
+}  // namespace kasha

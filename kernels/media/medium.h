@@ -1,0 +1,154 @@
+/* Participating media (docs/media.md): homogeneous media between surfaces, bounded by shapes'
+ * medium interfaces (KTriMedia). A path carries the medium it travels in; crossing a boundary
+ * (a refraction, or an "interface" shape, which has no surface and is passed straight through)
+ * puts it in the medium on the far side. Along a segment the light is attenuated by
+ * exp(−σt(λ) d) per bin: the media only absorb so far, so transmittance is the whole of their
+ * effect and no sampling routine changes. Compiled in only for scenes with media (KASHA_MEDIA). */
+#ifndef KASHA_MEDIUM_H
+#define KASHA_MEDIUM_H
+
+#include "geometry/hit_point.h"
+#include "geometry/scene_view.h"
+#include "materials/hit_material.h"
+
+#ifndef KASHA_MEDIA
+#define KASHA_MEDIA 0
+#endif
+#ifndef KASHA_MEDIA_COUNT
+#define KASHA_MEDIA_COUNT 1
+#endif
+#ifndef KASHA_SCRATCH_MEDIA
+#define KASHA_SCRATCH_MEDIA 0
+#endif
+/* The most interfaces a ray passes through on its way to a surface: a guard against a ray stuck
+ * on a degenerate boundary, far beyond what a scene's nested media make. */
+#define KASHA_MAX_INTERFACES 64
+
+#if KASHA_MEDIA
+/* How far a ray has travelled in each medium since its last vertex. A homogeneous medium's
+ * transmittance depends only on that length, so the order of the pieces does not matter. */
+typedef struct {
+  float d[KASHA_MEDIA_COUNT];
+} MediaTrail;
+
+inline void trail_clear(MediaTrail* t) {
+  for (int m = 0; m < KASHA_MEDIA_COUNT; ++m) t->d[m] = 0.0f;
+}
+
+inline void trail_add(MediaTrail* t, int medium, float d) {
+  if (medium >= 0) t->d[medium] += d;
+}
+
+inline bool trail_empty(const MediaTrail* t) {
+  for (int m = 0; m < KASHA_MEDIA_COUNT; ++m)
+    if (t->d[m] > 0.0f) return false;
+  return true;
+}
+
+/* Bin i's transmittance along the trail: exp(−Σ_m σt_m,i d_m). A medium that does not absorb in
+ * bin i lets an infinite ray through there (0 · ∞ is not taken). */
+inline float trail_transmittance(const SceneView* s, const MediaTrail* t, int i) {
+  float tau = 0.0f;
+  for (int m = 0; m < KASHA_MEDIA_COUNT; ++m) {
+    if (!(t->d[m] > 0.0f)) continue;
+    float sigma = s->spectra[s->media[m].sigma_t + i];
+    if (sigma > 0.0f) tau += sigma * t->d[m];
+  }
+  return exp(-tau);
+}
+
+/* The medium a ray leaving the hit along dir travels in: across a boundary the medium on dir's
+ * side (outside where dir leaves by the front), and otherwise the one it was in, `medium` —
+ * pbrt-v4's rule, so a shape inside a medium without an interface of its own stays in it. */
+inline int medium_after(const SceneView* s, int tri, float3 front, float3 dir, int medium) {
+#if KASHA_MEDIUM_BOUNDARIES
+  KTriMedia tm = s->tri_media[tri];
+  if (tm.inside != tm.outside) return dot(dir, front) > 0.0f ? tm.outside : tm.inside;
+#endif
+  return medium;
+}
+
+/* Whether the hit's triangle is an interface, which rays pass through. */
+inline bool hit_interface(const SceneView* s, const HitPoint* h) {
+  return h->material >= 0 && s->materials[h->material].kind == KASHA_KIND_INTERFACE;
+}
+
+/* The closest surface along the ray (intersect_surface) that is not an interface: the ray passes
+ * through interfaces, *medium following it, and each medium's length goes on the trail; h->t is
+ * the whole distance. False: the ray leaves the scene (an infinite length in its last medium). */
+inline bool intersect_through(const SceneView* s, float3 org, float3 dir, int* medium, MediaTrail* trail,
+                              HitPoint* h) {
+  float travelled = 0.0f;
+  for (int k = 0; k < KASHA_MAX_INTERFACES; ++k) {
+    if (!intersect_surface(s, org, dir, h)) {
+      trail_add(trail, *medium, INFINITY);
+      return false;
+    }
+    trail_add(trail, *medium, h->t);
+    travelled += h->t;
+    if (!hit_interface(s, h)) {
+      h->t = travelled;
+      return true;
+    }
+    *medium = medium_after(s, h->tri, h->n, dir, *medium);
+    org = h->x + (dot(dir, h->n) > 0.0f ? h->n : -h->n) * h->eps;
+  }
+  return false;
+}
+
+/* Whether the segment from x (offset eps off its surface along ns) to dist along wi, short of the
+ * far end's offset far_eps (as segment_occluded), is free of surfaces other than interfaces; the
+ * segment starts in `medium`. *tr: its transmittance per bin in the work item's scratch, or null
+ * where it crosses no medium (1 in every bin). */
+inline bool segment_clear(const SceneView* s, float3 x, float3 ns, float eps, float3 wi, float dist, float far_eps,
+                          int medium, const __global float** tr) {
+  *tr = 0;
+  MediaTrail trail;
+  trail_clear(&trail);
+  float reach = dist * (1.0f - 1e-4f) - eps - far_eps, covered = 0.0f;
+  float3 org = x + ns * eps;
+  for (int k = 0; reach > 0.0f; ++k) {
+    if (k == KASHA_MAX_INTERFACES) return false;
+    ++s->rays->shadow;
+    HitPoint h;
+    if (!intersect_scene_within(s, org, wi, reach, &h)) break;
+    if (s->materials[h.material].kind != KASHA_KIND_INTERFACE) return false;
+    trail_add(&trail, medium, h.t);
+    covered += h.t;
+    reach -= h.t;
+    medium = medium_after(s, h.tri, h.n, wi, medium);
+    org = h.x + (dot(wi, h.n) > 0.0f ? h.n : -h.n) * h.eps;
+  }
+  trail_add(&trail, medium, fmax(dist - covered, 0.0f));
+  if (trail_empty(&trail)) return true;
+  __global float* out = s->scratch + KASHA_SCRATCH_MEDIA;
+  for (int i = 0; i < KASHA_BINS; ++i) out[i] = trail_transmittance(s, &trail, i);
+  *tr = out;
+  return true;
+}
+
+/* The light `le` (global, N values) as it arrives over the segment of segment_clear: le itself,
+ * or its product with the segment's transmittance in the scratch; null where a surface blocks
+ * the segment. */
+inline const __global float* segment_light(const SceneView* s, float3 x, float3 ns, float eps, float3 wi, float dist,
+                                           float far_eps, int medium, const __global float* le) {
+  const __global float* tr;
+  if (!segment_clear(s, x, ns, eps, wi, dist, far_eps, medium, &tr)) return 0;
+  if (!tr) return le;
+  __global float* out = s->scratch + KASHA_SCRATCH_MEDIA;
+  for (int i = 0; i < KASHA_BINS; ++i) out[i] *= le[i];
+  return out;
+}
+
+/* The medium a light path leaves a light in: an emitting triangle's outside (lights emit from the
+ * front), a light that is not a triangle its own. */
+inline int light_medium(const SceneView* s, int tri, const __global KLight* source) {
+  if (source) return source->medium;
+#if KASHA_MEDIUM_BOUNDARIES
+  if (tri >= 0) return s->tri_media[tri].outside;
+#endif
+  return -1;
+}
+#endif
+
+#endif

@@ -1,0 +1,181 @@
+// Participating media (docs/media.md): homogeneous absorbing media bounded by shapes' medium
+// interfaces, "interface" shapes that only bound them, and the camera inside one. An emitter seen
+// through a slab of dye against Beer–Lambert per bin in every integrator (the absorption varies
+// across the bins, so a grey or single-bin mistake shows), a dye inside a glass sphere against
+// backward in every integrator, and the scene and pbrt-v4 readers' acceptance and refusals.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "render/integrator_registry.h"
+#include "render_support.h"
+#include "scene/pbrt/pbrt_import.h"
+#include "scene/scene.h"
+#include "test_support.h"
+
+using namespace kasha;
+using namespace kasha::test;
+
+namespace {
+
+// A lamp quad at z = 0 facing +z, seen along −z by an orthographic camera (every ray's path the
+// same length) from z = 3 through a slab of "dye" (z in
+// [0.5, 1.5]) bounded by an interface box; the camera, and the space outside the slab, in "haze".
+std::string slab_scene() {
+  return R"({"kasha_scene": 1,
+    "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "type": "orthographic", "width": 8,
+               "height": 8, "medium": "haze"},
+    "media": {"dye": {"sigma_a": {"nm": [380, 780], "value": [2.0, 0.2]}, "sigma_s": 0},
+              "haze": {"sigma_a": 0.1, "sigma_s": 0}},
+    "materials": {"black": {}},
+    "shapes": [
+      {"type": "quad", "corner": [-2, -2, 0], "u": [4, 0, 0], "v": [0, 4, 0], "material": "black",
+       "emission": 0.01, "medium": {"inside": null, "outside": "haze"}},
+      {"type": "box", "min": [-2, -2, 0.5], "max": [2, 2, 1.5], "interface": true,
+       "medium": {"inside": "dye", "outside": "haze"}}]})";
+}
+
+class MediumSlab : public ::testing::TestWithParam<std::string> {};
+
+// 2 units of haze and 1 of dye: L·exp(−2 σ_haze − σ_dye) in every bin.
+TEST_P(MediumSlab, AnEmitterSeenThroughASlabOfDyeFollowsBeerLambertPerBin) {
+  const std::string path = write_file("medium_slab.json", slab_scene());
+  RenderSettings s;
+  s.integrator = GetParam();
+  s.grid = GridRequest{380, 780, 20};
+  s.integrator_settings.spp = 16;
+  s.integrator_settings.photons = 1 << 16;
+  s.passes = 4;
+  RenderResult r = render_scene(path, s);
+  ASSERT_EQ(r.scene.media.size(), 2u);
+  const Medium& dye = r.scene.media[0];
+  std::vector<double> truth = r.scene.emitters.at(0).per_bin;
+  ASSERT_GT(dye.sigma_a.front() / dye.sigma_a.back(), 5.0);
+  for (size_t i = 0; i < truth.size(); ++i) truth[i] *= std::exp(-dye.sigma_a[i] - 2 * 0.1);
+  // Each crossing starts the next piece of the ray off the surface (about 10⁻⁵ here), so the
+  // lengths are short by that much: a bias of 2·10⁻⁵, above the noise of the integrators that see
+  // the lamp along camera paths; the check is the tolerance, 0.2 % (light tracing's noise: 2 %).
+  expect_bins_match(r, truth, GetParam() == "forward" ? 0.02 : 0.002, GetParam() + " through the slab", false);
+}
+
+INSTANTIATE_TEST_SUITE_P(Registry, MediumSlab, ::testing::ValuesIn(IntegratorRegistry::names(true)),
+                         [](const auto& info) { return info.param; });
+
+// scenes/dye_in_glass.json, a glass sphere of dye on a white floor under a lamp: the light through
+// the dye (refracted, attenuated, caustics on the floor) in every integrator against backward's.
+TEST(Medium, EveryIntegratorAgreesWithBackwardOnDyeInGlass) {
+  for (const std::string integrator : {"forward", "photon", "vcm", "bpt", "ppm"}) {
+    ComparedRenders c = render_against_backward("dye_in_glass.json", integrator, 8, 1 << 16, 32);
+    // The floor (its shadow and caustic through the dye); light tracing cannot see the glass.
+    const std::vector<size_t> floor = primary_hit_regions(c.tested.scene, c.camera).at("white");
+    const std::vector<size_t> all = integrator == "forward" ? floor : std::vector<size_t>{};
+    const BinStats a = pixel_statistics(c.tested.image, false, all),
+                   b = pixel_statistics(c.backward.image, false, all);
+    for (int row = 0; row < 3; ++row)
+      EXPECT_NEAR(a.mean[row] / b.mean[row], 1.0, 0.03) << integrator << " row " << row;
+  }
+}
+
+// The glass alone (no dye) is brighter in every row, the blue row most: the dye does something.
+TEST(Medium, TheDyeAbsorbsMoreWhereItsSigmaIsHigher) {
+  const std::string base = R"({"kasha_scene": 1,
+    "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "fov_deg": 1, "width": 4, "height": 4},
+    "wavelengths": {"min_nm": 380, "max_nm": 780, "bin_nm": 20},
+    "media": {"dye": {"sigma_a": {"nm": [380, 780], "value": [3.0, 0.0]}, "sigma_s": 0}},
+    "materials": {"black": {}, "glass": {"dielectric": {"eta": 1.5}}},
+    "shapes": [
+      {"type": "quad", "corner": [-2, -2, 0], "u": [4, 0, 0], "v": [0, 4, 0], "material": "black",
+       "emission": 0.01},
+      {"type": "sphere", "center": [0, 0, 1], "radius": 0.5, "material": "glass"MEDIUM}]})";
+  RenderSettings s;
+  s.passes = 2;
+  s.integrator_settings.spp = 16;
+  const auto with = [&](const std::string& medium) {
+    std::string text = base;
+    text.replace(text.find("MEDIUM"), 6, medium);
+    return render_scene(write_file("medium_dye_or_not.json", text), s);
+  };
+  const RenderResult clear = with(""), dyed = with(R"(, "medium": {"inside": "dye"})");
+  const BinStats a = pixel_statistics(clear.image, true), b = pixel_statistics(dyed.image, true);
+  const size_t n = a.mean.size();
+  // Through the sphere's centre: 1 unit of dye; σ falls from 3 to 0 across the bins.
+  EXPECT_NEAR(b.mean.front() / a.mean.front(), std::exp(-dyed.scene.media[0].sigma_a.front()), 0.01);
+  EXPECT_NEAR(b.mean.back() / a.mean.back(), std::exp(-dyed.scene.media[0].sigma_a.back()), 0.01);
+  EXPECT_LT(b.mean[n / 2] / a.mean[n / 2], 0.5);
+}
+
+TEST(Medium, BadMediaAreOneLine) {
+  struct Case {
+    std::string media, shape, message;
+  };
+  const std::string quad = R"({"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], )";
+  const std::vector<Case> cases = {
+      {R"("fog": {"sigma_a": -1})", R"("material": "m"})", "/media/fog/sigma_a: negative spectrum value"},
+      {R"("fog": {"g": 1})", R"("material": "m"})", "/media/fog/g: the phase function's g must lie"},
+      {R"("fog": {"type": "uniformgrid"})", R"("material": "m"})", "/media/fog/type: unknown medium type"},
+      {R"("fog": {"sigma_s": 0, "scale": -2})", R"("material": "m"})", "/media/fog/scale"},
+      {R"("fog": {"sigma_s": 0})", R"("material": "m", "medium": {"inside": "smoke"}})",
+       "/shapes/0/medium/inside: no medium named \"smoke\""},
+      {R"("fog": {"sigma_s": 0})", R"("interface": true})", "/shapes/0/interface: an interface bounds media"},
+      {R"("fog": {"sigma_s": 0})", R"("interface": true, "material": "m", "medium": {"inside": "fog"}})",
+       "/shapes/0/interface: an interface has no material"},
+      {R"("fog": {"sigma_s": 1})", R"("material": "m", "medium": {"inside": "fog"}})",
+       "/media/fog: a medium that scatters (sigma_s > 0) is not rendered yet"},
+  };
+  for (const Case& c : cases) {
+    const std::string text = R"({"kasha_scene": 1, "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0]},
+      "materials": {"m": {}}, "media": {)" + c.media + R"(}, "shapes": [)" + quad + c.shape + "]}";
+    const std::string file = write_file("bad_medium.json", text);
+    const std::string e = error_of([&] { load_scene(file); });
+    EXPECT_NE(e.find(c.message), std::string::npos) << c.media << " " << c.shape << "\n  got: " << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  }
+  // A scattering medium nothing is in is read and left alone.
+  const std::string unused = write_file("unused_medium.json", R"({"kasha_scene": 1,
+    "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0]}, "materials": {"m": {}},
+    "media": {"fog": {"sigma_s": 1}}, "shapes": [)" + quad + R"("material": "m"}]})");
+  EXPECT_FALSE(load_scene(unused).has_media());
+}
+
+// pbrt-v4's MakeNamedMedium "homogeneous", MediumInterface, the "interface" material, the camera's
+// and a point light's outside medium, as kasha's scene.
+TEST(Medium, PbrtMediaImportAsKashas) {
+  const nlohmann::json s = import_pbrt_scene(write_file("media.pbrt", R"(
+LookAt 0 1 3  0 0 0  0 1 0
+MediumInterface "" "air"
+Camera "perspective"
+WorldBegin
+MakeNamedMedium "air" "string type" "homogeneous" "rgb sigma_a" [0.01 0.01 0.01] "rgb sigma_s" [0 0 0]
+MakeNamedMedium "tea" "string type" "homogeneous" "rgb sigma_a" [0.1486 0.321 0.736] "float sigma_s" 0 "float scale" 2
+LightSource "point" "point3 from" [0 2 0]
+AttributeBegin
+  MediumInterface "tea" "air"
+  Material "dielectric" "float eta" 1.33
+  Shape "sphere"
+AttributeEnd
+AttributeBegin
+  MediumInterface "tea" "air"
+  Material "interface"
+  Translate 3 0 0
+  Shape "sphere"
+AttributeEnd
+AttributeBegin
+  MediumInterface "air" "air"
+  Material "interface"
+  Shape "sphere" "float radius" 2
+AttributeEnd
+)"),
+                                               {});
+  EXPECT_EQ(s.at("camera").at("medium"), "air");
+  EXPECT_EQ(s.at("lights").at(0).at("medium"), "air");
+  EXPECT_EQ(s.at("media").at("tea").at("scale"), 2.0);
+  EXPECT_EQ(s.at("media").at("tea").at("sigma_s"), 0.0);
+  ASSERT_EQ(s.at("shapes").size(), 2u);  // the interface between air and air bounds nothing
+  EXPECT_EQ(s.at("shapes").at(0).at("medium"), nlohmann::json::parse(R"({"inside": "tea", "outside": "air"})"));
+  EXPECT_TRUE(s.at("shapes").at(1).at("interface").get<bool>());
+  EXPECT_FALSE(s.at("shapes").at(1).contains("material"));
+}
+
+}  // namespace
