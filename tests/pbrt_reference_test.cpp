@@ -77,7 +77,10 @@ INSTANTIATE_TEST_SUITE_P(
                       ReferenceCase{"rough_textures", {"rough_textures.pbrt:46"}, 64},
                       // Rough layered metals in a uniform sky, where kasha's split of the
                       // layer's light keeps its energy exactly (docs/materials.md).
-                      ReferenceCase{"layered_metals", {}, 32}),
+                      ReferenceCase{"layered_metals", {}, 32},
+                      // Absorbing media (docs/media.md): the camera in a haze, dye in glass, an
+                      // ink block bounded by an interface cube (its region: "(interface)").
+                      ReferenceCase{"media", {}, 32}),
     [](const auto& info) { return info.param.scene; });
 
 // --max-depth N as pbrt-v4's maxdepth: the Cornell box with direct light alone (1) and one bounce

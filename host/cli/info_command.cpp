@@ -1,5 +1,6 @@
 // `kasha info`: what a scene needs before it is rendered: its grid, features, geometry, kernel
 // build options, record sizes and a memory estimate.
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -52,6 +53,18 @@ static int run_info(const std::string& scene_path, bool spectral, const std::str
   std::printf("materials: %zu; shapes: %zu; triangles: %zu; emitters: %zu (%d triangles)\n",
               scene.materials.size(), scene.shapes.size(), scene.triangles.size(),
               scene.emitters.size(), emitting_triangles);
+  // Participating media (docs/media.md): each one's name, the camera's, and the boundaries.
+  if (scene.has_media()) {
+    std::string names;
+    for (const MediumDesc& m : scene.medium_descs) names += (names.empty() ? "" : ", ") + printable(m.name);
+    const long boundaries = std::count_if(scene.shapes.begin(), scene.shapes.end(),
+                                          [](const ShapeInfo& s) { return s.medium.transition(); });
+    std::printf("media: %zu (%s); camera in %s; shapes bounding media: %ld\n", scene.medium_descs.size(),
+                names.c_str(),
+                scene.camera_medium >= 0 ? printable(scene.medium_descs[scene.camera_medium].name).c_str()
+                                         : "vacuum",
+                boundaries);
+  }
   if (!scene.instances.empty())
     std::printf("instances: %zu of %zu objects; triangles placed: %zu (each stored once)\n",
                 scene.instances.placements.size(), scene.instances.objects.size(),

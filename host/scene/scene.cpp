@@ -927,6 +927,9 @@ static void parse_lights(const JsonNode& root, Scene& scene) {
       std::optional<JsonNode> medium = l.is_object() ? l.find("medium") : std::nullopt;
       scene.light_media.push_back(medium ? medium_index(*medium, scene.medium_descs) : -1);
       scene.lights.push_back(parse_light(l));
+      const LightType type = scene.lights.back().type;
+      if (scene.light_media.back() >= 0 && type != LightType::point && type != LightType::spot)
+        medium->fail("a distant or infinite light is outside the scene, in no medium");
     }
   }
 }

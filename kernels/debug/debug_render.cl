@@ -7,6 +7,7 @@
 #include "film/film_view.h"
 #include "geometry/hit_point.h"
 #include "materials/hit_material.h"
+#include "media/medium.h"
 #include "sampling/sampler.h"
 #include "geometry/scene_view.h"
 
@@ -36,8 +37,17 @@ __kernel void render_debug(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
     sampler_next_sample(&sampler, pass * (uint)spp + (uint)k);
     HitPoint h;
     float3 o, d = camera_ray(&s.camera, pixel, &sampler, &o);
+#if KASHA_MEDIA
+    /* The first surface: interface shapes (media's boundaries) are not surfaces; the media are
+     * not shown (a first-hit view). */
+    int medium = s.camera_medium;
+    MediaTrail trail;
+    trail_clear(&trail);
+    if (!intersect_through(&s, o, d, &medium, &trail, &h)) continue;
+#else
     if (!intersect_surface(&s, o, d, &h))
       continue;
+#endif
     if (view == VIEW_EMISSION) {
       /* Emitters radiate from their front side only. */
       if (h.emitter >= 0 && h.front) film_rows(&f, 0, emitter_spectrum(&s, h.emitter), 0, 1.0f, rows);
