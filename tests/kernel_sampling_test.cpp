@@ -87,6 +87,67 @@ TEST(KernelSampling, CosineHemisphereFitsItsDensity) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// The Henyey–Greenstein phase function (media/phase.h).
+
+const char* const kPhaseSource = R"(
+#include "media/phase.h"
+__kernel void phase(__global const float* in, __global const float* u, __global float* out) {
+  size_t i = get_global_id(0);
+  float3 wo = (float3)(in[0], in[1], in[2]);
+  float pdf;
+  float3 d = hg_sample(wo, in[3], (float2)(u[2 * i], u[2 * i + 1]), &pdf);
+  out[4 * i] = d.x;
+  out[4 * i + 1] = d.y;
+  out[4 * i + 2] = d.z;
+  out[4 * i + 3] = pdf;
+}
+)";
+
+// The share of Henyey–Greenstein's directions with cos θ (to wo) below c: its marginal's integral.
+double hg_cdf(double c, double g) {
+  if (std::abs(g) < 1e-3) return (c + 1) / 2;
+  return (1 - g * g) / (2 * g) * (1 / std::abs(1 - g) - 1 / std::sqrt(1 + g * g + 2 * g * c));
+}
+
+TEST(KernelSampling, HenyeyGreensteinFitsItsDensity) {
+  constexpr size_t kSamples = 200000;
+  constexpr int kCos = 20, kPhi = 8;
+  TestKernel kernel(kPhaseSource, "phase_test.cl", "phase");
+  const Vector3d wo = Vector3d(0.3, -0.5, 0.81).normalized();
+  std::uint32_t seed = 11;
+  for (double g : {0.0, 0.7, -0.4, 0.95}) {
+    kernel.input(0, std::vector<float>{float(wo.x()), float(wo.y()), float(wo.z()), float(g)});
+    std::vector<float> out = kernel.sample(1, uniforms(2 * kSamples, seed++), 2, 4, kSamples);
+    const Vector3d w(float(wo.x()), float(wo.y()), float(wo.z()));
+    Vector3d s, t;
+    frame(w.normalized(), s, t);
+    std::vector<double> observed(kCos * kPhi, 0.0), expected(kCos * kPhi), uniform(kCos * kPhi);
+    size_t bad = 0, bad_pdf = 0;
+    for (size_t i = 0; i < kSamples; ++i) {
+      const Vector3d d = at(out, 4 * i);
+      const double c = std::clamp(d.dot(w.normalized()), -1.0, 1.0);
+      if (std::abs(d.norm() - 1) > 1e-5) ++bad;
+      const double hg = (1 - g * g) / (4 * M_PI * std::pow(1 + g * g + 2 * g * c, 1.5));
+      if (std::abs(out[4 * i + 3] - hg) > 1e-3 * hg + 1e-6) ++bad_pdf;
+      observed[cell_of(c, -1, 1, kCos) * kPhi + cell_of(azimuth(d, s, t), 0, 2 * M_PI, kPhi)] += 1;
+    }
+    const std::string name = "g " + std::to_string(g);
+    EXPECT_EQ(bad, 0u) << name << ": directions off the unit sphere";
+    EXPECT_EQ(bad_pdf, 0u) << name << ": the density returned is not the phase function's";
+    for (int a = 0; a < kCos; ++a) {
+      const double c0 = -1 + 2.0 * a / kCos, c1 = -1 + 2.0 * (a + 1) / kCos;
+      for (int b = 0; b < kPhi; ++b) {
+        expected[a * kPhi + b] = kSamples * (hg_cdf(c1, g) - hg_cdf(c0, g)) / kPhi;
+        // The other sign of g: the mirror image (forward for backward scattering).
+        uniform[a * kPhi + b] = kSamples * (hg_cdf(c1, g == 0 ? 0.3 : -g) - hg_cdf(c0, g == 0 ? 0.3 : -g)) / kPhi;
+      }
+    }
+    expect_fits("Henyey-Greenstein " + name, observed, expected);
+    expect_rejects("Henyey-Greenstein " + name, observed, uniform);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
 // The tabulated gloss lobe.
 
 const char* const kLobeSource = R"(

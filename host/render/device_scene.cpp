@@ -625,6 +625,7 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_SCRATCH_COAT"] = std::to_string(scratch_coat_offset(scene));
   // Media only where a ray can travel in one (docs/media.md): other scenes keep their kernels.
   d["KASHA_MEDIA"] = scene.has_media() ? "1" : "0";
+  d["KASHA_SCATTERING"] = scene.scattering() ? "1" : "0";
   d["KASHA_MEDIUM_BOUNDARIES"] = scene.triangle_media.empty() ? "0" : "1";
   d["KASHA_MEDIA_COUNT"] = std::to_string(std::max<size_t>(1, scene.media.size()));
   d["KASHA_SCRATCH_MEDIA"] = std::to_string(scratch_media_offset(scene));

@@ -77,6 +77,24 @@ bool Scene::coated() const {
 bool Scene::thin() const {
   return any_used([](const Material& m) { return m.thin; });
 }
+std::vector<bool> Scene::used_media() const {
+  std::vector<bool> used(medium_descs.size(), false);
+  const auto use = [&](int m) {
+    if (m >= 0) used[m] = true;
+  };
+  use(camera_medium);
+  for (int m : light_media) use(m);
+  for (const ShapeInfo& shape : shapes) use(shape.medium.inside), use(shape.medium.outside);
+  return used;
+}
+
+bool Scene::scattering() const {
+  const std::vector<bool> used = used_media();
+  for (size_t m = 0; m < media.size(); ++m)
+    if (used[m] && media[m].scatters()) return true;
+  return false;
+}
+
 bool Scene::has_media() const {
   if (camera_medium >= 0 || !triangle_media.empty()) return true;
   for (int m : light_media)
@@ -1104,23 +1122,9 @@ static void discretize(const GridRequest& request, const std::vector<bool>& mate
   }
 }
 
-// The media on the scene's grid. Scattering is not rendered yet: a medium that scatters is refused
-// where it is declared rather than rendered as if it only absorbed.
+// The media on the scene's grid.
 static void discretize_media(Scene& scene) {
-  std::vector<bool> used(scene.medium_descs.size(), false);
-  const auto use = [&](int m) {
-    if (m >= 0) used[m] = true;
-  };
-  use(scene.camera_medium);
-  for (int m : scene.light_media) use(m);
-  for (const ShapeInfo& shape : scene.shapes) use(shape.medium.inside), use(shape.medium.outside);
-  for (size_t k = 0; k < scene.medium_descs.size(); ++k) {
-    const MediumDesc& d = scene.medium_descs[k];
-    scene.media.push_back(discretize_medium(d, scene.grid));
-    if (used[k] && scene.media.back().scatters())
-      throw Error(d.where + ": a medium that scatters (sigma_s > 0) is not rendered yet: kasha's "
-                  "media only absorb so far (give \"sigma_s\": 0)");
-  }
+  for (const MediumDesc& d : scene.medium_descs) scene.media.push_back(discretize_medium(d, scene.grid));
 }
 
 // An instance's placed object must stay within the coordinates every vertex keeps to.

@@ -101,6 +101,8 @@ struct Scene {
   bool shading_normals() const { return !normals.empty(); }  // some shape has them
   // Some ray can travel in a medium: the camera or a light is in one, or a shape bounds one.
   bool has_media() const;
+  std::vector<bool> used_media() const;  // per medium: something is in it (a shape's side, ...)
+  bool scattering() const;               // some used medium scatters in some bin
   bool normal_mapped() const;  // some shape's material has a normal map (its ∂p/∂u frame)
   // Some used material scatters by a delta lobe: an ideal mirror, a smooth dielectric or
   // conductor, or a smooth coat's reflection.

@@ -23,6 +23,12 @@ inline float trace_camera_path(const SceneView* s, const FilmView* f, float3 org
   walk_start(&w, s, f, org, dir);
   CameraVertex v;
   while (walk_vertex(&w, s, f, sampler, &v, rows)) {
+#if KASHA_SCATTERING
+    if (v.in_medium) {
+      if (!walk_medium_vertex(&w, s, f, &v, rows)) return 0.0f;
+      continue;
+    }
+#endif
 #if KASHA_DIELECTRIC || KASHA_CONDUCTOR
     if (surface_specular(&v.surf)) {
       if (!walk_interface(&w, s, f, &v, sampler, rows)) return 0.0f;

@@ -21,11 +21,21 @@
 #include "materials/surface_at.h"
 #include "materials/texture.h"
 #include "media/medium.h"
+#include "media/phase.h"
+#include "transport/medium_flight.h"
 
 /* Dimension pairs of the sampler per path vertex: (branch choice, roulette), the light (triangle
- * and point), the direction, and (the lobe's azimuth, —) drawn only for a lobe; pair 0 is the
- * pixel position. */
+ * and point), the direction, and (the lobe's azimuth, —) drawn only for a lobe; in a scene with
+ * scattering media a fifth, (the flight's bin, its distance) for the flight that reaches the
+ * vertex (medium_flight.h); pair 0 is the pixel position. */
+#ifndef KASHA_SCATTERING
+#define KASHA_SCATTERING 0
+#endif
+#if KASHA_SCATTERING
+#define KASHA_CAMERA_PAIRS_PER_VERTEX 5
+#else
 #define KASHA_CAMERA_PAIRS_PER_VERTEX 4
+#endif
 
 /* What a path carries from vertex to vertex. */
 typedef struct {
@@ -53,6 +63,9 @@ typedef struct {
   Surface surf;
   float3 probs;
   float2 u_choice, u_light, u_dir;
+#if KASHA_SCATTERING
+  bool in_medium; /* a scattering in the walk's medium at h.x (no surface: h's other fields unset) */
+#endif
 } CameraVertex;
 
 inline void walk_start(CameraWalk* w, const SceneView* s, const FilmView* f, float3 org, float3 dir) {
@@ -127,6 +140,20 @@ inline void walk_escaped(const CameraWalk* w, const SceneView* s, const FilmView
 }
 #endif
 
+#if KASHA_SCATTERING
+/* A scattering vertex's samples (as a surface vertex's); false where --max-depth ends the path. */
+inline bool walk_medium_samples(CameraWalk* w, Sampler* sampler, CameraVertex* v) {
+#ifdef KASHA_DEPTH_CAP
+  if (w->depth >= KASHA_DEPTH_CAP) return false;
+#endif
+  sampler_at(sampler, 1 + w->depth * KASHA_CAMERA_PAIRS_PER_VERTEX);
+  v->u_choice = sample_2d(sampler);
+  v->u_light = sample_2d(sampler);
+  v->u_dir = sample_2d(sampler);
+  return true;
+}
+#endif
+
 /* The path's next vertex: adds the emission it hits to rows (MIS-weighted against next-event
  * estimation unless a specular bounce led there), then loads the vertex's surface, branch
  * probabilities and samples into v. False where the path ends: it escaped, no branch carries
@@ -135,7 +162,15 @@ inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sa
                         float* rows) {
   if (w->depth == KASHA_MAX_PATH_DEPTH) return false;
   HitPoint* h = &v->h;
+#if KASHA_SCATTERING
+  sampler_at(sampler, 1 + w->depth * KASHA_CAMERA_PAIRS_PER_VERTEX + 4);
+  int reached = flight(&w->p, s, f, w->org, w->dir, &w->medium, sample_2d(sampler), h);
+  v->in_medium = reached == KASHA_FLIGHT_SCATTERED;
+  if (v->in_medium) return walk_medium_samples(w, sampler, v);
+  if (reached == KASHA_FLIGHT_ESCAPED) {
+#else
   if (!walk_intersect(w, s, h)) {
+#endif
 #if KASHA_INFINITE_LIGHTS
     walk_escaped(w, s, f, rows);
 #endif
@@ -419,13 +454,20 @@ inline void passive_bounce(CameraWalk* w, const CameraVertex* v, float prob) {
 /* After the vertex's bounce: the end of a path that would leak through the surface (hit_no_leak),
  * Russian roulette from the path's KASHA_CAMERA_ROULETTE_FROM-th vertex
  * on (false: the path ends), then the next ray's origin just off the surface. */
-inline bool walk_on(CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v) {
-  if (!hit_no_leak(&v->h, w->dir)) return false;
+/* Russian roulette from the path's KASHA_CAMERA_ROULETTE_FROM-th vertex on, on u; false: the
+ * path ends. */
+inline bool walk_roulette(CameraWalk* w, const FilmView* f, float u) {
   if (w->depth >= KASHA_CAMERA_ROULETTE_FROM) {
-    float keep = roulette(pw_magnitude(&w->p, f) * w->eta_scale / w->start, v->u_choice.y);
+    float keep = roulette(pw_magnitude(&w->p, f) * w->eta_scale / w->start, u);
     if (keep == 0.0f) return false;
     if (keep != 1.0f) pw_scatter_diagonal(&w->p, 0, keep);
   }
+  return true;
+}
+
+inline bool walk_on(CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v) {
+  if (!hit_no_leak(&v->h, w->dir)) return false;
+  if (!walk_roulette(w, f, v->u_choice.y)) return false;
   w->prev_x = v->h.x;
   /* Off the side the new direction leaves by: the far side after a refraction. */
   float3 ng = hit_ng(&v->h);
@@ -448,6 +490,55 @@ inline bool walk_interface(CameraWalk* w, const SceneView* s, const FilmView* f,
   if (surface_rough(&v->surf)) return walk_rough(w, s, f, v, sampler, rows) && walk_on(w, s, f, v);
 #endif
   return walk_specular(w, f, v) && walk_on(w, s, f, v);
+}
+#endif
+
+#if KASHA_SCATTERING
+/* Next-event estimation from a scattering vertex: one light point, its light through the media on
+ * the way (segment_light) and the phase function, MIS against the phase function's sampling. */
+inline void walk_medium_next_event(const CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v,
+                                   float g, float* rows) {
+  if (s->light_count == 0) return;
+  float3 x = v->h.x;
+  float pdf_light;
+  LightPoint lp = sample_light_from(s, x, v->u_light, &pdf_light);
+  if (!(pdf_light > 0.0f)) return;
+  float3 to = lp.position - x;
+  float dist = length(to);
+  if (!(dist > lp.eps)) return;
+  float3 wi = to / dist;
+  float cos_l = -dot(lp.normal, wi);
+  if (cos_l <= 0.0f) return;
+  float phase = hg_phase(dot(-w->dir, wi), g);
+  const __global float* le = segment_light(s, x, (float3)(0.0f, 0.0f, 0.0f), 0.0f, wi, dist, lp.eps / cos_l, w->medium,
+                                           light_point_spectrum(s, &lp));
+  if (!le) return;
+#if KASHA_LIGHT_SOURCES
+  float scale = phase / pdf_light * lp.scale * mis_weight(pdf_light, lp.delta ? 0.0f : phase);
+#elif KASHA_EMISSION_TEXTURES
+  float scale = phase / pdf_light * lp.scale * mis_weight(pdf_light, phase);
+#else
+  float scale = phase / pdf_light * mis_weight(pdf_light, phase);
+#endif
+  pw_add(&w->p, f, le, 0, scale, rows);
+}
+
+/* A scattering vertex in the walk's medium (walk_vertex's in_medium): next-event estimation, then
+ * a direction drawn from the Henyey–Greenstein phase function, whose weight is 1, and roulette.
+ * The path goes on from the point itself: no surface to step off. False: the path ends. */
+inline bool walk_medium_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v,
+                               float* rows) {
+  float g = s->media[w->medium].g;
+  walk_medium_next_event(w, s, f, v, g, rows);
+  float pdf;
+  w->dir = hg_sample(-w->dir, g, v->u_dir, &pdf);
+  w->specular = false;
+  w->prev_pdf = pdf;
+  if (!walk_roulette(w, f, v->u_choice.y)) return false;
+  w->prev_x = v->h.x;
+  w->org = v->h.x;
+  ++w->depth;
+  return true;
 }
 #endif
 

@@ -1,0 +1,128 @@
+/* A camera path's flight through scattering media (docs/media.md#scattering): where along its ray
+ * the path next scatters in a medium, or that it reaches the next surface. kasha's paths carry
+ * every bin at once while σt varies with wavelength, so one distance is drawn for all of them by
+ * one-sample MIS over the bins (the balance heuristic, as hero-wavelength sampling does): a bin j
+ * is chosen by the energy c_j the path carries in it, and the distance by bin j's optical depth,
+ * exp(−τ_j); each bin i is then weighed by its own density over the mixture's,
+ *   at a scattering in medium m:  σs_i(m) T_i(t) / Σ_k c_k σt_k(m) T_k(t),
+ *   on reaching the surface:      T_i(d) / Σ_k c_k T_k(d),
+ * with T the transmittance over every medium crossed (interfaces passed through on the way). The
+ * weights stay bounded wherever a bin carries energy, and the estimate is unbiased in every bin. */
+#ifndef KASHA_MEDIUM_FLIGHT_H
+#define KASHA_MEDIUM_FLIGHT_H
+
+#include "film/path_weight.h"
+#include "geometry/hit_point.h"
+#include "materials/hit_material.h"
+#include "media/medium.h"
+
+#if KASHA_SCATTERING
+#define KASHA_FLIGHT_ESCAPED 0
+#define KASHA_FLIGHT_SURFACE 1
+#define KASHA_FLIGHT_SCATTERED 2
+
+inline float medium_sigma_t(const SceneView* s, int m, int i) {
+  return s->spectra[s->media[m].sigma_t + i];
+}
+
+inline float medium_sigma_s(const SceneView* s, int m, int i) {
+  return s->spectra[s->media[m].sigma_s + i];
+}
+
+/* Bin i's factor at the end of a flight: σs_i(m) T_i at a scattering in medium m (m ≥ 0), T_i on
+ * reaching a surface or leaving the scene (m < 0). */
+inline float flight_factor(const SceneView* s, const MediaTrail* t, int m, int i, bool scattering) {
+  float tr = trail_transmittance(s, t, i);
+  return m >= 0 ? tr * (scattering ? medium_sigma_s(s, m, i) : medium_sigma_t(s, m, i)) : tr;
+}
+
+/* T ← T·diag(v)/Σ_k c_k u_k: the flight's weight, v_i = flight_factor (σs) and u_k the same with σt,
+ * c_k = e_k / total the bins' energy shares before the flight. A path whose mixture density is 0
+ * carries nothing on. */
+inline void pw_flight(PathWeight* p, const SceneView* s, const FilmView* f, const MediaTrail* t, int m, float total) {
+  float den = 0.0f;
+  for (int k = 0; k < KASHA_BINS; ++k) {
+    float e = pw_bin_energy(p, f, k);
+    if (e > 0.0f) den += e * flight_factor(s, t, m, k, false);
+  }
+  den /= total;
+  float inv = den > 0.0f ? 1.0f / den : 0.0f;
+#if KASHA_FULL_MATRIX
+  for (int i = 0; i < KASHA_BINS; ++i) {
+    float v = flight_factor(s, t, m, i, true) * inv;
+    for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->T[r][i] *= v;
+  }
+#else
+#if KASHA_FLUORESCENCE
+  if (p->rank1) {
+    float mx = 0.0f;
+    for (int i = 0; i < KASHA_BINS; ++i) mx = fmax(mx, p->b[i] *= flight_factor(s, t, m, i, true));
+    if (mx > 0.0f)
+      for (int i = 0; i < KASHA_BINS; ++i) p->b[i] /= mx;
+    for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->c[r] *= mx * inv;
+    return;
+  }
+#endif
+  for (int i = 0; i < KASHA_BINS; ++i) p->w[i] *= flight_factor(s, t, m, i, true) * inv;
+#endif
+}
+
+/* The bin the flight's distance follows: chosen on u by the energy each bin carries (pw_bin_energy),
+ * whose sum is *total; -1 when the path carries nothing. */
+inline int flight_bin(const PathWeight* p, const FilmView* f, float u, float* total) {
+  float sum = 0.0f;
+  for (int i = 0; i < KASHA_BINS; ++i) sum += pw_bin_energy(p, f, i);
+  *total = sum;
+  if (!(sum > 0.0f)) return -1;
+  float target = u * sum, run = 0.0f;
+  int j = -1;
+  for (int i = 0; i < KASHA_BINS; ++i) {
+    float e = pw_bin_energy(p, f, i);
+    if (e <= 0.0f) continue;
+    j = i;
+    run += e;
+    if (run > target) break;
+  }
+  return j;
+}
+
+/* From org along dir in *medium, through interfaces: KASHA_FLIGHT_SCATTERED with h->x the point
+ * in *medium where the path scatters, KASHA_FLIGHT_SURFACE with the surface hit h, or
+ * KASHA_FLIGHT_ESCAPED; the path's colour weighed as above (u: the bin choice and the distance).
+ * h->t is the distance travelled. */
+inline int flight(PathWeight* p, const SceneView* s, const FilmView* f, float3 org, float3 dir, int* medium,
+                  float2 u, HitPoint* h) {
+  float total;
+  int j = flight_bin(p, f, u.x, &total);
+  if (j < 0) return KASHA_FLIGHT_ESCAPED;
+  float depth = -log(1.0f - fmin(u.y, 0x1.fffffep-1f)); /* bin j's optical depth to the scattering */
+  MediaTrail trail;
+  trail_clear(&trail);
+  float travelled = 0.0f;
+  for (int k = 0; k < KASHA_MAX_INTERFACES; ++k) {
+    bool hit = intersect_surface(s, org, dir, h);
+    float len = hit ? h->t : INFINITY, sigma = *medium >= 0 ? medium_sigma_t(s, *medium, j) : 0.0f;
+    if (sigma > 0.0f && depth < sigma * len) {
+      float t = depth / sigma;
+      trail_add(&trail, *medium, t);
+      pw_flight(p, s, f, &trail, *medium, total);
+      h->x = org + t * dir;
+      h->t = travelled + t;
+      return KASHA_FLIGHT_SCATTERED;
+    }
+    if (sigma > 0.0f) depth -= sigma * len;
+    trail_add(&trail, *medium, len);
+    if (hit) travelled += h->t;
+    if (!hit || !hit_interface(s, h)) {
+      pw_flight(p, s, f, &trail, -1, total);
+      h->t = travelled;
+      return hit ? KASHA_FLIGHT_SURFACE : KASHA_FLIGHT_ESCAPED;
+    }
+    *medium = medium_after(s, h->tri, h->n, dir, *medium);
+    org = h->x + (dot(dir, h->n) > 0.0f ? h->n : -h->n) * h->eps;
+  }
+  return KASHA_FLIGHT_ESCAPED;
+}
+#endif
+
+#endif
