@@ -80,7 +80,10 @@ INSTANTIATE_TEST_SUITE_P(
                       ReferenceCase{"layered_metals", {}, 32},
                       // Absorbing media (docs/media.md): the camera in a haze, dye in glass, an
                       // ink block bounded by an interface cube (its region: "(interface)").
-                      ReferenceCase{"media", {}, 32}),
+                      ReferenceCase{"media", {}, 32},
+                      // A cube of fog that scatters (σs spectral, g 0.3) under a lamp: the
+                      // free flight's MIS over bins and next-event estimation from the fog.
+                      ReferenceCase{"fog", {}, 64}),
     [](const auto& info) { return info.param.scene; });
 
 // --max-depth N as pbrt-v4's maxdepth: the Cornell box with direct light alone (1) and one bounce
