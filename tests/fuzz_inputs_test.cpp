@@ -184,7 +184,10 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
   ],
   "media": {
     "ink": {"type": "homogeneous", "sigma_a": {"nm": [380, 780], "value": [4, 0.5]}, "sigma_s": 0, "scale": 2},
-    "haze": {"sigma_a": 0.3, "sigma_s": 0, "g": 0.2}
+    "haze": {"sigma_a": 0.3, "sigma_s": 0, "g": 0.2},
+    "glow": {"sigma_a": 0.01, "sigma_s": 0.5, "fluorophores": [
+      {"absorption": {"nm": [380, 480], "value": [2, 0]}, "quantum_yield": 0.9, "emission": {"gaussian_nm": 520, "fwhm_nm": 40}},
+      {"molar_absorption": 7e4, "concentration": 1e-6, "unit_cm": 100, "emission": {"line_nm": 610}}]}
   },
   "textures": {
     "print": {"type": "image", "file": "sky.png", "filter": "bilinear", "wrap": "repeat", "uscale": 2},

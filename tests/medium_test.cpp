@@ -5,7 +5,9 @@
 // backward in every integrator, and the scene and pbrt-v4 readers' acceptance and refusals.
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <cmath>
+#include <sstream>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
@@ -207,6 +209,111 @@ TEST(Medium, AScatteringFurnaceShowsTheEmittersRadianceInEveryBin) {
   }
 }
 
+// A fluorescent furnace: the same sphere filled with a dye that re-emits all it absorbs (Φ = 1)
+// in the shape of its own absorption, and scatters a little. Where the light is flat, absorption
+// in each bin σ_i L is balanced by re-emission ê_i Σ_j σ_j L, so the radiance stays L in every
+// bin — while every path that re-emits turns rank-1 and moves its energy across the bins, through
+// the collision's branch choice, the fluorescent next-event estimate and its MIS.
+TEST(Medium, AFluorescentFurnaceWhoseDyeReemitsItsAbsorptionShowsTheEmittersRadiance) {
+  const std::string absorption = R"({"nm": [380, 780], "value": [3.0, 0.2]})";
+  const std::string scene = R"({"kasha_scene": 1,
+    "camera": {"position": [0.1, 0, 0.2], "look_at": [0, 0, -1], "fov_deg": 60, "width": 8, "height": 8,
+               "medium": "dye"},
+    "wavelengths": {"min_nm": 380, "max_nm": 780, "bin_nm": 40},
+    "media": {"dye": {"sigma_a": 0, "sigma_s": 0.3, "g": 0.5,
+                      "fluorophores": [{"absorption": )" + absorption + R"(, "quantum_yield": 1,
+                                        "emission": )" + absorption + R"(}]}},
+    "materials": {"black": {}},
+    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "segments": 32, "inward": true,
+                "material": "black", "emission": 0.01}]})";
+  const std::string path = write_file("fluorescent_furnace.json", scene);
+  RenderSettings s;
+  s.integrator = "backward";
+  s.integrator_settings.spp = 64;
+  s.passes = 4;
+  RenderResult r = render_scene(path, s);
+  ASSERT_TRUE(r.scene.fluorescent());
+  expect_bins_match(r, r.scene.emitters.at(0).per_bin, 0.02, "fluorescent furnace");
+  // Half the yield, and the dye's bins darken: the furnace can fail.
+  std::string dim = scene;
+  dim.replace(dim.find("\"quantum_yield\": 1"), 18, "\"quantum_yield\": 0.5");
+  RenderResult d = render_scene(write_file("fluorescent_furnace_dim.json", dim), s);
+  const BinStats b = pixel_statistics(d.image, true);
+  EXPECT_LT(b.mean.front(), 0.8 * r.scene.emitters.at(0).per_bin.front());
+}
+
+TEST(Medium, BadFluorophoresAreOneLine) {
+  struct Case {
+    std::string fluorophore, message;
+  };
+  const std::vector<Case> cases = {
+      {R"({"absorption": 1, "quantum_yield": 1.5, "emission": 1})", "/quantum_yield"},
+      {R"({"absorption": 1})", "/media/fog/fluorophores/0: missing required key \"emission\""},
+      {R"({"emission": 1})", "a fluorophore needs its \"absorption\""},
+      {R"({"absorption": 1, "molar_absorption": 1, "concentration": 1, "emission": 1})", "not both"},
+      {R"({"absorption": 1, "emission": {"nm": [900, 1000], "value": [1, 1]}})", "no emission on the wavelength grid"},
+      {R"({"absorption": -1, "emission": 1})", "negative spectrum value"},
+  };
+  for (const Case& c : cases) {
+    const std::string text = R"({"kasha_scene": 1, "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "fog"},
+      "materials": {"m": {}}, "media": {"fog": {"sigma_s": 0, "fluorophores": [)" + c.fluorophore + R"(]}},
+      "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], "material": "m", "emission": 1}]})";
+    const std::string file = write_file("bad_fluorophore.json", text);
+    const std::string e = error_of([&] { load_scene(file); });
+    EXPECT_NE(e.find(c.message), std::string::npos) << c.fluorophore << "\n  got: " << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  }
+  // A dye given by its molar absorption: ln 10 · ε c per cm, times the scene's unit (100 cm).
+  const std::string molar = write_file("molar_dye.json", R"({"kasha_scene": 1,
+    "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "fog"}, "materials": {"m": {}},
+    "media": {"fog": {"sigma_s": 0, "fluorophores": [{"molar_absorption": 70000, "concentration": 1e-6,
+                                                      "emission": 1}]}},
+    "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], "material": "m", "emission": 1}]})");
+  const Scene scene = load_scene(molar);
+  EXPECT_NEAR(scene.media.at(0).fluorophores.at(0).absorption.at(3), std::log(10.0) * 0.07 * 100, 1e-9);
+}
+
+// Single scattering in a thin slab under a collimated beam, against its closed form. A distant
+// light of irradiance E at cos θl = μl lights a slab of depth d (an interface box, wide enough to
+// be a slab where it is seen); an orthographic camera at cos θv = μv sees it from above, with
+// --max-depth 1 so that paths scatter once. Along the camera's ray, depth z = s μv:
+//   L = ∫₀^{d/μv} σs p(θ) E e^{−σt z/μl} e^{−σt s} ds = σs p E (1 − e^{−σt d (1/μl + 1/μv)}) / (σt (1 + μv/μl)),
+// per bin, with the Henyey–Greenstein p at the angle between the two directions.
+TEST(Medium, SingleScatteringInAThinSlabFollowsItsClosedForm) {
+  const double d = 0.2, g = 0.4;
+  const Eigen::Vector3d to_light = Eigen::Vector3d(0.6, 1, 0.2).normalized(),
+                        to_camera = Eigen::Vector3d(-0.3, 1, -0.4).normalized();
+  const Eigen::Vector3d eye = 3 * to_camera;
+  std::ostringstream text;
+  text << R"({"kasha_scene": 1,
+    "camera": {"position": [)" << eye.x() << ", " << eye.y() << ", " << eye.z() << R"(], "look_at": [0, 0, 0],
+               "type": "orthographic", "screen_window": [-0.05, 0.05, -0.05, 0.05], "width": 8, "height": 8},
+    "wavelengths": {"min_nm": 380, "max_nm": 780, "bin_nm": 40},
+    "media": {"mist": {"sigma_a": {"nm": [380, 780], "value": [0.2, 1.0]},
+                       "sigma_s": {"nm": [380, 780], "value": [3.0, 0.5]}, "g": )" << g << R"(}},
+    "materials": {"m": {}},
+    "shapes": [{"type": "box", "min": [-20, )" << -d << R"(, -20], "max": [20, 0, 20], "interface": true,
+                "medium": {"inside": "mist"}}],
+    "lights": [{"type": "distant", "from": [)" << to_light.x() << ", " << to_light.y() << ", " << to_light.z()
+       << R"(], "to": [0, 0, 0], "irradiance": 0.01}]})";
+  RenderSettings s;
+  s.integrator = "backward";
+  s.integrator_settings.spp = 64;
+  s.integrator_settings.max_depth = 1;
+  s.passes = 4;
+  RenderResult r = render_scene(write_file("single_scattering.json", text.str()), s);
+  const Medium& m = r.scene.media.at(0);
+  const double mu_l = to_light.y(), mu_v = to_camera.y(), c = to_camera.dot(to_light);
+  const double phase = (1 - g * g) / (4 * M_PI * std::pow(1 + g * g + 2 * g * c, 1.5));
+  std::vector<double> truth(m.sigma_s.size());
+  for (size_t i = 0; i < truth.size(); ++i) {
+    const double st = m.sigma_a[i] + m.sigma_s[i];
+    truth[i] = m.sigma_s[i] * phase * r.scene.lights.at(0).per_bin[i] *
+               (1 - std::exp(-st * d * (1 / mu_l + 1 / mu_v))) / (st * (1 + mu_v / mu_l));
+  }
+  expect_bins_match(r, truth, 0.02, "single scattering");
+}
+
 // The other integrators do not render scattering media yet: one line, nothing written.
 TEST(Medium, OtherIntegratorsRefuseScatteringMedia) {
   const std::string path = write_file("scattering_furnace.json", scattering_furnace(0));
@@ -214,7 +321,7 @@ TEST(Medium, OtherIntegratorsRefuseScatteringMedia) {
     RenderSettings s;
     s.integrator = integrator;
     const std::string e = error_of([&] { render_scene(path, s); });
-    EXPECT_NE(e.find("a medium that scatters is rendered by the backward integrator only so far"),
+    EXPECT_NE(e.find("a medium that scatters or fluoresces is rendered by the backward integrator only so far"),
               std::string::npos)
         << e;
   }

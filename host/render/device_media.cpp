@@ -15,6 +15,16 @@ DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_
     std::vector<double> sigma_t(m.sigma_a.size());
     for (size_t i = 0; i < sigma_t.size(); ++i) sigma_t[i] = m.sigma_a[i] + m.sigma_s[i];
     KMedium k{};
+    // A fluorophore's absorption is part of the extinction; its re-emission a collision's branch.
+    for (const Fluorophore& f : m.fluorophores) {
+      KFluorophore& kf = k.fluorophore[k.fluorophores++];
+      kf.absorption = append_spectrum(spectra, f.absorption);
+      kf.emission = append_spectrum(spectra, f.e_hat);
+      kf.yield = static_cast<float>(f.quantum_yield);
+      double sum = 0;
+      for (size_t i = 0; i < sigma_t.size(); ++i) sigma_t[i] += f.absorption[i], sum += f.absorption[i];
+      kf.absorption_sum = static_cast<float>(sum);
+    }
     k.sigma_t = append_spectrum(spectra, sigma_t);
     k.sigma_s = append_spectrum(spectra, m.sigma_s);
     k.g = static_cast<float>(m.g);

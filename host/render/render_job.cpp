@@ -7,10 +7,11 @@ namespace kasha {
 // A physical integrator with no light to trace renders black: the same clear error for every one.
 static const std::string& lit(const Scene& scene, const DeviceScene& device_scene,
                               const std::string& integrator) {
-  // Scattering media are rendered by path tracing first (docs/media.md#what-each-integrator-does).
+  // Media that scatter or fluoresce are rendered by path tracing first
+  // (docs/media.md#what-each-integrator-does).
   if (scene.scattering() && integrator != "backward" && integrator != "debug")
-    throw Error(scene.file + ": a medium that scatters is rendered by the backward integrator only so "
-                "far: give --integrator backward (" + integrator + " does not render it yet)");
+    throw Error(scene.file + ": a medium that scatters or fluoresces is rendered by the backward "
+                "integrator only so far: give --integrator backward (" + integrator + " does not render it yet)");
   if (IntegratorRegistry::find(integrator).traits.physical && device_scene.data().light_tri.empty())
     throw Error(scene.file + ": no emitter has power on the wavelength grid " +
                 scene.grid.describe() + " (zero area, or emission outside the grid); the " +

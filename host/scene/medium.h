@@ -14,6 +14,20 @@
 
 namespace kasha {
 
+// The most fluorophores a medium holds (kernels' KASHA_MEDIUM_FLUOROPHORES).
+constexpr int kMaxMediumFluorophores = 4;
+
+// A dye dissolved in a medium (docs/media.md#fluorescent-media): its absorption per unit length
+// (given as such, or as a molar absorption coefficient times a concentration), the share Φ of the
+// absorbed energy it re-emits, isotropically, and the spectrum it re-emits it in.
+struct FluorophoreDesc {
+  std::string where;
+  SpectrumPtr absorption;  // times absorption_scale: per scene unit of length (not the medium's scale)
+  double absorption_scale = 1;
+  double quantum_yield = 1;
+  SpectrumPtr emission;  // any scale: normalized on the grid
+};
+
 // A medium as the scene gives it (JSON "media", pbrt-v4's MakeNamedMedium "homogeneous").
 struct MediumDesc {
   std::string name;
@@ -21,13 +35,22 @@ struct MediumDesc {
   SpectrumPtr sigma_a, sigma_s;
   double scale = 1;
   double g = 0;  // Henyey–Greenstein asymmetry, |g| < 1
+  std::vector<FluorophoreDesc> fluorophores;
 };
 
-// On the scene's wavelength grid: per bin, scale·σa and scale·σs.
+// A fluorophore on the grid: absorption per bin, and ê (sums to 1 over the bins).
+struct Fluorophore {
+  std::vector<double> absorption, e_hat;
+  double quantum_yield = 1;
+};
+
+// On the scene's wavelength grid: per bin, scale·σa and scale·σs, and the fluorophores.
 struct Medium {
   std::vector<double> sigma_a, sigma_s;
   double g = 0;
-  bool scatters() const;  // σs > 0 in some bin
+  std::vector<Fluorophore> fluorophores;
+  // Some collision in it sends light on: σs > 0 in some bin, or a fluorophore.
+  bool scatters() const;
 };
 
 // A shape's media (-1: vacuum): inside is behind its front side. A shape whose two media are the

@@ -54,6 +54,9 @@ bool Scene::mixed() const {
 }
 
 bool Scene::fluorescent() const {
+  const std::vector<bool> used = used_media();
+  for (size_t m = 0; m < media.size(); ++m)
+    if (used[m] && !media[m].fluorophores.empty()) return true;
   return any_used([](const Material& m) { return m.fluorescent(); });
 }
 bool Scene::glossy() const {
@@ -1107,6 +1110,11 @@ static void discretize(const GridRequest& request, const std::vector<bool>& mate
   for (size_t m = 0; m < scene.material_descs.size(); ++m)
     if (material_used[m] && scene.material_descs[m].excitation)
       exciting.push_back(scene.material_descs[m].excitation->support());
+  // A used medium's fluorophores excite as a material's fluorescent part does.
+  const std::vector<bool> media_used = scene.used_media();
+  for (size_t m = 0; m < scene.medium_descs.size(); ++m)
+    for (const FluorophoreDesc& f : scene.medium_descs[m].fluorophores)
+      if (media_used[m]) exciting.push_back(f.absorption->support());
   scene.grid = choose_grid(request, emitting, exciting);
 
   for (const MaterialDesc& d : scene.material_descs)

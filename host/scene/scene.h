@@ -88,7 +88,7 @@ struct Scene {
   // (pbrt-v4's Integrator maxdepth, which the import writes): what `--max-depth scene` uses.
   std::optional<int> max_depth;
 
-  bool fluorescent() const;            // some shape's material has a fluorescent part
+  bool fluorescent() const;  // some shape's material has a fluorescent part, or a used medium a dye
   bool glossy() const;                 // some shape's material has a gloss lobe
   bool uses(MaterialKind kind) const;  // some shape's material is of this kind
   bool dispersive() const;             // some shape's material is a dispersive dielectric

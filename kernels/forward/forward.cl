@@ -53,7 +53,7 @@ inline void splat_rough(const SceneView* s, const FilmView* f, SplatTarget* t, c
   if (surf->dispersive) {
     for (int i = 0; i < KASHA_BINS; ++i) {
       if (p->power[i] == 0.0f) continue;
-      float v = p->power[i] * PW_FACTOR(tr, i) * scale * rough_dielectric_eval(wo, wi, surf->eta_bins[i], surf->alpha, true, &pdf);
+      float v = p->power[i] * (tr ? tr[i] : 1.0f) * scale * rough_dielectric_eval(wo, wi, surf->eta_bins[i], surf->alpha, true, &pdf);
 #if KASHA_SPECTRAL_FILM
       rows[i] += v;
 #else

@@ -78,13 +78,6 @@ inline bool spherical_sampling(float solid_angle) {
 }
 
 #if KASHA_LIGHT_SOURCES
-#define KASHA_INV_4PI 0.07957747154594767f
-
-/* A direction uniform on the unit sphere; density 1/(4π). */
-inline float3 sample_uniform_sphere(float2 u) {
-  float z = 1.0f - 2.0f * u.x, r = sqrt(fmax(0.0f, 1.0f - z * z)), c, sn = sincos(2.0f * KASHA_PI * u.y, &c);
-  return (float3)(r * c, r * sn, z);
-}
 
 #if KASHA_SPOT_LIGHTS
 /* A spot's intensity over its full intensity at the angle θ off its axis: pbrt-v4's smoothstep

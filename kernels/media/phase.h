@@ -7,8 +7,6 @@
 
 #include "sampling/sampling.h"
 
-#define KASHA_INV_4PI 0.07957747154594766788f
-
 inline float hg_phase(float cos_t, float g) {
   float denom = 1.0f + g * g + 2.0f * g * cos_t;
   return KASHA_INV_4PI * (1.0f - g * g) / (denom * sqrt(denom));

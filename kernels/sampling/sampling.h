@@ -14,6 +14,14 @@ inline void basis_around(float3 n, float3* s, float3* t) {
   *t = (float3)(b, sign + n.y * n.y * a, -n.y);
 }
 
+#define KASHA_INV_4PI 0.07957747154594767f
+
+/* A direction uniform on the unit sphere; density 1/(4π). */
+inline float3 sample_uniform_sphere(float2 u) {
+  float z = 1.0f - 2.0f * u.x, r = sqrt(fmax(0.0f, 1.0f - z * z)), c, sn = sincos(2.0f * KASHA_PI * u.y, &c);
+  return (float3)(r * c, r * sn, z);
+}
+
 /* Cosine-weighted direction about n; density cos(theta)/pi per solid angle. */
 inline float3 sample_cosine_hemisphere(float3 n, float u1, float u2) {
   float r = sqrt(u1), phi = 2.0f * KASHA_PI * u2;

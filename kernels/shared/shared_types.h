@@ -188,16 +188,31 @@ typedef struct {
 } KSceneParams;
 KASHA_STATIC_SIZE(KSceneParams, 424);
 
+/* A dye in a medium (docs/media.md#fluorescent-media): offsets in the spectra buffer of its
+ * absorption a per bin (per scene unit of length) and of ê (sums to 1), its quantum yield Φ and
+ * Σ_i a_i (the branch choice's energy under equal-energy light). */
+typedef struct {
+  int absorption;
+  int emission;
+  float yield;
+  float absorption_sum;
+} KFluorophore;
+KASHA_STATIC_SIZE(KFluorophore, 16);
+
+#define KASHA_MEDIUM_FLUOROPHORES 4 /* host/scene/medium.h's kMaxMediumFluorophores */
+
 /* A homogeneous participating medium (kernels/media/medium.h, docs/media.md): offsets in the
- * spectra buffer of its extinction σt = σa + σs and scattering σs per bin (per scene unit of
- * length), and its Henyey–Greenstein g. Uploaded only for scenes with media (KASHA_MEDIA). */
+ * spectra buffer of its extinction σt = σa + σs + Σ a_f and scattering σs per bin (per scene unit
+ * of length), its Henyey–Greenstein g, and its fluorophores. Uploaded only for scenes with media
+ * (KASHA_MEDIA). */
 typedef struct {
   int sigma_t;
   int sigma_s;
   float g;
-  int pad;
+  int fluorophores; /* how many of fluorophore[] it holds */
+  KFluorophore fluorophore[KASHA_MEDIUM_FLUOROPHORES];
 } KMedium;
-KASHA_STATIC_SIZE(KMedium, 16);
+KASHA_STATIC_SIZE(KMedium, 80);
 
 /* Per leaf triangle (KASHA_MEDIA), its shape's media: inside (behind the front side) and outside,
  * KMedium indices, -1 for vacuum. Equal sides are no boundary: a ray keeps its medium there. */

@@ -494,10 +494,34 @@ inline bool walk_interface(CameraWalk* w, const SceneView* s, const FilmView* f,
 #endif
 
 #if KASHA_SCATTERING
-/* Next-event estimation from a scattering vertex: one light point, its light through the media on
- * the way (segment_light) and the phase function, MIS against the phase function's sampling. */
+/* A collision's branches in medium m, as a surface's (branch_probabilities): elastic scattering
+ * (σs) and each fluorophore's re-emission (its yield, its ê as the path sees it, Σ of its
+ * absorption), in proportion to the energy each brings to the film under equal-energy light;
+ * probs[0] elastic, probs[1 + k] fluorophore k. False: no branch carries anything on. */
+inline bool medium_branches(const CameraWalk* w, const SceneView* s, const FilmView* f, const __global KMedium* m,
+                            float* probs) {
+  float sum = probs[0] = pw_energy(&w->p, f, s->spectra + m->sigma_s);
+#if KASHA_FLUORESCENCE
+  for (int k = 0; k < m->fluorophores; ++k) {
+    const __global KFluorophore* fl = &m->fluorophore[k];
+    probs[1 + k] = fl->yield * fl->absorption_sum * pw_energy(&w->p, f, s->spectra + fl->emission);
+    sum += probs[1 + k];
+  }
+#endif
+  if (!(sum > 0.0f)) return false;
+  probs[0] /= sum;
+#if KASHA_FLUORESCENCE
+  for (int k = 0; k < m->fluorophores; ++k) probs[1 + k] /= sum;
+#endif
+  return true;
+}
+
+/* Next-event estimation from a collision: one light point, its light through the media on the way
+ * (segment_light), sent on by each branch — σs and the phase function, each fluorophore's
+ * absorption, yield and ê, isotropically — each weighed by MIS against its own branch's sampling
+ * of that direction. */
 inline void walk_medium_next_event(const CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v,
-                                   float g, float* rows) {
+                                   const __global KMedium* m, const float* probs, float* rows) {
   if (s->light_count == 0) return;
   float3 x = v->h.x;
   float pdf_light;
@@ -509,31 +533,65 @@ inline void walk_medium_next_event(const CameraWalk* w, const SceneView* s, cons
   float3 wi = to / dist;
   float cos_l = -dot(lp.normal, wi);
   if (cos_l <= 0.0f) return;
-  float phase = hg_phase(dot(-w->dir, wi), g);
   const __global float* le = segment_light(s, x, (float3)(0.0f, 0.0f, 0.0f), 0.0f, wi, dist, lp.eps / cos_l, w->medium,
                                            light_point_spectrum(s, &lp));
   if (!le) return;
-#if KASHA_LIGHT_SOURCES
-  float scale = phase / pdf_light * lp.scale * mis_weight(pdf_light, lp.delta ? 0.0f : phase);
-#elif KASHA_EMISSION_TEXTURES
-  float scale = phase / pdf_light * lp.scale * mis_weight(pdf_light, phase);
-#else
-  float scale = phase / pdf_light * mis_weight(pdf_light, phase);
+  float base = 1.0f / pdf_light;
+#if KASHA_LIGHT_SOURCES || KASHA_EMISSION_TEXTURES
+  base *= lp.scale;
 #endif
-  pw_add(&w->p, f, le, 0, scale, rows);
+#if KASHA_LIGHT_SOURCES
+  float reach = lp.delta ? 0.0f : 1.0f; /* a delta light no direction sampling finds */
+#else
+  const float reach = 1.0f;
+#endif
+  float phase = hg_phase(dot(-w->dir, wi), m->g);
+  pw_add(&w->p, f, s->spectra + m->sigma_s, le, base * phase * mis_weight(pdf_light, reach * probs[0] * phase), rows);
+#if KASHA_FLUORESCENCE
+  for (int k = 0; k < m->fluorophores; ++k) {
+    const __global KFluorophore* fl = &m->fluorophore[k];
+    float absorbed = fl->yield * spectrum_dot(KASHA_BINS, 0, s->spectra + fl->absorption, le) * KASHA_INV_4PI;
+    pw_add(&w->p, f, s->spectra + fl->emission, 0,
+           base * absorbed * mis_weight(pdf_light, reach * probs[1 + k] * KASHA_INV_4PI), rows);
+  }
+#endif
 }
 
-/* A scattering vertex in the walk's medium (walk_vertex's in_medium): next-event estimation, then
- * a direction drawn from the Henyey–Greenstein phase function, whose weight is 1, and roulette.
- * The path goes on from the point itself: no surface to step off. False: the path ends. */
+/* A collision in the walk's medium (walk_vertex's in_medium): next-event estimation, then one
+ * branch on u_choice.x — elastic scattering, σs and a direction from the Henyey–Greenstein phase
+ * function (whose weight is 1), or a fluorophore's re-emission, rank-1 through its ê and
+ * absorption (path_weight.h) and isotropic — over its probability, and roulette. The path goes on
+ * from the point itself: no surface to step off. False: the path ends. */
 inline bool walk_medium_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v,
                                float* rows) {
-  float g = s->media[w->medium].g;
-  walk_medium_next_event(w, s, f, v, g, rows);
-  float pdf;
-  w->dir = hg_sample(-w->dir, g, v->u_dir, &pdf);
+  const __global KMedium* m = &s->media[w->medium];
+  float probs[1 + KASHA_MEDIUM_FLUOROPHORES];
+  if (!medium_branches(w, s, f, m, probs)) return false;
+  walk_medium_next_event(w, s, f, v, m, probs, rows);
+  float pdf, choice = v->u_choice.x;
+  int branch = 0;
+#if KASHA_FLUORESCENCE
+  for (float below = probs[0]; branch < m->fluorophores && choice >= below; below += probs[1 + branch]) ++branch;
+#endif
+  if (!(probs[branch] > 0.0f)) return false;
+  if (branch == 0) {
+    w->dir = hg_sample(-w->dir, m->g, v->u_dir, &pdf);
+    pw_scatter_diagonal(&w->p, s->spectra + m->sigma_s, 1.0f / probs[0]);
+    w->prev_pdf = probs[0] * pdf;
+  }
+#if KASHA_FLUORESCENCE
+  else {
+    const __global KFluorophore* fl = &m->fluorophore[branch - 1];
+    w->dir = sample_uniform_sphere(v->u_dir);
+    pw_scatter_fluorescent(&w->p, f, s->spectra + fl->emission, s->spectra + fl->absorption,
+                           fl->yield / probs[branch]);
+    w->prev_pdf = probs[branch] * KASHA_INV_4PI;
+#if KASHA_DISPERSION
+    w->bin = -1; /* re-emission spreads the path over the absorption spectrum again */
+#endif
+  }
+#endif
   w->specular = false;
-  w->prev_pdf = pdf;
   if (!walk_roulette(w, f, v->u_choice.y)) return false;
   w->prev_x = v->h.x;
   w->org = v->h.x;

@@ -4,7 +4,8 @@
  * one-sample MIS over the bins (the balance heuristic, as hero-wavelength sampling does): a bin j
  * is chosen by the energy c_j the path carries in it, and the distance by bin j's optical depth,
  * exp(−τ_j); each bin i is then weighed by its own density over the mixture's,
- *   at a scattering in medium m:  σs_i(m) T_i(t) / Σ_k c_k σt_k(m) T_k(t),
+ *   at a collision in medium m:   T_i(t) / Σ_k c_k σt_k(m) T_k(t)  (times σs_i, or a fluorophore's
+ *                                 absorption, by the event the vertex chooses),
  *   on reaching the surface:      T_i(d) / Σ_k c_k T_k(d),
  * with T the transmittance over every medium crossed (interfaces passed through on the way). The
  * weights stay bounded wherever a bin carries energy, and the estimate is unbiased in every bin. */
@@ -29,41 +30,35 @@ inline float medium_sigma_s(const SceneView* s, int m, int i) {
   return s->spectra[s->media[m].sigma_s + i];
 }
 
-/* Bin i's factor at the end of a flight: σs_i(m) T_i at a scattering in medium m (m ≥ 0), T_i on
- * reaching a surface or leaving the scene (m < 0). */
-inline float flight_factor(const SceneView* s, const MediaTrail* t, int m, int i, bool scattering) {
-  float tr = trail_transmittance(s, t, i);
-  return m >= 0 ? tr * (scattering ? medium_sigma_s(s, m, i) : medium_sigma_t(s, m, i)) : tr;
-}
-
-/* T ← T·diag(v)/Σ_k c_k u_k: the flight's weight, v_i = flight_factor (σs) and u_k the same with σt,
- * c_k = e_k / total the bins' energy shares before the flight. A path whose mixture density is 0
- * carries nothing on. */
+/* T ← T·diag(T_i)/Σ_k c_k u_k: the flight's weight, with u_k = σt_k(m) T_k at a collision in medium
+ * m (m ≥ 0) and T_k on reaching a surface or leaving the scene (m < 0), c_k = e_k / total the bins'
+ * energy shares before the flight. What the collision does (σs, or a fluorophore's absorption) is
+ * the vertex's (walk_medium_vertex). A path whose mixture density is 0 carries nothing on. */
 inline void pw_flight(PathWeight* p, const SceneView* s, const FilmView* f, const MediaTrail* t, int m, float total) {
   float den = 0.0f;
   for (int k = 0; k < KASHA_BINS; ++k) {
     float e = pw_bin_energy(p, f, k);
-    if (e > 0.0f) den += e * flight_factor(s, t, m, k, false);
+    if (e > 0.0f) den += e * trail_transmittance(s, t, k) * (m >= 0 ? medium_sigma_t(s, m, k) : 1.0f);
   }
   den /= total;
   float inv = den > 0.0f ? 1.0f / den : 0.0f;
 #if KASHA_FULL_MATRIX
   for (int i = 0; i < KASHA_BINS; ++i) {
-    float v = flight_factor(s, t, m, i, true) * inv;
+    float v = trail_transmittance(s, t, i) * inv;
     for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->T[r][i] *= v;
   }
 #else
 #if KASHA_FLUORESCENCE
   if (p->rank1) {
     float mx = 0.0f;
-    for (int i = 0; i < KASHA_BINS; ++i) mx = fmax(mx, p->b[i] *= flight_factor(s, t, m, i, true));
+    for (int i = 0; i < KASHA_BINS; ++i) mx = fmax(mx, p->b[i] *= trail_transmittance(s, t, i));
     if (mx > 0.0f)
       for (int i = 0; i < KASHA_BINS; ++i) p->b[i] /= mx;
     for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->c[r] *= mx * inv;
     return;
   }
 #endif
-  for (int i = 0; i < KASHA_BINS; ++i) p->w[i] *= flight_factor(s, t, m, i, true) * inv;
+  for (int i = 0; i < KASHA_BINS; ++i) p->w[i] *= trail_transmittance(s, t, i) * inv;
 #endif
 }
 

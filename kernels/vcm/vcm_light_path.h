@@ -52,7 +52,7 @@ inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, con
     float pdf;
     for (int i = 0; i < KASHA_BINS; ++i) {
       if (p->power[i] == 0.0f) continue;
-      float v = p->power[i] * PW_FACTOR(tr, i) * scale * rough_dielectric_eval(fv.o, fv.i, surf->eta_bins[i], surf->alpha, true, &pdf);
+      float v = p->power[i] * (tr ? tr[i] : 1.0f) * scale * rough_dielectric_eval(fv.o, fv.i, surf->eta_bins[i], surf->alpha, true, &pdf);
 #if KASHA_SPECTRAL_FILM
       rows[i] += v;
 #else
