@@ -89,26 +89,7 @@ inline void walk_start(CameraWalk* w, const SceneView* s, const FilmView* f, flo
 #if KASHA_MEDIA
 /* T ← T·diag(transmittance): the path's colour through the media of the trail. */
 inline void pw_attenuate(PathWeight* p, const SceneView* s, const MediaTrail* t) {
-  if (trail_empty(t)) return;
-#if KASHA_FULL_MATRIX
-  for (int i = 0; i < KASHA_BINS; ++i) {
-    float tr = trail_transmittance(s, t, i);
-    for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->T[r][i] *= tr;
-  }
-#else
-#if KASHA_FLUORESCENCE
-  if (p->rank1) {
-    /* b stays normalised to a maximum of 1 (path_weight.h), its scale going to c. */
-    float m = 0.0f;
-    for (int i = 0; i < KASHA_BINS; ++i) m = fmax(m, p->b[i] *= trail_transmittance(s, t, i));
-    if (m > 0.0f)
-      for (int i = 0; i < KASHA_BINS; ++i) p->b[i] /= m;
-    for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->c[r] *= m;
-    return;
-  }
-#endif
-  for (int i = 0; i < KASHA_BINS; ++i) p->w[i] *= trail_transmittance(s, t, i);
-#endif
+  if (!trail_empty(t)) pw_transmit(p, s, t, 1.0f);
 }
 
 #endif
@@ -167,10 +148,11 @@ inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sa
   int reached = flight(&w->p, s, f, w->org, w->dir, &w->medium, sample_2d(sampler), h);
   v->in_medium = reached == KASHA_FLIGHT_SCATTERED;
   if (v->in_medium) return walk_medium_samples(w, sampler, v);
-  if (reached == KASHA_FLIGHT_ESCAPED) {
+  bool hit = reached == KASHA_FLIGHT_SURFACE;
 #else
-  if (!walk_intersect(w, s, h)) {
+  bool hit = walk_intersect(w, s, h);
 #endif
+  if (!hit) {
 #if KASHA_INFINITE_LIGHTS
     walk_escaped(w, s, f, rows);
 #endif

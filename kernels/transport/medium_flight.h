@@ -17,6 +17,31 @@
 #include "materials/hit_material.h"
 #include "media/medium.h"
 
+#if KASHA_MEDIA
+/* T ← T·diag(T_i)·scale, T_i the trail's transmittance in bin i (b kept normalised to a maximum
+ * of 1 in rank-1 mode, path_weight.h). */
+inline void pw_transmit(PathWeight* p, const SceneView* s, const MediaTrail* t, float scale) {
+#if KASHA_FULL_MATRIX
+  for (int i = 0; i < KASHA_BINS; ++i) {
+    float v = trail_transmittance(s, t, i) * scale;
+    for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->T[r][i] *= v;
+  }
+#else
+#if KASHA_FLUORESCENCE
+  if (p->rank1) {
+    float mx = 0.0f;
+    for (int i = 0; i < KASHA_BINS; ++i) mx = fmax(mx, p->b[i] *= trail_transmittance(s, t, i));
+    if (mx > 0.0f)
+      for (int i = 0; i < KASHA_BINS; ++i) p->b[i] /= mx;
+    for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->c[r] *= mx * scale;
+    return;
+  }
+#endif
+  for (int i = 0; i < KASHA_BINS; ++i) p->w[i] *= trail_transmittance(s, t, i) * scale;
+#endif
+}
+#endif
+
 #if KASHA_SCATTERING
 #define KASHA_FLIGHT_ESCAPED 0
 #define KASHA_FLIGHT_SURFACE 1
@@ -41,25 +66,7 @@ inline void pw_flight(PathWeight* p, const SceneView* s, const FilmView* f, cons
     if (e > 0.0f) den += e * trail_transmittance(s, t, k) * (m >= 0 ? medium_sigma_t(s, m, k) : 1.0f);
   }
   den /= total;
-  float inv = den > 0.0f ? 1.0f / den : 0.0f;
-#if KASHA_FULL_MATRIX
-  for (int i = 0; i < KASHA_BINS; ++i) {
-    float v = trail_transmittance(s, t, i) * inv;
-    for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->T[r][i] *= v;
-  }
-#else
-#if KASHA_FLUORESCENCE
-  if (p->rank1) {
-    float mx = 0.0f;
-    for (int i = 0; i < KASHA_BINS; ++i) mx = fmax(mx, p->b[i] *= trail_transmittance(s, t, i));
-    if (mx > 0.0f)
-      for (int i = 0; i < KASHA_BINS; ++i) p->b[i] /= mx;
-    for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->c[r] *= mx * inv;
-    return;
-  }
-#endif
-  for (int i = 0; i < KASHA_BINS; ++i) p->w[i] *= trail_transmittance(s, t, i) * inv;
-#endif
+  pw_transmit(p, s, t, den > 0.0f ? 1.0f / den : 0.0f);
 }
 
 /* The bin the flight's distance follows: chosen on u by the energy each bin carries (pw_bin_energy),
