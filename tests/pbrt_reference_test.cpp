@@ -83,7 +83,7 @@ INSTANTIATE_TEST_SUITE_P(
                       ReferenceCase{"media", {}, 32},
                       // A cube of fog that scatters (σs spectral, g 0.3) under a lamp: the
                       // free flight's MIS over bins and next-event estimation from the fog.
-                      ReferenceCase{"fog", {}, 64}),
+                      ReferenceCase{"fog", {}, 32}),
     [](const auto& info) { return info.param.scene; });
 
 // --max-depth N as pbrt-v4's maxdepth: the Cornell box with direct light alone (1) and one bounce
