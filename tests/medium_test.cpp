@@ -184,26 +184,36 @@ AttributeEnd
 // radiance is L everywhere, in every bin, whatever σs(λ) and g — the whole of multiple scattering,
 // the free flight's MIS over bins (σs spans a factor 8 here), next-event estimation from medium
 // vertices and its MIS against the phase function's sampling, in one number.
-std::string scattering_furnace(double g) {
+// The camera inside a black sphere of radius 1 emitting 0.01 inwards, filled with the medium
+// "fill" (its JSON entry); the furnaces' scene.
+std::string sphere_furnace(const std::string& fill) {
   return R"({"kasha_scene": 1,
     "camera": {"position": [0.1, 0, 0.2], "look_at": [0, 0, -1], "fov_deg": 60, "width": 8, "height": 8,
-               "medium": "fog"},
+               "medium": "fill"},
     "wavelengths": {"min_nm": 380, "max_nm": 780, "bin_nm": 40},
-    "media": {"fog": {"sigma_a": 0, "sigma_s": {"nm": [380, 780], "value": [4.0, 0.5]}, "g": )" +
-         std::to_string(g) + R"(}},
+    "media": {"fill": )" + fill + R"(},
     "materials": {"black": {}},
     "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "segments": 32, "inward": true,
                 "material": "black", "emission": 0.01}]})";
 }
 
+std::string scattering_furnace(double g) {
+  return sphere_furnace(R"({"sigma_a": 0, "sigma_s": {"nm": [380, 780], "value": [4.0, 0.5]}, "g": )" +
+                        std::to_string(g) + "}");
+}
+
+// A backward render of a furnace scene, 4 passes of 64 samples a pixel.
+RenderResult render_furnace(const std::string& name, const std::string& scene) {
+  RenderSettings s;
+  s.integrator = "backward";
+  s.integrator_settings.spp = 64;
+  s.passes = 4;
+  return render_scene(write_file(name, scene), s);
+}
+
 TEST(Medium, AScatteringFurnaceShowsTheEmittersRadianceInEveryBin) {
   for (double g : {0.0, 0.7, -0.4}) {
-    const std::string path = write_file("scattering_furnace.json", scattering_furnace(g));
-    RenderSettings s;
-    s.integrator = "backward";
-    s.integrator_settings.spp = 64;
-    s.passes = 4;
-    RenderResult r = render_scene(path, s);
+    RenderResult r = render_furnace("scattering_furnace.json", scattering_furnace(g));
     ASSERT_TRUE(r.scene.scattering());
     expect_bins_match(r, r.scene.emitters.at(0).per_bin, 0.02, "furnace g " + std::to_string(g));
   }
@@ -216,28 +226,16 @@ TEST(Medium, AScatteringFurnaceShowsTheEmittersRadianceInEveryBin) {
 // the collision's branch choice, the fluorescent next-event estimate and its MIS.
 TEST(Medium, AFluorescentFurnaceWhoseDyeReemitsItsAbsorptionShowsTheEmittersRadiance) {
   const std::string absorption = R"({"nm": [380, 780], "value": [3.0, 0.2]})";
-  const std::string scene = R"({"kasha_scene": 1,
-    "camera": {"position": [0.1, 0, 0.2], "look_at": [0, 0, -1], "fov_deg": 60, "width": 8, "height": 8,
-               "medium": "dye"},
-    "wavelengths": {"min_nm": 380, "max_nm": 780, "bin_nm": 40},
-    "media": {"dye": {"sigma_a": 0, "sigma_s": 0.3, "g": 0.5,
-                      "fluorophores": [{"absorption": )" + absorption + R"(, "quantum_yield": 1,
-                                        "emission": )" + absorption + R"(}]}},
-    "materials": {"black": {}},
-    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "segments": 32, "inward": true,
-                "material": "black", "emission": 0.01}]})";
-  const std::string path = write_file("fluorescent_furnace.json", scene);
-  RenderSettings s;
-  s.integrator = "backward";
-  s.integrator_settings.spp = 64;
-  s.passes = 4;
-  RenderResult r = render_scene(path, s);
+  const std::string scene = sphere_furnace(R"({"sigma_a": 0, "sigma_s": 0.3, "g": 0.5,
+      "fluorophores": [{"absorption": )" + absorption + R"(, "quantum_yield": 1, "emission": )" +
+                                           absorption + "}]}");
+  RenderResult r = render_furnace("fluorescent_furnace.json", scene);
   ASSERT_TRUE(r.scene.fluorescent());
   expect_bins_match(r, r.scene.emitters.at(0).per_bin, 0.02, "fluorescent furnace");
   // Half the yield, and the dye's bins darken: the furnace can fail.
   std::string dim = scene;
   dim.replace(dim.find("\"quantum_yield\": 1"), 18, "\"quantum_yield\": 0.5");
-  RenderResult d = render_scene(write_file("fluorescent_furnace_dim.json", dim), s);
+  RenderResult d = render_furnace("fluorescent_furnace_dim.json", dim);
   const BinStats b = pixel_statistics(d.image, true);
   EXPECT_LT(b.mean.front(), 0.8 * r.scene.emitters.at(0).per_bin.front());
 }

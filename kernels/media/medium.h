@@ -73,6 +73,13 @@ inline bool hit_interface(const SceneView* s, const HitPoint* h) {
   return h->material >= 0 && s->materials[h->material].kind == KASHA_KIND_INTERFACE;
 }
 
+/* Through the interface h along dir: *medium becomes the far side's, and the ray goes on from just
+ * past the surface (the returned origin). One rule for every walk through interfaces. */
+inline float3 cross_interface(const SceneView* s, const HitPoint* h, float3 dir, int* medium) {
+  *medium = medium_after(s, h->tri, h->n, dir, *medium);
+  return h->x + (dot(dir, h->n) > 0.0f ? h->n : -h->n) * h->eps;
+}
+
 /* The closest surface along the ray (intersect_surface) that is not an interface: the ray passes
  * through interfaces, *medium following it, and each medium's length goes on the trail; h->t is
  * the whole distance. False: the ray leaves the scene (an infinite length in its last medium). */
@@ -90,8 +97,7 @@ inline bool intersect_through(const SceneView* s, float3 org, float3 dir, int* m
       h->t = travelled;
       return true;
     }
-    *medium = medium_after(s, h->tri, h->n, dir, *medium);
-    org = h->x + (dot(dir, h->n) > 0.0f ? h->n : -h->n) * h->eps;
+    org = cross_interface(s, h, dir, medium);
   }
   return false;
 }
@@ -112,12 +118,11 @@ inline bool segment_clear(const SceneView* s, float3 x, float3 ns, float eps, fl
     ++s->rays->shadow;
     HitPoint h;
     if (!intersect_scene_within(s, org, wi, reach, &h)) break;
-    if (s->materials[h.material].kind != KASHA_KIND_INTERFACE) return false;
+    if (!hit_interface(s, &h)) return false;
     trail_add(&trail, medium, h.t);
     covered += h.t;
     reach -= h.t;
-    medium = medium_after(s, h.tri, h.n, wi, medium);
-    org = h.x + (dot(wi, h.n) > 0.0f ? h.n : -h.n) * h.eps;
+    org = cross_interface(s, &h, wi, &medium);
   }
   trail_add(&trail, medium, fmax(dist - covered, 0.0f));
   if (trail_empty(&trail)) return true;

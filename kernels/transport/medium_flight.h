@@ -120,8 +120,7 @@ inline int flight(PathWeight* p, const SceneView* s, const FilmView* f, float3 o
       h->t = travelled;
       return hit ? KASHA_FLIGHT_SURFACE : KASHA_FLIGHT_ESCAPED;
     }
-    *medium = medium_after(s, h->tri, h->n, dir, *medium);
-    org = h->x + (dot(dir, h->n) > 0.0f ? h->n : -h->n) * h->eps;
+    org = cross_interface(s, h, dir, medium);
   }
   return KASHA_FLIGHT_ESCAPED;
 }
