@@ -89,17 +89,18 @@ static int run_info(const std::string& scene_path, bool spectral, const std::str
               scene.camera.fov_deg);
   std::printf("kernel build options: %s\n", build_options(scene_defines(scene, spectral)).c_str());
   size_t rows_count = spectral ? scene.grid.bins : 3;
+  const bool media = scene.scattering();
   std::printf(
-      "photon mapping: %zu bytes per photon (position, normal, key, %d bins); %zu bytes per "
-      "visible "
-      "point "
-      "(geometry 8 values%s)\n",
-      photon_record_bytes(scene), scene.grid.bins, visible_point_bytes(scene, spectral),
+      "photon mapping: %zu bytes per photon (position, normal, key, %d bins%s); %zu bytes per "
+      "visible point (geometry 8 values%s%s)\n",
+      photon_record_bytes(scene), scene.grid.bins, media ? ", direction" : "",
+      visible_point_bytes(scene, spectral),
       scene.fluorescent()
           ? (", K = C∘d + c bᵀ: 2N + R = " + std::to_string(2 * scene.grid.bins + rows_count) +
              " values")
                 .c_str()
-          : (", K = C∘d: N = " + std::to_string(scene.grid.bins) + " values").c_str());
+          : (", K = C∘d: N = " + std::to_string(scene.grid.bins) + " values").c_str(),
+      media ? ", ωo and g in a medium: 4 values" : "");
   size_t pixels = static_cast<size_t>(scene.camera.width) * scene.camera.height;
   size_t rows = spectral ? scene.grid.bins : 3;
   std::printf(

@@ -654,6 +654,11 @@ DeviceScene::DeviceScene(ClContext& cl, const Scene& scene)
   p.light_sources = static_cast<int>(data_.lights.size());
   p.light_triangles = data_.light_triangles;
   p.camera_medium = data_.camera_medium;
+  Eigen::Vector3d centre;
+  double radius;
+  scene.bounding_sphere(centre, radius);
+  p.scene_radius = static_cast<float>(radius);
+  for (int k = 0; k < 3; ++k) p.scene_center[k] = static_cast<float>(centre[k]);
   tables_ = upload_tables(cl, {host_table(data_.bvh.nodes, p.nodes),
                                host_table(data_.bvh.leaves, p.leaves),
                                host_table(data_.bvh.triangles, p.tris),

@@ -44,6 +44,24 @@ inline bool camera_connection(const SceneView* s, float3 x, float3 ns, float eps
   return true;
 }
 
+#if KASHA_SCATTERING
+/* Whether a point x inside a medium (no surface, so no cosine and no offset) sees the camera: its
+ * pixel, the factor `importance` alone in *k, and the connection's transmittance *tr as above. */
+inline bool camera_connection_from_medium(const SceneView* s, float3 x, int medium, int* pixel, float* k,
+                                          const __global float** tr) {
+  *tr = 0;
+  float importance;
+  float3 at = camera_point(&s->camera, x);
+  *pixel = camera_pixel(&s->camera, x, at, &importance);
+  if (*pixel < 0) return false;
+  float dist = length(at - x);
+  if (!(dist > 0.0f)) return false;
+  if (!segment_clear(s, x, (float3)(0.0f, 0.0f, 0.0f), 0.0f, (at - x) / dist, dist, 0.0f, medium, tr)) return false;
+  *k = importance;
+  return true;
+}
+#endif
+
 inline void splat_rows(SplatTarget* t, int pixel, const float* rows) {
   __global ulong* cell = t->film + 2 * (long)pixel * KASHA_FILM_ROWS;
   for (int r = 0; r < KASHA_FILM_ROWS; ++r)

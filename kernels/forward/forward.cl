@@ -10,6 +10,7 @@
 #include "film/film_view.h"
 #include "geometry/hit_point.h"
 #include "materials/hit_material.h"
+#include "transport/photon_medium.h"
 #include "transport/photon_transport.h"
 #include "geometry/scene_view.h"
 
@@ -141,6 +142,64 @@ inline void splat_surface(const SceneView* s, const FilmView* f, SplatTarget* ta
   }
 }
 
+#if KASHA_SCATTERING
+/* A photon's collision at x in its medium seen by the camera: the radiance per nm it sends there,
+ * elastically Φ∘σs times the phase function, and through each dye ê Φ_d (a·Φ) / 4π, over Δλ. */
+inline void splat_medium(const SceneView* s, const FilmView* f, SplatTarget* target, const Photon* p, float3 x,
+                         float* rows) {
+  int pixel;
+  float k;
+  const __global float* tr;
+  if (!camera_connection_from_medium(s, x, p->medium, &pixel, &k, &tr)) return;
+  const __global KMedium* m = &s->media[p->medium];
+  float3 to_camera = normalize(camera_point(&s->camera, x) - x);
+  float scale = k / s->bin_nm;
+  film_rows_clear(rows);
+  film_rows(f, p->power, s->spectra + m->sigma_s, tr, scale * hg_phase(dot(to_camera, -p->direction), m->g), rows);
+#if KASHA_FLUORESCENCE
+  for (int d = 0; d < m->fluorophores; ++d) {
+    const __global KFluorophore* fl = &m->fluorophore[d];
+    float emitted = fl->yield * spectrum_dot(KASHA_BINS, p->power, s->spectra + fl->absorption, 0);
+    film_rows(f, 0, s->spectra + fl->emission, tr, emitted * KASHA_INV_4PI * scale, rows);
+  }
+#endif
+  splat_rows(target, pixel, rows);
+}
+#endif
+
+/* The photon's next surface: through the media on the way, which attenuate it, and (with scattering
+ * media) the collisions on the way, each seen by the camera and scattered (photon_medium.h), which
+ * count as hits. False: the photon is gone (escaped, or ended at a collision); the ledger counts
+ * what it lost. */
+inline bool forward_next_surface(const SceneView* s, const FilmView* f, SplatTarget* target, Photon* p,
+                                 Sampler* sampler, int* depth, int max_depth, float* rows, float* absorbed,
+                                 float* escaped, HitPoint* h) {
+  for (; *depth < max_depth; ++*depth) {
+    float flying = photon_total(p);
+#if KASHA_SCATTERING
+    int reached = photon_flight(p, s, sampler, *depth, h);
+#else
+    int reached = photon_intersect(s, p, h) ? KASHA_FLIGHT_SURFACE : KASHA_FLIGHT_ESCAPED;
+#endif
+    *absorbed += flying - photon_total(p); /* by the media on the way (none without them) */
+    if (reached == KASHA_FLIGHT_ESCAPED) {
+      *escaped += photon_total(p);
+      return false;
+    }
+    if (reached == KASHA_FLIGHT_SURFACE) return true;
+#if KASHA_SCATTERING
+    splat_medium(s, f, target, p, h->x, rows);
+    float before = photon_total(p);
+    if (scatter_photon_in_medium(p, s, h->x, sampler, *depth) == BRANCH_ABSORBED) {
+      *absorbed += before;
+      return false;
+    }
+    *absorbed += before - photon_total(p);
+#endif
+  }
+  return false;
+}
+
 __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunch launch, __global ulong* film,
                             __global float* stats, /* per item: emitted, absorbed, escaped, in flight (W) */
                             __global int* overflow,
@@ -179,12 +238,8 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunc
     bool alive = true;
     for (int depth = 0; depth < max_depth && alive; ++depth) {
       HitPoint h;
-      float flying = photon_total(&p);
-      bool hit = photon_intersect(&s, &p, &h);
-      absorbed += flying - photon_total(&p); /* by the media on the way (none without them) */
-      if (!hit) {
-        escaped += photon_total(&p);
-        alive = false;
+      if (!forward_next_surface(&s, &f, &target, &p, &sampler, &depth, max_depth, rows, &absorbed, &escaped, &h)) {
+        alive = depth == max_depth;
         break;
       }
 #if KASHA_SHADING_NORMALS

@@ -52,6 +52,7 @@ typedef struct {
   const __global KMedium* media;           /* KASHA_MEDIA: the participating media */
   const __global KTriMedia* tri_media;     /* KASHA_MEDIA: per leaf triangle, its medium interface */
   int camera_medium;                       /* the medium the camera is in, -1: vacuum */
+  float4 bounds; /* the triangles' bounding sphere: centre (xyz) and radius (w) */
   RayCounts* rays; /* private: the work item's own counts */
 } SceneView;
 
@@ -91,6 +92,8 @@ typedef struct {
                     KASHA_SCENE_TABLE(KMedium, media),                                             \
                     KASHA_SCENE_TABLE(KTriMedia, tri_media),                                       \
                     scene_params.camera_medium,                                                    \
+                    (float4)(scene_params.scene_center[0], scene_params.scene_center[1],           \
+                             scene_params.scene_center[2], scene_params.scene_radius),             \
                     &name##_rays}
 
 /* The tables the traversal's alpha test reads (shared/alpha_test.h): leaf order. */

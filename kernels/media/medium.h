@@ -14,6 +14,10 @@
 #ifndef KASHA_MEDIA
 #define KASHA_MEDIA 0
 #endif
+/* Media that scatter or fluoresce: free flights and collisions (transport/medium_flight.h). */
+#ifndef KASHA_SCATTERING
+#define KASHA_SCATTERING 0
+#endif
 #ifndef KASHA_MEDIA_COUNT
 #define KASHA_MEDIA_COUNT 1
 #endif
@@ -145,14 +149,17 @@ inline const __global float* segment_light(const SceneView* s, float3 x, float3 
   return out;
 }
 
-/* The medium a light path leaves a light in: an emitting triangle's outside (lights emit from the
- * front), a light that is not a triangle its own. */
+/* The medium a light path leaves a light in: a light that is not a triangle its own, an emitting
+ * triangle its shape's outside (lights emit from the front). In a scene where no shape bounds a
+ * medium no ray ever changes medium, so all are in the camera's, the lights' paths too (whatever a
+ * light's own says: camera paths, which meet them, cannot see it). */
 inline int light_medium(const SceneView* s, int tri, const __global KLight* source) {
-  if (source) return source->medium;
 #if KASHA_MEDIUM_BOUNDARIES
-  if (tri >= 0) return s->tri_media[tri].outside;
+  if (source) return source->medium;
+  return tri >= 0 ? s->tri_media[tri].outside : -1;
+#else
+  return s->camera_medium;
 #endif
-  return -1;
 }
 #endif
 

@@ -1,16 +1,10 @@
-/* The Henyey–Greenstein phase function (docs/media.md#scattering), in pbrt-v4's convention: wo
- * points back along the path, wi onward, and the value depends on cos = wo·wi, so forward
- * scattering (g > 0) peaks at wi = −wo. It integrates to 1 over the sphere, and sampling it
- * exactly makes a scattering's weight 1. */
+/* Sampling the Henyey–Greenstein phase function (shared/hg_phase.h, pbrt-v4's convention): sampling
+ * it exactly makes a scattering's weight 1. */
 #ifndef KASHA_PHASE_H
 #define KASHA_PHASE_H
 
 #include "sampling/sampling.h"
-
-inline float hg_phase(float cos_t, float g) {
-  float denom = 1.0f + g * g + 2.0f * g * cos_t;
-  return KASHA_INV_4PI * (1.0f - g * g) / (denom * sqrt(denom));
-}
+#include "shared/hg_phase.h"
 
 /* A direction wi drawn with density hg_phase(wo·wi, g) per solid angle (pbrt-v4's
  * SampleHenyeyGreenstein), *pdf that density. */

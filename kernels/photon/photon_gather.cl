@@ -6,8 +6,10 @@
  * take their own arguments alone (KernelIntegrator::launch_own). */
 
 #include "transport/disc_coverage.h"
+#include "transport/sphere_coverage.h"
 #include "transport/hash_grid.cl"
 #include "photon/sppm_statistics.h"
+#include "shared/volume_gather.h"
 
 /* One work-group: the grid's cell size from the radii of this pass's visible points — twice their
  * mean, but at least a quarter of the largest, so a gather visits at most 9³ cells and a typical
@@ -16,7 +18,7 @@ __kernel void grid_cell_size(__global const float* visible_points, __global cons
                              __global float* cell, int item_end) {
   __local float sum[256], most[256];
   __local int valid[256];
-  const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
+  const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE, KASHA_SCATTERING);
   int l = get_local_id(0), n = min((int)get_local_size(0), 256);
   float s = 0.0f, m = 0.0f;
   int v = 0;
@@ -38,10 +40,22 @@ __kernel void grid_cell_size(__global const float* visible_points, __global cons
   }
 }
 
-/* Per pixel: adds Σ K·Φ over the batch's photons within its radius — on the same side of the
- * surface, roughly the same orientation, and near the tangent plane (no leaks through thin walls,
- * around corners or from a parallel surface just behind) — to pass_flux, and their number to
- * pass_found. A photon is counted only from its own cell, which other cells may share a hash with. */
+/* Whether the visible point vp on a surface (at x, normal n) gathers the photon ph at y, within
+ * its radius r: on the same side of the surface, roughly the same orientation, and near the
+ * tangent plane (no leaks through thin walls, around corners or from a parallel surface just
+ * behind). A photon in a medium has no normal and never faces it. */
+inline bool surface_gathers(const __global float* vp, float3 n, const __global float* ph, float3 x, float3 y, float r) {
+  float facing = ph[3] * vp[3] + ph[4] * vp[4];
+  if (facing + ph[5] * vp[5] < 0.5f) return false;
+  float off = (y.x - x.x) * n.x + (y.y - x.y) * n.y;
+  off = off + (y.z - x.z) * n.z;
+  return !(fabs(off) > KASHA_GATHER_SLAB * r);
+}
+
+/* Per pixel: adds Σ K·Φ over the batch's photons within its radius — at a surface those
+ * surface_gathers takes, in a medium the medium's photons with their phase function
+ * (volume_gather.h) — to pass_flux, and their number to pass_found. A photon is counted only from
+ * its own cell, which other cells may share a hash with. */
 __kernel void gather_photons(__global const float* cmf, /* the film's C (film_view.h) */
                              __global const float* visible_points, __global const float* radius,
                              __global const float* store, __global const int* sorted,
@@ -50,11 +64,14 @@ __kernel void gather_photons(__global const float* cmf, /* the film's C (film_vi
                              __global int* pass_found, int item_end) {
   int pixel = get_global_id(0);
   if (pixel >= item_end) return;
-  const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
+  const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE, KASHA_SCATTERING);
   const __global float* vp = visible_points + (long)pixel * vp_floats;
   if (vp[KASHA_VP_VALID] == 0.0f) return;
   const float r = radius[pixel], r2 = r * r, inv_cell = cell[1];
   float3 x = record_position(vp), n = (float3)(vp[3], vp[4], vp[5]);
+#if KASHA_SCATTERING
+  const bool in_medium = record_in_medium(vp);
+#endif
   int3 lo = grid_cell(x - r, inv_cell), hi = grid_cell(x + r, inv_cell);
   VertexFactorLayout layout = {KASHA_BINS, KASHA_FILM_ROWS, KASHA_SPECTRAL_FILM, KASHA_FLUORESCENCE, cmf};
   kasha_real rows[KASHA_FILM_ROWS];
@@ -75,17 +92,23 @@ __kernel void gather_photons(__global const float* cmf, /* the film's C (film_vi
           float d2 = dx * dx + dy * dy;
           d2 = d2 + dz * dz;
           if (!(d2 < r2)) continue;
-          float facing = ph[3] * vp[3] + ph[4] * vp[4];
-          if (facing + ph[5] * vp[5] < 0.5f) continue;
-          float off = (y.x - x.x) * n.x + (y.y - x.y) * n.y;
-          off = off + (y.z - x.z) * n.z;
-          if (fabs(off) > KASHA_GATHER_SLAB * r) continue;
+          kasha_real scale = 1;
+#if KASHA_SCATTERING
+          if (in_medium) {
+            if (!record_in_medium(ph)) continue;
+            scale = volume_gather_weight(vp, ph, KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE, r);
+          } else if (!surface_gathers(vp, n, ph, x, y, r)) {
+            continue;
+          }
+#else
+          if (!surface_gathers(vp, n, ph, x, y, r)) continue;
+#endif
 #ifdef KASHA_DEPTH_CAP
           /* The camera's bounces, the photon's and the merged vertex: at most the cap. */
           if ((int)vp[KASHA_VP_VALID] - 1 + as_int(ph[KASHA_PHOTON_DEPTH]) + 1 > KASHA_DEPTH_CAP) continue;
 #endif
           ++found;
-          vf_apply(layout, vp, ph + KASHA_PHOTON_POWER, rows);
+          vf_apply_scaled(layout, vp, ph + KASHA_PHOTON_POWER, scale, rows);
         }
       }
   __global float* out = pass_flux + (long)pixel * KASHA_FILM_ROWS;
@@ -94,7 +117,7 @@ __kernel void gather_photons(__global const float* cmf, /* the film's C (film_vi
 }
 
 /* Edge correction (disc_coverage.h): per pixel with a visible point, `probes` probes of its disc
- * on a pattern rotated by `rotation`; the fraction covered and the number of passes measured go to
+ * (of its sphere in a medium, sphere_coverage.h) on a pattern rotated by `rotation`; the fraction covered and the number of passes measured go to
  * coverage[2·pixel], coverage[2·pixel + 1]. The image divides by their ratio once (a ratio of
  * sums: a per-pass division would be a mean of noisy ratios, biased high). */
 __kernel void disc_coverage(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const float* visible_points,
@@ -103,11 +126,19 @@ __kernel void disc_coverage(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global cons
   KASHA_SCENE_VIEW(s);
   int pixel = get_global_id(0);
   if (pixel >= item_end) return;
-  const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
+  const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE, KASHA_SCATTERING);
   const __global float* vp = visible_points + (long)pixel * vp_floats;
   if (vp[KASHA_VP_VALID] == 0.0f) return;
   const float r = radius[pixel];
   float3 x = record_position(vp), n = (float3)(vp[3], vp[4], vp[5]);
+#if KASHA_SCATTERING
+  if (record_in_medium(vp)) {
+    coverage[2 * pixel] += sphere_covered(&s, x, r, probes, rotation);
+    coverage[2 * pixel + 1] += 1.0f;
+    add_ray_counts(&s, ray_counts);
+    return;
+  }
+#endif
   coverage[2 * pixel] += disc_covered(&s, x, n, r, KASHA_GATHER_SLAB * r, probes, rotation);
   coverage[2 * pixel + 1] += 1.0f;
   add_ray_counts(&s, ray_counts);

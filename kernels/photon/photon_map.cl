@@ -14,9 +14,58 @@
 #include "geometry/hit_point.h"
 #include "materials/hit_material.h"
 #include "shared/photon_layout.h"
+#include "transport/photon_medium.h"
 #include "transport/photon_transport.h"
 #include "geometry/scene_view.h"
 #include "shared/vertex_factor.h"
+
+/* The record a photon's next store goes to: null while a segmented photon passes over its first
+ * `skip` stores, or past the store's capacity (counted, not written). */
+inline __global float* next_record(__global float* store, __global int* stored, int capacity, int* skip_left) {
+  if (*skip_left > 0) {
+    --*skip_left;
+    return 0;
+  }
+  int slot = atomic_inc(stored);
+  return slot < capacity ? store + (long)slot * KASHA_PHOTON_FLOATS(KASHA_BINS, KASHA_SCATTERING) : 0;
+}
+
+/* A photon's record (photon_layout.h): where it is stored, the normal (0 in a medium), its key, its
+ * power times `through`, and with scattering media its direction. */
+inline void write_photon(__global float* rec, float3 x, float3 n, int index, int depth, const Photon* p,
+                         float through) {
+  rec[0] = x.x, rec[1] = x.y, rec[2] = x.z;
+  rec[3] = n.x, rec[4] = n.y, rec[5] = n.z;
+  rec[KASHA_PHOTON_INDEX] = as_float(index), rec[KASHA_PHOTON_DEPTH] = as_float(depth);
+  if (through == 1.0f)
+    for (int i = 0; i < KASHA_BINS; ++i) rec[KASHA_PHOTON_POWER + i] = p->power[i];
+  else
+    for (int i = 0; i < KASHA_BINS; ++i) rec[KASHA_PHOTON_POWER + i] = p->power[i] * through;
+#if KASHA_SCATTERING
+  __global float* d = rec + KASHA_PHOTON_DIRECTION(KASHA_BINS);
+  d[0] = p->direction.x, d[1] = p->direction.y, d[2] = p->direction.z;
+#endif
+}
+
+/* The photon's next surface hit h (photon_intersect); with scattering media, its collisions on
+ * the way (photon_medium.h) count as hits: each after the first bounce is stored (normal 0), and
+ * the photon scatters or re-emits there. False: it escaped or ended, or *depth reached `until`. */
+inline bool photon_next_surface(const SceneView* s, Photon* p, Sampler* sampler, int* depth, int until, int index,
+                                __global float* store, __global int* stored, int capacity, int* skip_left,
+                                HitPoint* h) {
+#if KASHA_SCATTERING
+  for (; *depth < until; ++*depth) {
+    int reached = photon_flight(p, s, sampler, *depth, h);
+    if (reached != KASHA_FLIGHT_SCATTERED) return reached == KASHA_FLIGHT_SURFACE;
+    __global float* rec = *depth > 0 ? next_record(store, stored, capacity, skip_left) : 0;
+    if (rec) write_photon(rec, h->x, (float3)(0.0f, 0.0f, 0.0f), index, *depth, p, 1.0f);
+    if (scatter_photon_in_medium(p, s, h->x, sampler, *depth) == BRANCH_ABSORBED) return false;
+  }
+  return false;
+#else
+  return photon_intersect(s, p, h);
+#endif
+}
 
 /* Photons [first_photon, first_photon + count) of the pass's `photons`, `photons_per_item` per work
  * item, stored from slot *stored on; a store past `capacity` is counted but not written, so the
@@ -36,6 +85,13 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KPhotonTra
   int first = first_photon + item * photons_per_item;
   int last = min(first + photons_per_item, first_photon + count);
   float guard = 0.0f;
+#ifdef KASHA_DEPTH_CAP
+  /* A photon stored at hit k has k scattering vertices behind it and the visible point makes one
+   * more: hits from the cap's on would count none (gather_photons checks the sum). */
+  const int until = min(KASHA_MAX_PATH_DEPTH, KASHA_DEPTH_CAP);
+#else
+  const int until = KASHA_MAX_PATH_DEPTH;
+#endif
   for (int index = first; index < last; ++index) {
     Sampler sampler = photon_sampler(seed, pass, photons, index);
     LightOrigin o;
@@ -43,17 +99,11 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KPhotonTra
     p.position += o.normal * o.eps;
     int skip_left = skip;
     for (int depth = 0;; ++depth) {
-      if (depth == KASHA_MAX_PATH_DEPTH) {
-        guard += photon_total(&p) / p.start;
-        break;
-      }
-#ifdef KASHA_DEPTH_CAP
-      /* A photon stored at hit k has k scattering vertices behind it and the visible point makes
-       * one more: hits from the cap's on would count none (gather_photons checks the sum). */
-      if (depth >= KASHA_DEPTH_CAP) break;
-#endif
       HitPoint h;
-      if (!photon_intersect(&s, &p, &h)) break;
+      bool hit = depth < until && photon_next_surface(&s, &p, &sampler, &depth, until, index, store, stored, capacity,
+                                                      &skip_left, &h);
+      if (depth == KASHA_MAX_PATH_DEPTH) guard += photon_total(&p) / p.start;
+      if (!hit) break;
       float3 ns = hit_ng(&h), x = h.x;
 #if KASHA_SHADING_NORMALS
       /* From below the shading normal's hemisphere: the surface does not scatter it (hit_seen). */
@@ -61,33 +111,20 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KPhotonTra
 #endif
       Surface surf;
       load_surface_at(&s, &h, &surf);
-      if (depth > 0 && surface_has_lambert(&surf)) {
-        if (skip_left > 0) {
-          --skip_left;
-        } else {
-          int slot = atomic_inc(stored);
-          if (slot < capacity) {
-            __global float* rec = store + (long)slot * KASHA_PHOTON_FLOATS(KASHA_BINS);
-            rec[0] = x.x, rec[1] = x.y, rec[2] = x.z;
-            rec[3] = ns.x, rec[4] = ns.y, rec[5] = ns.z;
-            rec[KASHA_PHOTON_INDEX] = as_float(index), rec[KASHA_PHOTON_DEPTH] = as_float(depth);
+      __global float* rec =
+          depth > 0 && surface_has_lambert(&surf) ? next_record(store, stored, capacity, &skip_left) : 0;
+      if (rec) {
 #if KASHA_COATED
-            /* Under a coat, the power that reaches the base: t(θi) Φ (coat.h); the visible
-             * point's factor holds the rest. */
-            float through = surf.coated ? coat_transmission(&surf, h.cos_in) : 1.0f;
+        /* Under a coat, the power that reaches the base: t(θi) Φ (coat.h); the visible point's
+         * factor holds the rest. */
+        float through = surf.coated ? coat_transmission(&surf, h.cos_in) : 1.0f;
 #else
-            float through = 1.0f;
+        float through = 1.0f;
 #endif
 #if KASHA_SHADING_NORMALS
-            through *= photon_arrival_correction(&h, p.direction);
+        through *= photon_arrival_correction(&h, p.direction);
 #endif
-#if KASHA_COATED || KASHA_SHADING_NORMALS
-            for (int i = 0; i < KASHA_BINS; ++i) rec[KASHA_PHOTON_POWER + i] = p.power[i] * through;
-#else
-            for (int i = 0; i < KASHA_BINS; ++i) rec[KASHA_PHOTON_POWER + i] = p.power[i];
-#endif
-          }
-        }
+        write_photon(rec, x, ns, index, depth, &p, through);
       }
       if (scatter_photon(&p, &surf, &s, &h, &sampler, depth) == BRANCH_ABSORBED) break;
     }
@@ -95,6 +132,51 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KPhotonTra
   if (first < last) cut[item] = guard;
   add_ray_counts(&s, ray_counts);
 }
+
+#if KASHA_SCATTERING
+/* A camera path's collision in a medium, where it ends: next-event estimation for the direct light
+ * (not weighed: no path goes on from here to meet the light), and with `vp` the pixel's visible
+ * point — the branch chosen as backward chooses it (medium_branches), its factor over the branch's
+ * probability: elastic, w∘σs with ωo and the medium's g for the gather's phase function; a dye's,
+ * C(w∘ê) Φ aᵀ, isotropic (g 0). No normal marks it as a medium's (volume_gather.h). */
+inline void medium_visible_point(const CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v,
+                                 __global float* vp, float travelled, float* rows) {
+  const __global KMedium* m = &s->media[w->medium];
+  float probs[1 + KASHA_MEDIUM_FLUOROPHORES], unweighed[1 + KASHA_MEDIUM_FLUOROPHORES];
+  if (!medium_branches(w, s, f, m, probs)) return;
+  for (int k = 0; k <= KASHA_MEDIUM_FLUOROPHORES; ++k) unweighed[k] = 0.0f;
+  walk_medium_next_event(w, s, f, v, m, unweighed, rows);
+  if (!vp) return;
+  int branch = 0;
+#if KASHA_FLUORESCENCE
+  for (float below = probs[0]; branch < m->fluorophores && v->u_choice.x >= below; below += probs[branch]) ++branch;
+#endif
+  if (!(probs[branch] > 0.0f)) return;
+  float3 x = v->h.x, wo = -w->dir;
+  vp[0] = x.x, vp[1] = x.y, vp[2] = x.z;
+  vp[3] = 0.0f, vp[4] = 0.0f, vp[5] = 0.0f;
+#ifdef KASHA_DEPTH_CAP
+  vp[KASHA_VP_VALID] = 1.0f + (float)w->depth;
+#else
+  vp[KASHA_VP_VALID] = 1.0f;
+#endif
+  vp[KASHA_VP_DISTANCE] = travelled;
+  VertexFactorLayout layout = {KASHA_BINS, KASHA_FILM_ROWS, KASHA_SPECTRAL_FILM, KASHA_FLUORESCENCE, f->cmf};
+  __global float* g = vp + KASHA_VP_WO(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
+  g[0] = wo.x, g[1] = wo.y, g[2] = wo.z;
+  vp[KASHA_VP_G(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE)] = branch == 0 ? m->g : 0.0f;
+  if (branch == 0) {
+    vf_build_medium(layout, vp, w->p.w, s->spectra + m->sigma_s, 0, 0, 1.0f / probs[0]);
+  }
+#if KASHA_FLUORESCENCE
+  else {
+    const __global KFluorophore* fl = &m->fluorophore[branch - 1];
+    vf_build_medium(layout, vp, w->p.w, 0, s->spectra + fl->emission, s->spectra + fl->absorption,
+                    fl->yield / probs[branch]);
+  }
+#endif
+}
+#endif
 
 /* One camera path of pixel `pixel` (camera_walk.h) through gloss bounces alone, so its weight
  * stays diagonal; adds emission and next-event estimates to rows. With `vp` (a pixel's first
@@ -109,6 +191,12 @@ inline float camera_path(const SceneView* s, const FilmView* f, int pixel, Sampl
   CameraVertex v;
   while (walk_vertex(&w, s, f, sampler, &v, rows)) {
     travelled += v.h.t;
+#if KASHA_SCATTERING
+    if (v.in_medium) {
+      medium_visible_point(&w, s, f, &v, vp, travelled, rows);
+      return 0.0f;
+    }
+#endif
 #if KASHA_DIELECTRIC || KASHA_CONDUCTOR
     /* Through glass and metal to the diffuse surface behind: caustics seen through them. */
     if (surface_specular(&v.surf)) {
@@ -183,7 +271,7 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
   const uint seed = launch.seed, pass = launch.pass;
   int pixel = launch_pixel(&s.camera, item_end);
   if (pixel < 0) return;
-  const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
+  const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE, KASHA_SCATTERING);
   __global float* vp = visible_points + (long)pixel * vp_floats;
   vp[KASHA_VP_VALID] = 0.0f;
   float sum[KASHA_FILM_ROWS];

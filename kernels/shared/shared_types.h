@@ -184,9 +184,11 @@ typedef struct {
   int light_sources;   /* entries of lights */
   int light_triangles; /* the emitting triangles: the first entries of light_tri */
   int camera_medium;   /* the medium the camera is in (KMedium index), -1: vacuum */
+  float scene_radius;  /* the triangles' bounding sphere (Scene::bounding_sphere): no medium */
+  float scene_center[3]; /* scatters beyond it (transport/medium_flight.h) */
   int pad_params;
 } KSceneParams;
-KASHA_STATIC_SIZE(KSceneParams, 424);
+KASHA_STATIC_SIZE(KSceneParams, 440);
 
 /* A dye in a medium (docs/media.md#fluorescent-media): offsets in the spectra buffer of its
  * absorption a per bin (per scene unit of length) and of ê (sums to 1), its quantum yield Φ and

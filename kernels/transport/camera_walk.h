@@ -28,9 +28,6 @@
  * and point), the direction, and (the lobe's azimuth, —) drawn only for a lobe; in a scene with
  * scattering media a fifth, (the flight's bin, its distance) for the flight that reaches the
  * vertex (medium_flight.h); pair 0 is the pixel position. */
-#ifndef KASHA_SCATTERING
-#define KASHA_SCATTERING 0
-#endif
 #if KASHA_SCATTERING
 #define KASHA_CAMERA_PAIRS_PER_VERTEX 5
 #else
@@ -553,7 +550,7 @@ inline bool walk_medium_vertex(CameraWalk* w, const SceneView* s, const FilmView
   float pdf, choice = v->u_choice.x;
   int branch = 0;
 #if KASHA_FLUORESCENCE
-  for (float below = probs[0]; branch < m->fluorophores && choice >= below; below += probs[1 + branch]) ++branch;
+  for (float below = probs[0]; branch < m->fluorophores && choice >= below; below += probs[branch]) ++branch;
 #endif
   if (!(probs[branch] > 0.0f)) return false;
   if (branch == 0) {

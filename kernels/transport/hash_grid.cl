@@ -7,7 +7,7 @@
 #include "shared/photon_layout.h"
 
 #ifndef KASHA_RECORD_FLOATS
-#define KASHA_RECORD_FLOATS KASHA_PHOTON_FLOATS(KASHA_BINS)
+#define KASHA_RECORD_FLOATS KASHA_PHOTON_FLOATS(KASHA_BINS, KASHA_SCATTERING)
 #endif
 /* Whether a record goes in the grid (vertex merging leaves out the vertices no merge may use);
  * the others get no cell (KASHA_NO_CELL) and no slot. */

@@ -42,10 +42,12 @@ inline void pw_transmit(PathWeight* p, const SceneView* s, const MediaTrail* t, 
 }
 #endif
 
-#if KASHA_SCATTERING
+/* Where a flight ends. */
 #define KASHA_FLIGHT_ESCAPED 0
 #define KASHA_FLIGHT_SURFACE 1
 #define KASHA_FLIGHT_SCATTERED 2
+
+#if KASHA_SCATTERING
 
 inline float medium_sigma_t(const SceneView* s, int m, int i) {
   return s->spectra[s->media[m].sigma_t + i];
@@ -88,6 +90,54 @@ inline int flight_bin(const PathWeight* p, const FilmView* f, float u, float* to
   return j;
 }
 
+/* How far along the ray it leaves the scene's bounding sphere (0 if it never meets it). A ray with
+ * no surface ahead collides only that far: an unbounded medium is taken to end there, so a path
+ * that leaves the scene does not wander on without end (one slipped through a crack between
+ * triangles neither). What leaves sees nothing, as before. */
+inline float beyond_scene(const SceneView* s, float3 org, float3 dir) {
+  float3 c = org - s->bounds.xyz;
+  float b = dot(c, dir), disc = b * b - (dot(c, c) - s->bounds.w * s->bounds.w);
+  return disc > 0.0f ? fmax(-b + sqrt(disc), 0.0f) : 0.0f;
+}
+
+/* The distance part of the flight, shared by camera paths and photons: from org along dir in
+ * *medium, through interfaces, to where bin j's optical depth reaches `depth` (KASHA_FLIGHT_SCATTERED,
+ * h->x the point, *scattered_in its medium, *medium unchanged from there), or the next surface
+ * (KASHA_FLIGHT_SURFACE, h its hit) or nothing (KASHA_FLIGHT_ESCAPED). The lengths crossed in each
+ * medium go on the trail; h->t is the distance travelled. */
+inline int flight_walk(const SceneView* s, float3 org, float3 dir, int* medium, int j, float depth, MediaTrail* trail,
+                       HitPoint* h) {
+  trail_clear(trail);
+  float travelled = 0.0f;
+  for (int k = 0; k < KASHA_MAX_INTERFACES; ++k) {
+    bool hit = intersect_surface(s, org, dir, h);
+    float len = hit ? h->t : INFINITY, sigma = *medium >= 0 ? medium_sigma_t(s, *medium, j) : 0.0f;
+    if (sigma > 0.0f && depth < sigma * (hit ? len : beyond_scene(s, org, dir))) {
+      /* Kept off the surface ahead by its offset: a point rounded onto its far side would leave
+       * the medium through the surface (and, outside a closed one, wander without end). */
+      float t = hit ? fmax(fmin(depth / sigma, len - h->eps), 0.0f) : depth / sigma;
+      trail_add(trail, *medium, t);
+      h->x = org + t * dir;
+      h->t = travelled + t;
+      return KASHA_FLIGHT_SCATTERED;
+    }
+    if (sigma > 0.0f) depth -= sigma * len;
+    trail_add(trail, *medium, len);
+    if (hit) travelled += h->t;
+    if (!hit || !hit_interface(s, h)) {
+      h->t = travelled;
+      return hit ? KASHA_FLIGHT_SURFACE : KASHA_FLIGHT_ESCAPED;
+    }
+    org = cross_interface(s, h, dir, medium);
+  }
+  return KASHA_FLIGHT_ESCAPED;
+}
+
+/* Bin j's optical depth to the scattering, drawn on u (exponential). */
+inline float flight_depth(float u) {
+  return -log(1.0f - fmin(u, 0x1.fffffep-1f));
+}
+
 /* From org along dir in *medium, through interfaces: KASHA_FLIGHT_SCATTERED with h->x the point
  * in *medium where the path scatters, KASHA_FLIGHT_SURFACE with the surface hit h, or
  * KASHA_FLIGHT_ESCAPED; the path's colour weighed as above (u: the bin choice and the distance).
@@ -97,32 +147,10 @@ inline int flight(PathWeight* p, const SceneView* s, const FilmView* f, float3 o
   float total;
   int j = flight_bin(p, f, u.x, &total);
   if (j < 0) return KASHA_FLIGHT_ESCAPED;
-  float depth = -log(1.0f - fmin(u.y, 0x1.fffffep-1f)); /* bin j's optical depth to the scattering */
   MediaTrail trail;
-  trail_clear(&trail);
-  float travelled = 0.0f;
-  for (int k = 0; k < KASHA_MAX_INTERFACES; ++k) {
-    bool hit = intersect_surface(s, org, dir, h);
-    float len = hit ? h->t : INFINITY, sigma = *medium >= 0 ? medium_sigma_t(s, *medium, j) : 0.0f;
-    if (sigma > 0.0f && depth < sigma * len) {
-      float t = depth / sigma;
-      trail_add(&trail, *medium, t);
-      pw_flight(p, s, f, &trail, *medium, total);
-      h->x = org + t * dir;
-      h->t = travelled + t;
-      return KASHA_FLIGHT_SCATTERED;
-    }
-    if (sigma > 0.0f) depth -= sigma * len;
-    trail_add(&trail, *medium, len);
-    if (hit) travelled += h->t;
-    if (!hit || !hit_interface(s, h)) {
-      pw_flight(p, s, f, &trail, -1, total);
-      h->t = travelled;
-      return hit ? KASHA_FLIGHT_SURFACE : KASHA_FLIGHT_ESCAPED;
-    }
-    org = cross_interface(s, h, dir, medium);
-  }
-  return KASHA_FLIGHT_ESCAPED;
+  int reached = flight_walk(s, org, dir, medium, j, flight_depth(u.y), &trail, h);
+  pw_flight(p, s, f, &trail, reached == KASHA_FLIGHT_SCATTERED ? *medium : -1, total);
+  return reached;
 }
 #endif
 

@@ -166,9 +166,14 @@ inline bool photon_intersect(const SceneView* s, Photon* p, HitPoint* h) {
 
 /* Dimension pairs of the sampler: (light choice, —), the light point and the direction at the
  * light, then per hit (branch choice, roulette), the direction, and (the lobe's azimuth, —) drawn
- * only for a lobe. */
+ * only for a lobe; in a scene with scattering media a fourth, (the flight's bin, its distance) for
+ * the flight that reaches the hit (photon_medium.h). */
 #define PHOTON_PAIRS_AT_LIGHT 3
+#if KASHA_SCATTERING
+#define PHOTON_PAIRS_PER_HIT 4
+#else
 #define PHOTON_PAIRS_PER_HIT 3
+#endif
 
 /* Russian roulette (roulette.h) against the power the photon left its light with, from its
  * KASHA_PHOTON_ROULETTE_FROM-th hit on; false: it ends. */

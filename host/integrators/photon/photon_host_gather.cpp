@@ -8,6 +8,7 @@
 
 #include "core/parallel_for.h"
 #include "shared/photon_layout.h"
+#include "shared/volume_gather.h"
 
 namespace kasha {
 
@@ -78,18 +79,26 @@ GatherResult PhotonKdTree::gather(const float* vps, int vp_floats, size_t pixels
       impl_->tree.radiusSearch(vp, r2, matches, nanoflann::SearchParams(32, 0.0f, false));
       double* rows = &out.flux[px * L.rows];
       int found = 0;
+      const bool in_medium = record_in_medium(vp);
       for (const auto& [index, dist2] : matches) {
         const float* ph = photons + static_cast<size_t>(index) * stride;
-        // Same side of the surface, roughly the same orientation, and close to the visible
-        // point's tangent plane: no leaks through thin walls, around corners, or from a nearby
-        // parallel surface (a lamp just under a ceiling).
-        if (ph[3] * vp[3] + ph[4] * vp[4] + ph[5] * vp[5] < 0.5f) continue;
-        const float off =
-            (ph[0] - vp[0]) * vp[3] + (ph[1] - vp[1]) * vp[4] + (ph[2] - vp[2]) * vp[5];
-        if (std::abs(off) > kGatherSlab * r) continue;
+        double scale = 1;
+        if (in_medium) {
+          // In a medium: the medium's photons, through the phase function (volume_gather.h).
+          if (!record_in_medium(ph)) continue;
+          scale = volume_gather_weight(vp, ph, L.bins, L.rows, L.fluorescent, r);
+        } else {
+          // Same side of the surface, roughly the same orientation, and close to the visible
+          // point's tangent plane: no leaks through thin walls, around corners, or from a nearby
+          // parallel surface (a lamp just under a ceiling). A medium's photons face nothing.
+          if (ph[3] * vp[3] + ph[4] * vp[4] + ph[5] * vp[5] < 0.5f) continue;
+          const float off =
+              (ph[0] - vp[0]) * vp[3] + (ph[1] - vp[1]) * vp[4] + (ph[2] - vp[2]) * vp[5];
+          if (std::abs(off) > kGatherSlab * r) continue;
+        }
         if (depth_cap >= 0 && merged_path_depth(vp, ph) > depth_cap) continue;
         ++found;
-        vf_apply(L, vp, ph + KASHA_PHOTON_POWER, rows);
+        vf_apply_scaled(L, vp, ph + KASHA_PHOTON_POWER, scale, rows);
       }
       out.found[px] = found;
     }

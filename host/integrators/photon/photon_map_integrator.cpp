@@ -56,8 +56,8 @@ class PhotonMapIntegrator : public KernelIntegrator, public ChunkWorker {
         radius_(s.settings.radius),
         seed_(s.settings.seed),
         edge_correction_(s.settings.edge_correction),
-        photon_floats_(KASHA_PHOTON_FLOATS(s.scene.grid.bins)),
-        vp_floats_(KASHA_VP_FLOATS(s.scene.grid.bins, film_.rows(), s.scene.fluorescent())) {
+        photon_floats_(KASHA_PHOTON_FLOATS(s.scene.grid.bins, s.scene.scattering())),
+        vp_floats_(KASHA_VP_FLOATS(s.scene.grid.bins, film_.rows(), s.scene.fluorescent(), s.scene.scattering())) {
     if (photons_ > (1LL << 31) - 1) throw Error("--photons: at most 2^31 - 1 photons per pass");
     if (!(alpha_ > 0 && alpha_ < 1)) throw Error("--alpha must lie in (0, 1)");
     camera_kernel_ = cl::Kernel(program_, "camera_pass");

@@ -55,7 +55,8 @@ void PhotonStore::trace(int pass, size_t first, size_t count, const PassControl&
         trace_long_photon(pass, first, gather, c);
         progress += 1;
       } else {
-        c.per_photon = std::max(c.per_photon, static_cast<double>(capacity_) / count);
+        // The halves measure their own records per photon for the next pass's chunks: a bound
+        // from this overflow would let one photon of a long walk shrink every chunk after it.
         c.overflows += 1;
         trace(pass, first, count / 2, control, progress, gather, c);
         trace(pass, first + count / 2, count - count / 2, control, progress, gather, c);
