@@ -83,15 +83,31 @@ TEST(Medium, EveryIntegratorAgreesWithBackwardOnDyeInGlass) {
 // scenes/tonic_under_uv_spot.json, quinine in water lit by a 365 nm spot: the light the camera
 // sees is the dye's blue re-emission from the beam and what it lights around. Light tracing and
 // photon mapping (collisions splatted; photons stored at collisions, gathered in 3-D) against
-// backward's, over the image and the floor.
+// backward's, over the image and the floor, at 32 × 24. Backward's floor is lit by the glowing
+// beam through paths that find it by chance, so its reference takes 8192 samples a pixel (its
+// means vary by 3 % between seeds at 1024); photon mapping's 64 passes let its radii shrink past
+// their first passes' blur (−7 % after 16).
 TEST(Medium, ForwardAndPhotonAgreeWithBackwardOnTonicWaterUnderAUvSpot) {
+  const std::string path = source_path("scenes/tonic_under_uv_spot.json");
+  RenderSettings s;
+  s.camera = load_scene(path).camera;
+  s.camera->width = 32;
+  s.camera->height = 24;
+  s.spectral = false;
+  s.integrator = "backward";
+  s.integrator_settings.spp = 256;
+  s.passes = 32;
+  const RenderResult backward = render_scene(path, s);
+  const std::vector<size_t> floor = primary_hit_regions(backward.scene, *s.camera).at("white");
   for (const std::string integrator : {"forward", "photon"}) {
-    ComparedRenders c = render_against_backward("tonic_under_uv_spot.json", integrator, 16, 1 << 16, 32);
-    ASSERT_TRUE(c.tested.scene.scattering());
-    const std::vector<size_t> floor = primary_hit_regions(c.tested.scene, c.camera).at("white");
+    s.integrator = integrator;
+    s.integrator_settings.photons = 1 << 16;
+    s.passes = integrator == "photon" ? 64 : 16;
+    const RenderResult tested = render_scene(path, s);
+    ASSERT_TRUE(tested.scene.scattering());
     for (const std::vector<size_t>& pixels : {std::vector<size_t>{}, floor}) {
-      const BinStats a = pixel_statistics(c.tested.image, false, pixels),
-                     b = pixel_statistics(c.backward.image, false, pixels);
+      const BinStats a = pixel_statistics(tested.image, false, pixels),
+                     b = pixel_statistics(backward.image, false, pixels);
       for (int row = 0; row < 3; ++row)
         EXPECT_NEAR(a.mean[row] / b.mean[row], 1.0, 0.04)
             << integrator << (pixels.empty() ? " image" : " floor") << " row " << row;
@@ -225,13 +241,13 @@ std::string scattering_furnace(double g) {
 }
 
 // A render of a furnace scene: backward's 4 passes of 64 samples a pixel, light tracing's 4 of
-// 2^16 photons, or photon mapping's 32.
+// 2^17 photons, or photon mapping's 32 of 2^16.
 RenderResult render_furnace(const std::string& name, const std::string& scene,
                             const std::string& integrator = "backward") {
   RenderSettings s;
   s.integrator = integrator;
   s.integrator_settings.spp = 64;
-  s.integrator_settings.photons = 1 << 16;
+  s.integrator_settings.photons = integrator == "photon" ? 1 << 16 : 1 << 17;
   s.passes = integrator == "photon" ? 32 : 4;
   return render_scene(write_file(name, scene), s);
 }
@@ -247,7 +263,7 @@ TEST(Medium, AScatteringFurnaceShowsTheEmittersRadianceInEveryBin) {
   // through the phase function.
   for (const std::string integrator : {"forward", "photon"}) {
     RenderResult p = render_furnace("scattering_furnace.json", scattering_furnace(0.7), integrator);
-    expect_bins_match(p, p.scene.emitters.at(0).per_bin, 0.03, integrator + " furnace g 0.7");
+    expect_bins_match(p, p.scene.emitters.at(0).per_bin, 0.05, integrator + " furnace g 0.7");
   }
 }
 
@@ -270,7 +286,7 @@ TEST(Medium, AFluorescentFurnaceWhoseDyeReemitsItsAbsorptionShowsTheEmittersRadi
   for (const std::string integrator : {"backward", "forward", "photon"}) {
     RenderResult r = render_furnace("fluorescent_furnace.json", scene, integrator);
     ASSERT_TRUE(r.scene.fluorescent());
-    expect_bins_match(r, emitter, integrator == "backward" ? 0.02 : 0.03, integrator + " fluorescent furnace");
+    expect_bins_match(r, emitter, integrator == "backward" ? 0.02 : 0.05, integrator + " fluorescent furnace");
   }
   // Half the yield, and the dye's bins darken: the furnace can fail.
   std::string dim = scene;

@@ -12,8 +12,8 @@ static const std::string& lit(const Scene& scene, const DeviceScene& device_scen
   if (scene.scattering() && integrator != "backward" && integrator != "forward" &&
       integrator != "photon" && integrator != "debug")
     throw Error(scene.file + ": a medium that scatters or fluoresces is rendered by the backward, "
-                "forward and photon integrators only so far: give --integrator backward (" + integrator +
-                " does not render it yet)");
+                "forward and photon integrators only so far: give --integrator photon or backward (" +
+                integrator + " does not render it yet)");
   if (IntegratorRegistry::find(integrator).traits.physical && device_scene.data().light_tri.empty())
     throw Error(scene.file + ": no emitter has power on the wavelength grid " +
                 scene.grid.describe() + " (zero area, or emission outside the grid); the " +

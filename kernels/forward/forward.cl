@@ -167,13 +167,17 @@ inline void splat_medium(const SceneView* s, const FilmView* f, SplatTarget* tar
 }
 #endif
 
+/* A work item's energy ledger (W): emitted = absorbed + escaped + in flight, exactly. */
+typedef struct {
+  float emitted, absorbed, escaped, in_flight;
+} Ledger;
+
 /* The photon's next surface: through the media on the way, which attenuate it, and (with scattering
  * media) the collisions on the way, each seen by the camera and scattered (photon_medium.h), which
  * count as hits. False: the photon is gone (escaped, or ended at a collision); the ledger counts
  * what it lost. */
 inline bool forward_next_surface(const SceneView* s, const FilmView* f, SplatTarget* target, Photon* p,
-                                 Sampler* sampler, int* depth, int max_depth, float* rows, float* absorbed,
-                                 float* escaped, HitPoint* h) {
+                                 Sampler* sampler, int* depth, int max_depth, float* rows, Ledger* l, HitPoint* h) {
   for (; *depth < max_depth; ++*depth) {
     float flying = photon_total(p);
 #if KASHA_SCATTERING
@@ -181,9 +185,9 @@ inline bool forward_next_surface(const SceneView* s, const FilmView* f, SplatTar
 #else
     int reached = photon_intersect(s, p, h) ? KASHA_FLIGHT_SURFACE : KASHA_FLIGHT_ESCAPED;
 #endif
-    *absorbed += flying - photon_total(p); /* by the media on the way (none without them) */
+    l->absorbed += flying - photon_total(p); /* by the media on the way (none without them) */
     if (reached == KASHA_FLIGHT_ESCAPED) {
-      *escaped += photon_total(p);
+      l->escaped += photon_total(p);
       return false;
     }
     if (reached == KASHA_FLIGHT_SURFACE) return true;
@@ -191,10 +195,10 @@ inline bool forward_next_surface(const SceneView* s, const FilmView* f, SplatTar
     splat_medium(s, f, target, p, h->x, rows);
     float before = photon_total(p);
     if (scatter_photon_in_medium(p, s, h->x, sampler, *depth) == BRANCH_ABSORBED) {
-      *absorbed += before;
+      l->absorbed += before;
       return false;
     }
-    *absorbed += before - photon_total(p);
+    l->absorbed += before - photon_total(p);
 #endif
   }
   return false;
@@ -214,13 +218,13 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunc
   int first = item * photons_per_item, last = min(first + photons_per_item, photons);
   if (first >= last) return;
   SplatTarget target = {film, film_shift, 0};
-  float emitted = 0.0f, absorbed = 0.0f, escaped = 0.0f, in_flight = 0.0f;
+  Ledger l = {0.0f, 0.0f, 0.0f, 0.0f};
   float rows[KASHA_FILM_ROWS];
   for (int index = first; index < last; ++index) {
     Sampler sampler = photon_sampler(seed, pass, photons, index);
     LightOrigin o;
     Photon p = emit_photon(&s, (float)photons, &sampler, &o);
-    emitted += photon_total(&p);
+    l.emitted += photon_total(&p);
     /* The light point seen directly: Le cos / (p_area · photons). */
     int pixel;
     float k;
@@ -238,14 +242,14 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunc
     bool alive = true;
     for (int depth = 0; depth < max_depth && alive; ++depth) {
       HitPoint h;
-      if (!forward_next_surface(&s, &f, &target, &p, &sampler, &depth, max_depth, rows, &absorbed, &escaped, &h)) {
+      if (!forward_next_surface(&s, &f, &target, &p, &sampler, &depth, max_depth, rows, &l, &h)) {
         alive = depth == max_depth;
         break;
       }
 #if KASHA_SHADING_NORMALS
       /* From below the shading normal's hemisphere: the surface does not scatter it (hit_seen). */
       if (!hit_seen(&h, p.direction)) {
-        absorbed += photon_total(&p);
+        l.absorbed += photon_total(&p);
         alive = false;
         break;
       }
@@ -260,19 +264,19 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunc
        * scales a survivor up), so emitted = absorbed + escaped + in flight exactly. */
       float before = photon_total(&p);
       if (scatter_photon(&p, &surf, &s, &h, &sampler, depth) == BRANCH_ABSORBED) {
-        absorbed += before;
+        l.absorbed += before;
         alive = false;
       } else {
-        absorbed += before - photon_total(&p);
+        l.absorbed += before - photon_total(&p);
       }
     }
-    if (alive) in_flight += photon_total(&p);
+    if (alive) l.in_flight += photon_total(&p);
   }
   __global float* ledger = stats + 4 * (item - get_global_offset(0)); /* the launch's own items */
-  ledger[0] = emitted;
-  ledger[1] = absorbed;
-  ledger[2] = escaped;
-  ledger[3] = in_flight;
+  ledger[0] = l.emitted;
+  ledger[1] = l.absorbed;
+  ledger[2] = l.escaped;
+  ledger[3] = l.in_flight;
   if (target.overflow) atomic_add(overflow, target.overflow);
   add_ray_counts(&s, ray_counts);
 }

@@ -19,15 +19,24 @@
 #include "geometry/scene_view.h"
 #include "shared/vertex_factor.h"
 
+/* Where a launch's photons are stored: the store, its count (atomic) and capacity, and the stores a
+ * segmented photon passes over before its own (launches of one photon only). */
+typedef struct {
+  __global float* store;
+  __global int* stored;
+  int capacity;
+  int skip_left;
+} StoreCursor;
+
 /* The record a photon's next store goes to: null while a segmented photon passes over its first
- * `skip` stores, or past the store's capacity (counted, not written). */
-inline __global float* next_record(__global float* store, __global int* stored, int capacity, int* skip_left) {
-  if (*skip_left > 0) {
-    --*skip_left;
+ * stores, or past the store's capacity (counted, not written). */
+inline __global float* next_record(StoreCursor* c) {
+  if (c->skip_left > 0) {
+    --c->skip_left;
     return 0;
   }
-  int slot = atomic_inc(stored);
-  return slot < capacity ? store + (long)slot * KASHA_PHOTON_FLOATS(KASHA_BINS, KASHA_SCATTERING) : 0;
+  int slot = atomic_inc(c->stored);
+  return slot < c->capacity ? c->store + (long)slot * KASHA_PHOTON_FLOATS(KASHA_BINS, KASHA_SCATTERING) : 0;
 }
 
 /* A photon's record (photon_layout.h): where it is stored, the normal (0 in a medium), its key, its
@@ -51,13 +60,12 @@ inline void write_photon(__global float* rec, float3 x, float3 n, int index, int
  * the way (photon_medium.h) count as hits: each after the first bounce is stored (normal 0), and
  * the photon scatters or re-emits there. False: it escaped or ended, or *depth reached `until`. */
 inline bool photon_next_surface(const SceneView* s, Photon* p, Sampler* sampler, int* depth, int until, int index,
-                                __global float* store, __global int* stored, int capacity, int* skip_left,
-                                HitPoint* h) {
+                                StoreCursor* cursor, HitPoint* h) {
 #if KASHA_SCATTERING
   for (; *depth < until; ++*depth) {
     int reached = photon_flight(p, s, sampler, *depth, h);
     if (reached != KASHA_FLIGHT_SCATTERED) return reached == KASHA_FLIGHT_SURFACE;
-    __global float* rec = *depth > 0 ? next_record(store, stored, capacity, skip_left) : 0;
+    __global float* rec = *depth > 0 ? next_record(cursor) : 0;
     if (rec) write_photon(rec, h->x, (float3)(0.0f, 0.0f, 0.0f), index, *depth, p, 1.0f);
     if (scatter_photon_in_medium(p, s, h->x, sampler, *depth) == BRANCH_ABSORBED) return false;
   }
@@ -97,11 +105,10 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KPhotonTra
     LightOrigin o;
     Photon p = emit_photon(&s, (float)photons, &sampler, &o);
     p.position += o.normal * o.eps;
-    int skip_left = skip;
+    StoreCursor cursor = {store, stored, capacity, skip};
     for (int depth = 0;; ++depth) {
       HitPoint h;
-      bool hit = depth < until && photon_next_surface(&s, &p, &sampler, &depth, until, index, store, stored, capacity,
-                                                      &skip_left, &h);
+      bool hit = depth < until && photon_next_surface(&s, &p, &sampler, &depth, until, index, &cursor, &h);
       if (depth == KASHA_MAX_PATH_DEPTH) guard += photon_total(&p) / p.start;
       if (!hit) break;
       float3 ns = hit_ng(&h), x = h.x;
@@ -111,8 +118,7 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KPhotonTra
 #endif
       Surface surf;
       load_surface_at(&s, &h, &surf);
-      __global float* rec =
-          depth > 0 && surface_has_lambert(&surf) ? next_record(store, stored, capacity, &skip_left) : 0;
+      __global float* rec = depth > 0 && surface_has_lambert(&surf) ? next_record(&cursor) : 0;
       if (rec) {
 #if KASHA_COATED
         /* Under a coat, the power that reaches the base: t(θi) Φ (coat.h); the visible point's

@@ -40,14 +40,7 @@ inline int photon_flight(Photon* p, const SceneView* s, Sampler* sampler, int de
   float2 u = sample_2d(sampler);
   float total = photon_total(p);
   if (!(total > 0.0f)) return KASHA_FLIGHT_ESCAPED;
-  float target = u.x * total, run = 0.0f;
-  int j = -1;
-  for (int i = 0; i < KASHA_BINS; ++i) {
-    if (p->power[i] <= 0.0f) continue;
-    j = i;
-    run += p->power[i];
-    if (run > target) break;
-  }
+  int j = photon_bin_by_power(p, u.x, total);
   MediaTrail trail;
   int reached = flight_walk(s, p->position, p->direction, &p->medium, j, flight_depth(u.y), &trail, h);
   photon_flight_weight(p, s, &trail, reached == KASHA_FLIGHT_SCATTERED ? p->medium : -1, total);

@@ -187,13 +187,9 @@ inline bool photon_roulette(Photon* p, float u, int depth) {
   return true;
 }
 
-#if KASHA_DISPERSION
-/* At the photon's first dispersive interface: one bin j chosen in proportion to its power, u
- * uniform in [0, 1); the photon goes on with its whole power in that bin (Φ_j / p_j = ΣΦ).
- * -1 when it carries nothing. */
-inline int photon_choose_bin(Photon* p, float u) {
-  float total = photon_total(p);
-  if (!(total > 0.0f)) return -1;
+/* A bin drawn in proportion to the photon's power in it (total: its sum, > 0), u uniform in
+ * [0, 1): a dispersive interface's and a medium's free flight's choice. */
+inline int photon_bin_by_power(const Photon* p, float u, float total) {
   float target = u * total, sum = 0.0f;
   int j = -1;
   for (int i = 0; i < KASHA_BINS; ++i) {
@@ -202,6 +198,17 @@ inline int photon_choose_bin(Photon* p, float u) {
     sum += p->power[i];
     if (sum > target) break;
   }
+  return j;
+}
+
+#if KASHA_DISPERSION
+/* At the photon's first dispersive interface: one bin j chosen in proportion to its power, u
+ * uniform in [0, 1); the photon goes on with its whole power in that bin (Φ_j / p_j = ΣΦ).
+ * -1 when it carries nothing. */
+inline int photon_choose_bin(Photon* p, float u) {
+  float total = photon_total(p);
+  if (!(total > 0.0f)) return -1;
+  int j = photon_bin_by_power(p, u, total);
   for (int i = 0; i < KASHA_BINS; ++i) p->power[i] = i == j ? total : 0.0f;
   return j;
 }
