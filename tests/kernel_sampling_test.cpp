@@ -148,6 +148,58 @@ TEST(KernelSampling, HenyeyGreensteinFitsItsDensity) {
 }
 
 // ---------------------------------------------------------------------------------------------
+// The free flight's distance over a spectrum (transport/medium_flight.h, photon_medium.h): a bin
+// drawn by its share of the power, then bin j's exponential; the distances follow the mixture
+// p(t) = Σ_j c_j σt_j e^{−σt_j t}.
+
+const char* const kFlightSource = R"(
+#include "transport/photon_medium.h"
+__kernel void flight_distance(__global const float* power, __global const float* sigma, __global const float* u,
+                              __global float* out) {
+  size_t i = get_global_id(0);
+  Photon p;
+  for (int k = 0; k < KASHA_BINS; ++k) p.power[k] = power[k];
+  int j = photon_bin_by_power(&p, u[2 * i], photon_total(&p));
+  out[i] = flight_depth(u[2 * i + 1]) / sigma[j];
+}
+)";
+
+TEST(KernelSampling, FreeFlightDistancesFollowTheMixtureOverBins) {
+  constexpr size_t kSamples = 200000;
+  constexpr int kCells = 40;
+  KernelDefines defines = test_kernel_defines();
+  defines["KASHA_MEDIA"] = "1";
+  defines["KASHA_SCATTERING"] = "1";
+  defines["KASHA_MEDIA_COUNT"] = "1";
+  TestKernel kernel(kFlightSource, "flight_test.cl", "flight_distance", defines);
+  // Four bins; the third carries nothing and must never be drawn (its σt would show).
+  const std::vector<float> power = {1, 3, 0, 2}, sigma = {0.5f, 2, 40, 4};
+  kernel.input(0, power);
+  kernel.input(1, sigma);
+  const std::vector<float> t = kernel.sample(2, uniforms(2 * kSamples, 23), 3, 1, kSamples);
+  const double total = 6;
+  auto cdf = [&](double x, const std::vector<float>& s) {
+    double f = 0;
+    for (size_t j = 0; j < power.size(); ++j) f += power[j] / total * (1 - std::exp(-s[j] * x));
+    return f;
+  };
+  // Cells of equal width up to 8 mean free paths of the thinnest bin, and one beyond.
+  const double top = 8 / 0.5;
+  std::vector<double> observed(kCells + 1, 0.0), expected(kCells + 1), grey(kCells + 1);
+  for (float x : t) observed[x >= top ? kCells : cell_of(x, 0, top, kCells)] += 1;
+  // A grey flight, one σt for every bin (their power-weighted mean), must be rejected.
+  const float mean = (1 * 0.5f + 3 * 2 + 2 * 4) / 6.0f;
+  const std::vector<float> flat(4, mean);
+  for (int c = 0; c <= kCells; ++c) {
+    const double a = top * c / kCells, b = c == kCells ? INFINITY : top * (c + 1) / kCells;
+    expected[c] = kSamples * ((c == kCells ? 1.0 : cdf(b, sigma)) - cdf(a, sigma));
+    grey[c] = kSamples * ((c == kCells ? 1.0 : cdf(b, flat)) - cdf(a, flat));
+  }
+  expect_fits("free flight over bins", observed, expected);
+  expect_rejects("free flight over bins", observed, grey);
+}
+
+// ---------------------------------------------------------------------------------------------
 // The tabulated gloss lobe.
 
 const char* const kLobeSource = R"(
