@@ -149,6 +149,17 @@ inline const __global float* segment_light(const SceneView* s, float3 x, float3 
   return out;
 }
 
+/* The branch of a collision that `target` falls in, the branches' weights w laid end to end
+ * (elastic first, then each of the medium's `fluorophores` dyes; target in [0, Σw)): 0 elastic,
+ * 1 + k dye k. One walk for camera paths, photons and photon mapping's visible points. */
+inline int medium_branch(const float* w, int fluorophores, float target) {
+  int branch = 0;
+#if KASHA_FLUORESCENCE
+  for (float below = w[0]; branch < fluorophores && target >= below; below += w[branch]) ++branch;
+#endif
+  return branch;
+}
+
 /* The medium a light path leaves a light in: a light that is not a triangle its own, an emitting
  * triangle its shape's outside (lights emit from the front). In a scene where no shape bounds a
  * medium no ray ever changes medium, so all are in the camera's, the lights' paths too (whatever a

@@ -153,10 +153,7 @@ inline void medium_visible_point(const CameraWalk* w, const SceneView* s, const 
   for (int k = 0; k <= KASHA_MEDIUM_FLUOROPHORES; ++k) unweighed[k] = 0.0f;
   walk_medium_next_event(w, s, f, v, m, unweighed, rows);
   if (!vp) return;
-  int branch = 0;
-#if KASHA_FLUORESCENCE
-  for (float below = probs[0]; branch < m->fluorophores && v->u_choice.x >= below; below += probs[branch]) ++branch;
-#endif
+  int branch = medium_branch(probs, m->fluorophores, v->u_choice.x);
   if (!(probs[branch] > 0.0f)) return;
   float3 x = v->h.x, wo = -w->dir;
   vp[0] = x.x, vp[1] = x.y, vp[2] = x.z;

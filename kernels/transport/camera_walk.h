@@ -547,11 +547,8 @@ inline bool walk_medium_vertex(CameraWalk* w, const SceneView* s, const FilmView
   float probs[1 + KASHA_MEDIUM_FLUOROPHORES];
   if (!medium_branches(w, s, f, m, probs)) return false;
   walk_medium_next_event(w, s, f, v, m, probs, rows);
-  float pdf, choice = v->u_choice.x;
-  int branch = 0;
-#if KASHA_FLUORESCENCE
-  for (float below = probs[0]; branch < m->fluorophores && choice >= below; below += probs[branch]) ++branch;
-#endif
+  float pdf;
+  int branch = medium_branch(probs, m->fluorophores, v->u_choice.x);
   if (!(probs[branch] > 0.0f)) return false;
   if (branch == 0) {
     w->dir = hg_sample(-w->dir, m->g, v->u_dir, &pdf);

@@ -102,7 +102,7 @@ inline float beyond_scene(const SceneView* s, float3 org, float3 dir) {
 
 /* The distance part of the flight, shared by camera paths and photons: from org along dir in
  * *medium, through interfaces, to where bin j's optical depth reaches `depth` (KASHA_FLIGHT_SCATTERED,
- * h->x the point, *scattered_in its medium, *medium unchanged from there), or the next surface
+ * h->x the point, in *medium as the walk left it), or the next surface
  * (KASHA_FLIGHT_SURFACE, h its hit) or nothing (KASHA_FLIGHT_ESCAPED). The lengths crossed in each
  * medium go on the trail; h->t is the distance travelled. */
 inline int flight_walk(const SceneView* s, float3 org, float3 dir, int* medium, int j, float depth, MediaTrail* trail,

@@ -72,11 +72,7 @@ inline int scatter_photon_in_medium(Photon* p, const SceneView* s, float3 x, Sam
   float power[1 + KASHA_MEDIUM_FLUOROPHORES];
   float sum = photon_medium_branches(p, s, m, power);
   if (!(sum > 0.0f)) return BRANCH_ABSORBED;
-  float xi = u_choice.x * sum, below = power[0];
-  int branch = 0;
-#if KASHA_FLUORESCENCE
-  for (; branch < m->fluorophores && xi >= below; below += power[branch]) ++branch;
-#endif
+  int branch = medium_branch(power, m->fluorophores, u_choice.x * sum);
   if (!(power[branch] > 0.0f)) return BRANCH_ABSORBED;
   float k = sum / power[branch];
   p->position = x;
