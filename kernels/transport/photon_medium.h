@@ -1,6 +1,6 @@
-/* Photons in scattering and fluorescent media (docs/media.md#integrators): their flight, and what
- * a collision does to them. Light tracing (forward.cl) and photon mapping (photon_map.cl) share it,
- * as they share photon_transport.h's surface branches.
+/* Photons in scattering and fluorescent media (docs/media.md#what-each-integrator-does): their
+ * flight, and what a collision does to them. Light tracing (forward.cl) and photon mapping
+ * (photon_map.cl) share it, as they share photon_transport.h's surface branches.
  *
  * The flight is the camera paths' (medium_flight.h) with the photon's power as the energy: a bin j
  * drawn by its share c_j = Φ_j / ΣΦ, the distance by bin j's optical depth, and each bin weighed by
