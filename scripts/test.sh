@@ -1,16 +1,16 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs the whole test suite on the PoCL CPU device with ctest, then the fuzz
-# harness under AddressSanitizer + UBSan.
+# Sets up, builds and runs the test suite on the PoCL CPU device with ctest: CI's tier (what
+# .ci/run runs), or with --full every test, the long tier (tests/long_tests.cmake) too. The fuzz
+# harness under AddressSanitizer + UBSan is scripts/sanitize.sh, outside CI's budget.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+tier=(-LE long)
+if [[ "${1:-}" == "--full" ]]; then
+  tier=()
+elif [[ $# -gt 0 ]]; then
+  echo "usage: scripts/test.sh [--full]" >&2
+  exit 2
+fi
 bash scripts/build.sh
 export POCL_CACHE_DIR="$PWD/build/kernel-cache"
-ctest --test-dir build --output-on-failure -j "$(nproc)"
-
-# The fuzz harness again, with more cases, in a build with AddressSanitizer and UBSan (a finding
-# aborts the run). PoCL's own allocations are not ours to check for leaks. At -O1: the sanitizers
-# need no more, and its files compile in a third to a half less time than at -O3 (CI's budget).
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_FLAGS_RELEASE="-O1 -DNDEBUG" -DKASHA_SANITIZE=ON
-cmake --build build-asan -j "$(nproc)" --target kasha kasha_fuzz
-ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 KASHA_FUZZ_CASES=2000 \
-  POCL_CACHE_DIR="$PWD/build-asan/kernel-cache" build-asan/tests/kasha_fuzz
+ctest --test-dir build --output-on-failure -j "$(nproc)" "${tier[@]}"

@@ -103,38 +103,22 @@ void expect_one_line_error(const test::CommandResult& r, int exit_code, const st
 
 }  // namespace
 
-// Several devices: `--device 0,0` benchmarks device 0 on its own, then the two queues together
-// rendering each image; the record's "together" holds their set and score.
-TEST(Bench, TwoQueuesAreBenchmarkedAloneAndTogether) {
-  const std::string path = (test::scratch_dir() / "b00.json").string();
+// The bench issue's acceptance run (`kasha bench --time 2 --json b.json` on the PoCL device) at
+// one second a run, on two queues of device 0: the device alone, then both queues together
+// rendering each image (the record's "together" holds their set and score). One run of the
+// command for both, as each costs about a minute and a half of CI's time.
+TEST(Bench, RunsAloneAndOnTwoQueuesGiveARecordOfTheDocumentedSchema) {
+  const std::string path = (test::scratch_dir() / "b.json").string();
   auto r = run_kasha("bench --time 1 --device 0,0 --json " + quoted(path));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("score of device 0: "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("score of devices 0+0 together: "), std::string::npos) << r.out;
   std::ifstream in(path);
   const json j = json::parse(in);
-  ASSERT_EQ(j["devices"].size(), 1u) << "device 0 once, however often it is named";
   ASSERT_TRUE(j.contains("together"));
   EXPECT_EQ(j["together"]["devices"], json::array({0, 0}));
   EXPECT_TRUE(j["together"]["valid"]);
   EXPECT_GT(j["together"]["score"].get<double>(), 0);
-  const size_t runs = j["runs"].size();
-  ASSERT_EQ(runs % 2, 0u);
-  for (size_t k = 0; k < runs; ++k) {
-    EXPECT_EQ(j["runs"][k]["devices"], k < runs / 2 ? json::array({0}) : json::array({0, 0}));
-    EXPECT_EQ(j["runs"][k]["scene"], j["runs"][k % (runs / 2)]["scene"]);
-    EXPECT_TRUE(j["runs"][k]["valid"]) << k;
-  }
-}
-
-// The acceptance run: `kasha bench --time 2 --json b.json` on the PoCL device.
-TEST(Bench, TwoSecondRunsGiveARecordOfTheDocumentedSchema) {
-  const std::string path = (test::scratch_dir() / "b.json").string();
-  auto r = run_kasha("bench --time 2 --json " + quoted(path));
-  ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("score of device 0: "), std::string::npos) << r.out;
-  std::ifstream in(path);
-  const json j = json::parse(in);
   expect_fields(j,
                 {{"kasha_bench", Type::integer},
                  {"kasha_version", Type::string},
@@ -149,7 +133,7 @@ TEST(Bench, TwoSecondRunsGiveARecordOfTheDocumentedSchema) {
                  {"score", Type::number}},
                 "the record");
   EXPECT_EQ(j["kasha_bench"], 1);
-  EXPECT_EQ(j["seconds_per_run"], 2.0);
+  EXPECT_EQ(j["seconds_per_run"], 1.0);
   EXPECT_TRUE(j["complete"]);
   ASSERT_EQ(j["scenes"].size(), bench_scenes().size());
   for (size_t k = 0; k < bench_scenes().size(); ++k) {
@@ -167,7 +151,7 @@ TEST(Bench, TwoSecondRunsGiveARecordOfTheDocumentedSchema) {
     EXPECT_EQ(s["name"], bench_scenes()[k].name);
   }
   EXPECT_GE(j["scenes"][3]["triangles"].get<long long>(), 1000000) << "the mesh scene";
-  ASSERT_EQ(j["devices"].size(), 1u);
+  ASSERT_EQ(j["devices"].size(), 1u) << "device 0 once, however often it is named";
   const json& device = j["devices"][0];
   expect_fields(device, kDeviceFields, "devices[0]");
   EXPECT_EQ(device["index"], 0);
@@ -176,7 +160,11 @@ TEST(Bench, TwoSecondRunsGiveARecordOfTheDocumentedSchema) {
             std::string::npos);
   EXPECT_TRUE(device["valid"]);
   EXPECT_GT(device["score"].get<double>(), 0);
-  EXPECT_DOUBLE_EQ(j["score"].get<double>(), device["score"].get<double>());
+  // The record's score is the geometric mean over every run, alone and together.
+  double log_sum = 0;
+  for (const json& run : j["runs"]) log_sum += std::log(run["samples_per_s"].get<double>());
+  EXPECT_NEAR(j["score"].get<double>(), std::exp(log_sum / j["runs"].size()),
+              1e-9 * j["score"].get<double>());
 
   // One run per scene and integrator that can render it, in that order.
   std::vector<std::pair<std::string, std::string>> expected;
@@ -185,21 +173,23 @@ TEST(Bench, TwoSecondRunsGiveARecordOfTheDocumentedSchema) {
       expected.push_back({s.name, integrator});
   EXPECT_EQ(expected.size(), 4 * (IntegratorRegistry::names(true).size() - 1) - 2)
       << "every physical integrator but ppm on every scene, but forward and bpt in the mirror";
-  ASSERT_EQ(j["runs"].size(), expected.size());
+  // Each run alone, then each again on both queues.
+  ASSERT_EQ(j["runs"].size(), 2 * expected.size());
   EXPECT_EQ(device["runs"], expected.size());
-  for (size_t k = 0; k < expected.size(); ++k) {
+  for (size_t k = 0; k < 2 * expected.size(); ++k) {
     const json& run = j["runs"][k];
     const std::string where = "runs[" + std::to_string(k) + "]";
+    const bool alone = k < expected.size();
     expect_fields(run, kRunFields, where);
-    EXPECT_EQ(run["scene"], expected[k].first) << where;
-    EXPECT_EQ(run["integrator"], expected[k].second) << where;
+    EXPECT_EQ(run["scene"], expected[k % expected.size()].first) << where;
+    EXPECT_EQ(run["integrator"], expected[k % expected.size()].second) << where;
     EXPECT_EQ(run["device"], 0) << where;
-    EXPECT_EQ(run["devices"], json::array({0})) << where;
+    EXPECT_EQ(run["devices"], alone ? json::array({0}) : json::array({0, 0})) << where;
     EXPECT_TRUE(std::isfinite(run["rel_mse"].get<double>())) << where;
     EXPECT_TRUE(run["valid"]) << where << ": validation " << run["validation_rel_mse"] << " > "
                               << run["validation_bound"];
     EXPECT_FALSE(run["interrupted"]) << where;
-    EXPECT_GT(run["seconds"].get<double>(), 1.5) << where;
+    EXPECT_GT(run["seconds"].get<double>(), 0.75) << where;
     EXPECT_GT(run["samples_per_s"].get<double>(), 0) << where;
     EXPECT_GT(run["closest_rays_per_s"].get<double>(), 0) << where;
     EXPECT_NEAR(run["rays_per_s"].get<double>(),
