@@ -30,18 +30,19 @@ class KernelLauncher {
     launch_items(kernel, true, 0, items, args...);
   }
 
-  // The same for work items [first, first + count) (get_global_id counts from `first`), and waits
-  // for them: passes are split into such launches of bounded work (render/launch_pacer.h). The
-  // range is rounded up to whole work-groups of a fixed size, and the kernel's last argument
-  // (`item_end`) tells the extra items to return: PoCL compiles a work-group function per local
-  // size, so launches of varying sizes must not each choose their own.
+  // The same for work items [first, first + count), and waits for them: passes are split into
+  // such launches of bounded work (render/launch_pacer.h). The range is rounded up to whole
+  // work-groups of a fixed size, and the kernel's last two arguments (`item_first`, `item_end`,
+  // kernels/shared/launch_range.h) give its items and tell the extra ones to return: PoCL compiles
+  // a work-group function per local size and another for a non-zero global offset, so every
+  // launch has offset 0 and one local size.
   template <typename... Args>
   void launch_range(cl::Kernel& kernel, size_t first, size_t count, const Args&... args) {
     launch_items(kernel, true, first, count, args...);
   }
 
   // launch and launch_range for kernels that take neither the scene's nor the film's parameters:
-  // only `args`, then `item_end`.
+  // only `args`, then `item_first` and `item_end`.
   template <typename... Args>
   void launch_own(cl::Kernel& kernel, size_t items, const Args&... args) {
     launch_items(kernel, false, 0, items, args...);
@@ -86,8 +87,8 @@ class KernelLauncher {
   double device_seconds_ = 0;
 
  private:
-  // The one launch path: the scene's and the film's parameters first if `views`, then `args` and
-  // item_end; enqueues the range in whole work-groups, waits, and counts the time.
+  // The one launch path: the scene's and the film's parameters first if `views`, then `args`,
+  // item_first and item_end; enqueues the range in whole work-groups, waits, and counts the time.
   template <typename... Args>
   void launch_items(cl::Kernel& kernel, bool views, size_t first, size_t count,
                     const Args&... args) {
@@ -97,9 +98,10 @@ class KernelLauncher {
     cl_uint a =
         views ? static_cast<cl_uint>(film_.bind(kernel, scene_.bind(kernel, 0, global))) : 0;
     (kernel.setArg(a++, args), ...);
+    kernel.setArg(a++, static_cast<cl_int>(first));
     kernel.setArg(a, static_cast<cl_int>(first + count));
-    cl_.queue().enqueueNDRangeKernel(kernel, first > 0 ? cl::NDRange(first) : cl::NullRange,
-                                     cl::NDRange(global), cl::NDRange(local));
+    cl_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global),
+                                     cl::NDRange(local));
     cl_.queue().finish();
     device_seconds_ +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

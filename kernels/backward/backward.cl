@@ -61,12 +61,12 @@ __kernel void render_backward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
                               __global int* rejected,  /* per pixel: samples that were not finite */
                               __global float* cut,     /* per pixel: weight the depth guard cut */
                               KBackwardLaunch launch,
-                              int item_end /* launches are rounded up to whole work-groups */) {
+                              KASHA_LAUNCH_RANGE) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
   const int spp = launch.spp, k_first = launch.k_first, k_last = launch.k_last;
   const uint seed = launch.seed, pass = launch.pass;
-  int pixel = launch_pixel(&s.camera, item_end);
+  int pixel = launch_pixel(&s.camera, item_first, item_end);
   if (pixel < 0) return;
   int bad = 0;
   float guard = 0.0f;

@@ -25,10 +25,10 @@ inline void add_rgb_as_xyz(float* rows, float3 rgb) {
 __kernel void render_debug(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS,
                            __global float* film, /* pixels × KASHA_FILM_ROWS, sums over the pass */
                            int view, int spp, uint seed, uint pass,
-                  int item_end /* launches are rounded up to whole work-groups */) {
+                  KASHA_LAUNCH_RANGE) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
-  int pixel = launch_pixel(&s.camera, item_end);
+  int pixel = launch_pixel(&s.camera, item_first, item_end);
   if (pixel < 0) return;
   Sampler sampler = sampler_start(seed, (uint)pixel, 0, pass, (uint)pixel);
   float rows[KASHA_FILM_ROWS];

@@ -207,13 +207,13 @@ inline bool forward_next_surface(const SceneView* s, const FilmView* f, SplatTar
 __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunch launch, __global ulong* film,
                             __global float* stats, /* per item: emitted, absorbed, escaped, in flight (W) */
                             __global int* overflow,
-                            int item_end /* launches are rounded up to whole work-groups */) {
+                            KASHA_LAUNCH_RANGE) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
   const int photons = launch.photons, photons_per_item = launch.photons_per_item, max_depth = launch.max_depth;
   const int film_shift = launch.film_shift;
   const uint seed = launch.seed, pass = launch.pass;
-  int item = get_global_id(0);
+  int item = launch_item(item_first);
   if (item >= item_end) return;
   int first = item * photons_per_item, last = min(first + photons_per_item, photons);
   if (first >= last) return;
@@ -272,7 +272,7 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunc
     }
     if (alive) l.in_flight += photon_total(&p);
   }
-  __global float* ledger = stats + 4 * (item - get_global_offset(0)); /* the launch's own items */
+  __global float* ledger = stats + 4 * (item - item_first); /* the launch's own items */
   ledger[0] = l.emitted;
   ledger[1] = l.absorbed;
   ledger[2] = l.escaped;

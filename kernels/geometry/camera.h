@@ -3,6 +3,7 @@
 #ifndef KASHA_CAMERA_H
 #define KASHA_CAMERA_H
 
+#include "shared/launch_range.h"
 #include "shared/shared_types.h"
 #include "geometry/equal_area.h"
 #include "geometry/pixel_filter.h"
@@ -143,9 +144,9 @@ inline float3 camera_point(const KCamera* c, float3 x) {
 }
 
 /* The pixel a work item renders in a launch of one item per pixel, or -1 for an item past the
- * launch's end (item_end: launches are rounded up to whole work-groups) or past the image. */
-inline int launch_pixel(const KCamera* c, int item_end) {
-  int pixel = get_global_id(0);
+ * launch's end (shared/launch_range.h) or past the image. */
+inline int launch_pixel(const KCamera* c, int item_first, int item_end) {
+  int pixel = launch_item(item_first);
   return pixel < item_end && pixel < c->width * c->height ? pixel : -1;
 }
 

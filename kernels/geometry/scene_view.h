@@ -82,7 +82,7 @@ typedef struct {
                     scene_params.bin_nm,                                                           \
                     KASHA_SCENE_TABLE(KLight, lights),                                             \
                     scene_params.light_sources,                                                    \
-                    scratch + (get_global_id(0) - get_global_offset(0)) * KASHA_SCRATCH_FLOATS,    \
+                    scratch + get_global_id(0) * KASHA_SCRATCH_FLOATS,                            \
                     KASHA_SCENE_TABLE(KTexture, textures),                                         \
                     KASHA_SCENE_TABLE(KTexcoords, texcoords),                                      \
                     KASHA_SCENE_TABLE(KShadingNormals, normals),                                   \

@@ -15,7 +15,7 @@
  * mean, but at least a quarter of the largest, so a gather visits at most 9³ cells and a typical
  * one 2³. cell[0] = size, cell[1] = 1/size. */
 __kernel void grid_cell_size(__global const float* visible_points, __global const float* radius, int pixels,
-                             __global float* cell, int item_end) {
+                             __global float* cell, KASHA_LAUNCH_RANGE) {
   __local float sum[256], most[256];
   __local int valid[256];
   const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE, KASHA_SCATTERING);
@@ -61,8 +61,8 @@ __kernel void gather_photons(__global const float* cmf, /* the film's C (film_vi
                              __global const float* store, __global const int* sorted,
                              __global const int* cell_count, __global const int* cell_end,
                              __global const float* cell, uint mask, __global float* pass_flux,
-                             __global int* pass_found, int item_end) {
-  int pixel = get_global_id(0);
+                             __global int* pass_found, KASHA_LAUNCH_RANGE) {
+  int pixel = launch_item(item_first);
   if (pixel >= item_end) return;
   const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE, KASHA_SCATTERING);
   const __global float* vp = visible_points + (long)pixel * vp_floats;
@@ -122,9 +122,9 @@ __kernel void gather_photons(__global const float* cmf, /* the film's C (film_vi
  * sums: a per-pass division would be a mean of noisy ratios, biased high). */
 __kernel void disc_coverage(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global const float* visible_points,
                             __global const float* radius, __global float* coverage, int probes, float rotation,
-                            int item_end) {
+                            KASHA_LAUNCH_RANGE) {
   KASHA_SCENE_VIEW(s);
-  int pixel = get_global_id(0);
+  int pixel = launch_item(item_first);
   if (pixel >= item_end) return;
   const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE, KASHA_SCATTERING);
   const __global float* vp = visible_points + (long)pixel * vp_floats;
@@ -148,8 +148,8 @@ __kernel void disc_coverage(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global cons
  * traced) into the SPPM statistics; clears the pass's sums for the next. */
 __kernel void sppm_update(__global float* radius, __global float* count, __global float* tau,
                           __global float* pass_flux, __global int* pass_found, float alpha, float scale,
-                          int item_end) {
-  int pixel = get_global_id(0);
+                          KASHA_LAUNCH_RANGE) {
+  int pixel = launch_item(item_first);
   if (pixel >= item_end) return;
   __global float* phi = pass_flux + (long)pixel * KASHA_FILM_ROWS;
   sppm_add_pass(radius + pixel, count + pixel, tau + (long)pixel * KASHA_FILM_ROWS, KASHA_FILM_ROWS, phi, scale,
@@ -163,8 +163,8 @@ __kernel void sppm_update(__global float* radius, __global float* count, __globa
 __kernel void sppm_image(float bin_nm, /* the scene's bin width (KASHA_SCENE_PARAMS' bin_nm) */
                          __global const float* direct, __global const float* radius, __global const float* tau,
                          __global const float* coverage, int edge_correction, float passes,
-                         __global float* image, int item_end) {
-  int pixel = get_global_id(0);
+                         __global float* image, KASHA_LAUNCH_RANGE) {
+  int pixel = launch_item(item_first);
   if (pixel >= item_end) return;
   float covered = 1.0f;
   if (edge_correction && coverage[2 * pixel] > 0.0f) covered = coverage[2 * pixel] / coverage[2 * pixel + 1];

@@ -83,12 +83,12 @@ inline bool photon_next_surface(const SceneView* s, Photon* p, Sampler* sampler,
 __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KPhotonTraceLaunch launch,
                                __global float* store, __global int* stored,
                                __global float* cut, /* per item: power the depth guard cut, per photon's start */
-                               int item_end /* launches are rounded up to whole work-groups */) {
+                               KASHA_LAUNCH_RANGE) {
   KASHA_SCENE_VIEW(s);
   const int photons = launch.photons, first_photon = launch.first_photon, count = launch.count;
   const int photons_per_item = launch.photons_per_item, skip = launch.skip, capacity = launch.capacity;
   const uint seed = launch.seed, pass = launch.pass;
-  int item = get_global_id(0);
+  int item = launch_item(item_first);
   if (item >= item_end) return;
   int first = first_photon + item * photons_per_item;
   int last = min(first + photons_per_item, first_photon + count);
@@ -266,13 +266,13 @@ __kernel void camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, __global float*
                           __global float* cut,          /* per pixel: weight the depth guard cut, this pass */
                           __global float* radius,       /* per pixel: the SPPM radius, 0 before a visible point */
                           __global int* raised, KPhotonCameraLaunch launch,
-                          int item_end /* launches are rounded up to whole work-groups */) {
+                          KASHA_LAUNCH_RANGE) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
   const float radius0 = launch.radius0, footprint = launch.footprint, max_radius = launch.max_radius;
   const int spp = launch.spp;
   const uint seed = launch.seed, pass = launch.pass;
-  int pixel = launch_pixel(&s.camera, item_end);
+  int pixel = launch_pixel(&s.camera, item_first, item_end);
   if (pixel < 0) return;
   const int vp_floats = KASHA_VP_FLOATS(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE, KASHA_SCATTERING);
   __global float* vp = visible_points + (long)pixel * vp_floats;

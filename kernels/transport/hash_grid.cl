@@ -4,6 +4,7 @@
  * Photon mapping's gather (photon_gather.cl) and vertex merging (vcm.cl) include it. A record
  * starts with its position (3 floats) and has its key — a path index and a depth, two ints in
  * float bits — at KASHA_PHOTON_INDEX and KASHA_PHOTON_DEPTH; KASHA_RECORD_FLOATS is its stride. */
+#include "shared/launch_range.h"
 #include "shared/photon_layout.h"
 
 #ifndef KASHA_RECORD_FLOATS
@@ -33,8 +34,8 @@ inline float3 record_position(const __global float* r) {
 
 /* Per photon: its cell's hash, counted. */
 __kernel void grid_count(__global const float* store, __global const float* cell, uint mask,
-                         __global int* cell_count, __global uint* photon_cell, int item_end) {
-  int i = get_global_id(0);
+                         __global int* cell_count, __global uint* photon_cell, KASHA_LAUNCH_RANGE) {
+  int i = launch_item(item_first);
   if (i >= item_end) return;
   const __global float* r = store + (long)i * KASHA_RECORD_FLOATS;
   if (!KASHA_RECORD_IN_GRID(r)) {
@@ -48,7 +49,7 @@ __kernel void grid_count(__global const float* store, __global const float* cell
 
 /* One work-group: cell_end[h] = Σ_{j<h} cell_count[j], each work item scanning a contiguous chunk
  * (the scatter then advances it to the cell's end). */
-__kernel void grid_scan(__global const int* cell_count, int cells, __global int* cell_end, int item_end) {
+__kernel void grid_scan(__global const int* cell_count, int cells, __global int* cell_end, KASHA_LAUNCH_RANGE) {
   __local int total[256];
   int l = get_local_id(0), n = min((int)get_local_size(0), 256);
   int chunk = (cells + n - 1) / n;
@@ -70,8 +71,8 @@ __kernel void grid_scan(__global const int* cell_count, int cells, __global int*
 
 /* Per photon: its index into its cell's run of the sorted array. */
 __kernel void grid_scatter(__global const uint* photon_cell, __global int* cell_end, __global int* sorted,
-                           int item_end) {
-  int i = get_global_id(0);
+                           KASHA_LAUNCH_RANGE) {
+  int i = launch_item(item_first);
   if (i >= item_end) return;
   uint h = photon_cell[i];
   if (h != KASHA_NO_CELL) sorted[atomic_inc(cell_end + h)] = i;
@@ -82,8 +83,8 @@ __kernel void grid_scatter(__global const uint* photon_cell, __global int* cell_
  * record where it lies in a store far larger than the caches. Run after grid_sort_cells; the
  * slots past the last cell's end (records left out of the grid) hold none. */
 __kernel void grid_place(__global const float* store, __global const int* sorted, __global const int* cell_end,
-                         uint mask, __global float4* placed, int item_end) {
-  int i = get_global_id(0);
+                         uint mask, __global float4* placed, KASHA_LAUNCH_RANGE) {
+  int i = launch_item(item_first);
   if (i >= item_end || i >= cell_end[mask]) return;
   int record = sorted[i];
   const __global float* r = store + (long)record * KASHA_RECORD_FLOATS;
@@ -100,8 +101,8 @@ inline ulong record_key(const __global float* store, int record) {
  * leave it in arrival order. A gather then sums each cell's photons in one order whatever the
  * launches and the device, so the same photons always give the same image, bit for bit. */
 __kernel void grid_sort_cells(__global const float* store, __global const int* cell_count,
-                              __global const int* cell_end, __global int* sorted, int item_end) {
-  int h = get_global_id(0);
+                              __global const int* cell_end, __global int* sorted, KASHA_LAUNCH_RANGE) {
+  int h = launch_item(item_first);
   if (h >= item_end) return;
   int n = cell_count[h];
   if (n < 2) return;

@@ -60,15 +60,15 @@
 #include "vcm/vcm_seen_light.h"
 #include "vcm/vcm_camera_path.h"
 
-/* Light subpath get_global_id(0) of the iteration's `paths` (the launches cover the store's chunk
- * [chunk_first, chunk_end)), traced into the store (vcm_light_path); its last stored vertex and
+/* Light subpath launch_item(item_first) of the iteration's `paths` (the launches cover the
+ * store's chunk [chunk_first, chunk_end)), traced into the store (vcm_light_path); its last stored vertex and
  * its depth-guard tally go to its place in the chunk's `light_paths`. */
 __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KVcmIteration it, __global float* store,
                              __global KVcmCounters* counters, __global KVcmLightPath* light_paths,
-                             __global ulong* film, int item_end) {
+                             __global ulong* film, KASHA_LAUNCH_RANGE) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
-  int index = get_global_id(0);
+  int index = launch_item(item_first);
   if (index >= item_end) return;
   SplatTarget target = {film, it.film_shift, 0};
   __global KVcmLightPath* path = &light_paths[index - it.chunk_first];
@@ -93,17 +93,17 @@ __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KVcmIteratio
 __kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KVcmIteration it, __global const float* store,
                               __global const KVcmLightPath* light_paths VCM_GRID_PARAMS,
                               __global float* path_spectra, __global float* sums, __global KVcmPixel* pixels,
-                              int item_end) {
+                              KASHA_LAUNCH_RANGE) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
   VCM_GRID_VIEW(grid);
-  int pixel = launch_pixel(&s.camera, item_end);
+  int pixel = launch_pixel(&s.camera, item_first, item_end);
   if (pixel < 0) return;
   const int spp = it.spp;
   const uint pass = it.pass;
   /* The pixel's stream: a seed apart from the light subpaths'. */
   Sampler sampler = sampler_start(it.seed ^ 0x5bd1e995u, (uint)pixel, 0, pass, (uint)pixel);
-  __global float* out = path_spectra + (long)(get_global_id(0) - get_global_offset(0)) * VCM_SPECTRA;
+  __global float* out = path_spectra + (long)get_global_id(0) * VCM_SPECTRA;
   float guard = 0.0f;
   int bad = 0;
   bool owned = false;
