@@ -1,12 +1,14 @@
 # The long tier: tests that CI (scripts/test.sh) leaves out to stay within its budget (40 minutes on
-# 2 cores for build and tests) and `scripts/test.sh --full` runs with the rest. Each took 19 s or
-# more with kernels compiled cold on the 2-core machine (December 2026, docs/testing.md), and what
-# it covers keeps a cheaper test in CI: a sibling case of the same family, or the same integrator
-# on other scenes. Read by ctest after the tests are discovered (tests/CMakeLists.txt).
+# 2 cores for build and tests) and `scripts/test.sh --full` runs with the rest: the tests of 19 s
+# or more with kernels compiled cold on the 2-core machine (December 2026, docs/testing.md), and
+# the second bin width or depth cap of families whose cases compile kernels of their own. What each
+# covers keeps a cheaper test in CI: a sibling case of the same family, or the same integrator on
+# other scenes. Read by ctest after the tests are discovered (tests/CMakeLists.txt).
 
 cmake_policy(SET CMP0057 NEW)  # if(IN_LIST) in ctest's scope
 
-# Every integrator keeps its furnaces at one bin width in CI (ppm: the passive furnace at 1 nm).
+# Every integrator keeps its furnaces at one bin width in CI: backward, photon, bpt and forward at
+# 10 nm (bpt's mirror too is long), vcm and ppm at 1 nm (ppm: the passive furnace).
 set(kasha_long_furnaces
   "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/ppm_mirror_10nm"
   "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/ppm_mirror_1nm"
@@ -26,9 +28,23 @@ set(kasha_long_furnaces
   "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/forward_passive_1nm"
   "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/forward_self_absorption_1nm"
   "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/bpt_mirror_1nm"
-  "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/ppm_self_absorption_1nm")
+  "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/ppm_self_absorption_1nm"
+  "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/backward_fluorescent_1nm"
+  "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/backward_mirror_1nm"
+  "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/backward_passive_1nm"
+  "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/backward_self_absorption_1nm"
+  "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/backward_uv_1nm"
+  "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/bpt_fluorescent_1nm"
+  "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/bpt_passive_1nm"
+  "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/bpt_self_absorption_1nm"
+  "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/bpt_uv_1nm"
+  "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/photon_fluorescent_1nm"
+  "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/photon_mirror_1nm"
+  "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/photon_passive_1nm"
+  "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/photon_self_absorption_1nm"
+  "Registry/IntegratorFurnace.EveryBinMatchesTheAnalyticValue/photon_uv_1nm")
 # bpt and forward keep their agreement with backward on the sunlit table, the lacquered vase (forward)
-# and the pbrt-v4 glass and texture scenes; photon, vcm and ppm on every scene.
+# and the pbrt-v4 glass and texture scenes; vcm on every scene; photon and ppm on kasha's own.
 set(kasha_long_agreement
   "Registry/IntegratorAgreement.RegionsMatchTheReferenceIntegrator/bpt_glass_caustic"
   "Registry/IntegratorAgreement.RegionsMatchTheReferenceIntegrator/bpt_glossy_cornell_box"
@@ -44,7 +60,34 @@ set(kasha_long_agreement
   "Registry/IntegratorAgreement.RegionsMatchTheReferenceIntegrator/forward_cornell_box"
   "Registry/IntegratorAgreement.RegionsMatchTheReferenceIntegrator/forward_pbrt_rough_metals"
   "Registry/IntegratorAgreement.RegionsMatchTheReferenceIntegrator/forward_fluorescent_print"
-  "Registry/IntegratorAgreement.RegionsMatchTheReferenceIntegrator/forward_light_booth_uv_spot")
+  "Registry/IntegratorAgreement.RegionsMatchTheReferenceIntegrator/forward_light_booth_uv_spot"
+  "Registry/IntegratorAgreement.RegionsMatchTheReferenceIntegrator/photon_pbrt_cornell_box"
+  "Registry/IntegratorAgreement.RegionsMatchTheReferenceIntegrator/photon_pbrt_glass"
+  "Registry/IntegratorAgreement.RegionsMatchTheReferenceIntegrator/photon_pbrt_rough_metals"
+  "Registry/IntegratorAgreement.RegionsMatchTheReferenceIntegrator/photon_pbrt_textured"
+  "Registry/IntegratorAgreement.RegionsMatchTheReferenceIntegrator/ppm_pbrt_cornell_box"
+  "Registry/IntegratorAgreement.RegionsMatchTheReferenceIntegrator/ppm_pbrt_glass"
+  "Registry/IntegratorAgreement.RegionsMatchTheReferenceIntegrator/ppm_pbrt_rough_metals"
+  "Registry/IntegratorAgreement.RegionsMatchTheReferenceIntegrator/ppm_pbrt_textured")
+# Every integrator's depth-capped furnaces keep caps 0 and 3 in CI.
+set(kasha_long_depth_caps
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/backward_fluorescent_cap1"
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/backward_mirror_cap1"
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/backward_passive_cap1"
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/bpt_fluorescent_cap1"
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/bpt_mirror_cap1"
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/bpt_passive_cap1"
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/forward_fluorescent_cap1"
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/forward_passive_cap1"
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/photon_fluorescent_cap1"
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/photon_mirror_cap1"
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/photon_passive_cap1"
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/ppm_fluorescent_cap1"
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/ppm_mirror_cap1"
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/ppm_passive_cap1"
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/vcm_fluorescent_cap1"
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/vcm_mirror_cap1"
+  "Registry/DepthCapFurnace.EveryBinMatchesTheCappedSeries/vcm_passive_cap1")
 # The stiff catalogue keeps its other cases, albedo 0.999 in a box among them.
 set(kasha_long_stiff
   "Catalogue/StiffCases.EveryIntegratorMatchesTheReference/mirror_999_box"
@@ -58,7 +101,7 @@ set(kasha_long_stiff
   "Catalogue/StiffCases.EveryIntegratorMatchesTheReference/image_1000x1")
 # Agreement and weight-sum studies whose capability CI checks more cheaply elsewhere (the furnaces,
 # the agreement cases above, the pbrt-v4 Cornell box, media and fog references, the medium furnaces
-# and slab).
+# and slab); bench's full record (CI keeps its interrupted run, validation and bad command lines).
 set(kasha_long_other
   "RoughInterface.LightTracingAgreesWithBackwardOnRoughSurfaces"
   "Scenes/PbrtReference.RegionMeansMatchPbrtV4WithinOnePercent/rough_metals"
@@ -83,9 +126,11 @@ set(kasha_long_other
   "Vcm.VcmWeightsSumToOnePerPathLength"
   "Vcm.AWeightWithADensityDroppedFails"
   "EdgeCorrection.MergesMatchBackwardBesideARim"
-  "SphereLight.BptWeightsSumToOneWithASphereLight")
+  "SphereLight.BptWeightsSumToOneWithASphereLight"
+  "Bench.RunsAloneAndOnTwoQueuesGiveARecordOfTheDocumentedSchema")
 # A parameterised test's ctest name ends in "  # GetParam() = ...": matched on what comes before.
-set(kasha_long ${kasha_long_furnaces} ${kasha_long_agreement} ${kasha_long_stiff} ${kasha_long_other})
+set(kasha_long ${kasha_long_furnaces} ${kasha_long_agreement} ${kasha_long_depth_caps}
+               ${kasha_long_stiff} ${kasha_long_other})
 set(kasha_long_found 0)
 foreach(test IN LISTS kasha_tests_TESTS)
   string(REGEX REPLACE "  # GetParam\\(\\) = .*$" "" name "${test}")
