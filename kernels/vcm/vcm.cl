@@ -61,8 +61,8 @@
 #include "vcm/vcm_camera_path.h"
 
 /* Light subpath launch_item(item_first) of the iteration's `paths` (the launches cover the
- * store's chunk [chunk_first, chunk_end)), traced into the store (vcm_light_path); its last stored vertex and
- * its depth-guard tally go to its place in the chunk's `light_paths`. */
+ * store's chunk [chunk_first, chunk_end)), traced into the store (vcm_light_path); its last
+ * stored vertex and its depth-guard tally go to its place in the chunk's `light_paths`. */
 __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KVcmIteration it, __global float* store,
                              __global KVcmCounters* counters, __global KVcmLightPath* light_paths,
                              __global ulong* film, KASHA_LAUNCH_RANGE) {
