@@ -28,6 +28,13 @@ DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_
     k.sigma_t = append_spectrum(spectra, sigma_t);
     k.sigma_s = append_spectrum(spectra, m.sigma_s);
     k.g = static_cast<float>(m.g);
+    double sigma_sum = 0, scattered = 0, reemitted = 0;
+    for (size_t i = 0; i < sigma_t.size(); ++i) sigma_sum += sigma_t[i], scattered += m.sigma_s[i];
+    for (int f = 0; f < k.fluorophores; ++f)
+      reemitted += static_cast<double>(k.fluorophore[f].yield) * k.fluorophore[f].absorption_sum;
+    k.sigma_mean = sigma_t.empty() ? 0.0f : static_cast<float>(sigma_sum / sigma_t.size());
+    k.events = static_cast<float>(scattered + reemitted);
+    k.elastic_share = k.events > 0 ? static_cast<float>(scattered / (scattered + reemitted)) : 0.0f;
     d.media.push_back(k);
   }
   if (!scene.triangle_media.empty())

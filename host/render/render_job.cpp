@@ -7,13 +7,6 @@ namespace kasha {
 // A physical integrator with no light to trace renders black: the same clear error for every one.
 static const std::string& lit(const Scene& scene, const DeviceScene& device_scene,
                               const std::string& integrator) {
-  // Media that scatter or fluoresce are rendered by path tracing first
-  // (docs/media.md#what-each-integrator-does).
-  if (scene.scattering() && integrator != "backward" && integrator != "forward" &&
-      integrator != "photon" && integrator != "debug")
-    throw Error(scene.file + ": a medium that scatters or fluoresces is rendered by the backward, "
-                "forward and photon integrators only so far: give --integrator photon or backward (" +
-                integrator + " does not render it yet)");
   if (IntegratorRegistry::find(integrator).traits.physical && device_scene.data().light_tri.empty())
     throw Error(scene.file + ": no emitter has power on the wavelength grid " +
                 scene.grid.describe() + " (zero area, or emission outside the grid); the " +

@@ -181,7 +181,8 @@ inline bool forward_next_surface(const SceneView* s, const FilmView* f, SplatTar
   for (; *depth < max_depth; ++*depth) {
     float flying = photon_total(p);
 #if KASHA_SCATTERING
-    int reached = photon_flight(p, s, sampler, *depth, h);
+    MediaTrail trail;
+    int reached = photon_flight(p, s, sampler, *depth, h, &trail);
 #else
     int reached = photon_intersect(s, p, h) ? KASHA_FLIGHT_SURFACE : KASHA_FLIGHT_ESCAPED;
 #endif

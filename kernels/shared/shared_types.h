@@ -213,8 +213,15 @@ typedef struct {
   float g;
   int fluorophores; /* how many of fluorophore[] it holds */
   KFluorophore fluorophore[KASHA_MEDIUM_FLUOROPHORES];
+  /* What vcm's MIS weights take of it, functions of the medium alone so that both subpaths
+   * find them alike (kernels/vcm/vcm_media.h): σt's mean over the bins, the elastic share of
+   * its events Σσs / (Σσs + Σ_f Φ_f Σa_f), and that sum (0: a collision only absorbs). */
+  float sigma_mean;
+  float elastic_share;
+  float events;
+  float pad;
 } KMedium;
-KASHA_STATIC_SIZE(KMedium, 80);
+KASHA_STATIC_SIZE(KMedium, 96);
 
 /* Per leaf triangle (KASHA_MEDIA), its shape's media: inside (behind the front side) and outside,
  * KMedium indices, -1 for vacuum. Equal sides are no boundary: a ray keeps its medium there. */

@@ -29,15 +29,18 @@ typedef struct {
   float barycentrics[2]; /* of the hit, for textures */
   int flags; /* KASHA_VCM_MERGEABLE: merges may use it (not at a rough interface, which only
               * connects, nor with caustic merges where the light came by no delta bounce);
-              * KASHA_VCM_FRONT: the light arrived on the triangle's front side */
+              * KASHA_VCM_FRONT: the light arrived on the triangle's front side;
+              * KASHA_VCM_MEDIUM: it lies in a medium */
   float shading[3]; /* the shading normal on the light's side */
   int instance;     /* the instance the hit was in (KASHA_INSTANCES; else -1) */
-  int pad[3];
+  int medium;       /* KASHA_VCM_MEDIUM: the medium it collided in (normals 0, triangle -1) */
+  int pad[2];
 } KVcmLightVertex;
 KASHA_STATIC_SIZE(KVcmLightVertex, 112);
 
 #define KASHA_VCM_MERGEABLE 1
 #define KASHA_VCM_FRONT 2
+#define KASHA_VCM_MEDIUM 4 /* a collision in a scattering medium, no surface (kernels/vcm/vcm_media.h) */
 
 /* Floats of a stored light vertex with its power over `bins` bins: the store's stride. */
 #define KASHA_VCM_VERTEX_FLOATS(bins) ((int)(sizeof(KVcmLightVertex) / sizeof(float)) + (bins))

@@ -142,7 +142,8 @@ inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sa
   HitPoint* h = &v->h;
 #if KASHA_SCATTERING
   sampler_at(sampler, 1 + w->depth * KASHA_CAMERA_PAIRS_PER_VERTEX + 4);
-  int reached = flight(&w->p, s, f, w->org, w->dir, &w->medium, sample_2d(sampler), h);
+  MediaTrail trail;
+  int reached = flight(&w->p, s, f, w->org, w->dir, &w->medium, sample_2d(sampler), h, &trail);
   v->in_medium = reached == KASHA_FLIGHT_SCATTERED;
   if (v->in_medium) return walk_medium_samples(w, sampler, v);
   bool hit = reached == KASHA_FLIGHT_SURFACE;
@@ -536,17 +537,13 @@ inline void walk_medium_next_event(const CameraWalk* w, const SceneView* s, cons
 #endif
 }
 
-/* A collision in the walk's medium (walk_vertex's in_medium): next-event estimation, then one
+/* A collision's bounce in medium m, its branches' probabilities `probs` (medium_branches): one
  * branch on u_choice.x — elastic scattering, σs and a direction from the Henyey–Greenstein phase
  * function (whose weight is 1), or a fluorophore's re-emission, rank-1 through its ê and
  * absorption (path_weight.h) and isotropic — over its probability, and roulette. The path goes on
  * from the point itself: no surface to step off. False: the path ends. */
-inline bool walk_medium_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v,
-                               float* rows) {
-  const __global KMedium* m = &s->media[w->medium];
-  float probs[1 + KASHA_MEDIUM_FLUOROPHORES];
-  if (!medium_branches(w, s, f, m, probs)) return false;
-  walk_medium_next_event(w, s, f, v, m, probs, rows);
+inline bool walk_medium_scatter(CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v,
+                                const __global KMedium* m, const float* probs) {
   float pdf;
   int branch = medium_branch(probs, m->fluorophores, v->u_choice.x);
   if (!(probs[branch] > 0.0f)) return false;
@@ -573,6 +570,17 @@ inline bool walk_medium_vertex(CameraWalk* w, const SceneView* s, const FilmView
   w->org = v->h.x;
   ++w->depth;
   return true;
+}
+
+/* A collision in the walk's medium (walk_vertex's in_medium): next-event estimation, then the
+ * bounce (walk_medium_scatter). False: the path ends. */
+inline bool walk_medium_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v,
+                               float* rows) {
+  const __global KMedium* m = &s->media[w->medium];
+  float probs[1 + KASHA_MEDIUM_FLUOROPHORES];
+  if (!medium_branches(w, s, f, m, probs)) return false;
+  walk_medium_next_event(w, s, f, v, m, probs, rows);
+  return walk_medium_scatter(w, s, f, v, m, probs);
 }
 #endif
 

@@ -141,15 +141,16 @@ inline float flight_depth(float u) {
 /* From org along dir in *medium, through interfaces: KASHA_FLIGHT_SCATTERED with h->x the point
  * in *medium where the path scatters, KASHA_FLIGHT_SURFACE with the surface hit h, or
  * KASHA_FLIGHT_ESCAPED; the path's colour weighed as above (u: the bin choice and the distance).
- * h->t is the distance travelled. */
+ * h->t is the distance travelled, *trail the lengths crossed in each medium (empty where the
+ * path carried nothing). */
 inline int flight(PathWeight* p, const SceneView* s, const FilmView* f, float3 org, float3 dir, int* medium,
-                  float2 u, HitPoint* h) {
+                  float2 u, HitPoint* h, MediaTrail* trail) {
   float total;
+  trail_clear(trail);
   int j = flight_bin(p, f, u.x, &total);
   if (j < 0) return KASHA_FLIGHT_ESCAPED;
-  MediaTrail trail;
-  int reached = flight_walk(s, org, dir, medium, j, flight_depth(u.y), &trail, h);
-  pw_flight(p, s, f, &trail, reached == KASHA_FLIGHT_SCATTERED ? *medium : -1, total);
+  int reached = flight_walk(s, org, dir, medium, j, flight_depth(u.y), trail, h);
+  pw_flight(p, s, f, trail, reached == KASHA_FLIGHT_SCATTERED ? *medium : -1, total);
   return reached;
 }
 #endif

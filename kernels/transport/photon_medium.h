@@ -34,16 +34,17 @@ inline void photon_flight_weight(Photon* p, const SceneView* s, const MediaTrail
 
 /* The photon's flight from its position (photon_intersect's, with collisions): KASHA_FLIGHT_SURFACE
  * with the hit h, KASHA_FLIGHT_SCATTERED with h->x the collision in p->medium, or
- * KASHA_FLIGHT_ESCAPED. The flight's pair is its depth-th hit's. */
-inline int photon_flight(Photon* p, const SceneView* s, Sampler* sampler, int depth, HitPoint* h) {
+ * KASHA_FLIGHT_ESCAPED; *trail the lengths it crossed in each medium. The flight's pair is its
+ * depth-th hit's. */
+inline int photon_flight(Photon* p, const SceneView* s, Sampler* sampler, int depth, HitPoint* h, MediaTrail* trail) {
   sampler_at(sampler, PHOTON_PAIRS_AT_LIGHT + depth * PHOTON_PAIRS_PER_HIT + PHOTON_FLIGHT_PAIR);
   float2 u = sample_2d(sampler);
   float total = photon_total(p);
+  trail_clear(trail);
   if (!(total > 0.0f)) return KASHA_FLIGHT_ESCAPED;
   int j = photon_bin_by_power(p, u.x, total);
-  MediaTrail trail;
-  int reached = flight_walk(s, p->position, p->direction, &p->medium, j, flight_depth(u.y), &trail, h);
-  photon_flight_weight(p, s, &trail, reached == KASHA_FLIGHT_SCATTERED ? p->medium : -1, total);
+  int reached = flight_walk(s, p->position, p->direction, &p->medium, j, flight_depth(u.y), trail, h);
+  photon_flight_weight(p, s, trail, reached == KASHA_FLIGHT_SCATTERED ? p->medium : -1, total);
   return reached;
 }
 

@@ -27,7 +27,8 @@
  *
  * Read in this order (SmallVCM's seams, one header each): vcm_records.h (what the host and the
  * kernels share), vcm_modes.h (modes, test hooks, the MIS factors), vcm_pdf.h and vcm_eval.h
- * (pseudo-densities and f at a vertex), vcm_weights.h (the partial weights' recursion),
+ * (pseudo-densities and f at a vertex), vcm_weights.h (the partial weights' recursion), vcm_media.h
+ * (collisions in scattering media as vertices),
  * vcm_light_path.h (the light pass), vcm_camera.h (a camera subpath's state), then its
  * techniques — vcm_emission.h, vcm_next_event.h, vcm_connect.h, vcm_merge.h, vcm_seen_light.h —
  * and vcm_camera_path.h, which takes them in turn; the two kernels below. */
@@ -46,11 +47,13 @@
 #include "transport/disc_coverage.h"
 #include "transport/hash_grid.cl"
 #include "transport/photon_transport.h"
+#include "transport/photon_medium.h"
 
 #include "vcm/vcm_modes.h"
 #include "vcm/vcm_pdf.h"
 #include "vcm/vcm_eval.h"
 #include "vcm/vcm_weights.h"
+#include "vcm/vcm_media.h"
 #include "vcm/vcm_light_path.h"
 #include "vcm/vcm_camera.h"
 #include "vcm/vcm_emission.h"

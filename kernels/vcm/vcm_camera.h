@@ -30,6 +30,9 @@ typedef struct {
 typedef struct {
   CameraWalk w;
   float dvcm, dvc, dvm, dvc_merge;
+#if KASHA_SCATTERING
+  float sigma_prev; /* σ̄ where the segment now flown started (1: a surface or the camera) */
+#endif
 } VcmCamera;
 
 /* dVC for the techniques at the current vertex (next-event estimation, connections, an emitter
@@ -54,4 +57,24 @@ typedef struct {
   float lambert;
   float eta; /* a rough dielectric's index for the path (at its bin where it disperses) */
   bool merges;
+  int medium; /* a collision in this medium (vcm_media.h; no surface, normals unset), -1: a surface */
 } VcmVertex;
+
+/* The MIS factors at a camera vertex, its merges' radius's (vcm_merge_factor, vcm_connect_factor):
+ * a surface's by the disc, a collision's by the sphere (vcm_volume_eta; scattering scenes only). */
+typedef struct {
+  float vm, vc, vm_volume, vc_volume;
+} VcmFactors;
+
+inline VcmFactors vcm_factors(const KVcmRadius* radius, float r) {
+  VcmFactors k;
+  k.vm = vcm_merge_factor(vcm_eta_at(radius, r));
+  k.vc = vcm_connect_factor(vcm_eta_at(radius, r));
+#if KASHA_SCATTERING
+  k.vm_volume = vcm_merge_factor(vcm_volume_eta(radius, r));
+  k.vc_volume = vcm_connect_factor(vcm_volume_eta(radius, r));
+#else
+  k.vm_volume = k.vc_volume = 0.0f;
+#endif
+  return k;
+}

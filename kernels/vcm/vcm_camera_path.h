@@ -17,6 +17,9 @@ inline void vcm_camera_start(const SceneView* s, float3 dir, float paths, int sp
     c->dvcm = share * camera_pixel_solid_angle(k, dir);
   }
   c->dvc = c->dvm = c->dvc_merge = 0.0f;
+#if KASHA_SCATTERING
+  c->sigma_prev = 1.0f;
+#endif
 }
 
 /* What the camera vertex's techniques share (VcmVertex). Merging here: a vertex whose material
@@ -34,24 +37,35 @@ inline VcmVertex vcm_camera_vertex(const CameraVertex* v, bool* met) {
     cv.merges = vcm_mergeable(&v->surf) && !*met;
   *met = *met || vcm_connectible(&v->surf);
   cv.eta = 1.0f;
+  cv.medium = -1;
   return cv;
 }
 
 /* The techniques at a camera vertex with a non-delta part, its merging radius r_merge and
- * factors vm, vc. In vcm and bpt: next-event estimation and connections where the light
- * subpath is the chunk's, merges (vcm) with every chunk. In ppm the first vertex that merges
- * merges all of it, unless a mirror lobe chosen by its probability carries the path on: false
- * then, the path ends. */
+ * factors k (a collision's: the sphere's, vcm_media.h). In vcm and bpt: next-event estimation
+ * and connections where the light subpath is the chunk's, merges (vcm) with every chunk. In ppm
+ * the first vertex that merges merges all of it, unless a mirror lobe chosen by its probability
+ * carries the path on: false then, the path ends. */
 inline bool vcm_camera_techniques(const VcmCamera* c, const SceneView* s, const FilmView* f, const CameraVertex* v,
-                                  const VcmVertex* cv, const VcmCameraInputs* in, float r_merge, float vm, float vc,
+                                  const VcmVertex* cv, const VcmCameraInputs* in, float r_merge, const VcmFactors* k,
                                   float* rows) {
   const KVcmIteration* it = in->it;
-  float scale = KASHA_INV_PI / (r_merge * r_merge * s->bin_nm);
+  float scale = KASHA_INV_PI / (r_merge * r_merge * s->bin_nm), vm = k->vm, vc = k->vc;
+#if KASHA_SCATTERING
+  const __global KMedium* m = vcm_collision_medium(s, cv);
+  if (m) scale *= 0.75f / r_merge, vm = k->vm_volume, vc = k->vc_volume; /* the sphere's volume */
+#endif
   if (KASHA_VCM_CONNECT) {
     if (in->own) {
-      if (VCM_LENGTH_COUNTS(c->w.depth + 2)) vcm_next_event(c, s, f, v, cv, vm, rows);
+      if (VCM_LENGTH_COUNTS(c->w.depth + 2)) {
+#if KASHA_SCATTERING
+        if (m) vcm_next_event_collision(c, s, f, v, cv, m, vm, rows);
+        else
+#endif
+          vcm_next_event(c, s, f, v, cv, vm, rows);
+      }
       uint seed = hash_combine(it->seed ^ 0x2545f491u, it->pass);
-      vcm_connect(c, s, f, v, cv, vm, (float)it->paths, in->store, in->light_paths[in->partner - it->chunk_first].last,
+      vcm_connect(c, s, f, v, cv, k, (float)it->paths, in->store, in->light_paths[in->partner - it->chunk_first].last,
                   hash_combine(hash_combine(seed, (uint)in->partner), (uint)c->w.depth), in->out, rows);
     }
 #if KASHA_VCM_MERGE
@@ -59,6 +73,12 @@ inline bool vcm_camera_techniques(const VcmCamera* c, const SceneView* s, const 
 #endif
     return true;
   }
+#if KASHA_SCATTERING
+  if (m) {
+    vcm_merge(c, s, f, v, cv, vc, r_merge, scale, in->store, in->grid, it->inv_cell, it->mask, rows);
+    return false;
+  }
+#endif
   float p_mirror = v->surf.mirror && !surface_specular(&v->surf) ? v->probs.x : 0.0f;
   if (cv->merges && !(v->u_choice.x < p_mirror)) {
     vcm_merge(c, s, f, v, cv, vc, r_merge, scale / (1.0f - p_mirror), in->store, in->grid, it->inv_cell, it->mask,
@@ -92,6 +112,68 @@ inline bool vcm_camera_bounce(VcmCamera* c, const SceneView* s, const FilmView* 
   return true;
 }
 
+/* The camera path's flight to its next vertex: KASHA_FLIGHT_SURFACE (h the hit), _SCATTERED (a
+ * collision at h->x in the walk's medium, vcm_media.h) or _ESCAPED, the partial weights turned to
+ * the vertex (to the direction's measure on escaping); -1: the path carries nothing on. */
+inline int vcm_camera_next(VcmCamera* c, const SceneView* s, const FilmView* f, Sampler* sampler, HitPoint* h) {
+#if KASHA_SCATTERING
+  MediaTrail trail;
+  sampler_at(sampler, 1 + c->w.depth * KASHA_CAMERA_PAIRS_PER_VERTEX + 4);
+  int reached = flight(&c->w.p, s, f, c->w.org, c->w.dir, &c->w.medium, sample_2d(sampler), h, &trail);
+  float tbar = vcm_trail_mean(s, &trail);
+  if (!(tbar > 0.0f)) return -1;
+  bool collided = reached == KASHA_FLIGHT_SCATTERED;
+  float sigma = collided ? s->media[c->w.medium].sigma_mean : 1.0f;
+#else
+  int reached = walk_intersect(&c->w, s, h) ? KASHA_FLIGHT_SURFACE : KASHA_FLIGHT_ESCAPED;
+  const bool collided = false;
+#endif
+  if (reached != KASHA_FLIGHT_ESCAPED) {
+    vcm_arrived(h->t, collided ? 1.0f : fabs(dot(h->n, c->w.dir)), &c->dvcm, &c->dvc, &c->dvm, &c->dvc_merge);
+    /* The orthographic camera's density is per area from the start (camera_pixel_solid_angle). */
+    if (c->w.depth == 0 && s->camera.type == KASHA_CAMERA_ORTHOGRAPHIC) c->dvcm /= h->t * h->t;
+  }
+#if KASHA_SCATTERING
+  vcm_through(tbar, c->sigma_prev, sigma, &c->dvcm, &c->dvc, &c->dvm, &c->dvc_merge);
+  c->sigma_prev = sigma;
+#endif
+  return reached;
+}
+
+#if KASHA_SCATTERING
+/* A camera path's collision in its medium (vcm_media.h): its samples and branches, its techniques
+ * with the sphere's factors (the radius, and *k, the merging vertex's where the radius is the
+ * path's), then the bounce (walk_medium_scatter) and the weights' step. False: the path ends. */
+inline bool vcm_camera_collision(VcmCamera* c, const SceneView* s, const FilmView* f, Sampler* sampler,
+                                 CameraVertex* v, const VcmCameraInputs* in, float travelled, bool* met,
+                                 float* r_merge, VcmFactors* k, float* rows) {
+  const __global KMedium* m = &s->media[c->w.medium];
+  float probs[1 + KASHA_MEDIUM_FLUOROPHORES];
+  v->in_medium = true;
+  if (!walk_medium_samples(&c->w, sampler, v) || !medium_branches(&c->w, s, f, m, probs)) return false;
+  VcmVertex cv;
+  cv.ns = cv.nf = cv.ng = (float3)(0.0f, 0.0f, 0.0f);
+  cv.lambert = 0.0f;
+  cv.eta = 1.0f;
+  cv.medium = c->w.medium;
+  cv.merges = KASHA_VCM_MERGE_EVERY || !KASHA_VCM_CONNECT || !*met;
+  *met = true;
+  const KVcmRadius* radius = &in->it->radius;
+  if (cv.merges && radius->per_unit > 0.0f) {
+    *r_merge = vcm_radius_at(radius, travelled);
+    *k = vcm_factors(radius, *r_merge);
+  }
+  if (!KASHA_VCM_EMISSION_ONLY && !vcm_camera_techniques(c, s, f, v, &cv, in, *r_merge, k, rows)) return false;
+  float3 eye = -c->w.dir;
+  if (!walk_medium_scatter(&c->w, s, f, v, m, probs)) return false;
+  vcm_camera_decide(c, false);
+  float pdf = vcm_medium_pdf(m, eye, c->w.dir);
+  vcm_scattered_by(pdf, pdf, 1.0f, cv.merges, k->vm_volume, k->vc_volume, &c->dvcm, &c->dvc, &c->dvm,
+                   &c->dvc_merge);
+  return true;
+}
+#endif
+
 /* One camera path of the iteration, one of the `spp` the pixel has, with its light subpath
  * in->partner (VcmCameraInputs). Returns what it still carried (relative to its start) if the
  * depth guard cut it. */
@@ -101,7 +183,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
   const bool own = in->own, seen_apart = in->seen_apart;
   /* The factors of the global radius; where the radius is the path's, of its merging vertex's. */
   float r_merge = radius->radius;
-  float vm = vcm_merge_factor(vcm_eta_at(radius, r_merge)), vc = vcm_connect_factor(vcm_eta_at(radius, r_merge));
+  VcmFactors k = vcm_factors(radius, r_merge);
   float travelled = 0.0f;
   VcmCamera c;
   float3 o, dir = camera_ray(&s->camera, pixel, sampler, &o);
@@ -112,16 +194,23 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
   bool delta_only = true; /* every bounce so far was delta (vcm_seen_light's paths) */
   while (c.w.depth < KASHA_MAX_PATH_DEPTH) {
     HitPoint* h = &v.h;
-    if (!walk_intersect(&c.w, s, h)) {
+    int reached = vcm_camera_next(&c, s, f, sampler, h);
+    if (reached == KASHA_FLIGHT_ESCAPED) {
 #if KASHA_INFINITE_LIGHTS
       if (own && !(seen_apart && delta_only)) vcm_escaped(&c, s, f, rows);
 #endif
       return 0.0f;
     }
-    vcm_arrived(h->t, fabs(dot(h->n, c.w.dir)), &c.dvcm, &c.dvc, &c.dvm, &c.dvc_merge);
-    /* The orthographic camera's density is per area from the start (camera_pixel_solid_angle). */
-    if (c.w.depth == 0 && s->camera.type == KASHA_CAMERA_ORTHOGRAPHIC) c.dvcm /= h->t * h->t;
+    if (reached < 0) return 0.0f;
     travelled += h->t;
+#if KASHA_SCATTERING
+    if (reached == KASHA_FLIGHT_SCATTERED) {
+      if (!vcm_camera_collision(&c, s, f, sampler, &v, in, travelled, &met, &r_merge, &k, rows)) return 0.0f;
+      delta_only = false;
+      continue;
+    }
+    v.in_medium = false;
+#endif
     if (own && h->emitter >= 0 && h->front && !(seen_apart && delta_only)) {
       float weight = vcm_emission_weight(&c, s, h);
 #if KASHA_EMISSION_TEXTURES
@@ -148,8 +237,7 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
     VcmVertex cv = vcm_camera_vertex(&v, &met);
     if (cv.merges && radius->per_unit > 0.0f) {
       r_merge = vcm_radius_at(radius, travelled);
-      vm = vcm_merge_factor(vcm_eta_at(radius, r_merge));
-      vc = vcm_connect_factor(vcm_eta_at(radius, r_merge));
+      k = vcm_factors(radius, r_merge);
     }
     bool rough = surface_rough(&v.surf);
 #if KASHA_ROUGH && KASHA_DIELECTRIC
@@ -164,19 +252,19 @@ inline float vcm_camera_path(const SceneView* s, const FilmView* f, int pixel, S
     if (surface_specular(&v.surf) && !rough) {
       if (!walk_specular(&c.w, f, &v)) return 0.0f;
       vcm_camera_decide(&c, true);
-      vcm_scattered(s, &v.surf, 0.0f, h->ns, cv.nf, cv.ng, eye, c.w.dir, true, false, vm, vc, &c.dvcm, &c.dvc,
+      vcm_scattered(s, &v.surf, 0.0f, h->ns, cv.nf, cv.ng, eye, c.w.dir, true, false, k.vm, k.vc, &c.dvcm, &c.dvc,
                     &c.dvm, &c.dvc_merge);
       if (!walk_on(&c.w, s, f, &v)) return 0.0f;
       continue;
     }
 #endif
     if (vcm_connectible(&v.surf) && !KASHA_VCM_EMISSION_ONLY &&
-        !vcm_camera_techniques(&c, s, f, &v, &cv, in, r_merge, vm, vc, rows))
+        !vcm_camera_techniques(&c, s, f, &v, &cv, in, r_merge, &k, rows))
       return 0.0f;
     if (!vcm_camera_bounce(&c, s, f, &v, cv.eta, sampler)) return 0.0f;
     vcm_camera_decide(&c, c.w.specular);
-    if (!vcm_scattered(s, &v.surf, cv.lambert, h->ns, cv.nf, cv.ng, eye, c.w.dir, c.w.specular, cv.merges, vm, vc,
-                       &c.dvcm, &c.dvc, &c.dvm, &c.dvc_merge))
+    if (!vcm_scattered(s, &v.surf, cv.lambert, h->ns, cv.nf, cv.ng, eye, c.w.dir, c.w.specular, cv.merges, k.vm,
+                       k.vc, &c.dvcm, &c.dvc, &c.dvm, &c.dvc_merge))
       return 0.0f;
     delta_only = delta_only && c.w.specular;
     if (!walk_on(&c.w, s, f, &v)) return 0.0f;

@@ -33,6 +33,128 @@ inline void vcm_light_surface(const SceneView* s, const __global KVcmLightVertex
   load_surface_at(&own, &h, sy);
 }
 
+#if KASHA_SCATTERING
+/* The medium of a camera vertex that is a collision, else null. */
+inline const __global KMedium* vcm_collision_medium(const SceneView* s, const VcmVertex* cv) {
+  return cv->medium >= 0 ? &s->media[cv->medium] : 0;
+}
+#endif
+
+/* One end of a connection as the weights and the contribution see it: f there (a surface's parts,
+ * or a collision's phase function and dyes), the densities of leaving it along the connection
+ * and back, the cosine that turns the other end's density to it (1 at a collision: volume) and
+ * the radiance's shading cosine there, and σ̄ (1 at a surface). */
+typedef struct {
+  VcmF f;
+  float pdf_out, pdf_back, cos_g, cos_s, sigma;
+} VcmEnd;
+
+/* The camera vertex's end of a connection along dir (eye: towards the camera). False: f is 0 or
+ * the direction leaks through the surface. */
+inline bool vcm_camera_end(const SceneView* s, const CameraVertex* v, const VcmVertex* cv, float3 eye, float3 dir,
+                           VcmEnd* e) {
+#if KASHA_SCATTERING
+  const __global KMedium* m = vcm_collision_medium(s, cv);
+  if (m) {
+    e->pdf_out = e->pdf_back = vcm_medium_pdf(m, eye, dir);
+    e->cos_g = e->cos_s = 1.0f;
+    e->sigma = m->sigma_mean;
+    return true;
+  }
+#endif
+  e->f = vcm_eval(s, &v->surf, cv->ns, cv->nf, eye, dir, dir, cv->eta);
+  if (!vcm_f_nonzero(&e->f) || !hit_no_leak(&v->h, dir)) return false;
+  e->pdf_out = vcm_pdf(s, &v->surf, cv->lambert, cv->ns, cv->nf, eye, dir);
+  e->pdf_back = vcm_pdf(s, &v->surf, cv->lambert, cv->ns, cv->nf, dir, eye);
+  e->cos_s = fabs(dot(cv->ns, dir));
+  e->cos_g = fabs(dot(cv->ng, dir));
+  e->sigma = 1.0f;
+  return true;
+}
+
+/* The light vertex's end of a connection along -dir (the light arrived from `light`), its surface
+ * (a surface vertex) in *sy with its spectra in `room`. False: f is 0 or it leaks. */
+inline bool vcm_light_end(const SceneView* s, const __global KVcmLightVertex* lv, float3 dir, __global float* room,
+                          Surface* sy, VcmEnd* e) {
+  float3 light = -load_float3(lv->arrival);
+#if KASHA_SCATTERING
+  if (lv->flags & KASHA_VCM_MEDIUM) {
+    const __global KMedium* m = &s->media[lv->medium];
+    e->pdf_out = e->pdf_back = vcm_medium_pdf(m, light, -dir);
+    e->cos_g = e->cos_s = 1.0f;
+    e->sigma = m->sigma_mean;
+    return true;
+  }
+#endif
+  float3 ny, nfy, ngy;
+  vcm_light_surface(s, lv, room, sy, &ny, &nfy, &ngy);
+  if (!vcm_no_leak(ny, ngy, -dir)) return false;
+  e->f = vcm_eval(s, sy, ny, nfy, -dir, light, -dir, vcm_light_eta(sy));
+  if (!vcm_f_nonzero(&e->f)) return false;
+  float lambert_y = vcm_lambert_mean(sy);
+  e->pdf_out = vcm_pdf(s, sy, lambert_y, ny, nfy, light, -dir);
+  e->pdf_back = vcm_pdf(s, sy, lambert_y, ny, nfy, -dir, light);
+  e->cos_g = e->cos_s = fabs(dot(ngy, dir));
+  e->sigma = 1.0f;
+  return true;
+}
+
+/* The light vertex lv connected to the camera vertex (vcm_connect): T·f_c·G·f_l·Φ weighed against
+ * every technique that makes the same path, times the thinning's stride and paths / Δλ. */
+inline void vcm_connect_vertex(const VcmCamera* c, const SceneView* s, const FilmView* f, const CameraVertex* v,
+                               const VcmVertex* cv, const VcmFactors* k, const __global KVcmLightVertex* lv,
+                               int stride, float paths, __global float* out, float* rows) {
+  float3 x = v->h.x, eye = -c->w.dir, y = load_float3(lv->position);
+  float3 d = y - x;
+  float dist2 = dot(d, d), dist = sqrt(dist2);
+  float3 dir = d / dist;
+  VcmEnd ec, el;
+  Surface sy;
+  if (!vcm_camera_end(s, v, cv, eye, dir, &ec) || !vcm_light_end(s, lv, dir, out + KASHA_BINS, &sy, &el)) return;
+  bool medium_y = (lv->flags & KASHA_VCM_MEDIUM) != 0;
+#if KASHA_MEDIA
+  /* A collision leaves from the point itself; a surface off the side the connection leaves by. */
+  bool medium_x = cv->medium >= 0;
+  const __global float* tr;
+  if (!segment_clear(s, x, medium_x ? (float3)(0.0f, 0.0f, 0.0f) : vcm_toward(cv->ng, dir), medium_x ? 0.0f : v->h.eps,
+                     dir, dist, lv->eps / el.cos_g, medium_x ? c->w.medium : medium_after(s, v->h.tri, v->h.n, dir, c->w.medium),
+                     &tr))
+    return;
+  float tbar = vcm_unsampled(tr);
+#else
+  if (segment_occluded(s, x, vcm_toward(cv->ng, dir), v->h.eps, dir, dist, lv->eps / el.cos_g)) return;
+  const float tbar = 1.0f;
+#endif
+  /* Merges at either end count where they are techniques: a light vertex's only with merges at
+   * every vertex (else it lies behind the camera's merging vertex). */
+  float vm_y = medium_y ? k->vm_volume : k->vm, vm_x = cv->medium >= 0 ? k->vm_volume : k->vm;
+  bool merges_y = KASHA_VCM_MERGE_EVERY && (lv->flags & KASHA_VCM_MERGEABLE);
+  float w_light = ec.pdf_out * el.cos_g / dist2 * (tbar * el.sigma) *
+                  ((merges_y ? vm_y : 0.0f) + lv->dvcm + lv->dvc * el.pdf_back);
+  float w_camera = el.pdf_out * ec.cos_g / dist2 * (tbar * ec.sigma) *
+                   ((cv->merges && !KASHA_VCM_MERGE_CAUSTIC ? vm_x : 0.0f) + c->dvcm + vcm_camera_dvc(c) * ec.pdf_back);
+  float weight = 1.0f / (w_light + 1.0f + w_camera);
+  if (!(weight > 0.0f)) return;
+#if KASHA_SCATTERING
+  if (medium_y)
+    vcm_medium_light_apply(s, &s->media[lv->medium], -load_float3(lv->arrival), -dir, vcm_vertex_power(lv), out);
+  else
+#endif
+    vcm_light_apply(&sy, el.f, vcm_vertex_power(lv), out);
+#if KASHA_MEDIA
+  if (tr)
+    for (int i = 0; i < KASHA_BINS; ++i) out[i] *= tr[i];
+#endif
+  float w = stride * weight * ec.cos_s * el.cos_s / dist2 * paths / s->bin_nm;
+#if KASHA_SCATTERING
+  if (cv->medium >= 0) {
+    vcm_medium_camera_apply(&c->w.p, s, f, vcm_collision_medium(s, cv), eye, dir, out, w, rows);
+    return;
+  }
+#endif
+  vcm_camera_apply(&c->w.p, f, &v->surf, ec.f, out, w, rows);
+}
+
 /* Connections of a camera vertex to the stored vertices of its light subpath, the last stored
  * at record `last` (SmallVCM's ConnectVertices): T·f_c·G·f_l·Φ, Φ per light subpath (paths/Δλ
  * undoes the photon's 1/paths and bin width). A subpath of n > KASHA_VCM_CONNECTIONS vertices
@@ -42,11 +164,9 @@ inline void vcm_light_surface(const SceneView* s, const __global KVcmLightVertex
  * vertices costs O(n) shadow rays, not O(n²). `out` is the work item's spectra (VCM_SPECTRA):
  * f_l·Φ, then the light vertex's surface. */
 inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* f, const CameraVertex* v,
-                        const VcmVertex* cv, float vm, float paths, const __global float* store, int last, uint u,
-                        __global float* out, float* rows) {
+                        const VcmVertex* cv, const VcmFactors* k, float paths, const __global float* store, int last,
+                        uint u, __global float* out, float* rows) {
   if (last < 0) return;
-  const Surface* surf = &v->surf;
-  float3 x = v->h.x, ns = cv->ns, eye = -c->w.dir;
   int n = vcm_vertex(store, last)->ordinal + 1;
   int stride = (n + KASHA_VCM_CONNECTIONS - 1) / KASHA_VCM_CONNECTIONS;
   int offset = (int)(u % (uint)stride);
@@ -55,43 +175,6 @@ inline void vcm_connect(const VcmCamera* c, const SceneView* s, const FilmView* 
     slot = lv->previous;
     if (lv->ordinal % stride != offset) continue;
     if (!VCM_LENGTH_COUNTS(c->w.depth + lv->depth + 3)) continue;
-    float3 y = load_float3(lv->position);
-    float3 d = y - x;
-    float dist2 = dot(d, d), dist = sqrt(dist2);
-    float3 dir = d / dist;
-    VcmF fc = vcm_eval(s, surf, ns, cv->nf, eye, dir, dir, cv->eta);
-    if (!vcm_f_nonzero(&fc)) continue;
-    if (!hit_no_leak(&v->h, dir)) continue;
-    Surface sy;
-    float3 ny, nfy, ngy;
-    vcm_light_surface(s, lv, out + KASHA_BINS, &sy, &ny, &nfy, &ngy);
-    if (!vcm_no_leak(ny, ngy, -dir)) continue;
-    float3 light = -load_float3(lv->arrival);
-    VcmF fl = vcm_eval(s, &sy, ny, nfy, -dir, light, -dir, vcm_light_eta(&sy));
-    if (!vcm_f_nonzero(&fl)) continue;
-    /* The camera side's radiance takes the shading cosine; the turns to area, the geometric. */
-    float cos_s = fabs(dot(ns, dir)), cos_c = fabs(dot(cv->ng, dir)), cos_y = fabs(dot(ngy, dir));
-    float lambert_y = vcm_lambert_mean(&sy);
-    bool merges_y = KASHA_VCM_MERGE_EVERY && (lv->flags & KASHA_VCM_MERGEABLE); /* else behind the camera's merging vertex */
-    float w_light = vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, dir) * cos_y / dist2 *
-                    ((merges_y ? vm : 0.0f) + lv->dvcm + lv->dvc * vcm_pdf(s, &sy, lambert_y, ny, nfy, -dir, light));
-    float w_camera = vcm_pdf(s, &sy, lambert_y, ny, nfy, light, -dir) * cos_c / dist2 *
-                     ((cv->merges && !KASHA_VCM_MERGE_CAUSTIC ? vm : 0.0f) + c->dvcm +
-                      vcm_camera_dvc(c) * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, dir, eye));
-    float weight = 1.0f / (w_light + 1.0f + w_camera);
-    if (!(weight > 0.0f)) continue;
-#if KASHA_MEDIA
-    const __global float* tr;
-    if (!segment_clear(s, x, vcm_toward(cv->ng, dir), v->h.eps, dir, dist, lv->eps / cos_y,
-                       medium_after(s, v->h.tri, v->h.n, dir, c->w.medium), &tr))
-      continue;
-    vcm_light_apply(&sy, fl, vcm_vertex_power(lv), out);
-    if (tr)
-      for (int i = 0; i < KASHA_BINS; ++i) out[i] *= tr[i];
-#else
-    if (segment_occluded(s, x, vcm_toward(cv->ng, dir), v->h.eps, dir, dist, lv->eps / cos_y)) continue;
-    vcm_light_apply(&sy, fl, vcm_vertex_power(lv), out);
-#endif
-    vcm_camera_apply(&c->w.p, f, surf, fc, out, stride * weight * cos_s * cos_y / dist2 * paths / s->bin_nm, rows);
+    vcm_connect_vertex(c, s, f, v, cv, k, lv, stride, paths, out, rows);
   }
 }

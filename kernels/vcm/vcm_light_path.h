@@ -25,7 +25,7 @@ inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, con
     return;
   VcmF fv = vcm_eval(s, surf, h->ns, nf, to, from, to, vcm_light_eta(surf));
   float nee = KASHA_VCM_DROP_DENSITY ? 0.0f : dvcm;
-  float w_light = k * spp / (KASHA_VCM_TRACING_SHARE * paths) *
+  float w_light = k * vcm_unsampled(tr) * spp / (KASHA_VCM_TRACING_SHARE * paths) *
                   ((merges ? vm : 0.0f) + nee + dvc * vcm_pdf(s, surf, lambert, h->ns, nf, to, from));
   k *= photon_arrival_correction(h, p->direction);
   float scale = k / (1.0f + w_light) / s->bin_nm;
@@ -63,6 +63,58 @@ inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, con
 #endif
   if (film_rows_finite(rows)) splat_rows(t, pixel, rows);
 }
+
+#if KASHA_SCATTERING
+/* A light vertex at a collision in medium m seen by the camera (vcm_splat's, vcm_media.h): f Φ k
+ * / Δλ with k the importance alone, weighed against the camera techniques by the camera's
+ * pseudo-density of the collision, k T̄ σ̄. */
+inline void vcm_splat_collision(const SceneView* s, const FilmView* f, SplatTarget* t, const __global KMedium* m,
+                                bool merges, float3 x, const Photon* p, float dvcm, float dvc, const KVcmRadius* radius,
+                                float paths, int spp) {
+  int pixel;
+  float k;
+  const __global float* tr;
+  if (!camera_connection_from_medium(s, x, p->medium, &pixel, &k, &tr)) return;
+  float3 to = camera_point(&s->camera, x) - x, from = -p->direction;
+  float vm = vcm_merge_factor(vcm_volume_eta(radius, vcm_radius_at(radius, length(to))));
+  to = normalize(to);
+  float nee = KASHA_VCM_DROP_DENSITY ? 0.0f : dvcm;
+  float w_light = k * vcm_segment_mean(tr) * m->sigma_mean * spp / (KASHA_VCM_TRACING_SHARE * paths) *
+                  ((merges ? vm : 0.0f) + nee + dvc * vcm_medium_pdf(m, to, from));
+  float scale = k / (1.0f + w_light) / s->bin_nm;
+  float rows[KASHA_FILM_ROWS];
+  film_rows_clear(rows);
+  film_rows(f, p->power, s->spectra + m->sigma_s, tr, scale * hg_phase(dot(to, from), m->g), rows);
+#if KASHA_FLUORESCENCE
+  for (int d = 0; d < m->fluorophores; ++d) {
+    const __global KFluorophore* fl = &m->fluorophore[d];
+    float emitted = fl->yield * spectrum_dot(KASHA_BINS, p->power, s->spectra + fl->absorption, 0);
+    film_rows(f, 0, s->spectra + fl->emission, tr, emitted * KASHA_INV_4PI * scale, rows);
+  }
+#endif
+  if (film_rows_finite(rows)) splat_rows(t, pixel, rows);
+}
+
+/* Stores the light vertex at the collision x in the photon's medium in record `slot`: no surface
+ * (normals 0, triangle -1), its medium, KASHA_VCM_MEDIUM. */
+inline void vcm_store_collision(__global float* store, int slot, float3 x, const Photon* p, int path, int depth,
+                                float dvcm, float dvc, float dvm, int previous, int ordinal, bool merges) {
+  __global KVcmLightVertex* v = (__global KVcmLightVertex*)(store + (long)slot * VCM_FLOATS);
+  v->position[0] = x.x, v->position[1] = x.y, v->position[2] = x.z;
+  v->normal[0] = v->normal[1] = v->normal[2] = 0.0f;
+  v->shading[0] = v->shading[1] = v->shading[2] = 0.0f;
+  v->path = path, v->depth = depth;
+  __global float* power = (__global float*)(v + 1);
+  for (int i = 0; i < KASHA_BINS; ++i) power[i] = p->power[i];
+  v->arrival[0] = p->direction.x, v->arrival[1] = p->direction.y, v->arrival[2] = p->direction.z;
+  v->dvcm = dvcm, v->dvc = dvc, v->dvm = dvm;
+  v->triangle = -1, v->eps = 0.0f, v->previous = previous, v->ordinal = ordinal;
+  v->barycentrics[0] = v->barycentrics[1] = 0.0f;
+  v->flags = KASHA_VCM_MEDIUM | (merges ? KASHA_VCM_MERGEABLE : 0);
+  v->instance = -1;
+  v->medium = p->medium;
+}
+#endif
 
 /* A light subpath's partial MIS weights at its start (SmallVCM's GenerateLightSample): for a
  * light that is not a shape dVCM = direct / emission, dVC = 1 / (pick · emission), 0 for a delta
@@ -115,6 +167,7 @@ inline void vcm_store_vertex(__global float* store, int slot, const HitPoint* h,
 #else
   v->instance = -1;
 #endif
+  v->medium = -1;
 }
 
 /* Light subpath `index` of the iteration, from the stream of its index: its vertices stored (past
@@ -140,6 +193,12 @@ inline float vcm_light_path(const SceneView* s, const FilmView* f, const KVcmIte
   int last = -1, ordinal = 0;
   float guard = 0.0f, dvc_merge = 0.0f; /* the light side leaves its own merges out */
   bool caustic = false;                  /* it arrives from a delta bounce */
+#if KASHA_SCATTERING
+  /* Collisions' factors (vcm_media.h), and σ̄ where the segment now flown started. */
+  const float eta_volume = vcm_volume_eta(rad, rad->radius);
+  const float vm_volume = vcm_merge_factor(eta_volume), vc_volume = vcm_connect_factor(eta_volume);
+  float sigma_prev = 1.0f;
+#endif
   for (int depth = 0;; ++depth) {
     if (depth == KASHA_MAX_PATH_DEPTH) {
       guard = photon_total(&p) / p.start;
@@ -150,11 +209,44 @@ inline float vcm_light_path(const SceneView* s, const FilmView* f, const KVcmIte
     if (depth >= KASHA_DEPTH_CAP) break;
 #endif
     HitPoint h;
+#if KASHA_SCATTERING
+    MediaTrail trail;
+    int reached = photon_flight(&p, s, &sampler, depth, &h, &trail);
+    if (reached == KASHA_FLIGHT_ESCAPED) break;
+    const bool collided = reached == KASHA_FLIGHT_SCATTERED;
+#else
     if (!photon_intersect(s, &p, &h)) break;
-    vcm_arrived(far_start && depth == 0 ? 1.0f : h.t, fabs(dot(h.n, p.direction)), &dvcm, &dvc, &dvm, &dvc_merge);
+    const bool collided = false;
+#endif
+    vcm_arrived(far_start && depth == 0 ? 1.0f : h.t, collided ? 1.0f : fabs(dot(h.n, p.direction)), &dvcm, &dvc,
+                &dvm, &dvc_merge);
     /* dVCM's next-event density (SmallVCM's directPdfA, by area above) as it truly is from here. */
     if (depth == 0 && o.tri >= 0)
       dvcm *= vcm_direct_area(s, o.tri, h.x, start, dot(o.normal, p.direction)) / o.area_pdf;
+#if KASHA_SCATTERING
+    const __global KMedium* m = collided ? &s->media[p.medium] : 0;
+    vcm_through(vcm_trail_mean(s, &trail), sigma_prev, collided ? m->sigma_mean : 1.0f, &dvcm, &dvc, &dvm,
+                &dvc_merge);
+    sigma_prev = collided ? m->sigma_mean : 1.0f;
+    if (collided) {
+      if (!(m->events > 0.0f)) break; /* a collision that only absorbs */
+      bool merges = caustic || !KASHA_VCM_MERGE_CAUSTIC;
+      float3 from = -p.direction;
+      int slot = atomic_inc(&counters->stored);
+      if (slot >= 0 && slot < it->capacity)
+        vcm_store_collision(store, slot, h.x, &p, index, depth, dvcm, dvc, dvm, last, ordinal, merges);
+      last = slot;
+      ++ordinal;
+      if (KASHA_VCM_CONNECT && !KASHA_VCM_EMISSION_ONLY && VCM_LENGTH_COUNTS(depth + 2))
+        vcm_splat_collision(s, f, target, m, merges, h.x, &p, dvcm, dvc, rad, paths, it->spp);
+      if (scatter_photon_in_medium(&p, s, h.x, &sampler, depth) == BRANCH_ABSORBED) break;
+      caustic = false;
+      float pdf = vcm_medium_pdf(m, from, p.direction);
+      vcm_scattered_by(pdf, pdf, 1.0f, KASHA_VCM_MERGE_EVERY && merges, vm_volume, vc_volume, &dvcm, &dvc, &dvm,
+                       &dvc_merge);
+      continue;
+    }
+#endif
 #if KASHA_SHADING_NORMALS
     /* From below the shading normal's hemisphere: the surface does not scatter it (hit_seen). */
     if (!hit_seen(&h, p.direction)) break;

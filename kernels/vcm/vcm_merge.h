@@ -20,6 +20,26 @@ inline float vcm_coverage(const SceneView* s, float3 x, float3 ng, float radius)
   return c > 0.0f ? c : 1.0f; /* no probe on accepted surface: nothing to correct by */
 }
 
+#if KASHA_SCATTERING
+/* A camera path's collision merging with a stored collision lv in the same medium within r, in
+ * 3-D (vcm_media.h): T·f·Φ, f the phase function and the dyes, over the sphere's volume (in
+ * `scale`), weighed by the collision's own η (in vc). The weights' merges at any other vertex sit
+ * in dVC with their own η, so dVC / η here stands for SmallVCM's dVM. */
+inline void vcm_merge_collision(const VcmCamera* c, const SceneView* s, const FilmView* f, const VcmVertex* cv,
+                                float vc, const __global KVcmLightVertex* lv, float scale, float* rows) {
+  if (lv->medium != cv->medium) return;
+  const __global KMedium* m = &s->media[cv->medium];
+  float3 eye = -c->w.dir, light = -load_float3(lv->arrival);
+  float weight = scale;
+  if (KASHA_VCM_CONNECT) {
+    float w_light = vc * (lv->dvcm + lv->dvc * vcm_medium_pdf(m, eye, light));
+    float w_camera = vc * (c->dvcm + c->dvc * vcm_medium_pdf(m, light, eye));
+    weight = scale / (w_light + 1.0f + w_camera);
+  }
+  vcm_medium_camera_apply(&c->w.p, s, f, m, eye, light, vcm_vertex_power(lv), weight, rows);
+}
+#endif
+
 /* A stored light vertex lv at d from the camera vertex, within r: if it merges — on the same
  * side, facing alike and near the tangent plane of the geometric surface, as photon mapping's
  * gather — it adds T·f_c·Φ weighed against the connections that sample the same path (ppm:
@@ -30,6 +50,13 @@ inline void vcm_merge_vertex(const VcmCamera* c, const SceneView* s, const FilmV
                              const __global KVcmLightVertex* lv, float* scale, float* covered, float* rows) {
   if (!VCM_LENGTH_COUNTS(c->w.depth + lv->depth + 2)) return;
   if (!(lv->flags & KASHA_VCM_MERGEABLE)) return;
+#if KASHA_SCATTERING
+  /* Collisions merge with collisions, surfaces with surfaces. */
+  if (cv->medium >= 0 || (lv->flags & KASHA_VCM_MEDIUM)) {
+    if (cv->medium >= 0 && (lv->flags & KASHA_VCM_MEDIUM)) vcm_merge_collision(c, s, f, cv, vc, lv, *scale, rows);
+    return;
+  }
+#endif
   const Surface* surf = &v->surf;
   float3 x = v->h.x, ns = cv->ns, eye = -c->w.dir;
   float3 ny = load_float3(lv->normal);
@@ -50,10 +77,13 @@ inline void vcm_merge_vertex(const VcmCamera* c, const SceneView* s, const FilmV
   }
   float weight = *scale;
   if (KASHA_VCM_CONNECT) {
-    /* A light subpath that never merges (merges at the first vertex) has dVM = dVC / η. */
-    float dvm_light = KASHA_VCM_MERGE_EVERY ? lv->dvm : lv->dvc * vc;
+    /* A light subpath that never merges (merges at the first vertex) has dVM = dVC / η; so does
+     * every subpath in a scattering scene, where dVC holds each merge with its own η (a disc's
+     * or a sphere's) and dVM, counting them alike, does not. */
+    float dvm_light = KASHA_VCM_MERGE_EVERY && !KASHA_SCATTERING ? lv->dvm : lv->dvc * vc;
+    float dvm_camera = KASHA_SCATTERING ? c->dvc * vc : c->dvm;
     float w_light = lv->dvcm * vc + dvm_light * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, light);
-    float w_camera = c->dvcm * vc + c->dvm * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, light, eye);
+    float w_camera = c->dvcm * vc + dvm_camera * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, light, eye);
     weight = *scale / (w_light + 1.0f + w_camera);
   }
   vcm_camera_apply(&c->w.p, f, surf, fv, vcm_vertex_power(lv), weight, rows);

@@ -1,3 +1,15 @@
+#if KASHA_MEDIA
+/* The light le as it arrives over a connection of transmittance tr (segment_clear's, in the
+ * scratch; null: 1): tr∘le, in the scratch. */
+inline const __global float* vcm_through_light(const SceneView* s, const __global float* tr,
+                                               const __global float* le) {
+  if (!tr) return le;
+  __global float* out = s->scratch + KASHA_SCRATCH_MEDIA;
+  for (int i = 0; i < KASHA_BINS; ++i) out[i] *= le[i];
+  return out;
+}
+#endif
+
 /* Next-event estimation at a camera vertex (SmallVCM's DirectIllumination): one light point as
  * next_event.h samples it, weighed against the camera path hitting it and against every
  * technique that reaches it from the light's side. A rough dielectric takes light from either
@@ -18,6 +30,19 @@ inline void vcm_next_event(const VcmCamera* c, const SceneView* s, const FilmVie
   if (cos_x <= 0.0f || cos_l <= 0.0f || !hit_no_leak(&v->h, wi)) return;
   VcmF fv = vcm_eval(s, surf, ns, cv->nf, eye, wi, wi, cv->eta);
   if (!vcm_f_nonzero(&fv)) return;
+  const __global float* le = light_point_spectrum(s, &lp);
+#if KASHA_MEDIA
+  /* The light through the media on the way; T̄ of the segment for the weights (vcm_media.h). */
+  const __global float* tr;
+  if (!segment_clear(s, x, vcm_toward(cv->ng, wi), v->h.eps, wi, dist, lp.eps / cos_l,
+                     medium_after(s, v->h.tri, v->h.n, wi, c->w.medium), &tr))
+    return;
+  float tbar = vcm_unsampled(tr);
+  le = vcm_through_light(s, tr, le);
+#else
+  if (segment_occluded(s, x, vcm_toward(cv->ng, wi), v->h.eps, wi, dist, lp.eps / cos_l)) return;
+  const float tbar = 1.0f;
+#endif
   float w_light, direct, emission;
 #if KASHA_LIGHT_SOURCES
   if (lp.source) {
@@ -26,30 +51,66 @@ inline void vcm_next_event(const VcmCamera* c, const SceneView* s, const FilmVie
     const __global KLight* l = lp.source;
     emission = vcm_source_emission(s, l, -wi, &direct);
     if (vcm_source_finite(l)) direct *= dist * dist;
-    w_light = lp.delta ? 0.0f : vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, wi) / (l->pick * direct);
+    w_light = lp.delta ? 0.0f : vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, wi) * tbar / (l->pick * direct);
   } else
 #endif
   {
     /* The density it was sampled with (per solid angle), as the weights at the lamp's hits. */
     direct = pdf_light, emission = s->emitter_area_pdf[lp.emitter] * cos_l * KASHA_INV_PI;
-    w_light = vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, wi) / direct;
+    w_light = vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, wi) * tbar / direct;
   }
   /* The light part is the light point: with caustic merges no merge here or behind makes it. */
-  float w_camera = emission * cos_g / (direct * cos_l) *
+  float w_camera = emission * cos_g * tbar / (direct * cos_l) *
                    ((cv->merges && !KASHA_VCM_MERGE_CAUSTIC ? vm : 0.0f) + c->dvcm +
                     vcm_camera_dvc(c) * vcm_pdf(s, surf, cv->lambert, ns, cv->nf, wi, eye));
   float weight = 1.0f / (w_light + 1.0f + w_camera);
-  const __global float* le = light_point_spectrum(s, &lp);
-#if KASHA_MEDIA
-  le = segment_light(s, x, vcm_toward(cv->ng, wi), v->h.eps, wi, dist, lp.eps / cos_l,
-                     medium_after(s, v->h.tri, v->h.n, wi, c->w.medium), le);
-  if (!le) return;
-#else
-  if (segment_occluded(s, x, vcm_toward(cv->ng, wi), v->h.eps, wi, dist, lp.eps / cos_l)) return;
-#endif
   float scale = cos_x / pdf_light * weight;
 #if KASHA_LIGHT_SOURCES || KASHA_EMISSION_TEXTURES
   scale *= lp.scale;
 #endif
   vcm_camera_apply(&c->w.p, f, surf, fv, le, scale, rows);
 }
+
+#if KASHA_SCATTERING
+/* Next-event estimation at a camera path's collision in m (vcm_media.h): one light point, its
+ * light sent on by σs and the phase function and by each dye, weighed as at a surface with the
+ * collision's densities — the phase mix by solid angle, T̄ σ̄ to reach it, no cosine. */
+inline void vcm_next_event_collision(const VcmCamera* c, const SceneView* s, const FilmView* f, const CameraVertex* v,
+                                     const VcmVertex* cv, const __global KMedium* m, float vm, float* rows) {
+  if (s->light_count == 0) return;
+  float3 x = v->h.x, eye = -c->w.dir;
+  float pdf_light;
+  LightPoint lp = sample_light_from(s, x, v->u_light, &pdf_light);
+  if (!(pdf_light > 0.0f)) return;
+  float3 to = lp.position - x;
+  float dist = length(to);
+  if (!(dist > lp.eps)) return;
+  float3 wi = to / dist;
+  float cos_l = -dot(lp.normal, wi);
+  if (cos_l <= 0.0f) return;
+  const __global float* tr;
+  if (!segment_clear(s, x, (float3)(0.0f, 0.0f, 0.0f), 0.0f, wi, dist, lp.eps / cos_l, c->w.medium, &tr)) return;
+  float tbar = vcm_segment_mean(tr), pdf = vcm_medium_pdf(m, eye, wi);
+  const __global float* le = vcm_through_light(s, tr, light_point_spectrum(s, &lp));
+  float w_light, direct, emission;
+#if KASHA_LIGHT_SOURCES
+  if (lp.source) {
+    const __global KLight* l = lp.source;
+    emission = vcm_source_emission(s, l, -wi, &direct);
+    if (vcm_source_finite(l)) direct *= dist * dist;
+    w_light = lp.delta ? 0.0f : pdf * tbar / (l->pick * direct);
+  } else
+#endif
+  {
+    direct = pdf_light, emission = s->emitter_area_pdf[lp.emitter] * cos_l * KASHA_INV_PI;
+    w_light = pdf * tbar / direct;
+  }
+  float w_camera = emission * tbar * m->sigma_mean / (direct * cos_l) *
+                   ((cv->merges && !KASHA_VCM_MERGE_CAUSTIC ? vm : 0.0f) + c->dvcm + vcm_camera_dvc(c) * pdf);
+  float scale = 1.0f / (pdf_light * (w_light + 1.0f + w_camera));
+#if KASHA_LIGHT_SOURCES || KASHA_EMISSION_TEXTURES
+  scale *= lp.scale;
+#endif
+  vcm_medium_camera_apply(&c->w.p, s, f, m, eye, wi, le, scale, rows);
+}
+#endif

@@ -7,6 +7,17 @@
  * and (where it merges) merge, whose part of dVC also goes to dvc_merge. Densities are about the
  * shading normal ns (nf: the front one), their turns to area about the geometric ng. False: no
  * density, the path ends. */
+/* The recursion's step at a vertex that is not delta, its densities pdf (from → to) and rev
+ * (to → from) known, cos_out turning the reverse one to the vertex's measure (1 in a medium). */
+inline void vcm_scattered_by(float pdf, float rev, float cos_out, bool merges, float vm, float vc, float* dvcm,
+                             float* dvc, float* dvm, float* dvc_merge) {
+  /* dVC's part from the merge here, carried as dVC carries it (the camera's caustic merges). */
+  *dvc_merge = cos_out / pdf * (*dvc_merge * rev + (merges ? vm : 0.0f));
+  *dvc = cos_out / pdf * (*dvc * rev + *dvcm + (merges ? vm : 0.0f));
+  *dvm = cos_out / pdf * (*dvm * rev + *dvcm * vc + (merges ? 1.0f : 0.0f));
+  *dvcm = 1.0f / pdf;
+}
+
 inline bool vcm_scattered(const SceneView* s, const Surface* surf, float lambert, float3 ns, float3 nf, float3 ng,
                           float3 from, float3 to, bool delta, bool merges, float vm, float vc, float* dvcm, float* dvc,
                           float* dvm, float* dvc_merge) {
@@ -20,11 +31,7 @@ inline bool vcm_scattered(const SceneView* s, const Surface* surf, float lambert
   }
   float pdf = vcm_pdf(s, surf, lambert, ns, nf, from, to), rev = vcm_pdf(s, surf, lambert, ns, nf, to, from);
   if (!(pdf > 0.0f)) return false;
-  /* dVC's part from the merge here, carried as dVC carries it (the camera's caustic merges). */
-  *dvc_merge = cos_out / pdf * (*dvc_merge * rev + (merges ? vm : 0.0f));
-  *dvc = cos_out / pdf * (*dvc * rev + *dvcm + (merges ? vm : 0.0f));
-  *dvm = cos_out / pdf * (*dvm * rev + *dvcm * vc + (merges ? 1.0f : 0.0f));
-  *dvcm = 1.0f / pdf;
+  vcm_scattered_by(pdf, rev, cos_out, merges, vm, vc, dvcm, dvc, dvm, dvc_merge);
   return true;
 }
 
