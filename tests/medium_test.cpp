@@ -241,14 +241,16 @@ std::string scattering_furnace(double g) {
 }
 
 // A render of a furnace scene: backward's 4 passes of 64 samples a pixel, light tracing's 4 of
-// 2^17 photons, or photon mapping's 32 of 2^16.
+// 2^17 photons, photon mapping's 32 of 2^16, or vcm's, bpt's and ppm's 16 of 64 camera paths a
+// pixel and 2^12 light subpaths.
 RenderResult render_furnace(const std::string& name, const std::string& scene,
                             const std::string& integrator = "backward") {
   RenderSettings s;
+  const bool vcm_family = integrator == "vcm" || integrator == "bpt" || integrator == "ppm";
   s.integrator = integrator;
   s.integrator_settings.spp = 64;
-  s.integrator_settings.photons = integrator == "photon" ? 1 << 16 : 1 << 17;
-  s.passes = integrator == "photon" ? 32 : 4;
+  s.integrator_settings.photons = integrator == "photon" ? 1 << 16 : vcm_family ? 1 << 12 : 1 << 17;
+  s.passes = integrator == "photon" ? 32 : vcm_family ? 16 : 4;
   return render_scene(write_file(name, scene), s);
 }
 
@@ -260,8 +262,8 @@ TEST(Medium, AScatteringFurnaceShowsTheEmittersRadianceInEveryBin) {
   }
   // Light tracing: each collision splatted to the camera through the phase function; photon
   // mapping: photons stored at collisions, gathered in 3-D at the camera paths' collisions
-  // through the phase function.
-  for (const std::string integrator : {"forward", "photon"}) {
+  // through the phase function; vcm, bpt and ppm: collisions as vertices of every technique.
+  for (const std::string integrator : {"forward", "photon", "vcm", "bpt", "ppm"}) {
     RenderResult p = render_furnace("scattering_furnace.json", scattering_furnace(0.7), integrator);
     expect_bins_match(p, p.scene.emitters.at(0).per_bin, 0.05, integrator + " furnace g 0.7");
   }
@@ -283,7 +285,7 @@ TEST(Medium, AFluorescentFurnaceWhoseDyeReemitsItsAbsorptionShowsTheEmittersRadi
                        {"absorption": )" + second + R"(, "quantum_yield": 1, "emission": )" + second +
                                            "}]}");
   const std::vector<double> emitter = load_scene(write_file("fluorescent_furnace.json", scene)).emitters.at(0).per_bin;
-  for (const std::string integrator : {"backward", "forward", "photon"}) {
+  for (const std::string integrator : {"backward", "forward", "photon", "vcm", "bpt", "ppm"}) {
     RenderResult r = render_furnace("fluorescent_furnace.json", scene, integrator);
     ASSERT_TRUE(r.scene.fluorescent());
     expect_bins_match(r, emitter, integrator == "backward" ? 0.02 : 0.05, integrator + " fluorescent furnace");
@@ -393,19 +395,15 @@ TEST(Medium, SingleScatteringInAThinSlabFollowsItsClosedForm) {
     s.integrator = "photon";
     s.integrator_settings.photons = 1 << 12;
     expect_bins_match(render_scene(path, s), truth, 0.02, "photon " + what);
-  }
-}
-
-// The other integrators do not render scattering media yet: one line, nothing written.
-TEST(Medium, OtherIntegratorsRefuseScatteringMedia) {
-  const std::string path = write_file("scattering_furnace.json", scattering_furnace(0));
-  for (const std::string integrator : {"vcm", "bpt", "ppm"}) {
-    RenderSettings s;
-    s.integrator = integrator;
-    const std::string e = error_of([&] { render_scene(path, s); });
-    EXPECT_NE(e.find("a medium that scatters or fluoresces is rendered by the backward, forward and photon integrators only so far"),
-              std::string::npos)
-        << e;
+    // bpt and vcm: next-event estimation at the camera's collisions weighed against light
+    // tracing from the light's; ppm: the light's first collisions merged in 3-D.
+    for (const std::string integrator : {"bpt", "vcm", "ppm"}) {
+      s.integrator = integrator;
+      s.integrator_settings.photons = 1 << 12;
+      s.passes = 16;
+      expect_bins_match(render_scene(path, s), truth, 0.03, integrator + " " + what);
+    }
+    s.passes = 4;
   }
 }
 
