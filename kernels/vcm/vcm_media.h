@@ -1,4 +1,4 @@
-/* vcm, bpt and ppm in scattering media (docs/media.md#what-each-integrator-does): the point–point
+/* vcm, bpt and ppm in scattering media (docs/media.md#vcm-bpt-and-ppm-in-scattering-media): the point–point
  * subset of Křivánek et al. 2014 ("Unifying points, beams and paths in volumetric light transport
  * simulation"). A collision in a medium is a vertex as a surface hit is: the light pass stores
  * it (KASHA_VCM_MEDIUM) and splats it to the camera; a camera path's collision takes next-event
