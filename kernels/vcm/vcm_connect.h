@@ -115,11 +115,10 @@ inline void vcm_connect_vertex(const VcmCamera* c, const SceneView* s, const Fil
 #if KASHA_MEDIA
   /* A collision leaves from the point itself; a surface off the side the connection leaves by. */
   bool medium_x = cv->medium >= 0;
+  float3 off = medium_x ? (float3)(0.0f, 0.0f, 0.0f) : vcm_toward(cv->ng, dir);
+  int start = medium_x ? c->w.medium : medium_after(s, v->h.tri, v->h.n, dir, c->w.medium);
   const __global float* tr;
-  if (!segment_clear(s, x, medium_x ? (float3)(0.0f, 0.0f, 0.0f) : vcm_toward(cv->ng, dir), medium_x ? 0.0f : v->h.eps,
-                     dir, dist, lv->eps / el.cos_g, medium_x ? c->w.medium : medium_after(s, v->h.tri, v->h.n, dir, c->w.medium),
-                     &tr))
-    return;
+  if (!segment_clear(s, x, off, medium_x ? 0.0f : v->h.eps, dir, dist, lv->eps / el.cos_g, start, &tr)) return;
   float tbar = vcm_unsampled(tr);
 #else
   if (segment_occluded(s, x, vcm_toward(cv->ng, dir), v->h.eps, dir, dist, lv->eps / el.cos_g)) return;

@@ -116,6 +116,41 @@ inline void vcm_store_collision(__global float* store, int slot, float3 x, const
 }
 #endif
 
+#if KASHA_SCATTERING
+/* The light subpath's partial weights, as a collision's step takes them. */
+typedef struct {
+  float dvcm, dvc, dvm, dvc_merge;
+} VcmPartial;
+
+/* Light subpath `index`'s collision at x, its depth-th hit, in the photon's medium m (merging
+ * there counts if it arrived from a delta bounce, `caustic`, or merges are not caustic ones):
+ * stored after *last (the subpath's *ordinal-th), splatted to the camera, then scattered or
+ * re-emitted (scatter_photon_in_medium) and the weights' step with the sphere's factors. False:
+ * the path ends (the collision only absorbs, or the photon is absorbed). */
+inline bool vcm_light_collision(const SceneView* s, const FilmView* f, const KVcmIteration* it, int index,
+                                __global float* store, __global KVcmCounters* counters, SplatTarget* target,
+                                Photon* p, Sampler* sampler, float3 x, int depth, bool caustic, int* last,
+                                int* ordinal, VcmPartial* w) {
+  const __global KMedium* m = &s->media[p->medium];
+  if (!(m->events > 0.0f)) return false;
+  const KVcmRadius* rad = &it->radius;
+  bool merges = caustic || !KASHA_VCM_MERGE_CAUSTIC;
+  float3 from = -p->direction;
+  int slot = atomic_inc(&counters->stored);
+  if (slot >= 0 && slot < it->capacity)
+    vcm_store_collision(store, slot, x, p, index, depth, w->dvcm, w->dvc, w->dvm, *last, *ordinal, merges);
+  *last = slot;
+  ++*ordinal;
+  if (KASHA_VCM_CONNECT && !KASHA_VCM_EMISSION_ONLY && VCM_LENGTH_COUNTS(depth + 2))
+    vcm_splat_collision(s, f, target, m, merges, x, p, w->dvcm, w->dvc, rad, (float)it->paths, it->spp);
+  if (scatter_photon_in_medium(p, s, x, sampler, depth) == BRANCH_ABSORBED) return false;
+  float eta = vcm_volume_eta(rad, rad->radius), pdf = vcm_medium_pdf(m, from, p->direction);
+  vcm_scattered_by(pdf, pdf, 1.0f, KASHA_VCM_MERGE_EVERY && merges, vcm_merge_factor(eta), vcm_connect_factor(eta),
+                   &w->dvcm, &w->dvc, &w->dvm, &w->dvc_merge);
+  return true;
+}
+#endif
+
 /* A light subpath's partial MIS weights at its start (SmallVCM's GenerateLightSample): for a
  * light that is not a shape dVCM = direct / emission, dVC = 1 / (pick · emission), 0 for a delta
  * light (no camera path hits it); for an emitting triangle, emission by area and cosine,
@@ -194,10 +229,7 @@ inline float vcm_light_path(const SceneView* s, const FilmView* f, const KVcmIte
   float guard = 0.0f, dvc_merge = 0.0f; /* the light side leaves its own merges out */
   bool caustic = false;                  /* it arrives from a delta bounce */
 #if KASHA_SCATTERING
-  /* Collisions' factors (vcm_media.h), and σ̄ where the segment now flown started. */
-  const float eta_volume = vcm_volume_eta(rad, rad->radius);
-  const float vm_volume = vcm_merge_factor(eta_volume), vc_volume = vcm_connect_factor(eta_volume);
-  float sigma_prev = 1.0f;
+  float sigma_prev = 1.0f; /* σ̄ where the segment now flown started (vcm_media.h) */
 #endif
   for (int depth = 0;; ++depth) {
     if (depth == KASHA_MAX_PATH_DEPTH) {
@@ -229,21 +261,12 @@ inline float vcm_light_path(const SceneView* s, const FilmView* f, const KVcmIte
                 &dvc_merge);
     sigma_prev = collided ? m->sigma_mean : 1.0f;
     if (collided) {
-      if (!(m->events > 0.0f)) break; /* a collision that only absorbs */
-      bool merges = caustic || !KASHA_VCM_MERGE_CAUSTIC;
-      float3 from = -p.direction;
-      int slot = atomic_inc(&counters->stored);
-      if (slot >= 0 && slot < it->capacity)
-        vcm_store_collision(store, slot, h.x, &p, index, depth, dvcm, dvc, dvm, last, ordinal, merges);
-      last = slot;
-      ++ordinal;
-      if (KASHA_VCM_CONNECT && !KASHA_VCM_EMISSION_ONLY && VCM_LENGTH_COUNTS(depth + 2))
-        vcm_splat_collision(s, f, target, m, merges, h.x, &p, dvcm, dvc, rad, paths, it->spp);
-      if (scatter_photon_in_medium(&p, s, h.x, &sampler, depth) == BRANCH_ABSORBED) break;
+      VcmPartial w = {dvcm, dvc, dvm, dvc_merge};
+      if (!vcm_light_collision(s, f, it, index, store, counters, target, &p, &sampler, h.x, depth, caustic, &last,
+                               &ordinal, &w))
+        break;
+      dvcm = w.dvcm, dvc = w.dvc, dvm = w.dvm, dvc_merge = w.dvc_merge;
       caustic = false;
-      float pdf = vcm_medium_pdf(m, from, p.direction);
-      vcm_scattered_by(pdf, pdf, 1.0f, KASHA_VCM_MERGE_EVERY && merges, vm_volume, vc_volume, &dvcm, &dvc, &dvm,
-                       &dvc_merge);
       continue;
     }
 #endif
