@@ -7,10 +7,12 @@
 
 namespace kasha {
 
-size_t default_light_paths(VcmMode m, size_t pixels, bool caustic_lit) {
+size_t default_light_paths(VcmMode m, size_t pixels, bool caustic_lit, bool scattering) {
   if (m == VcmMode::ppm) return std::max<size_t>(pixels, kLeastPhotonMappingPaths);
   if (m == VcmMode::vcm && caustic_lit)
     return std::min<size_t>(pixels * kCausticLitLightPaths, (1u << 31) - 1);
+  if (m == VcmMode::vcm && scattering)
+    return std::min<size_t>(pixels * kScatteringLightPaths, (1u << 31) - 1);
   return pixels;
 }
 
