@@ -45,7 +45,6 @@
 #include "film/camera_splat.h"
 #include "transport/camera_walk.h"
 #include "transport/disc_coverage.h"
-#include "transport/sphere_coverage.h"
 #include "transport/hash_grid.cl"
 #include "transport/photon_transport.h"
 #include "transport/photon_medium.h"

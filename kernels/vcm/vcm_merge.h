@@ -1,8 +1,7 @@
 /* Merges at a camera vertex (SmallVCM's RangeQuery and MergingCallback).
  *
  * Edge correction of merges (--edge-correction, on by default): a merge divides by the fraction of
- * its disc on surface it accepts (disc_coverage.h), or of a collision's sphere in its region
- * (sphere_coverage.h), measured with KASHA_VCM_COVERAGE_PROBES probes
+ * its disc on surface it accepts (disc_coverage.h), measured with KASHA_VCM_COVERAGE_PROBES probes
  * once the merge has met a photon. The pattern's rotation is a hash of the vertex's position, so
  * the fraction is a function of the vertex and the radius alone; it tends to 1 with the radius
  * everywhere but on the edges themselves, so merges stay consistent. */
@@ -22,17 +21,12 @@ inline float vcm_coverage(const SceneView* s, float3 x, float3 ng, float radius)
 }
 
 #if KASHA_SCATTERING
-/* The sphere's fraction in the region of its centre x (edge correction of 3-D merges:
- * sphere_coverage.h, as photon mapping's gathers in media), its probes turned by a hash of x. */
-inline float vcm_sphere_coverage(const SceneView* s, float3 x, float radius) {
-  uint h = hash_combine(hash_combine(hash_u32(as_uint(x.x)), as_uint(x.y)), as_uint(x.z));
-  float c = sphere_covered(s, x, radius, KASHA_VCM_COVERAGE_PROBES, (float)h * (2.0f * KASHA_PI / 4294967296.0f));
-  return c > 0.0f ? c : 1.0f; /* no probe in the region: nothing to correct by */
-}
-
 /* A camera path's collision merging with a stored collision lv in the same medium within r, in
  * 3-D (vcm_media.h): T·f·Φ, f the phase function and the dyes, over the sphere's volume (in
- * `scale`), weighed by the collision's own η (in vc). The weights' merges at any other vertex sit
+ * `scale`), weighed by the collision's own η (in vc). Not edge-corrected: a per-merge division by
+ * an 8-probe fraction of the sphere (sphere_coverage.h) was biased up where the sphere is cut
+ * (E[1/c] > 1/E[c]: the single-scattering slab's ppm +140 % with a dye); photon mapping divides
+ * its image by the fraction's mean over passes instead. The weights' merges at any other vertex sit
  * in dVC with their own η, so dVC / η here stands for SmallVCM's dVM. */
 inline void vcm_merge_collision(const VcmCamera* c, const SceneView* s, const FilmView* f, const VcmVertex* cv,
                                 float vc, const __global KVcmLightVertex* lv, float scale, float* rows) {
@@ -62,12 +56,7 @@ inline void vcm_merge_vertex(const VcmCamera* c, const SceneView* s, const FilmV
 #if KASHA_SCATTERING
   /* Collisions merge with collisions, surfaces with surfaces. */
   if (cv->medium >= 0 || (lv->flags & KASHA_VCM_MEDIUM)) {
-    if (!(cv->medium >= 0 && (lv->flags & KASHA_VCM_MEDIUM))) return;
-    if (KASHA_VCM_EDGE_CORRECTION && *covered == 0.0f) {
-      *covered = vcm_sphere_coverage(s, v->h.x, radius);
-      *scale /= *covered;
-    }
-    vcm_merge_collision(c, s, f, cv, vc, lv, *scale, rows);
+    if (cv->medium >= 0 && (lv->flags & KASHA_VCM_MEDIUM)) vcm_merge_collision(c, s, f, cv, vc, lv, *scale, rows);
     return;
   }
 #endif
