@@ -123,11 +123,11 @@ render lacquered_vase_512 "scenes/lacquered_vase.json (${SIZE}²)" "$scene" --in
 # replaced by the measured Post-it from the command line (--material), at 512 × 512 (a copy
 # with the Film's resolution changed).
 # Participating media: a fluorescent liquid under a lens, and tonic water under a UV spot
-# (docs/media.md), at the scenes' 4:3.
+# (docs/media.md), at the scenes' 4:3, with vcm (the default): collisions connected and merged
+# (docs/media.md#equal-time-the-volumetric-caustic).
 for name in volumetric_caustic tonic_under_uv_spot; do
   scene=$(resized scenes/$name.json $SIZE 384); TEMPORARY+=("$scene")
-  render ${name}_512 "scenes/$name.json (${SIZE} × 384)" "$scene" --integrator photon \
-    --photons 1048576 --time 90
+  render ${name}_512 "scenes/$name.json (${SIZE} × 384)" "$scene" --time 90
 done
 
 copy=scenes/pbrt/.gallery_cornell_box_${SIZE}.pbrt; TEMPORARY+=("$copy")

@@ -112,7 +112,7 @@ set(kasha_long_other
   "Converge.FurnaceSlopesMatchTheory"
   "LayeredMetal.EveryIntegratorAgreesWithBackward"
   "SphereLight.EveryIntegratorAgreesWithTriangleSampling"
-  "Medium.ForwardAndPhotonAgreeWithBackwardOnTonicWaterUnderAUvSpot"
+  "Medium.ForwardPhotonAndVcmAgreeWithBackwardOnTonicWaterUnderAUvSpot"
   "Colorimetry/Hemisphere.RenderShowsColorimetryXyz/ppm"
   "Integrators/MpiRender.TwoAndThreeRanksWriteTheOneProcessFile/vcm"
   "RoughnessTexture.EachSquareRendersAsItsConstantRoughness"

@@ -87,7 +87,7 @@ TEST(Medium, EveryIntegratorAgreesWithBackwardOnDyeInGlass) {
 // beam through paths that find it by chance, so its reference takes 8192 samples a pixel (its
 // means vary by 3 % between seeds at 1024); photon mapping's 64 passes let its radii shrink past
 // their first passes' blur (−7 % after 16).
-TEST(Medium, ForwardAndPhotonAgreeWithBackwardOnTonicWaterUnderAUvSpot) {
+TEST(Medium, ForwardPhotonAndVcmAgreeWithBackwardOnTonicWaterUnderAUvSpot) {
   const std::string path = source_path("scenes/tonic_under_uv_spot.json");
   RenderSettings s;
   s.camera = load_scene(path).camera;
@@ -99,10 +99,12 @@ TEST(Medium, ForwardAndPhotonAgreeWithBackwardOnTonicWaterUnderAUvSpot) {
   s.passes = 32;
   const RenderResult backward = render_scene(path, s);
   const std::vector<size_t> floor = primary_hit_regions(backward.scene, *s.camera).at("white");
-  for (const std::string integrator : {"forward", "photon"}) {
+  // vcm: collisions connected and merged (one light subpath a pixel times 8, its default here).
+  for (const std::string integrator : {"forward", "photon", "vcm"}) {
     s.integrator = integrator;
-    s.integrator_settings.photons = 1 << 16;
-    s.passes = integrator == "photon" ? 64 : 16;
+    s.integrator_settings.photons = integrator == "vcm" ? 32 * 24 * 8 : 1 << 16;
+    s.integrator_settings.spp = integrator == "vcm" ? 16 : 256;
+    s.passes = integrator == "photon" ? 64 : integrator == "vcm" ? 32 : 16;
     const RenderResult tested = render_scene(path, s);
     ASSERT_TRUE(tested.scene.scattering());
     for (const std::vector<size_t>& pixels : {std::vector<size_t>{}, floor}) {
