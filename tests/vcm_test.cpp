@@ -22,14 +22,18 @@ namespace {
 // of every length, fluorescence left out so that bins stay apart. With `mirror`, a mirror for its
 // floor: paths through a delta bounce, some of them caustics that only merges, light tracing and
 // the camera paths' hits make (caustic merges count only those).
-std::string lamp_box(bool mirror = false) {
+std::string lamp_box(bool mirror = false, const std::string& fog = "") {
   const std::string shapes = R"(,
                {"type": "quad", "corner": [-1, -0.99, -1], "u": [0, 0, 2], "v": [2, 0, 0],
                 "material": "mirror"}]})";
-  return write_file(mirror ? "vcm_mirror_box.json" : "vcm_lamp_box.json",
-                    R"({"kasha_scene": 1,
+  // With a fog (foggy_box below): the medium, 10 bins and a smaller image.
+  const std::string media = fog.empty() ? "" : R"(
+    "wavelengths": {"min_nm": 380, "max_nm": 780, "bin_nm": 40}, "media": {"fog": )" + fog + "},";
+  const std::string size = fog.empty() ? "64" : "48", in_fog = fog.empty() ? "" : R"(, "medium": "fog")";
+  return write_file(!fog.empty() ? "vcm_foggy_box.json" : mirror ? "vcm_mirror_box.json" : "vcm_lamp_box.json",
+                    R"({"kasha_scene": 1,)" + media + R"(
     "camera": {"position": [0, -0.2, 0.9], "look_at": [0, 0.1, -1], "fov_deg": 70,
-               "width": 64, "height": 64},
+               "width": )" + size + R"(, "height": )" + size + in_fog + R"(},
     "materials": {"grey": {"passive": {"reflectance": 0.5}},
                   "yellow": {"passive": {"reflectance": {"nm": [380, 500, 560, 780],
                                                           "value": [0.05, 0.1, 0.7, 0.8]}}},
@@ -251,24 +255,9 @@ TEST(Vcm, AWeightWithADensityDroppedFails) {
 // between collisions and surfaces both ways, light tracing from them, 3-D merges — and the
 // free flight's densities weigh each. The camera is in the fog.
 std::string foggy_box() {
-  return write_file("vcm_foggy_box.json", R"({"kasha_scene": 1,
-    "camera": {"position": [0, -0.2, 0.9], "look_at": [0, 0.1, -1], "fov_deg": 70,
-               "width": 48, "height": 48, "medium": "fog"},
-    "wavelengths": {"min_nm": 380, "max_nm": 780, "bin_nm": 40},
-    "media": {"fog": {"sigma_a": 0.05, "sigma_s": {"nm": [380, 780], "value": [0.9, 0.3]}, "g": 0.3,
-                      "fluorophores": [{"absorption": {"nm": [380, 480, 560, 780], "value": [0.6, 0.4, 0, 0]},
-                                        "quantum_yield": 0.9,
-                                        "emission": {"gaussian_nm": 620, "fwhm_nm": 60}}]}},
-    "materials": {"grey": {"passive": {"reflectance": 0.5}},
-                  "yellow": {"passive": {"reflectance": {"nm": [380, 500, 560, 780],
-                                                          "value": [0.05, 0.1, 0.7, 0.8]}}},
-                  "lamp": {"passive": {"reflectance": 0.2}}},
-    "shapes": [{"type": "box", "min": [-1, -1, -1], "max": [1, 1, 1], "material": "grey",
-                "inward": true},
-               {"type": "box", "min": [-0.5, -1, -0.6], "max": [0.1, -0.4, 0.0],
-                "material": "yellow"},
-               {"type": "quad", "corner": [-0.6, 0.98, -0.6], "u": [1.2, 0, 0], "v": [0, 0, 1.2],
-                "material": "lamp", "emission": {"blackbody_K": 5000, "scale": 1e-5}}]})");
+  return lamp_box(false, R"({"sigma_a": 0.05, "sigma_s": {"nm": [380, 780], "value": [0.9, 0.3]}, "g": 0.3,
+      "fluorophores": [{"absorption": {"nm": [380, 480, 560, 780], "value": [0.6, 0.4, 0, 0]},
+                        "quantum_yield": 0.9, "emission": {"gaussian_nm": 620, "fwhm_nm": 60}}]})");
 }
 
 RenderResult render_fog(const std::string& integrator, int length, int passes, bool emission_only,

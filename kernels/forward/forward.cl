@@ -155,14 +155,7 @@ inline void splat_medium(const SceneView* s, const FilmView* f, SplatTarget* tar
   float3 to_camera = normalize(camera_point(&s->camera, x) - x);
   float scale = k / s->bin_nm;
   film_rows_clear(rows);
-  film_rows(f, p->power, s->spectra + m->sigma_s, tr, scale * hg_phase(dot(to_camera, -p->direction), m->g), rows);
-#if KASHA_FLUORESCENCE
-  for (int d = 0; d < m->fluorophores; ++d) {
-    const __global KFluorophore* fl = &m->fluorophore[d];
-    float emitted = fl->yield * spectrum_dot(KASHA_BINS, p->power, s->spectra + fl->absorption, 0);
-    film_rows(f, 0, s->spectra + fl->emission, tr, emitted * KASHA_INV_4PI * scale, rows);
-  }
-#endif
+  collision_film_rows(s, f, m, p, to_camera, tr, scale, rows);
   splat_rows(target, pixel, rows);
 }
 #endif

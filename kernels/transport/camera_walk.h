@@ -496,6 +496,21 @@ inline bool medium_branches(const CameraWalk* w, const SceneView* s, const FilmV
   return true;
 }
 
+/* A light point for next-event estimation from x in a medium (no surface, no offset), drawn on u:
+ * its density *pdf_light, the direction *wi and distance *dist to it and the cosine *cos_l there.
+ * False: none usable. */
+inline bool collision_light_point(const SceneView* s, float3 x, float2 u, LightPoint* lp, float* pdf_light, float3* wi,
+                                  float* dist, float* cos_l) {
+  *lp = sample_light_from(s, x, u, pdf_light);
+  if (!(*pdf_light > 0.0f)) return false;
+  float3 to = lp->position - x;
+  *dist = length(to);
+  if (!(*dist > lp->eps)) return false;
+  *wi = to / *dist;
+  *cos_l = -dot(lp->normal, *wi);
+  return *cos_l > 0.0f;
+}
+
 /* Next-event estimation from a collision: one light point, its light through the media on the way
  * (segment_light), sent on by each branch — σs and the phase function, each fluorophore's
  * absorption, yield and ê, isotropically — each weighed by MIS against its own branch's sampling
@@ -503,16 +518,10 @@ inline bool medium_branches(const CameraWalk* w, const SceneView* s, const FilmV
 inline void walk_medium_next_event(const CameraWalk* w, const SceneView* s, const FilmView* f, const CameraVertex* v,
                                    const __global KMedium* m, const float* probs, float* rows) {
   if (s->light_count == 0) return;
-  float3 x = v->h.x;
-  float pdf_light;
-  LightPoint lp = sample_light_from(s, x, v->u_light, &pdf_light);
-  if (!(pdf_light > 0.0f)) return;
-  float3 to = lp.position - x;
-  float dist = length(to);
-  if (!(dist > lp.eps)) return;
-  float3 wi = to / dist;
-  float cos_l = -dot(lp.normal, wi);
-  if (cos_l <= 0.0f) return;
+  float3 x = v->h.x, wi;
+  float pdf_light, dist, cos_l;
+  LightPoint lp;
+  if (!collision_light_point(s, x, v->u_light, &lp, &pdf_light, &wi, &dist, &cos_l)) return;
   const __global float* le = segment_light(s, x, (float3)(0.0f, 0.0f, 0.0f), 0.0f, wi, dist, lp.eps / cos_l, w->medium,
                                            light_point_spectrum(s, &lp));
   if (!le) return;

@@ -11,6 +11,7 @@
 #ifndef KASHA_PHOTON_MEDIUM_H
 #define KASHA_PHOTON_MEDIUM_H
 
+#include "film/film_view.h"
 #include "media/phase.h"
 #include "sampling/sampling.h"
 #include "transport/medium_flight.h"
@@ -46,6 +47,21 @@ inline int photon_flight(Photon* p, const SceneView* s, Sampler* sampler, int de
   int reached = flight_walk(s, p->position, p->direction, &p->medium, j, flight_depth(u.y), trail, h);
   photon_flight_weight(p, s, trail, reached == KASHA_FLIGHT_SCATTERED ? p->medium : -1, total);
   return reached;
+}
+
+/* rows += scale · what the photon's collision in its medium m sends along `to` (away from it),
+ * through a connection of transmittance tr (null: 1): Φ∘σs times the phase function, and each
+ * dye's ê Φ_d (a·Φ) / 4π. Light tracing's splat of a collision, forward's and vcm's. */
+inline void collision_film_rows(const SceneView* s, const FilmView* f, const __global KMedium* m, const Photon* p,
+                                float3 to, const __global float* tr, float scale, float* rows) {
+  film_rows(f, p->power, s->spectra + m->sigma_s, tr, scale * hg_phase(dot(to, -p->direction), m->g), rows);
+#if KASHA_FLUORESCENCE
+  for (int d = 0; d < m->fluorophores; ++d) {
+    const __global KFluorophore* fl = &m->fluorophore[d];
+    float emitted = fl->yield * spectrum_dot(KASHA_BINS, p->power, s->spectra + fl->absorption, 0);
+    film_rows(f, 0, s->spectra + fl->emission, tr, emitted * KASHA_INV_4PI * scale, rows);
+  }
+#endif
 }
 
 /* The power each branch of a collision in medium m carries on: [0] elastic, Σ σs_i Φ_i; [1 + k]

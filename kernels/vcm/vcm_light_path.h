@@ -84,14 +84,7 @@ inline void vcm_splat_collision(const SceneView* s, const FilmView* f, SplatTarg
   float scale = k / (1.0f + w_light) / s->bin_nm;
   float rows[KASHA_FILM_ROWS];
   film_rows_clear(rows);
-  film_rows(f, p->power, s->spectra + m->sigma_s, tr, scale * hg_phase(dot(to, from), m->g), rows);
-#if KASHA_FLUORESCENCE
-  for (int d = 0; d < m->fluorophores; ++d) {
-    const __global KFluorophore* fl = &m->fluorophore[d];
-    float emitted = fl->yield * spectrum_dot(KASHA_BINS, p->power, s->spectra + fl->absorption, 0);
-    film_rows(f, 0, s->spectra + fl->emission, tr, emitted * KASHA_INV_4PI * scale, rows);
-  }
-#endif
+  collision_film_rows(s, f, m, p, to, tr, scale, rows);
   if (film_rows_finite(rows)) splat_rows(t, pixel, rows);
 }
 

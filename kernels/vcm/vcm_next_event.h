@@ -10,6 +10,26 @@ inline const __global float* vcm_through_light(const SceneView* s, const __globa
 }
 #endif
 
+/* Next-event estimation's light point lp, at dist along wi and drawn with density pdf_light: its
+ * density as next-event estimation samples it (*direct, SmallVCM's directPdfW) and the emission
+ * technique's (*emission), and the weight against it of the camera path sampling wi with the
+ * pseudo-density pdf_dir (its reach included). A point or spot light: cos_l is 1, its direct
+ * density per solid angle d² (its 1/d² is in the contribution), and a delta light is found by
+ * nothing else; a lamp: the density it was drawn with, as the weights at the lamp's hits. */
+inline float vcm_light_point_weight(const SceneView* s, const LightPoint* lp, float3 wi, float dist, float cos_l,
+                                    float pdf_light, float pdf_dir, float* direct, float* emission) {
+#if KASHA_LIGHT_SOURCES
+  if (lp->source) {
+    const __global KLight* l = lp->source;
+    *emission = vcm_source_emission(s, l, -wi, direct);
+    if (vcm_source_finite(l)) *direct *= dist * dist;
+    return lp->delta ? 0.0f : pdf_dir / (l->pick * *direct);
+  }
+#endif
+  *direct = pdf_light, *emission = s->emitter_area_pdf[lp->emitter] * cos_l * KASHA_INV_PI;
+  return pdf_dir / *direct;
+}
+
 /* Next-event estimation at a camera vertex (SmallVCM's DirectIllumination): one light point as
  * next_event.h samples it, weighed against the camera path hitting it and against every
  * technique that reaches it from the light's side. A rough dielectric takes light from either
@@ -43,22 +63,9 @@ inline void vcm_next_event(const VcmCamera* c, const SceneView* s, const FilmVie
   if (segment_occluded(s, x, vcm_toward(cv->ng, wi), v->h.eps, wi, dist, lp.eps / cos_l)) return;
   const float tbar = 1.0f;
 #endif
-  float w_light, direct, emission;
-#if KASHA_LIGHT_SOURCES
-  if (lp.source) {
-    /* cos_l is 1; a point or spot's direct density per solid angle is d² (its 1/d² in the
-     * contribution); a delta light is found by nothing else. */
-    const __global KLight* l = lp.source;
-    emission = vcm_source_emission(s, l, -wi, &direct);
-    if (vcm_source_finite(l)) direct *= dist * dist;
-    w_light = lp.delta ? 0.0f : vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, wi) * tbar / (l->pick * direct);
-  } else
-#endif
-  {
-    /* The density it was sampled with (per solid angle), as the weights at the lamp's hits. */
-    direct = pdf_light, emission = s->emitter_area_pdf[lp.emitter] * cos_l * KASHA_INV_PI;
-    w_light = vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, wi) * tbar / direct;
-  }
+  float direct, emission;
+  float w_light = vcm_light_point_weight(s, &lp, wi, dist, cos_l, pdf_light,
+                                         vcm_pdf(s, surf, cv->lambert, ns, cv->nf, eye, wi) * tbar, &direct, &emission);
   /* The light part is the light point: with caustic merges no merge here or behind makes it. */
   float w_camera = emission * cos_g * tbar / (direct * cos_l) *
                    ((cv->merges && !KASHA_VCM_MERGE_CAUSTIC ? vm : 0.0f) + c->dvcm +
@@ -78,33 +85,16 @@ inline void vcm_next_event(const VcmCamera* c, const SceneView* s, const FilmVie
 inline void vcm_next_event_collision(const VcmCamera* c, const SceneView* s, const FilmView* f, const CameraVertex* v,
                                      const VcmVertex* cv, const __global KMedium* m, float vm, float* rows) {
   if (s->light_count == 0) return;
-  float3 x = v->h.x, eye = -c->w.dir;
-  float pdf_light;
-  LightPoint lp = sample_light_from(s, x, v->u_light, &pdf_light);
-  if (!(pdf_light > 0.0f)) return;
-  float3 to = lp.position - x;
-  float dist = length(to);
-  if (!(dist > lp.eps)) return;
-  float3 wi = to / dist;
-  float cos_l = -dot(lp.normal, wi);
-  if (cos_l <= 0.0f) return;
+  float3 x = v->h.x, eye = -c->w.dir, wi;
+  float pdf_light, dist, cos_l;
+  LightPoint lp;
+  if (!collision_light_point(s, x, v->u_light, &lp, &pdf_light, &wi, &dist, &cos_l)) return;
   const __global float* tr;
   if (!segment_clear(s, x, (float3)(0.0f, 0.0f, 0.0f), 0.0f, wi, dist, lp.eps / cos_l, c->w.medium, &tr)) return;
   float tbar = vcm_segment_mean(tr), pdf = vcm_medium_pdf(m, eye, wi);
   const __global float* le = vcm_through_light(s, tr, light_point_spectrum(s, &lp));
-  float w_light, direct, emission;
-#if KASHA_LIGHT_SOURCES
-  if (lp.source) {
-    const __global KLight* l = lp.source;
-    emission = vcm_source_emission(s, l, -wi, &direct);
-    if (vcm_source_finite(l)) direct *= dist * dist;
-    w_light = lp.delta ? 0.0f : pdf * tbar / (l->pick * direct);
-  } else
-#endif
-  {
-    direct = pdf_light, emission = s->emitter_area_pdf[lp.emitter] * cos_l * KASHA_INV_PI;
-    w_light = pdf * tbar / direct;
-  }
+  float direct, emission;
+  float w_light = vcm_light_point_weight(s, &lp, wi, dist, cos_l, pdf_light, pdf * tbar, &direct, &emission);
   float w_camera = emission * tbar * m->sigma_mean / (direct * cos_l) *
                    ((cv->merges && !KASHA_VCM_MERGE_CAUSTIC ? vm : 0.0f) + c->dvcm + vcm_camera_dvc(c) * pdf);
   float scale = 1.0f / (pdf_light * (w_light + 1.0f + w_camera));
