@@ -27,13 +27,19 @@ std::string lamp_box(bool mirror = false, const std::string& fog = "") {
                {"type": "quad", "corner": [-1, -0.99, -1], "u": [0, 0, 2], "v": [2, 0, 0],
                 "material": "mirror"}]})";
   // With a fog (foggy_box below): the medium, 10 bins and a smaller image.
-  const std::string media = fog.empty() ? "" : R"(
-    "wavelengths": {"min_nm": 380, "max_nm": 780, "bin_nm": 40}, "media": {"fog": )" + fog + "},";
-  const std::string size = fog.empty() ? "64" : "48", in_fog = fog.empty() ? "" : R"(, "medium": "fog")";
-  return write_file(!fog.empty() ? "vcm_foggy_box.json" : mirror ? "vcm_mirror_box.json" : "vcm_lamp_box.json",
+  const std::string media = fog.empty() ? ""
+                                        : R"(
+    "wavelengths": {"min_nm": 380, "max_nm": 780, "bin_nm": 40}, "media": {"fog": )" +
+                                              fog + "},";
+  const std::string size = fog.empty() ? "64" : "48",
+                    in_fog = fog.empty() ? "" : R"(, "medium": "fog")";
+  return write_file(!fog.empty() ? "vcm_foggy_box.json"
+                    : mirror     ? "vcm_mirror_box.json"
+                                 : "vcm_lamp_box.json",
                     R"({"kasha_scene": 1,)" + media + R"(
     "camera": {"position": [0, -0.2, 0.9], "look_at": [0, 0.1, -1], "fov_deg": 70,
-               "width": )" + size + R"(, "height": )" + size + in_fog + R"(},
+               "width": )" +
+                        size + R"(, "height": )" + size + in_fog + R"(},
     "materials": {"grey": {"passive": {"reflectance": 0.5}},
                   "yellow": {"passive": {"reflectance": {"nm": [380, 500, 560, 780],
                                                           "value": [0.05, 0.1, 0.7, 0.8]}}},
@@ -255,7 +261,8 @@ TEST(Vcm, AWeightWithADensityDroppedFails) {
 // between collisions and surfaces both ways, light tracing from them, 3-D merges — and the
 // free flight's densities weigh each. The camera is in the fog.
 std::string foggy_box() {
-  return lamp_box(false, R"({"sigma_a": 0.05, "sigma_s": {"nm": [380, 780], "value": [0.9, 0.3]}, "g": 0.3,
+  return lamp_box(false,
+                  R"({"sigma_a": 0.05, "sigma_s": {"nm": [380, 780], "value": [0.9, 0.3]}, "g": 0.3,
       "fluorophores": [{"absorption": {"nm": [380, 480, 560, 780], "value": [0.6, 0.4, 0, 0]},
                         "quantum_yield": 0.9, "emission": {"gaussian_nm": 620, "fwhm_nm": 60}}]})");
 }
@@ -280,9 +287,10 @@ TEST(Vcm, WeightsSumToOnePerPathLengthInAScatteringFluorescentFog) {
     const Image plain_fog = render_fog("bpt", length, 128, true).image;
     for (const std::string integrator : {"bpt", "vcm"}) {
       std::array<double, 3> relative;
-      std::array<double, 3> z = against_backward(render_fog(integrator, length, 16, false).image, plain_fog, &relative);
-      std::printf("  fog, length %d: %s / plain - 1 = %+.2f %% (Y, %+.1f standard errors)\n", length,
-                  integrator.c_str(), 100 * relative[1], z[1]);
+      std::array<double, 3> z =
+          against_backward(render_fog(integrator, length, 16, false).image, plain_fog, &relative);
+      std::printf("  fog, length %d: %s / plain - 1 = %+.2f %% (Y, %+.1f standard errors)\n",
+                  length, integrator.c_str(), 100 * relative[1], z[1]);
       for (int k = 0; k < 3; ++k)
         EXPECT_TRUE(std::abs(z[k]) < 4.0 || (integrator == "vcm" && std::abs(relative[k]) < 0.01))
             << integrator << " length " << length << " row " << k;

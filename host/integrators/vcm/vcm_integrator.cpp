@@ -92,7 +92,8 @@ class VcmIntegrator : public KernelIntegrator {
     budget_ = s.settings.memory > 0 ? static_cast<size_t>(s.settings.memory)
                                     : default_memory_budget(cl_.info());
     paths_ = s.settings.photons > 0 ? static_cast<size_t>(s.settings.photons)
-                                    : default_light_paths(Mode, film_.pixels(), plan.caustic_lit, s.scene.scattering());
+                                    : default_light_paths(Mode, film_.pixels(), plan.caustic_lit,
+                                                          s.scene.scattering());
     set_first_radius(
         s.scene, Mode != VcmMode::bpt ? plan.merging.distance : 0, s.settings.radius,
         Mode != VcmMode::bpt && !(Mode == VcmMode::vcm && plan.merges == Merges::every));
@@ -459,8 +460,9 @@ static std::vector<IntegratorOption> vcm_options(VcmMode m) {
   o.push_back({"--photons", V::integer, 1, 2147483647, "light subpaths per pass",
                m == VcmMode::ppm ? "one a pixel, at least " + number_text(kLeastPhotonMappingPaths)
                : m == VcmMode::vcm
-                   ? "one a pixel, " + number_text(kCausticLitLightPaths) + " a pixel" + caustic_lit + ", " +
-                         number_text(kScatteringLightPaths) + " a pixel in scenes with scattering media"
+                   ? "one a pixel, " + number_text(kCausticLitLightPaths) + " a pixel" +
+                         caustic_lit + ", " + number_text(kScatteringLightPaths) +
+                         " a pixel in scenes with scattering media"
                    : "one a pixel",
                KASHA_SETTING(photons)});
   if (m != VcmMode::bpt) {
