@@ -68,14 +68,14 @@
  * stored vertex and its depth-guard tally go to its place in the chunk's `light_paths`. */
 __kernel void vcm_light_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KVcmIteration it, __global float* store,
                              __global KVcmCounters* counters, __global KVcmLightPath* light_paths,
-                             __global ulong* film, KASHA_LAUNCH_RANGE) {
+                             __global ulong* film, __global const KVcmPixel* pixels, KASHA_LAUNCH_RANGE) {
   KASHA_SCENE_VIEW(s);
   KASHA_FILM_VIEW(f);
   int index = launch_item(item_first);
   if (index >= item_end) return;
   SplatTarget target = {film, it.film_shift, 0};
   __global KVcmLightPath* path = &light_paths[index - it.chunk_first];
-  path->cut = vcm_light_path(&s, &f, &it, index, store, counters, &target, &path->last);
+  path->cut = vcm_light_path(&s, &f, &it, index, store, counters, &target, pixels, &path->last);
   if (target.overflow) atomic_add(&counters->overflow, target.overflow);
   add_ray_counts(&s, ray_counts);
 }
@@ -128,7 +128,7 @@ __kernel void vcm_camera_pass(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KVcmIterati
       film_rows_clear(seen_rows);
       for (int k = 0; k < seen; ++k) {
         sampler_next_sample(&seen_sampler, (pass * (uint)spp + (uint)j) * (uint)seen + (uint)k);
-        seen_cut += vcm_seen_light(&s, &f, pixel, &seen_sampler, seen_rows);
+        seen_cut += vcm_seen_light(&s, &f, &it, seen, pixel, &seen_sampler, seen_rows);
       }
       for (int r = 0; r < KASHA_FILM_ROWS; ++r) rows[r] += seen_rows[r] / (float)seen;
       guard += seen_cut / (float)seen; /* the depth guard's tally: a camera path's share */

@@ -35,6 +35,24 @@ typedef struct {
 #endif
 } VcmCamera;
 
+/* The camera's density of the direction `dir` per solid angle, for one of the pixel's spp samples:
+ * a camera path's dVCM at its start (light subpaths over camera paths, as SmallVCM's with one
+ * camera path a pixel). */
+inline void vcm_camera_start(const SceneView* s, float3 dir, float paths, int spp, VcmCamera* c) {
+  const KCamera* k = &s->camera;
+  float share = KASHA_VCM_TRACING_SHARE * paths / spp;
+  if (k->type == KASHA_CAMERA_PERSPECTIVE) { /* camera_pixel_solid_angle's, in the order it had */
+    float cos_c = dot(dir, normalize(camera_vec(k->forward)));
+    c->dvcm = share * camera_pixel_area(k) * cos_c * cos_c * cos_c;
+  } else {
+    c->dvcm = share * camera_pixel_solid_angle(k, dir);
+  }
+  c->dvc = c->dvm = c->dvc_merge = 0.0f;
+#if KASHA_SCATTERING
+  c->sigma_prev = 1.0f;
+#endif
+}
+
 /* dVC for the techniques at the current vertex (next-event estimation, connections, an emitter
  * hit): with caustic merges, at the vertex after the merging one no merge makes their paths (the
  * light reaches the merging vertex from this vertex's own non-delta scattering or emission). */

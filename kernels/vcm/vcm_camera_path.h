@@ -4,24 +4,6 @@
  * light vertices — each MIS-weighted, then the bounce, its partial weights kept as SmallVCM keeps
  * them. */
 
-/* The camera's density of the direction `dir` per solid angle, for one of the pixel's spp samples:
- * a camera path's dVCM at its start (light subpaths over camera paths, as SmallVCM's with one
- * camera path a pixel). */
-inline void vcm_camera_start(const SceneView* s, float3 dir, float paths, int spp, VcmCamera* c) {
-  const KCamera* k = &s->camera;
-  float share = KASHA_VCM_TRACING_SHARE * paths / spp;
-  if (k->type == KASHA_CAMERA_PERSPECTIVE) { /* camera_pixel_solid_angle's, in the order it had */
-    float cos_c = dot(dir, normalize(camera_vec(k->forward)));
-    c->dvcm = share * camera_pixel_area(k) * cos_c * cos_c * cos_c;
-  } else {
-    c->dvcm = share * camera_pixel_solid_angle(k, dir);
-  }
-  c->dvc = c->dvm = c->dvc_merge = 0.0f;
-#if KASHA_SCATTERING
-  c->sigma_prev = 1.0f;
-#endif
-}
-
 /* What the camera vertex's techniques share (VcmVertex). Merging here: a vertex whose material
  * merges and (--merges first) no vertex before it that is not delta, *met (ppm merges once, at
  * the first that merges). */

@@ -1,13 +1,22 @@
 /* The light a camera path finds by hitting it: an emitter, or the infinite lights it leaves to. */
 
-/* Emission hit by the camera path (SmallVCM's GetLightRadiance): whole when seen directly or
- * through delta bounces alone, else weighed against next-event estimation and light tracing. */
+/* An emitting triangle the camera sees directly, its point drawn by light tracing too
+ * (vcm_splat_light_point): the camera's weight, against the light subpaths' density of the point
+ * by area (SmallVCM leaves this technique out; a lamp smaller than a pixel needs it). `dvcm`: the
+ * camera side's dVCM on arrival, `paths` light subpaths over its camera paths. */
+inline float vcm_seen_directly_weight(const SceneView* s, int emitter, float dvcm) {
+  return 1.0f / (1.0f + s->emitter_area_pdf[emitter] * dvcm);
+}
+
+/* Emission hit by the camera path (SmallVCM's GetLightRadiance): seen directly, weighed against
+ * light tracing's view of the light point; through delta bounces alone, whole; else weighed
+ * against next-event estimation and light tracing. */
 inline float vcm_emission_weight(const VcmCamera* c, const SceneView* s, const HitPoint* h) {
   if (!VCM_LENGTH_COUNTS(c->w.depth + 1)) return 0.0f;
   /* ppm: no other technique reaches an emitter (merges are taken at the first vertex that
    * merges; this path went through delta or rough ones only). */
   if (KASHA_VCM_EMISSION_ONLY || !KASHA_VCM_CONNECT) return 1.0f;
-  if (c->w.depth == 0) return 1.0f;
+  if (c->w.depth == 0) return vcm_seen_directly_weight(s, h->emitter, c->dvcm);
   float cos_light = dot(h->n, -c->w.dir);
   /* After a delta bounce next-event estimation could not have found it (dVCM 0). */
   float direct = c->dvcm > 0.0f ? vcm_direct_area(s, h->tri, c->w.prev_x, h->x, cos_light) : 0.0f;

@@ -64,6 +64,31 @@ inline void vcm_splat(const SceneView* s, const FilmView* f, SplatTarget* t, con
   if (film_rows_finite(rows)) splat_rows(t, pixel, rows);
 }
 
+/* The light point a subpath leaves from, seen by the camera (forward's view of a lamp): Le cos
+ * importance / (p_A · paths), weighed against the camera's direct hit of it (vcm_emission_weight,
+ * or vcm_seen_light's samples where the pixel's `seen` is set, which see through the media by
+ * their transmittance, so no T̄ weighs them). SmallVCM leaves it out; a lamp smaller than a pixel
+ * is found by this technique alone in practice. */
+inline void vcm_splat_light_point(const SceneView* s, const FilmView* f, SplatTarget* t, const LightOrigin* o,
+                                  const Photon* p, const KVcmIteration* it, const __global KVcmPixel* pixels) {
+  int pixel;
+  float k;
+  const __global float* tr;
+  if (!camera_connection(s, p->position, o->normal, o->eps, photon_medium(p), &pixel, &k, &tr)) return;
+  bool seen = pixels[pixel].seen && it->seen_samples > 0;
+  float samples = (float)it->spp * (seen ? it->seen_samples : 1);
+  float w_camera = k * (seen ? 1.0f : vcm_unsampled(tr)) * samples /
+                   (KASHA_VCM_TRACING_SHARE * (float)it->paths * o->area_pdf);
+  float scale = k / ((1.0f + w_camera) * o->area_pdf * (float)it->paths);
+#if KASHA_EMISSION_TEXTURES
+  scale *= o->scale;
+#endif
+  float rows[KASHA_FILM_ROWS];
+  film_rows_clear(rows);
+  film_rows(f, 0, emitter_spectrum(s, o->emitter), tr, scale, rows);
+  if (film_rows_finite(rows)) splat_rows(t, pixel, rows);
+}
+
 #if KASHA_SCATTERING
 /* A light vertex at a collision in medium m seen by the camera (vcm_splat's, vcm_media.h): f Φ k
  * / Δλ with k the importance alone, weighed against the camera techniques by the camera's
@@ -204,7 +229,7 @@ inline void vcm_store_vertex(__global float* store, int slot, const HitPoint* h,
  * its start. */
 inline float vcm_light_path(const SceneView* s, const FilmView* f, const KVcmIteration* it, int index,
                             __global float* store, __global KVcmCounters* counters, SplatTarget* target,
-                            __global int* last_stored) {
+                            const __global KVcmPixel* pixels, __global int* last_stored) {
   /* The global radius's factors (per_unit > 0: dVM is not read, and merges count only where
    * light tracing splats). */
   const KVcmRadius* rad = &it->radius;
@@ -218,6 +243,8 @@ inline float vcm_light_path(const SceneView* s, const FilmView* f, const KVcmIte
   float dvcm, dvc, dvm;
   bool far_start;
   vcm_light_start(s, &o, &p, vc, &dvcm, &dvc, &dvm, &far_start);
+  if (KASHA_VCM_CONNECT && !KASHA_VCM_EMISSION_ONLY && VCM_LENGTH_COUNTS(1) && o.tri >= 0)
+    vcm_splat_light_point(s, f, target, &o, &p, it, pixels);
   int last = -1, ordinal = 0;
   float guard = 0.0f, dvc_merge = 0.0f; /* the light side leaves its own merges out */
   bool caustic = false;                  /* it arrives from a delta bounce */

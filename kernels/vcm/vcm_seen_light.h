@@ -1,3 +1,14 @@
+/* dVCM of the walk's direct view of h along d: a camera path's start (vcm_camera_start) for the
+ * pixel's spp · seen samples, arrived at h. The walk attenuates by the media's transmittance in
+ * place of sampling a free flight, so no T̄ divides it (vcm_media.h). */
+inline float vcm_seen_dvcm(const SceneView* s, const KVcmIteration* it, int seen, float3 d, const HitPoint* h) {
+  VcmCamera c;
+  vcm_camera_start(s, d, (float)it->paths, it->spp * seen, &c);
+  vcm_arrived(h->t, fabs(dot(h->n, d)), &c.dvcm, &c.dvc, &c.dvm, &c.dvc_merge);
+  if (s->camera.type == KASHA_CAMERA_ORTHOGRAPHIC) c.dvcm /= h->t * h->t;
+  return c.dvcm;
+}
+
 /* Light the camera sees directly or through delta bounces alone — a lamp, the sky, their images
  * in glass, a mirror or a smooth coat — on a walk of its own that takes only delta bounces. No
  * other technique reaches such a path (next-event estimation, connections and merges need a
@@ -7,8 +18,11 @@
  * a surface that also scatters otherwise (a coat, a gloss lobe over a Lambert part) the walk
  * takes the delta lobe always, weighed by its albedo, where the full path picks it with a
  * probability: the same expectation, without the full path's rare bright picks. Bounces and
- * roulette otherwise as vcm_camera_path's. */
-inline float vcm_seen_light(const SceneView* s, const FilmView* f, int pixel, Sampler* sampler, float* rows) {
+ * roulette otherwise as vcm_camera_path's. The one technique beside it: light tracing's view of a
+ * lamp seen directly (vcm_splat_light_point), weighed against this walk's `seen` samples a camera
+ * path. */
+inline float vcm_seen_light(const SceneView* s, const FilmView* f, const KVcmIteration* it, int seen, int pixel,
+                            Sampler* sampler, float* rows) {
   CameraWalk w;
   float3 o, d = camera_ray(&s->camera, pixel, sampler, &o);
   walk_start(&w, s, f, o, d);
@@ -23,6 +37,8 @@ inline float vcm_seen_light(const SceneView* s, const FilmView* f, int pixel, Sa
     }
     if (h->emitter >= 0 && h->front && VCM_LENGTH_COUNTS(w.depth + 1)) {
       float weight = 1.0f;
+      if (w.depth == 0 && KASHA_VCM_CONNECT && !KASHA_VCM_EMISSION_ONLY)
+        weight = vcm_seen_directly_weight(s, h->emitter, vcm_seen_dvcm(s, it, seen, d, h));
 #if KASHA_EMISSION_TEXTURES
       weight *= emission_factor(s, h->tri, h->b.x, h->b.y);
 #endif
