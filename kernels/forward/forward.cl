@@ -174,8 +174,8 @@ inline bool forward_next_surface(const SceneView* s, const FilmView* f, SplatTar
   for (; *depth < max_depth; ++*depth) {
     float flying = photon_total(p);
 #if KASHA_SCATTERING
-    MediaTrail trail;
-    int reached = photon_flight(p, s, sampler, *depth, h, &trail);
+    float tbar;
+    int reached = photon_flight(p, s, sampler, *depth, h, &tbar);
 #else
     int reached = photon_intersect(s, p, h) ? KASHA_FLIGHT_SURFACE : KASHA_FLIGHT_ESCAPED;
 #endif

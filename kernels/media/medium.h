@@ -61,6 +61,13 @@ inline float trail_transmittance(const SceneView* s, const MediaTrail* t, int i)
   return exp(-tau);
 }
 
+/* tr[i] = bin i's transmittance along the trail, every bin; returns their mean, T̄. */
+inline float trail_bins(const SceneView* s, const MediaTrail* t, float* tr) {
+  float sum = 0.0f;
+  for (int i = 0; i < KASHA_BINS; ++i) sum += tr[i] = trail_transmittance(s, t, i);
+  return sum / KASHA_BINS;
+}
+
 /* The medium a ray leaving the hit along dir travels in: across a boundary the medium on dir's
  * side (outside where dir leaves by the front), and otherwise the one it was in, `medium` —
  * pbrt-v4's rule, so a shape inside a medium without an interface of its own stays in it. */

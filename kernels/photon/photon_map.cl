@@ -63,8 +63,8 @@ inline bool photon_next_surface(const SceneView* s, Photon* p, Sampler* sampler,
                                 StoreCursor* cursor, HitPoint* h) {
 #if KASHA_SCATTERING
   for (; *depth < until; ++*depth) {
-    MediaTrail trail;
-    int reached = photon_flight(p, s, sampler, *depth, h, &trail);
+    float tbar;
+    int reached = photon_flight(p, s, sampler, *depth, h, &tbar);
     if (reached != KASHA_FLIGHT_SCATTERED) return reached == KASHA_FLIGHT_SURFACE;
     __global float* rec = *depth > 0 ? next_record(cursor) : 0;
     if (rec) write_photon(rec, h->x, (float3)(0.0f, 0.0f, 0.0f), index, *depth, p, 1.0f);

@@ -142,8 +142,8 @@ inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sa
   HitPoint* h = &v->h;
 #if KASHA_SCATTERING
   sampler_at(sampler, 1 + w->depth * KASHA_CAMERA_PAIRS_PER_VERTEX + 4);
-  MediaTrail trail;
-  int reached = flight(&w->p, s, f, w->org, w->dir, &w->medium, sample_2d(sampler), h, &trail);
+  float tbar;
+  int reached = flight(&w->p, s, f, w->org, w->dir, &w->medium, sample_2d(sampler), h, &tbar);
   v->in_medium = reached == KASHA_FLIGHT_SCATTERED;
   if (v->in_medium) return walk_medium_samples(w, sampler, v);
   bool hit = reached == KASHA_FLIGHT_SURFACE;

@@ -18,27 +18,35 @@
 #include "media/medium.h"
 
 #if KASHA_MEDIA
-/* T ← T·diag(T_i)·scale, T_i the trail's transmittance in bin i (b kept normalised to a maximum
- * of 1 in rank-1 mode, path_weight.h). */
-inline void pw_transmit(PathWeight* p, const SceneView* s, const MediaTrail* t, float scale) {
+/* T ← T·diag(tr)·scale (b kept normalised to a maximum of 1 in rank-1 mode, path_weight.h). */
+inline void pw_transmit_bins(PathWeight* p, const float* tr, float scale) {
 #if KASHA_FULL_MATRIX
   for (int i = 0; i < KASHA_BINS; ++i) {
-    float v = trail_transmittance(s, t, i) * scale;
+    float v = tr[i] * scale;
     for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->T[r][i] *= v;
   }
 #else
 #if KASHA_FLUORESCENCE
   if (p->rank1) {
     float mx = 0.0f;
-    for (int i = 0; i < KASHA_BINS; ++i) mx = fmax(mx, p->b[i] *= trail_transmittance(s, t, i));
+    for (int i = 0; i < KASHA_BINS; ++i) mx = fmax(mx, p->b[i] *= tr[i]);
     if (mx > 0.0f)
       for (int i = 0; i < KASHA_BINS; ++i) p->b[i] /= mx;
     for (int r = 0; r < KASHA_FILM_ROWS; ++r) p->c[r] *= mx * scale;
     return;
   }
 #endif
-  for (int i = 0; i < KASHA_BINS; ++i) p->w[i] *= trail_transmittance(s, t, i) * scale;
+  for (int i = 0; i < KASHA_BINS; ++i) p->w[i] *= tr[i] * scale;
 #endif
+}
+
+/* T ← T·diag(T_i)·scale, T_i the trail's transmittance in bin i; returns T̄, their mean (vcm's
+ * pseudo-density of the segment, vcm_media.h). */
+inline float pw_transmit(PathWeight* p, const SceneView* s, const MediaTrail* t, float scale) {
+  float tr[KASHA_BINS];
+  float tbar = trail_bins(s, t, tr);
+  pw_transmit_bins(p, tr, scale);
+  return tbar;
 }
 #endif
 
@@ -60,15 +68,18 @@ inline float medium_sigma_s(const SceneView* s, int m, int i) {
 /* T ← T·diag(T_i)/Σ_k c_k u_k: the flight's weight, with u_k = σt_k(m) T_k at a collision in medium
  * m (m ≥ 0) and T_k on reaching a surface or leaving the scene (m < 0), c_k = e_k / total the bins'
  * energy shares before the flight. What the collision does (σs, or a fluorophore's absorption) is
- * the vertex's (walk_medium_vertex). A path whose mixture density is 0 carries nothing on. */
-inline void pw_flight(PathWeight* p, const SceneView* s, const FilmView* f, const MediaTrail* t, int m, float total) {
-  float den = 0.0f;
+ * the vertex's (walk_medium_vertex). A path whose mixture density is 0 carries nothing on. Returns
+ * T̄ (pw_transmit). */
+inline float pw_flight(PathWeight* p, const SceneView* s, const FilmView* f, const MediaTrail* t, int m, float total) {
+  float tr[KASHA_BINS], den = 0.0f;
+  float tbar = trail_bins(s, t, tr);
   for (int k = 0; k < KASHA_BINS; ++k) {
     float e = pw_bin_energy(p, f, k);
-    if (e > 0.0f) den += e * trail_transmittance(s, t, k) * (m >= 0 ? medium_sigma_t(s, m, k) : 1.0f);
+    if (e > 0.0f) den += e * tr[k] * (m >= 0 ? medium_sigma_t(s, m, k) : 1.0f);
   }
   den /= total;
-  pw_transmit(p, s, t, den > 0.0f ? 1.0f / den : 0.0f);
+  pw_transmit_bins(p, tr, den > 0.0f ? 1.0f / den : 0.0f);
+  return tbar;
 }
 
 /* The bin the flight's distance follows: chosen on u by the energy each bin carries (pw_bin_energy),
@@ -141,16 +152,17 @@ inline float flight_depth(float u) {
 /* From org along dir in *medium, through interfaces: KASHA_FLIGHT_SCATTERED with h->x the point
  * in *medium where the path scatters, KASHA_FLIGHT_SURFACE with the surface hit h, or
  * KASHA_FLIGHT_ESCAPED; the path's colour weighed as above (u: the bin choice and the distance).
- * h->t is the distance travelled, *trail the lengths crossed in each medium (empty where the
- * path carried nothing). */
+ * h->t is the distance travelled, *tbar the mean over the bins of the flight's transmittance (1
+ * where the path carried nothing). */
 inline int flight(PathWeight* p, const SceneView* s, const FilmView* f, float3 org, float3 dir, int* medium,
-                  float2 u, HitPoint* h, MediaTrail* trail) {
+                  float2 u, HitPoint* h, float* tbar) {
   float total;
-  trail_clear(trail);
+  MediaTrail trail;
+  *tbar = 1.0f;
   int j = flight_bin(p, f, u.x, &total);
   if (j < 0) return KASHA_FLIGHT_ESCAPED;
-  int reached = flight_walk(s, org, dir, medium, j, flight_depth(u.y), trail, h);
-  pw_flight(p, s, f, trail, reached == KASHA_FLIGHT_SCATTERED ? *medium : -1, total);
+  int reached = flight_walk(s, org, dir, medium, j, flight_depth(u.y), &trail, h);
+  *tbar = pw_flight(p, s, f, &trail, reached == KASHA_FLIGHT_SCATTERED ? *medium : -1, total);
   return reached;
 }
 #endif

@@ -22,30 +22,31 @@
 #define PHOTON_FLIGHT_PAIR 3
 
 /* Φ ← Φ∘T / Σ_k c_k u_k over the trail (u_k = σt_k(m) T_k at a collision in m ≥ 0, T_k on reaching a
- * surface), c_k = Φ_k / total the shares before the flight. */
-inline void photon_flight_weight(Photon* p, const SceneView* s, const MediaTrail* t, int m, float total) {
+ * surface), c_k = Φ_k / total the shares before the flight; returns T̄, the mean of T over the bins. */
+inline float photon_flight_weight(Photon* p, const SceneView* s, const MediaTrail* t, int m, float total) {
   float den = 0.0f, tr[KASHA_BINS];
-  for (int k = 0; k < KASHA_BINS; ++k) {
-    tr[k] = trail_transmittance(s, t, k);
+  float tbar = trail_bins(s, t, tr);
+  for (int k = 0; k < KASHA_BINS; ++k)
     if (p->power[k] > 0.0f) den += p->power[k] * tr[k] * (m >= 0 ? medium_sigma_t(s, m, k) : 1.0f);
-  }
   float scale = den > 0.0f ? total / den : 0.0f;
   for (int k = 0; k < KASHA_BINS; ++k) p->power[k] *= tr[k] * scale;
+  return tbar;
 }
 
 /* The photon's flight from its position (photon_intersect's, with collisions): KASHA_FLIGHT_SURFACE
  * with the hit h, KASHA_FLIGHT_SCATTERED with h->x the collision in p->medium, or
- * KASHA_FLIGHT_ESCAPED; *trail the lengths it crossed in each medium. The flight's pair is its
- * depth-th hit's. */
-inline int photon_flight(Photon* p, const SceneView* s, Sampler* sampler, int depth, HitPoint* h, MediaTrail* trail) {
+ * KASHA_FLIGHT_ESCAPED; *tbar the mean over the bins of its transmittance (1 where it carried
+ * nothing). The flight's pair is its depth-th hit's. */
+inline int photon_flight(Photon* p, const SceneView* s, Sampler* sampler, int depth, HitPoint* h, float* tbar) {
   sampler_at(sampler, PHOTON_PAIRS_AT_LIGHT + depth * PHOTON_PAIRS_PER_HIT + PHOTON_FLIGHT_PAIR);
   float2 u = sample_2d(sampler);
   float total = photon_total(p);
-  trail_clear(trail);
+  MediaTrail trail;
+  *tbar = 1.0f;
   if (!(total > 0.0f)) return KASHA_FLIGHT_ESCAPED;
   int j = photon_bin_by_power(p, u.x, total);
-  int reached = flight_walk(s, p->position, p->direction, &p->medium, j, flight_depth(u.y), trail, h);
-  photon_flight_weight(p, s, trail, reached == KASHA_FLIGHT_SCATTERED ? p->medium : -1, total);
+  int reached = flight_walk(s, p->position, p->direction, &p->medium, j, flight_depth(u.y), &trail, h);
+  *tbar = photon_flight_weight(p, s, &trail, reached == KASHA_FLIGHT_SCATTERED ? p->medium : -1, total);
   return reached;
 }
 

@@ -99,10 +99,9 @@ inline bool vcm_camera_bounce(VcmCamera* c, const SceneView* s, const FilmView* 
  * the vertex (to the direction's measure on escaping); -1: the path carries nothing on. */
 inline int vcm_camera_next(VcmCamera* c, const SceneView* s, const FilmView* f, Sampler* sampler, HitPoint* h) {
 #if KASHA_SCATTERING
-  MediaTrail trail;
+  float tbar;
   sampler_at(sampler, 1 + c->w.depth * KASHA_CAMERA_PAIRS_PER_VERTEX + 4);
-  int reached = flight(&c->w.p, s, f, c->w.org, c->w.dir, &c->w.medium, sample_2d(sampler), h, &trail);
-  float tbar = vcm_trail_mean(s, &trail);
+  int reached = flight(&c->w.p, s, f, c->w.org, c->w.dir, &c->w.medium, sample_2d(sampler), h, &tbar);
   if (!(tbar > 0.0f)) return -1;
   bool collided = reached == KASHA_FLIGHT_SCATTERED;
   float sigma = collided ? s->media[c->w.medium].sigma_mean : 1.0f;

@@ -262,8 +262,8 @@ inline float vcm_light_path(const SceneView* s, const FilmView* f, const KVcmIte
 #endif
     HitPoint h;
 #if KASHA_SCATTERING
-    MediaTrail trail;
-    int reached = photon_flight(&p, s, &sampler, depth, &h, &trail);
+    float tbar;
+    int reached = photon_flight(&p, s, &sampler, depth, &h, &tbar);
     if (reached == KASHA_FLIGHT_ESCAPED) break;
     const bool collided = reached == KASHA_FLIGHT_SCATTERED;
 #else
@@ -277,7 +277,7 @@ inline float vcm_light_path(const SceneView* s, const FilmView* f, const KVcmIte
       dvcm *= vcm_direct_area(s, o.tri, h.x, start, dot(o.normal, p.direction)) / o.area_pdf;
 #if KASHA_SCATTERING
     const __global KMedium* m = collided ? &s->media[p.medium] : 0;
-    vcm_through(vcm_trail_mean(s, &trail), sigma_prev, collided ? m->sigma_mean : 1.0f, &dvcm, &dvc, &dvm,
+    vcm_through(tbar, sigma_prev, collided ? m->sigma_mean : 1.0f, &dvcm, &dvc, &dvm,
                 &dvc_merge);
     sigma_prev = collided ? m->sigma_mean : 1.0f;
     if (collided) {

@@ -19,14 +19,6 @@
  * weight of each technique that would have sampled it. */
 
 #if KASHA_SCATTERING
-/* T̄: the mean over the bins of the trail's transmittance (1 for an empty trail). */
-inline float vcm_trail_mean(const SceneView* s, const MediaTrail* t) {
-  if (trail_empty(t)) return 1.0f;
-  float sum = 0.0f;
-  for (int i = 0; i < KASHA_BINS; ++i) sum += trail_transmittance(s, t, i);
-  return sum / KASHA_BINS;
-}
-
 /* T̄ of a connection whose transmittance segment_clear gave (null: no medium on the way). */
 inline float vcm_segment_mean(const __global float* tr) {
   if (!tr) return 1.0f;
