@@ -2,6 +2,7 @@
 # Equal-time comparison of kasha with pbrt-v4 on one pbrt-v4 scene (issue 41's table).
 # Usage: scripts/equal_time_pbrt.sh SCENE.pbrt REFERENCE.exr SECONDS OUTDIR [KASHA_INTEGRATORS...]
 # Env: PBRT, IMGTOOL (pbrt-v4's binaries; default /work/pbrt/build/{pbrt,imgtool}), KASHA,
+# KASHA_ARGS (more options for kasha's renders, e.g. "--max-depth scene"),
 # PBRT_INTEGRATORS (pbrt-v4's integrators to run; default "path bdpt"; sppm's samples are its
 # iterations).
 # The scene is used as it is (make a variant with scripts/pbrt_variant.py: resolution, maxdepth,
@@ -26,7 +27,8 @@ images=()
 # The seconds pbrt-v4's last progress line reports: "Rendering: [+++] (50.7s)".
 render_seconds() { tr '\r' '\n' < "$1" | grep -o '([0-9.]*s)' | tail -1 | tr -d '()s'; }
 for integ in "${integrators[@]}"; do
-  "$kasha" render "$scene" --integrator "$integ" --time "$secs" -o "$out/$name.kasha-$integ.exr" > /dev/null 2>&1
+  # shellcheck disable=SC2086
+  "$kasha" render "$scene" --integrator "$integ" --time "$secs" ${KASHA_ARGS:-} -o "$out/$name.kasha-$integ.exr" > /dev/null 2>&1
   images+=("$out/$name.kasha-$integ.exr")
 done
 for integ in ${PBRT_INTEGRATORS:-path bdpt}; do

@@ -177,6 +177,8 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
      "medium": {"inside": "ink", "outside": null}},
     {"type": "sphere", "center": [0, 0.2, 0.8], "radius": 0.15, "segments": 8, "interface": true,
      "medium": {"inside": "haze"}},
+    {"type": "box", "min": [0.15, 0.1, 0.3], "max": [0.45, 0.5, 0.7], "interface": true,
+     "medium": {"inside": "smoke"}},
     {"type": "box", "min": [0.4, -1, 0.2], "max": [0.7, -0.7, 0.5], "material": "metal"},
     {"type": "box", "min": [-0.8, -1, 1.1], "max": [-0.5, -0.8, 1.4], "material": "lacquer"},
     {"type": "mesh", "file": "mesh.ply", "material": "lacquer", "transform": {"scale": 0.2, "translate": [0.2, -0.9, 0.3]}},
@@ -185,6 +187,10 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
   "media": {
     "ink": {"type": "homogeneous", "sigma_a": {"nm": [380, 780], "value": [4, 0.5]}, "sigma_s": 0, "scale": 2},
     "haze": {"sigma_a": 0.3, "sigma_s": 0, "g": 0.2},
+    "smoke": {"type": "grid", "sigma_a": 0.2, "sigma_s": 3, "g": 0.4,
+              "density": {"size": [2, 3, 2], "values": [0, 1, 2, 0.5, 1, 0, 3, 1, 0.2, 0.7, 1.5, 0]},
+              "bounds": {"min": [-0.2, -0.2, -0.2], "max": [0.2, 0.2, 0.2]},
+              "transform": {"rotate": {"axis": [0, 1, 0], "deg": 30}, "translate": [0.3, 0.3, 0.5]}},
     "glow": {"sigma_a": 0.01, "sigma_s": 0.5, "fluorophores": [
       {"absorption": {"nm": [380, 480], "value": [2, 0]}, "quantum_yield": 0.9, "emission": {"gaussian_nm": 520, "fwhm_nm": 40}},
       {"molar_absorption": 7e4, "concentration": 1e-6, "unit_cm": 100, "emission": {"line_nm": 610}}]}
@@ -422,6 +428,14 @@ AttributeBegin
 AttributeEnd
 MakeNamedMedium "ink" "string type" "homogeneous" "rgb sigma_a" [0.5 2 4] "rgb sigma_s" [0 0 0] "float scale" 2
 MakeNamedMedium "haze" "string type" "homogeneous" "spectrum sigma_a" [400 0.1 830 0.3] "float sigma_s" 0 "float g" 0.3
+AttributeBegin
+  Translate 0.2 0.5 0
+  MakeNamedMedium "smoke" "string type" "uniformgrid" "integer nx" 2 "integer ny" 1 "integer nz" 2
+    "float density" [0 1 2 0.5] "rgb sigma_s" [1 2 1] "float scale" 2 "point3 p0" [-0.2 -0.2 -0.2] "point3 p1" [0.2 0.2 0.2]
+  MediumInterface "smoke" ""
+  Material "interface"
+  Shape "sphere" "float radius" 0.2
+AttributeEnd
 AttributeBegin
   MediumInterface "ink" ""
   NamedMaterial "glass"

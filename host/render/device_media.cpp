@@ -8,6 +8,22 @@ static int append_spectrum(std::vector<float>& spectra, const std::vector<double
   return at;
 }
 
+// A grid's samples into the spectra buffer, and the map from the world to its lattice: the
+// medium's space, then the box's unit cube, then n·u − ½ (pbrt-v4's SampledGrid::Lookup).
+static void place_grid(const DensityGrid& g, std::vector<float>& spectra, KMedium& k) {
+  k.density = static_cast<int>(spectra.size());
+  spectra.insert(spectra.end(), g.values.begin(), g.values.end());
+  k.grid_size[0] = g.nx, k.grid_size[1] = g.ny, k.grid_size[2] = g.nz, k.grid_size[3] = 0;
+  const Eigen::Vector3d n(g.nx, g.ny, g.nz), extent = g.p1 - g.p0;
+  Eigen::Affine3d lattice = Eigen::Affine3d::Identity();
+  lattice.translate(Eigen::Vector3d::Constant(-0.5));
+  lattice.scale(n.cwiseQuotient(extent));
+  lattice.translate(-g.p0);
+  const Eigen::Matrix<double, 3, 4> m = (lattice * g.to_world.inverse()).matrix().topRows<3>();
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 4; ++c) k.to_grid[4 * r + c] = static_cast<float>(m(r, c));
+}
+
 DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_triangles,
                          std::vector<float>& spectra) {
   DeviceMedia d;
@@ -35,6 +51,8 @@ DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_
     k.sigma_mean = sigma_t.empty() ? 0.0f : static_cast<float>(sigma_sum / sigma_t.size());
     k.events = static_cast<float>(scattered + reemitted);
     k.elastic_share = k.events > 0 ? static_cast<float>(scattered / (scattered + reemitted)) : 0.0f;
+    k.density = -1;
+    if (m.grid) place_grid(*m.grid, spectra, k);
     d.media.push_back(k);
   }
   if (!scene.triangle_media.empty())

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "scene/transform.h"
 #include "spectrum/spectrum_parser.h"
 
 namespace kasha {
@@ -40,14 +41,54 @@ static FluorophoreDesc parse_fluorophore(const JsonNode& node) {
   return f;
 }
 
+// A "grid" medium's "density": {"size": [nx, ny, nz], "values": [...]}, "bounds": {"min", "max"}
+// (default the unit cube) and "transform" (the medium's space to the world's).
+static DensityGrid parse_density_grid(const JsonNode& node) {
+  DensityGrid g;
+  if (!node.has("density")) node.fail("a grid medium needs its \"density\"");
+  const JsonNode density = node.at("density");
+  if (!density.is_object()) density.fail("expected {\"size\": [nx, ny, nz], \"values\": [...]}");
+  const JsonNode size = density.at("size");
+  const std::vector<double> n = size.numbers();
+  if (n.size() != 3) size.fail("expected [nx, ny, nz]");
+  for (double v : n)
+    if (!(v >= 1 && v <= 4096 && v == std::floor(v))) size.fail("each size must be a whole number in [1, 4096]");
+  g.nx = static_cast<int>(n[0]), g.ny = static_cast<int>(n[1]), g.nz = static_cast<int>(n[2]);
+  if (n[0] * n[1] * n[2] > static_cast<double>(1 << 28)) size.fail("a grid holds at most 2^28 samples");
+  const JsonNode values = density.at("values");
+  const std::vector<double> v = values.numbers();
+  const size_t want = static_cast<size_t>(g.nx) * g.ny * g.nz;
+  if (v.size() != want)
+    values.fail("a grid of " + std::to_string(g.nx) + " x " + std::to_string(g.ny) + " x " +
+                std::to_string(g.nz) + " needs " + std::to_string(want) + " values, not " +
+                std::to_string(v.size()));
+  for (double x : v) {
+    if (!(x >= 0 && x <= 1e30)) values.fail("a density must be finite and not negative");
+    g.values.push_back(static_cast<float>(x));
+  }
+  density.finish();
+  if (auto b = node.find("bounds")) {
+    const auto lo = b->at("min").vec3(), hi = b->at("max").vec3();
+    g.p0 = {lo[0], lo[1], lo[2]}, g.p1 = {hi[0], hi[1], hi[2]};
+    if (!(g.p0.array() < g.p1.array()).all()) b->fail("each of \"min\" must be below \"max\"");
+    b->finish();
+  }
+  if (auto t = node.find("transform")) {
+    g.to_world = parse_transform(*t);
+    if (std::abs(g.to_world.linear().determinant()) < 1e-12) t->fail("the transform is singular");
+  }
+  return g;
+}
+
 MediumDesc parse_medium(const JsonNode& node, const std::string& name) {
   if (!node.is_object()) node.fail("expected a medium object");
   MediumDesc d;
   d.name = name;
   d.where = node.where();
   const std::string type = node.has("type") ? node.at("type").string() : "homogeneous";
-  if (type != "homogeneous")
-    node.at("type").fail("unknown medium type \"" + type + "\" (homogeneous)");
+  if (type != "homogeneous" && type != "grid")
+    node.at("type").fail("unknown medium type \"" + type + "\" (homogeneous, grid)");
+  if (type == "grid") d.grid = parse_density_grid(node);
   // pbrt-v4's defaults: σa = σs = 1, scale 1, g 0.
   const auto coefficient = [&](const char* key) -> SpectrumPtr {
     if (auto c = node.find(key)) return parse_spectrum(*c);
@@ -95,6 +136,7 @@ Medium discretize_medium(const MediumDesc& desc, const WavelengthGrid& grid) {
   for (double& v : m.sigma_a) v *= desc.scale;
   for (double& v : m.sigma_s) v *= desc.scale;
   m.g = desc.g;
+  m.grid = desc.grid;
   for (const FluorophoreDesc& fd : desc.fluorophores) {
     Fluorophore f;
     f.absorption = grid.resample(*fd.absorption);

@@ -1,9 +1,11 @@
 #pragma once
-// Participating media (docs/media.md): what fills the space between surfaces. A medium is
-// homogeneous, with spectral absorption σa(λ) and scattering σs(λ) coefficients (per scene unit of
-// length, both times "scale") and a Henyey–Greenstein phase function of asymmetry g. Surfaces
+// Participating media (docs/media.md): what fills the space between surfaces. A medium has
+// spectral absorption σa(λ) and scattering σs(λ) coefficients (per scene unit of length, both
+// times "scale"), everywhere (homogeneous) or times a grid of density over a box ("grid",
+// pbrt-v4's "uniformgrid"), and a Henyey–Greenstein phase function of asymmetry g. Surfaces
 // bound media through their shape's medium interface (the medium inside, behind the front side,
 // and outside); a shape that is only a boundary has no material ("interface": true).
+#include <Eigen/Geometry>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,7 +30,18 @@ struct FluorophoreDesc {
   SpectrumPtr emission;  // any scale: normalized on the grid
 };
 
-// A medium as the scene gives it (JSON "media", pbrt-v4's MakeNamedMedium "homogeneous").
+// A density that scales σa and σs over a box (pbrt-v4's uniformgrid): samples at the centres of
+// nx × ny × nz cells spanning [p0, p1] in the medium's space, trilinear between them and 0 beyond
+// the outermost ones' neighbours (pbrt-v4's SampledGrid::Lookup), nothing outside the box.
+struct DensityGrid {
+  int nx = 0, ny = 0, nz = 0;
+  std::vector<float> values;  // x fastest: values[(z * ny + y) * nx + x], each ≥ 0
+  Eigen::Vector3d p0{0, 0, 0}, p1{1, 1, 1};
+  Eigen::Affine3d to_world = Eigen::Affine3d::Identity();  // the medium's space to the world's
+};
+
+// A medium as the scene gives it (JSON "media", pbrt-v4's MakeNamedMedium "homogeneous" and
+// "uniformgrid").
 struct MediumDesc {
   std::string name;
   std::string where;  // FILE: JSON path of its entry, for messages
@@ -36,6 +49,7 @@ struct MediumDesc {
   double scale = 1;
   double g = 0;  // Henyey–Greenstein asymmetry, |g| < 1
   std::vector<FluorophoreDesc> fluorophores;
+  std::optional<DensityGrid> grid;  // "grid": σa, σs and the dyes times its density
 };
 
 // A fluorophore on the grid: absorption per bin, and ê (sums to 1 over the bins).
@@ -49,6 +63,7 @@ struct Medium {
   std::vector<double> sigma_a, sigma_s;
   double g = 0;
   std::vector<Fluorophore> fluorophores;
+  std::optional<DensityGrid> grid;
   // Some collision in it sends light on: σs > 0 in some bin, or a fluorophore.
   bool scatters() const;
 };

@@ -1,9 +1,10 @@
-/* Participating media (docs/media.md): homogeneous media between surfaces, bounded by shapes'
- * medium interfaces (KTriMedia). A path carries the medium it travels in; crossing a boundary
- * (a refraction, or an "interface" shape, which has no surface and is passed straight through)
- * puts it in the medium on the far side. Along a segment the light is attenuated by
- * exp(−σt(λ) d) per bin: the media only absorb so far, so transmittance is the whole of their
- * effect and no sampling routine changes. Compiled in only for scenes with media (KASHA_MEDIA). */
+/* Participating media (docs/media.md): media between surfaces, bounded by shapes' medium
+ * interfaces (KTriMedia), homogeneous or scaled by a grid of density (density_grid.h). A path
+ * carries the medium it travels in; crossing a boundary (a refraction, or an "interface" shape,
+ * which has no surface and is passed straight through) puts it in the medium on the far side.
+ * Along a segment the light is attenuated by exp(−σt(λ) ℓ) per bin, ℓ the segment's optical
+ * length in the medium (its length where homogeneous, ∫ density in a grid). Compiled in only for
+ * scenes with media (KASHA_MEDIA). */
 #ifndef KASHA_MEDIUM_H
 #define KASHA_MEDIUM_H
 
@@ -28,9 +29,12 @@
  * on a degenerate boundary, far beyond what a scene's nested media make. */
 #define KASHA_MAX_INTERFACES 64
 
+#include "media/density_grid.h"
+
 #if KASHA_MEDIA
-/* How far a ray has travelled in each medium since its last vertex. A homogeneous medium's
- * transmittance depends only on that length, so the order of the pieces does not matter. */
+/* How far a ray has travelled in each medium since its last vertex, as optical length (a grid's
+ * ∫ density): a medium's transmittance depends only on that, so the order of the pieces does not
+ * matter. */
 typedef struct {
   float d[KASHA_MEDIA_COUNT];
 } MediaTrail;
@@ -41,6 +45,35 @@ inline void trail_clear(MediaTrail* t) {
 
 inline void trail_add(MediaTrail* t, int medium, float d) {
   if (medium >= 0) t->d[medium] += d;
+}
+
+/* The optical length of org + t dir, t in [0, len], in medium m (≥ 0): len where it is
+ * homogeneous. */
+inline float medium_optical_length(const SceneView* s, int m, float3 org, float3 dir, float len) {
+#if KASHA_MEDIUM_GRIDS
+  const __global KMedium* md = &s->media[m];
+  float unused;
+  if (md->density >= 0) return grid_march(s, md, org, dir, len, -1.0f, &unused);
+#endif
+  return len;
+}
+
+/* 1 / the density at x in medium m ≥ 0 (1 where homogeneous, 0 where the density is): a merge
+ * at a collision divides by it, as the stored collisions around x are denser by it. */
+inline float medium_inverse_density(const SceneView* s, int m, float3 x) {
+#if KASHA_MEDIUM_GRIDS
+  const __global KMedium* md = &s->media[m];
+  if (md->density >= 0) {
+    float d = grid_density_at(s, md, grid_map(md, x, 1.0f));
+    return d > 0.0f ? 1.0f / d : 0.0f;
+  }
+#endif
+  return 1.0f;
+}
+
+/* The segment org + t dir, t in [0, len], in `medium` (-1: vacuum), onto the trail. */
+inline void trail_add_span(const SceneView* s, MediaTrail* t, int medium, float3 org, float3 dir, float len) {
+  if (medium >= 0) t->d[medium] += medium_optical_length(s, medium, org, dir, len);
 }
 
 inline bool trail_empty(const MediaTrail* t) {
@@ -99,10 +132,10 @@ inline bool intersect_through(const SceneView* s, float3 org, float3 dir, int* m
   float travelled = 0.0f;
   for (int k = 0; k < KASHA_MAX_INTERFACES; ++k) {
     if (!intersect_surface(s, org, dir, h)) {
-      trail_add(trail, *medium, INFINITY);
+      trail_add_span(s, trail, *medium, org, dir, INFINITY);
       return false;
     }
-    trail_add(trail, *medium, h->t);
+    trail_add_span(s, trail, *medium, org, dir, h->t);
     travelled += h->t;
     if (!hit_interface(s, h)) {
       h->t = travelled;
@@ -130,12 +163,12 @@ inline bool segment_clear(const SceneView* s, float3 x, float3 ns, float eps, fl
     HitPoint h;
     if (!intersect_scene_within(s, org, wi, reach, &h)) break;
     if (!hit_interface(s, &h)) return false;
-    trail_add(&trail, medium, h.t);
+    trail_add_span(s, &trail, medium, org, wi, h.t);
     covered += h.t;
     reach -= h.t;
     org = cross_interface(s, &h, wi, &medium);
   }
-  trail_add(&trail, medium, fmax(dist - covered, 0.0f));
+  trail_add_span(s, &trail, medium, org, wi, fmax(dist - covered, 0.0f));
   if (trail_empty(&trail)) return true;
   __global float* out = s->scratch + KASHA_SCRATCH_MEDIA;
   for (int i = 0; i < KASHA_BINS; ++i) out[i] = trail_transmittance(s, &trail, i);

@@ -203,9 +203,9 @@ KASHA_STATIC_SIZE(KFluorophore, 16);
 
 #define KASHA_MEDIUM_FLUOROPHORES 4 /* host/scene/medium.h's kMaxMediumFluorophores */
 
-/* A homogeneous participating medium (kernels/media/medium.h, docs/media.md): offsets in the
- * spectra buffer of its extinction σt = σa + σs + Σ a_f and scattering σs per bin (per scene unit
- * of length), its Henyey–Greenstein g, and its fluorophores. Uploaded only for scenes with media
+/* A participating medium (kernels/media/medium.h, docs/media.md): offsets in the spectra buffer
+ * of its extinction σt = σa + σs + Σ a_f and scattering σs per bin (per scene unit of length, times
+ * the density of its grid where it has one), its Henyey–Greenstein g, and its fluorophores. Uploaded only for scenes with media
  * (KASHA_MEDIA). */
 typedef struct {
   int sigma_t;
@@ -219,9 +219,14 @@ typedef struct {
   float sigma_mean;
   float elastic_share;
   float events;
-  float pad;
+  /* A grid's density (kernels/media/density_grid.h): its samples in the spectra buffer (-1: a
+   * homogeneous medium), how many along x, y, z, and the affine map (row-major 3 × 4) from the
+   * world to its lattice, where sample (i, j, k) sits at (i, j, k). */
+  int density;
+  int grid_size[4];
+  float to_grid[12];
 } KMedium;
-KASHA_STATIC_SIZE(KMedium, 96);
+KASHA_STATIC_SIZE(KMedium, 160);
 
 /* Per leaf triangle (KASHA_MEDIA), its shape's media: inside (behind the front side) and outside,
  * KMedium indices, -1 for vacuum. Equal sides are no boundary: a ray keeps its medium there. */

@@ -123,6 +123,22 @@ inline int flight_walk(const SceneView* s, float3 org, float3 dir, int* medium, 
   for (int k = 0; k < KASHA_MAX_INTERFACES; ++k) {
     bool hit = intersect_surface(s, org, dir, h);
     float len = hit ? h->t : INFINITY, sigma = *medium >= 0 ? medium_sigma_t(s, *medium, j) : 0.0f;
+#if KASHA_MEDIUM_GRIDS
+    const __global KMedium* grid = *medium >= 0 && s->media[*medium].density >= 0 ? &s->media[*medium] : 0;
+    if (grid) {
+      /* Where bin j's optical depth σ ∫ density reaches `depth` (density_grid.h). */
+      float at, optical = grid_march(s, grid, org, dir, len, sigma > 0.0f ? depth / sigma : -1.0f, &at);
+      if (at >= 0.0f) {
+        float t = hit ? fmax(fmin(at, len - h->eps), 0.0f) : at;
+        trail_add(trail, *medium, optical);
+        h->x = org + t * dir;
+        h->t = travelled + t;
+        return KASHA_FLIGHT_SCATTERED;
+      }
+      depth -= sigma * optical;
+      trail_add(trail, *medium, optical);
+    } else
+#endif
     if (sigma > 0.0f && depth < sigma * (hit ? len : beyond_scene(s, org, dir))) {
       /* Kept off the surface ahead by its offset: a point rounded onto its far side would leave
        * the medium through the surface (and, outside a closed one, wander without end). */
@@ -132,8 +148,10 @@ inline int flight_walk(const SceneView* s, float3 org, float3 dir, int* medium, 
       h->t = travelled + t;
       return KASHA_FLIGHT_SCATTERED;
     }
-    if (sigma > 0.0f) depth -= sigma * len;
-    trail_add(trail, *medium, len);
+    else {
+      if (sigma > 0.0f) depth -= sigma * len;
+      trail_add(trail, *medium, len);
+    }
     if (hit) travelled += h->t;
     if (!hit || !hit_interface(s, h)) {
       h->t = travelled;

@@ -7,7 +7,8 @@
  * An iteration is two launches and a grid:
  * 1. vcm_light_pass: light subpaths (one per pixel, 32 in a caustic-lit view; ppm at least
  *    2^16); each vertex with a non-delta part is stored (vcm_records.h), linked to its path's
- *    previous one, and (connecting modes) splatted to the camera, MIS-weighted;
+ *    previous one, and (connecting modes) splatted to the camera, MIS-weighted — the light point
+ *    it leaves from too, against the camera's direct hit of it;
  * 2. the hashed grid over the stored vertices (hash_grid.cl; merging modes), cells of 2r;
  * 3. vcm_camera_pass: one camera path per pixel; at each vertex with a non-delta part, emission
  *    hit, next-event estimation, connections to its light subpath's vertices (connecting modes)

@@ -76,6 +76,7 @@ typedef struct {
   float eta; /* a rough dielectric's index for the path (at its bin where it disperses) */
   bool merges;
   int medium; /* a collision in this medium (vcm_media.h; no surface, normals unset), -1: a surface */
+  float sparse; /* at a collision, 1 / its medium's density there (medium_inverse_density) */
 } VcmVertex;
 
 /* The MIS factors at a camera vertex, its merges' radius's (vcm_merge_factor, vcm_connect_factor):

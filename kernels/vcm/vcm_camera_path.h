@@ -20,6 +20,7 @@ inline VcmVertex vcm_camera_vertex(const CameraVertex* v, bool* met) {
   *met = *met || vcm_connectible(&v->surf);
   cv.eta = 1.0f;
   cv.medium = -1;
+  cv.sparse = 1.0f;
   return cv;
 }
 
@@ -137,6 +138,7 @@ inline bool vcm_camera_collision(VcmCamera* c, const SceneView* s, const FilmVie
   cv.lambert = 0.0f;
   cv.eta = 1.0f;
   cv.medium = c->w.medium;
+  cv.sparse = medium_inverse_density(s, c->w.medium, v->h.x);
   cv.merges = KASHA_VCM_MERGE_EVERY || !KASHA_VCM_CONNECT || !*met;
   *met = true;
   const KVcmRadius* radius = &in->it->radius;

@@ -33,11 +33,11 @@ inline void vcm_merge_collision(const VcmCamera* c, const SceneView* s, const Fi
   if (lv->medium != cv->medium) return;
   const __global KMedium* m = &s->media[cv->medium];
   float3 eye = -c->w.dir, light = -load_float3(lv->arrival);
-  float weight = scale;
+  float weight = scale * cv->sparse;
   if (KASHA_VCM_CONNECT) {
     float w_light = vc * (lv->dvcm + lv->dvc * vcm_medium_pdf(m, eye, light));
     float w_camera = vc * (c->dvcm + c->dvc * vcm_medium_pdf(m, light, eye));
-    weight = scale / (w_light + 1.0f + w_camera);
+    weight /= w_light + 1.0f + w_camera;
   }
   vcm_medium_camera_apply(&c->w.p, s, f, m, eye, light, vcm_vertex_power(lv), weight, rows);
 }
