@@ -83,7 +83,10 @@ INSTANTIATE_TEST_SUITE_P(
                       ReferenceCase{"media", {}, 32},
                       // A cube of fog that scatters (σs spectral, g 0.3) under a lamp: the
                       // free flight's MIS over bins and next-event estimation from the fog.
-                      ReferenceCase{"fog", {}, 32}),
+                      ReferenceCase{"fog", {}, 32},
+                      // Smoke on a grid of density (uniformgrid), turned and stretched: the
+                      // lattice's exact tracking against pbrt-v4's delta and ratio tracking.
+                      ReferenceCase{"smoke", {}, 32}),
     [](const auto& info) { return info.param.scene; });
 
 // --max-depth N as pbrt-v4's maxdepth: the Cornell box with direct light alone (1) and one bounce
