@@ -417,8 +417,9 @@ namespace {
 // × [-1, 0.7] × [0.5, 1.5], turned 20° about z (its "transform"), so the camera's window sees
 // parts of it, its edges, and parts with no grid at all.
 constexpr int kGridX = 3, kGridY = 2, kGridZ = 4;
-const double kGridValues[kGridX * kGridY * kGridZ] = {0.5, 2.0, 1.0, 0.2, 3.0, 0.7, 1.5, 0.1, 2.5, 0.9, 0.3, 1.8,
-                                                      2.2, 0.4, 1.1, 0.6, 2.8, 0.05, 1.3, 0.8, 0.0, 1.9, 2.4, 1.2};
+const double kGridValues[kGridX * kGridY * kGridZ] = {0.5, 2.0,  1.0, 0.2, 3.0, 0.7, 1.5, 0.1,
+                                                      2.5, 0.9,  0.3, 1.8, 2.2, 0.4, 1.1, 0.6,
+                                                      2.8, 0.05, 1.3, 0.8, 0.0, 1.9, 2.4, 1.2};
 const Eigen::Vector3d kGridMin(-0.8, -1, 0.5), kGridMax(0.9, 0.7, 1.5);
 constexpr double kGridTurnDeg = 20;
 
@@ -433,7 +434,8 @@ std::string grid_density_json() {
 // The density at a world point, as pbrt-v4's SampledGrid::Lookup takes it (trilinear between the
 // samples at the cells' centres, 0 past them), written out here on its own.
 double grid_density(const Eigen::Vector3d& world) {
-  const Eigen::Vector3d p = Eigen::AngleAxisd(-kGridTurnDeg * M_PI / 180, Eigen::Vector3d::UnitZ()) * world;
+  const Eigen::Vector3d p =
+      Eigen::AngleAxisd(-kGridTurnDeg * M_PI / 180, Eigen::Vector3d::UnitZ()) * world;
   if ((p.array() < kGridMin.array()).any() || (p.array() > kGridMax.array()).any()) return 0;
   const Eigen::Vector3d u = (p - kGridMin).cwiseQuotient(kGridMax - kGridMin);
   const double q[3] = {u.x() * kGridX - 0.5, u.y() * kGridY - 0.5, u.z() * kGridZ - 0.5};
@@ -475,7 +477,8 @@ TEST(Medium, AnEmitterSeenThroughAGridOfDyeFollowsItsIntegral) {
     for (int x = 0; x < kSide; ++x) {
       double optical = 0;
       for (int k = 0; k < kSteps; ++k)
-        optical += grid_density({-1 + (x + 0.5) * 2 / kSide, -1 + (y + 0.5) * 2 / kSide, 0.5 + (k + 0.5) / kSteps});
+        optical += grid_density(
+            {-1 + (x + 0.5) * 2 / kSide, -1 + (y + 0.5) * 2 / kSide, 0.5 + (k + 0.5) / kSteps});
       optical /= kSteps;
       for (size_t i = 0; i < truth.size(); ++i)
         truth[i] += std::exp(-loaded.media.at(0).sigma_a[i] * optical - 2 * 0.1) / (kSide * kSide);
@@ -491,7 +494,8 @@ TEST(Medium, AnEmitterSeenThroughAGridOfDyeFollowsItsIntegral) {
     for (size_t i = 0; i < expected.size(); ++i) expected[i] *= truth[i];
     const BinStats b = pixel_statistics(r.image, true);
     double worst = 0;
-    for (size_t i = 0; i < expected.size(); ++i) worst = std::max(worst, std::abs(b.mean[i] / expected[i] - 1));
+    for (size_t i = 0; i < expected.size(); ++i)
+      worst = std::max(worst, std::abs(b.mean[i] / expected[i] - 1));
     std::printf("  %s: the largest bin's difference %.2f %%\n", integrator.c_str(), 100 * worst);
     expect_bins_match(r, expected, 0.005, integrator + " through the grid", false);
   }
@@ -500,14 +504,15 @@ TEST(Medium, AnEmitterSeenThroughAGridOfDyeFollowsItsIntegral) {
 // The scattering furnace with the ball's medium on a grid (the same density, stretched over the
 // ball's box): light neither lost nor made, so L everywhere in every integrator. Merges divide by
 // the density where the camera path collides (photon mapping's and vcm's stored collisions are
-// denser by it); without that division photon mapping was up to +24 % off and ppm over +28 % (vcm, whose
-// merges weigh little beside its connections here, still passed).
+// denser by it); without that division photon mapping was up to +24 % off and ppm over +28 % (vcm,
+// whose merges weigh little beside its connections here, still passed).
 TEST(Medium, AGriddedScatteringFurnaceShowsTheEmittersRadiance) {
   std::string density = grid_density_json();
   density.replace(density.find(R"("bounds")"), std::string::npos,
                   R"("bounds": {"min": [-0.7, -0.7, -0.7], "max": [0.7, 0.7, 0.7]}})");
   const std::string scene = sphere_furnace(
-      R"({"type": "grid", "sigma_a": 0, "sigma_s": {"nm": [380, 780], "value": [4.0, 0.5]}, "g": 0.5, )" + density);
+      R"({"type": "grid", "sigma_a": 0, "sigma_s": {"nm": [380, 780], "value": [4.0, 0.5]}, "g": 0.5, )" +
+      density);
   for (const std::string integrator : {"backward", "forward", "photon", "vcm", "bpt", "ppm"}) {
     RenderResult r = render_furnace("grid_furnace.json", scene, integrator);
     ASSERT_TRUE(r.scene.scattering());
@@ -522,7 +527,8 @@ TEST(Medium, BadGridsAreOneLine) {
   };
   const std::vector<Case> cases = {
       {R"("density": {"size": [2, 2, 2], "values": [1, 1, 1]})", "needs 8 values, not 3"},
-      {R"("density": {"size": [2, 1, 1], "values": [1, -1]})", "a density must be finite and not negative"},
+      {R"("density": {"size": [2, 1, 1], "values": [1, -1]})",
+       "a density must be finite and not negative"},
       {R"("density": {"size": [0, 1, 1], "values": []})", "each size must be a whole number"},
       {R"("density": {"size": [1, 1], "values": [1]})", "expected [nx, ny, nz]"},
       {R"("density": {"size": [1, 1, 1], "values": [1]}, "bounds": {"min": [0, 0, 0], "max": [1, 0, 1]})",
@@ -530,8 +536,10 @@ TEST(Medium, BadGridsAreOneLine) {
       {R"("sigma_s": 1)", "a grid medium needs its \"density\""},
   };
   for (const Case& c : cases) {
-    const std::string text = R"({"kasha_scene": 1, "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "fog"},
-      "materials": {"m": {}}, "media": {"fog": {"type": "grid", )" + c.grid + R"(}},
+    const std::string text =
+        R"({"kasha_scene": 1, "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "fog"},
+      "materials": {"m": {}}, "media": {"fog": {"type": "grid", )" +
+        c.grid + R"(}},
       "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], "material": "m", "emission": 1}]})";
     const std::string e = error_of([&] { load_scene(write_file("bad_grid.json", text)); });
     EXPECT_NE(e.find(c.message), std::string::npos) << c.grid << "\n  got: " << e;
@@ -540,14 +548,18 @@ TEST(Medium, BadGridsAreOneLine) {
   const std::vector<Case> pbrt = {
       {R"("integer nx" 2 "float density" [1 1 1])", "3 density values for nx*ny*nz = 2"},
       {R"("float density" [-1])", "a density must be finite and not negative"},
-      {R"("float density" [1] "point3 p0" [0 0 0] "point3 p1" [1 1 0])", "\"p0\" must lie below \"p1\""},
+      {R"("float density" [1] "point3 p0" [0 0 0] "point3 p1" [1 1 0])",
+       "\"p0\" must lie below \"p1\""},
       {R"("float density" [1] "float temperature" [1])", "an emitting grid"},
       {R"("integer nx" 1)", "no \"density\" value provided"},
   };
   for (const Case& c : pbrt) {
     const std::string e = error_of([&] {
-      import_pbrt_scene(write_file("bad_grid.pbrt", "Camera \"perspective\"\nWorldBegin\nMakeNamedMedium \"smoke\" "
-                                                    "\"string type\" \"uniformgrid\" " + c.grid + "\n"), {});
+      import_pbrt_scene(write_file("bad_grid.pbrt",
+                                   "Camera \"perspective\"\nWorldBegin\nMakeNamedMedium \"smoke\" "
+                                   "\"string type\" \"uniformgrid\" " +
+                                       c.grid + "\n"),
+                        {});
     });
     EXPECT_NE(e.find(c.message), std::string::npos) << c.grid << "\n  got: " << e;
     EXPECT_EQ(e.find('\n'), std::string::npos) << e;

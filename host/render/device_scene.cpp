@@ -627,8 +627,9 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_MEDIA"] = scene.has_media() ? "1" : "0";
   d["KASHA_SCATTERING"] = scene.scattering() ? "1" : "0";
   d["KASHA_MEDIUM_BOUNDARIES"] = scene.triangle_media.empty() ? "0" : "1";
-  const bool grids = scene.has_media() && std::any_of(scene.media.begin(), scene.media.end(),
-                                                      [](const Medium& m) { return m.grid.has_value(); });
+  const bool grids =
+      scene.has_media() && std::any_of(scene.media.begin(), scene.media.end(),
+                                       [](const Medium& m) { return m.grid.has_value(); });
   d["KASHA_MEDIUM_GRIDS"] = grids ? "1" : "0";
   d["KASHA_MEDIA_COUNT"] = std::to_string(std::max<size_t>(1, scene.media.size()));
   d["KASHA_SCRATCH_MEDIA"] = std::to_string(scratch_media_offset(scene));

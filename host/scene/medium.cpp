@@ -52,9 +52,11 @@ static DensityGrid parse_density_grid(const JsonNode& node) {
   const std::vector<double> n = size.numbers();
   if (n.size() != 3) size.fail("expected [nx, ny, nz]");
   for (double v : n)
-    if (!(v >= 1 && v <= 4096 && v == std::floor(v))) size.fail("each size must be a whole number in [1, 4096]");
+    if (!(v >= 1 && v <= 4096 && v == std::floor(v)))
+      size.fail("each size must be a whole number in [1, 4096]");
   g.nx = static_cast<int>(n[0]), g.ny = static_cast<int>(n[1]), g.nz = static_cast<int>(n[2]);
-  if (n[0] * n[1] * n[2] > static_cast<double>(1 << 28)) size.fail("a grid holds at most 2^28 samples");
+  if (n[0] * n[1] * n[2] > static_cast<double>(1 << 28))
+    size.fail("a grid holds at most 2^28 samples");
   const JsonNode values = density.at("values");
   const std::vector<double> v = values.numbers();
   const size_t want = static_cast<size_t>(g.nx) * g.ny * g.nz;

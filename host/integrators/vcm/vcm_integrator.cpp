@@ -367,7 +367,8 @@ class VcmIntegrator : public KernelIntegrator {
         if (interrupt_requested()) return Chunk{Chunk::interrupted, 0};
         const size_t n = light_pacer_.next(count - done);
         const auto t = std::chrono::steady_clock::now();
-        launch_range(light_kernel_, first + done, n, it, store_, counters_, light_paths_, fixed_, pixels_);
+        launch_range(light_kernel_, first + done, n, it, store_, counters_, light_paths_, fixed_,
+                     pixels_);
         light_pacer_.record(n, seconds_since(t));
         done += n;
         cl_.queue().enqueueReadBuffer(counters_, CL_TRUE, 0, sizeof counters, &counters);

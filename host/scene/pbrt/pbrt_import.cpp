@@ -753,8 +753,9 @@ class Importer {
     if (type.empty()) pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) + ": no \"type\"");
     if (name.empty()) pbrt_fail(where, "MakeNamedMedium: a medium's name must not be empty");
     if (type != "homogeneous" && type != "uniformgrid") {
-      refused_media_[name] = "MakeNamedMedium " + in_quotes(name) + " (" + where.str() + ") is a \"" +
-                             type + "\" medium, which kasha does not build (homogeneous, uniformgrid)";
+      refused_media_[name] = "MakeNamedMedium " + in_quotes(name) + " (" + where.str() +
+                             ") is a \"" + type +
+                             "\" medium, which kasha does not build (homogeneous, uniformgrid)";
       media_.erase(name);
       return;
     }
@@ -781,18 +782,24 @@ class Importer {
 
   // pbrt-v4's uniformgrid (GridMedium::Create): its density samples over [p0, p1] in the space of
   // the transform current at MakeNamedMedium; an emitting grid ("temperature", "Lescale") refused.
-  nlohmann::json grid_medium(const std::string& name, const PbrtParameters& params, const PbrtLocation& where) {
+  nlohmann::json grid_medium(const std::string& name, const PbrtParameters& params,
+                             const PbrtLocation& where) {
     const std::string what = "MakeNamedMedium " + in_quotes(name);
     if (params.find("temperature", "float") || params.find("Lescale", "float"))
-      pbrt_fail(where, what + ": an emitting grid (\"temperature\", \"Lescale\") is not built in kasha");
+      pbrt_fail(where,
+                what + ": an emitting grid (\"temperature\", \"Lescale\") is not built in kasha");
     const std::vector<double> density = params.get_numbers("density", "float");
     if (density.empty()) pbrt_fail(where, what + ": no \"density\" value provided for grid medium");
-    const int nx = params.get_int("nx", 1), ny = params.get_int("ny", 1), nz = params.get_int("nz", 1);
-    if (nx < 1 || ny < 1 || nz < 1 || static_cast<double>(nx) * ny * nz != static_cast<double>(density.size()))
-      pbrt_fail(where, what + ": " + std::to_string(density.size()) + " density values for nx*ny*nz = " +
+    const int nx = params.get_int("nx", 1), ny = params.get_int("ny", 1),
+              nz = params.get_int("nz", 1);
+    if (nx < 1 || ny < 1 || nz < 1 ||
+        static_cast<double>(nx) * ny * nz != static_cast<double>(density.size()))
+      pbrt_fail(where, what + ": " + std::to_string(density.size()) +
+                           " density values for nx*ny*nz = " +
                            std::to_string(static_cast<long long>(nx) * ny * nz));
     for (double v : density)
-      if (!(v >= 0 && std::isfinite(v))) pbrt_fail(where, what + ": a density must be finite and not negative");
+      if (!(v >= 0 && std::isfinite(v)))
+        pbrt_fail(where, what + ": a density must be finite and not negative");
     const auto p0 = params.get_triple("p0").value_or(std::array<double, 3>{0, 0, 0});
     const auto p1 = params.get_triple("p1").value_or(std::array<double, 3>{1, 1, 1});
     for (int c = 0; c < 3; ++c)
