@@ -147,8 +147,7 @@ inline int flight_walk(const SceneView* s, float3 org, float3 dir, int* medium, 
       h->x = org + t * dir;
       h->t = travelled + t;
       return KASHA_FLIGHT_SCATTERED;
-    }
-    else {
+    } else {
       if (sigma > 0.0f) depth -= sigma * len;
       trail_add(trail, *medium, len);
     }
