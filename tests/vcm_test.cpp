@@ -281,9 +281,11 @@ RenderResult render_fog(const std::string& integrator, int length, int passes, b
 }
 
 // In the fog, per path length, bpt's weighted techniques add up to the plain estimate, and so do
-// vcm's with merges (within merging's bias, 1 % here).
+// vcm's with merges (within merging's bias, 1 % here). Lengths 2 and 3 (3 holds every pairing of
+// collision and surface in connections and merges; 4, measured +0.21 % when this was written, is
+// left to these two for CI's time: each length is three kernels to build).
 TEST(Vcm, WeightsSumToOnePerPathLengthInAScatteringFluorescentFog) {
-  for (int length : {2, 3, 4}) {
+  for (int length : {2, 3}) {
     const Image plain_fog = render_fog("bpt", length, 128, true).image;
     for (const std::string integrator : {"bpt", "vcm"}) {
       std::array<double, 3> relative;
