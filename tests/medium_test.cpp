@@ -549,7 +549,7 @@ TEST(Medium, BadGridsAreOneLine) {
       {R"("integer nx" 2 "float density" [1 1 1])", "3 density values for nx*ny*nz = 2"},
       {R"("float density" [-1])", "a density must be finite and not negative"},
       {R"("float density" [1] "point3 p0" [0 0 0] "point3 p1" [1 1 0])",
-       "\"p0\" must lie below \"p1\""},
+       "\"p0\" and \"p1\" must differ"},
       {R"("float density" [1] "float temperature" [1])", "an emitting grid"},
       {R"("integer nx" 1)", "no \"density\" value provided"},
   };

@@ -1,5 +1,10 @@
 #include "render/device_media.h"
 
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+
 namespace kasha {
 
 static int append_spectrum(std::vector<float>& spectra, const std::vector<double>& v) {
@@ -11,6 +16,9 @@ static int append_spectrum(std::vector<float>& spectra, const std::vector<double
 // A grid's samples into the spectra buffer, and the map from the world to its lattice: the
 // medium's space, then the box's unit cube, then n·u − ½ (pbrt-v4's SampledGrid::Lookup).
 static void place_grid(const DensityGrid& g, std::vector<float>& spectra, KMedium& k) {
+  // The kernels index the spectra buffer with an int.
+  if (spectra.size() + g.values.size() > static_cast<size_t>(std::numeric_limits<int>::max()))
+    throw Error("media: the grids' samples exceed 2^31 floats, more than the kernels can index");
   k.density = static_cast<int>(spectra.size());
   spectra.insert(spectra.end(), g.values.begin(), g.values.end());
   k.grid_size[0] = g.nx, k.grid_size[1] = g.ny, k.grid_size[2] = g.nz, k.grid_size[3] = 0;
@@ -22,6 +30,8 @@ static void place_grid(const DensityGrid& g, std::vector<float>& spectra, KMediu
   const Eigen::Matrix<double, 3, 4> m = (lattice * g.to_world.inverse()).matrix().topRows<3>();
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 4; ++c) k.to_grid[4 * r + c] = static_cast<float>(m(r, c));
+  for (float v : k.to_grid)
+    if (!std::isfinite(v)) throw Error("media: a grid's box or transform maps the world beyond float range");
 }
 
 DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_triangles,

@@ -24,15 +24,21 @@ inline float grid_sample(const SceneView* s, const __global KMedium* m, int x, i
   return s->spectra[m->density + (z * m->grid_size[1] + y) * m->grid_size[0] + x];
 }
 
-/* The density at lattice point q: trilinear between the eight samples around it. */
-inline float grid_density_at(const SceneView* s, const __global KMedium* m, float3 q) {
-  float3 f = floor(q), d = q - f;
-  int x = (int)f.x, y = (int)f.y, z = (int)f.z;
+/* The density at lattice point q inside the cell whose lowest corner is sample (x, y, z):
+ * trilinear between its eight samples (q's offsets clamped to the cell). */
+inline float grid_trilinear(const SceneView* s, const __global KMedium* m, int x, int y, int z, float3 q) {
+  float3 d = clamp(q - (float3)((float)x, (float)y, (float)z), 0.0f, 1.0f);
   float c00 = mix(grid_sample(s, m, x, y, z), grid_sample(s, m, x + 1, y, z), d.x);
   float c10 = mix(grid_sample(s, m, x, y + 1, z), grid_sample(s, m, x + 1, y + 1, z), d.x);
   float c01 = mix(grid_sample(s, m, x, y, z + 1), grid_sample(s, m, x + 1, y, z + 1), d.x);
   float c11 = mix(grid_sample(s, m, x, y + 1, z + 1), grid_sample(s, m, x + 1, y + 1, z + 1), d.x);
   return mix(mix(c00, c10, d.y), mix(c01, c11, d.y), d.z);
+}
+
+/* The density at lattice point q (pbrt-v4's SampledGrid::Lookup). */
+inline float grid_density_at(const SceneView* s, const __global KMedium* m, float3 q) {
+  float3 f = floor(q);
+  return grid_trilinear(s, m, (int)f.x, (int)f.y, (int)f.z, q);
 }
 
 /* A world point's (w = 1) or direction's (w = 0) place in m's lattice. */
@@ -42,22 +48,28 @@ inline float3 grid_map(const __global KMedium* m, float3 p, float w) {
                   a[8] * p.x + a[9] * p.y + a[10] * p.z + a[11] * w);
 }
 
-/* ∫ density over t in [a, b] along q0 + t dq, inside one lattice cell (a cubic: exact). */
-inline float grid_cell_integral(const SceneView* s, const __global KMedium* m, float3 q0, float3 dq, float a, float b) {
+/* ∫ density over t in [a, b] along q0 + t dq, inside the lattice cell c (a cubic: exact). */
+inline float grid_cell_integral(const SceneView* s, const __global KMedium* m, int3 c, float3 q0, float3 dq, float a,
+                                float b) {
   const float k = 0.28867513f; /* 1 / (2√3) */
-  float h = b - a, c = 0.5f * (a + b);
-  return 0.5f * h * (grid_density_at(s, m, q0 + (c - k * h) * dq) + grid_density_at(s, m, q0 + (c + k * h) * dq));
+  float h = b - a, mid = 0.5f * (a + b);
+  return 0.5f * h *
+         (grid_trilinear(s, m, c.x, c.y, c.z, q0 + (mid - k * h) * dq) +
+          grid_trilinear(s, m, c.x, c.y, c.z, q0 + (mid + k * h) * dq));
 }
 
-/* Where in [a, b] (one cell, holding `whole` of the integral) the integral from a reaches r. */
-inline float grid_cell_invert(const SceneView* s, const __global KMedium* m, float3 q0, float3 dq, float a, float b,
-                              float whole, float r) {
+/* Where in [a, b] (cell c, holding `whole` of the integral) the integral from a reaches r: Newton's
+ * method kept in its bracket, bisection where it would leave it. */
+inline float grid_cell_invert(const SceneView* s, const __global KMedium* m, int3 c, float3 q0, float3 dq, float a,
+                              float b, float whole, float r) {
   float lo = a, hi = b, t = a + (b - a) * fmin(r / whole, 1.0f);
   for (int k = 0; k < 12; ++k) {
-    float excess = grid_cell_integral(s, m, q0, dq, a, t) - r;
+    float excess = grid_cell_integral(s, m, c, q0, dq, a, t) - r;
+    if (excess == 0.0f) return t;
     if (excess > 0.0f) hi = t;
     else lo = t;
-    float rate = grid_density_at(s, m, q0 + t * dq), next = rate > 0.0f ? t - excess / rate : 0.5f * (lo + hi);
+    float rate = grid_trilinear(s, m, c.x, c.y, c.z, q0 + t * dq);
+    float next = rate > 0.0f ? t - excess / rate : 0.5f * (lo + hi);
     if (!(next > lo && next < hi)) next = 0.5f * (lo + hi);
     if (fabs(next - t) <= 1e-6f * (b - a)) return next;
     t = next;
@@ -66,8 +78,10 @@ inline float grid_cell_invert(const SceneView* s, const __global KMedium* m, flo
 }
 
 /* The ray's span within the lattice's box [-½, n − ½]³ (as t along q0 + t dq), clipped to [0, len];
- * false if it misses. */
+ * false if it misses (or the map gave a non-finite point). */
 inline bool grid_span(const __global KMedium* m, float3 q0, float3 dq, float len, float* t0, float* t1) {
+  if (!(isfinite(q0.x) && isfinite(q0.y) && isfinite(q0.z) && isfinite(dq.x) && isfinite(dq.y) && isfinite(dq.z)))
+    return false;
   float3 n = (float3)((float)m->grid_size[0], (float)m->grid_size[1], (float)m->grid_size[2]);
   float3 lo = ((float3)(-0.5f) - q0) / dq, hi = (n - 0.5f - q0) / dq;
   float3 near_t = fmin(lo, hi), far_t = fmax(lo, hi);
@@ -80,37 +94,47 @@ inline bool grid_span(const __global KMedium* m, float3 q0, float3 dq, float len
   return *t0 < *t1;
 }
 
-/* The next lattice plane the ray crosses after t on one axis (INFINITY if it runs parallel). */
-inline float grid_next_plane(float q0, float dq, float q) {
-  if (dq > 0.0f) return (floor(q) + 1.0f - q0) / dq;
-  if (dq < 0.0f) return (ceil(q) - 1.0f - q0) / dq;
-  return INFINITY;
+/* One axis of the cell walk: the cell's index along it, the t of the plane the ray leaves it by
+ * and the t between planes (Amanatides and Woo); INFINITY where the ray runs parallel. */
+inline void grid_axis(float q0, float dq, float q, int* cell, float* next, float* step) {
+  *cell = (int)floor(q);
+  *next = dq > 0.0f ? ((float)*cell + 1.0f - q0) / dq : dq < 0.0f ? ((float)*cell - q0) / dq : INFINITY;
+  *step = dq != 0.0f ? 1.0f / fabs(dq) : INFINITY;
 }
 
-/* ∫ density along org + t dir over [0, len] in m, cell by cell; with target ≥ 0, stops where the
- * integral reaches it: *t_hit that t (else -1). Returns the integral up to where it stopped. */
+/* ∫ density along org + t dir over [0, len] in m, cell by cell (integer steps: every piece lies in
+ * one cell); with target ≥ 0, stops where the integral reaches it: *t_hit that t (else -1).
+ * Returns the integral up to where it stopped. */
 inline float grid_march(const SceneView* s, const __global KMedium* m, float3 org, float3 dir, float len, float target,
                         float* t_hit) {
   *t_hit = -1.0f;
   float3 q0 = grid_map(m, org, 1.0f), dq = grid_map(m, dir, 0.0f);
   float t, end;
   if (!grid_span(m, q0, dq, len, &t, &end)) return 0.0f;
+  /* The first cell: where the span's first sliver lies. */
+  float3 q = q0 + fmin(t + 1e-4f * (end - t), 0.5f * (t + end)) * dq;
+  int cx, cy, cz;
+  float nx, ny, nz, sx, sy, sz;
+  grid_axis(q0.x, dq.x, q.x, &cx, &nx, &sx);
+  grid_axis(q0.y, dq.y, q.y, &cy, &ny, &sy);
+  grid_axis(q0.z, dq.z, q.z, &cz, &nz, &sz);
+  const int ux = dq.x > 0.0f ? 1 : -1, uy = dq.y > 0.0f ? 1 : -1, uz = dq.z > 0.0f ? 1 : -1;
   float sum = 0.0f;
   int most = m->grid_size[0] + m->grid_size[1] + m->grid_size[2] + 6;
   for (int k = 0; k < most && t < end; ++k) {
-    /* The cell the ray is in just past t, and where it leaves it. */
-    float3 q = q0 + (t + 1e-5f * (end - t)) * dq;
-    float next = fmin(fmin(grid_next_plane(q0.x, dq.x, q.x), grid_next_plane(q0.y, dq.y, q.y)),
-                      grid_next_plane(q0.z, dq.z, q.z));
-    next = fmin(fmax(next, t), end);
-    if (k == most - 1) next = end;
-    float piece = grid_cell_integral(s, m, q0, dq, t, next);
+    int3 c = (int3)(cx, cy, cz);
+    float leave = fmin(fmin(fmin(nx, ny), nz), end), until = fmax(leave, t);
+    float piece = grid_cell_integral(s, m, c, q0, dq, t, until);
     if (target >= 0.0f && sum + piece >= target && piece > 0.0f) {
-      *t_hit = grid_cell_invert(s, m, q0, dq, t, next, piece, target - sum);
+      *t_hit = grid_cell_invert(s, m, c, q0, dq, t, until, piece, target - sum);
       return target;
     }
     sum += piece;
-    t = next;
+    t = until;
+    /* Into the neighbour across the plane it leaves by. */
+    if (nx <= ny && nx <= nz) cx += ux, nx += sx;
+    else if (ny <= nz) cy += uy, ny += sy;
+    else cz += uz, nz += sz;
   }
   return sum;
 }

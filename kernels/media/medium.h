@@ -59,7 +59,9 @@ inline float medium_optical_length(const SceneView* s, int m, float3 org, float3
 }
 
 /* 1 / the density at x in medium m ≥ 0 (1 where homogeneous, 0 where the density is): a merge
- * at a collision divides by it, as the stored collisions around x are denser by it. */
+ * at a collision divides by it, as the stored collisions around x are denser by it (each record
+ * divided by its own density instead failed the gridded furnace: photons in thin smoke then
+ * weigh up to 1/ρ). */
 inline float medium_inverse_density(const SceneView* s, int m, float3 x) {
 #if KASHA_MEDIUM_GRIDS
   const __global KMedium* md = &s->media[m];

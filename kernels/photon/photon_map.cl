@@ -169,7 +169,7 @@ inline void medium_visible_point(const CameraWalk* w, const SceneView* s, const 
   __global float* g = vp + KASHA_VP_WO(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE);
   g[0] = wo.x, g[1] = wo.y, g[2] = wo.z;
   vp[KASHA_VP_G(KASHA_BINS, KASHA_FILM_ROWS, KASHA_FLUORESCENCE)] = branch == 0 ? m->g : 0.0f;
-  /* In a grid the photons around x are denser by its density (medium_inverse_density). */
+  /* In a grid the photons around x are denser by its density there (medium_inverse_density). */
   float sparse = medium_inverse_density(s, w->medium, x);
   if (branch == 0) {
     vf_build_medium(layout, vp, w->p.w, s->spectra + m->sigma_s, 0, 0, sparse / probs[0]);

@@ -135,7 +135,7 @@ inline int flight_walk(const SceneView* s, float3 org, float3 dir, int* medium, 
         h->t = travelled + t;
         return KASHA_FLIGHT_SCATTERED;
       }
-      depth -= sigma * optical;
+      depth = fmax(depth - sigma * optical, 0.0f);
       trail_add(trail, *medium, optical);
     } else
 #endif

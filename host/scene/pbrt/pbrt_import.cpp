@@ -764,7 +764,9 @@ class Importer {
                            ": \"preset\" is not built in kasha: give \"sigma_a\" and \"sigma_s\"");
     if (const PbrtParameter* le = params.find("Le", "rgb spectrum blackbody float")) {
       const nlohmann::json v = pbrt_spectrum(*le, PbrtSpectrumUse::kIlluminant, base_dir_);
-      if (!(v.is_number() && v.get<double>() == 0) && params.get_float("Lescale", 1) != 0)
+      // A grid's "Lescale" is a grid of its own: any Le of one emits.
+      const bool scaled_off = type == "homogeneous" && params.get_float("Lescale", 1) == 0;
+      if (!(v.is_number() && v.get<double>() == 0) && !scaled_off)
         pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) + ": an emitting medium (\"Le\") is not built in kasha");
     }
     nlohmann::json m = {{"type", "homogeneous"}};
@@ -781,13 +783,13 @@ class Importer {
   }
 
   // pbrt-v4's uniformgrid (GridMedium::Create): its density samples over [p0, p1] in the space of
-  // the transform current at MakeNamedMedium; an emitting grid ("temperature", "Lescale") refused.
+  // the transform current at MakeNamedMedium; an emitting grid ("temperature", an "Le") refused.
   nlohmann::json grid_medium(const std::string& name, const PbrtParameters& params,
                              const PbrtLocation& where) {
     const std::string what = "MakeNamedMedium " + in_quotes(name);
-    if (params.find("temperature", "float") || params.find("Lescale", "float"))
-      pbrt_fail(where,
-                what + ": an emitting grid (\"temperature\", \"Lescale\") is not built in kasha");
+    if (params.find("temperature", "float"))
+      pbrt_fail(where, what + ": an emitting grid (\"temperature\") is not built in kasha");
+    params.find("Lescale", "float");  // it scales "Le" alone, refused above where it emits
     const std::vector<double> density = params.get_numbers("density", "float");
     if (density.empty()) pbrt_fail(where, what + ": no \"density\" value provided for grid medium");
     const int nx = params.get_int("nx", 1), ny = params.get_int("ny", 1),
@@ -800,10 +802,13 @@ class Importer {
     for (double v : density)
       if (!(v >= 0 && std::isfinite(v)))
         pbrt_fail(where, what + ": a density must be finite and not negative");
-    const auto p0 = params.get_triple("p0").value_or(std::array<double, 3>{0, 0, 0});
-    const auto p1 = params.get_triple("p1").value_or(std::array<double, 3>{1, 1, 1});
-    for (int c = 0; c < 3; ++c)
-      if (!(p0[c] < p1[c])) pbrt_fail(where, what + ": \"p0\" must lie below \"p1\" on every axis");
+    // pbrt-v4's Bounds3f(p0, p1) takes the corners in either order.
+    auto p0 = params.get_triple("p0").value_or(std::array<double, 3>{0, 0, 0});
+    auto p1 = params.get_triple("p1").value_or(std::array<double, 3>{1, 1, 1});
+    for (int c = 0; c < 3; ++c) {
+      if (p1[c] < p0[c]) std::swap(p0[c], p1[c]);
+      if (!(p0[c] < p1[c])) pbrt_fail(where, what + ": \"p0\" and \"p1\" must differ on every axis");
+    }
     check_affine(state_.ctm, where);
     return {{"type", "grid"},
             {"density", {{"size", {nx, ny, nz}}, {"values", density}}},
