@@ -31,7 +31,8 @@ static void place_grid(const DensityGrid& g, std::vector<float>& spectra, KMediu
   for (int r = 0; r < 3; ++r)
     for (int c = 0; c < 4; ++c) k.to_grid[4 * r + c] = static_cast<float>(m(r, c));
   for (float v : k.to_grid)
-    if (!std::isfinite(v)) throw Error("media: a grid's box or transform maps the world beyond float range");
+    if (!std::isfinite(v))
+      throw Error("media: a grid's box or transform maps the world beyond float range");
 }
 
 DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_triangles,

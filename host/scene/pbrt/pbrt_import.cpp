@@ -807,7 +807,8 @@ class Importer {
     auto p1 = params.get_triple("p1").value_or(std::array<double, 3>{1, 1, 1});
     for (int c = 0; c < 3; ++c) {
       if (p1[c] < p0[c]) std::swap(p0[c], p1[c]);
-      if (!(p0[c] < p1[c])) pbrt_fail(where, what + ": \"p0\" and \"p1\" must differ on every axis");
+      if (!(p0[c] < p1[c]))
+        pbrt_fail(where, what + ": \"p0\" and \"p1\" must differ on every axis");
     }
     check_affine(state_.ctm, where);
     return {{"type", "grid"},
