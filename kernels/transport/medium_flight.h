@@ -40,13 +40,11 @@ inline void pw_transmit_bins(PathWeight* p, const float* tr, float scale) {
 #endif
 }
 
-/* T ← T·diag(T_i)·scale, T_i the trail's transmittance in bin i; returns T̄, their mean (vcm's
- * pseudo-density of the segment, vcm_media.h). */
-inline float pw_transmit(PathWeight* p, const SceneView* s, const MediaTrail* t, float scale) {
+/* T ← T·diag(T_i)·scale, T_i the trail's transmittance in bin i. */
+inline void pw_transmit(PathWeight* p, const SceneView* s, const MediaTrail* t, float scale) {
   float tr[KASHA_BINS];
-  float tbar = trail_bins(s, t, tr);
+  trail_bins(s, t, tr);
   pw_transmit_bins(p, tr, scale);
-  return tbar;
 }
 #endif
 
@@ -69,7 +67,7 @@ inline float medium_sigma_s(const SceneView* s, int m, int i) {
  * m (m ≥ 0) and T_k on reaching a surface or leaving the scene (m < 0), c_k = e_k / total the bins'
  * energy shares before the flight. What the collision does (σs, or a fluorophore's absorption) is
  * the vertex's (walk_medium_vertex). A path whose mixture density is 0 carries nothing on. Returns
- * T̄ (pw_transmit). */
+ * T̄, the mean of T_i over the bins (vcm's pseudo-density of the segment, vcm_media.h). */
 inline float pw_flight(PathWeight* p, const SceneView* s, const FilmView* f, const MediaTrail* t, int m, float total) {
   float tr[KASHA_BINS], den = 0.0f;
   float tbar = trail_bins(s, t, tr);
