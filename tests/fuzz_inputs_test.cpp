@@ -193,7 +193,8 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
               "transform": {"rotate": {"axis": [0, 1, 0], "deg": 30}, "translate": [0.3, 0.3, 0.5]}},
     "glow": {"sigma_a": 0.01, "sigma_s": 0.5, "fluorophores": [
       {"absorption": {"nm": [380, 480], "value": [2, 0]}, "quantum_yield": 0.9, "emission": {"gaussian_nm": 520, "fwhm_nm": 40}},
-      {"molar_absorption": 7e4, "concentration": 1e-6, "unit_cm": 100, "emission": {"line_nm": 610}}]}
+      {"molar_absorption": 7e4, "concentration": 1e-6, "unit_cm": 100, "emission": {"line_nm": 610}},
+      {"dye": "dye.json", "concentration": 2e-6, "quantum_yield": 0.8}]}
   },
   "textures": {
     "print": {"type": "image", "file": "sky.png", "filter": "bilinear", "wrap": "repeat", "uscale": 2},
@@ -213,6 +214,7 @@ struct Seeds {
   fs::path dir;
   std::string scene, material, reflectance, lamp, mesh, sky;  // sky: PNG bytes
   std::string ply, glb;  // binary: a PLY and a GLB mesh (read by Assimp)
+  std::string dye, dye_table;  // a dye file (scenes/dyes) and its table
 };
 
 // A binary mutation of a PNG: flipped bytes, its header's width or height overwritten, or the
@@ -263,6 +265,10 @@ Seeds make_seeds() {
   s.mesh = with_normals(read_text(source_path("scenes/meshes/torus.obj")));
   s.ply = mesh_ply(tent_mesh(), true);
   s.glb = mesh_glb(tent_mesh());
+  s.dye = read_text(source_path("scenes/dyes/fluorescein_basic_ethanol.json"));
+  for (size_t at; (at = s.dye.find("fluorescein_basic_ethanol.csv")) != std::string::npos;)
+    s.dye.replace(at, std::string("fluorescein_basic_ethanol.csv").size(), "dye.csv");
+  s.dye_table = read_text(source_path("scenes/dyes/fluorescein_basic_ethanol.csv"));
   Image sky;  // a small sky, bright above
   sky.width = 16;
   sky.height = 8;
@@ -283,6 +289,8 @@ std::string write_case(const Seeds& s, int which, std::mt19937& rng) {
   write_text(s.dir / "sky.png", which == 5 ? mutated_png(s.sky, rng) : s.sky);
   write_text(s.dir / "mesh.ply", which == 6 ? mutated(s.ply, rng) : s.ply);
   write_text(s.dir / "mesh.glb", which == 7 ? mutated(s.glb, rng) : s.glb);
+  write_text(s.dir / "dye.json", which == 8 ? mutated(s.dye, rng) : s.dye);
+  write_text(s.dir / "dye.csv", s.dye_table);
   const fs::path scene = s.dir / "scene.json";
   write_text(scene, which == 0 ? mutated(s.scene, rng) : s.scene);
   return scene.string();
@@ -328,7 +336,7 @@ TEST(Fuzz, MutatedInputsLoadOrGiveOneLineAndRenderFinite) {
   const std::vector<std::string> integrators = IntegratorRegistry::names(true);
   int loaded = 0, refused = 0, rendered = 0;
   for (int c = 0; c < cases; ++c) {
-    const int which = c % 8;  // scene, material, reflectance CSV, lamp CSV, OBJ, PNG, PLY, GLB
+    const int which = c % 9;  // scene, material, reflectance CSV, lamp CSV, OBJ, PNG, PLY, GLB, dye
     const std::string path = write_case(seeds, which, rng);
     SCOPED_TRACE("case " + std::to_string(c) + ", input " + std::to_string(which));
     try {

@@ -331,6 +331,64 @@ TEST(Medium, BadFluorophoresAreOneLine) {
   EXPECT_NEAR(scene.media.at(0).fluorophores.at(0).absorption.at(3), std::log(10.0) * 0.07 * 100, 1e-9);
 }
 
+// The shipped dye files (scenes/dyes) carry the published values they cite: fluorescein in basic
+// ethanol absorbs most at 500 nm with ε = 92 300 L·mol⁻¹·cm⁻¹ and emits most near 540 nm with
+// Φ = 0.97; quinine sulfate in 0.5 M H₂SO₄ has ε = 5700 at its 344 nm band, emits most near
+// 450 nm, Φ = 0.546. On a 2 nm grid the peak bins' absorption is ln 10 · ε c · 100 (metres) to
+// within the table's curvature over a bin.
+TEST(Medium, ShippedDyesCarryTheirPublishedPeaks) {
+  const std::string dyes = source_path("scenes/dyes");
+  const std::string text = R"({"kasha_scene": 1, "wavelengths": {"min_nm": 300, "max_nm": 700, "bin_nm": 2},
+    "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "water"}, "materials": {"m": {}},
+    "media": {"water": {"sigma_s": 0, "fluorophores": [
+      {"dye": ")" + dyes + R"(/fluorescein_basic_ethanol.json", "concentration": 1e-6},
+      {"dye": ")" + dyes + R"(/quinine_sulfate_0.5M_H2SO4.json", "concentration": 2e-6, "quantum_yield": 0.5}]}},
+    "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], "material": "m", "emission": 1}]})";
+  const Scene scene = load_scene(write_file("shipped_dyes.json", text));
+  struct Want {
+    double epsilon, concentration, absorb_lo, absorb_hi, emit_lo, emit_hi, yield;
+  };
+  const Want want[2] = {{92300, 1e-6, 496, 504, 530, 550, 0.97}, {5700, 2e-6, 338, 352, 440, 462, 0.5}};
+  const WavelengthGrid& grid = scene.grid;
+  for (int f = 0; f < 2; ++f) {
+    const Fluorophore& dye = scene.media.at(0).fluorophores.at(f);
+    const Want& w = want[f];
+    // The absorption's maximum within the long-wave band, and the emission's maximum overall.
+    int peak = -1, emit = 0;
+    for (int i = 0; i < grid.bins; ++i) {
+      if (grid.center(i) > w.absorb_lo - 20 && grid.center(i) < w.absorb_hi + 20 &&
+          (peak < 0 || dye.absorption[i] > dye.absorption[peak]))
+        peak = i;
+      if (dye.e_hat[i] > dye.e_hat[emit]) emit = i;
+    }
+    EXPECT_GT(grid.center(peak), w.absorb_lo) << f;
+    EXPECT_LT(grid.center(peak), w.absorb_hi) << f;
+    EXPECT_NEAR(dye.absorption[peak] / (std::log(10.0) * w.epsilon * w.concentration * 100), 1, 0.02) << f;
+    EXPECT_GT(grid.center(emit), w.emit_lo) << f;
+    EXPECT_LT(grid.center(emit), w.emit_hi) << f;
+    EXPECT_DOUBLE_EQ(dye.quantum_yield, w.yield) << f;  // the file's, or the entry's over it
+  }
+  // A dye file's entry names its concentration and nothing the file gives.
+  const std::string fluorescein = dyes + "/fluorescein_basic_ethanol.json";
+  const std::string not_a_dye = write_file("not_a_dye.json", R"({"molar_absorption": 1, "emission": 1, "quantum_yield": 1})");
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {R"({"dye": ")" + fluorescein + R"("})", "missing required key \"concentration\""},
+      {R"({"dye": ")" + fluorescein + R"(", "concentration": 1e-6, "emission": 1})",
+       "a fluorophore with a \"dye\" file takes its \"emission\" from it"},
+      {R"({"dye": ")" + not_a_dye + R"(", "concentration": 1e-6})", "not a kasha dye file"},
+      {R"({"dye": ")" + dyes + R"(/absent.json", "concentration": 1e-6})", "absent.json"},
+  };
+  for (const auto& [entry, message] : bad) {
+    const std::string e = error_of([&] {
+      load_scene(write_file("bad_dye.json", R"({"kasha_scene": 1, "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "fog"},
+      "materials": {"m": {}}, "media": {"fog": {"sigma_s": 0, "fluorophores": [)" + entry + R"(]}},
+      "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], "material": "m", "emission": 1}]})"));
+    });
+    EXPECT_NE(e.find(message), std::string::npos) << entry << "\n  got: " << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  }
+}
+
 // Single scattering in a thin slab under a collimated beam, against its closed form. A distant
 // light of irradiance E at cos θl = μl lights a slab of depth d (an interface box, wide enough to
 // be a slab where it is seen: light reaches the seen points from 0.2 across at most); an orthographic camera at cos θv = μv sees it from above, with

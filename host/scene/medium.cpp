@@ -14,29 +14,54 @@ bool Medium::scatters() const {
   return !fluorophores.empty();
 }
 
+// A dye file ({"kasha_dye": 1, ...}): a dye's "molar_absorption", "emission" and
+// "quantum_yield" as measured in one solvent, with "name", "solvent" and "source" for people;
+// the scene gives the concentration. Its "csv" paths resolve against the dye file's folder.
+static void read_dye_file(const JsonNode& entry, FluorophoreDesc& f) {
+  const JsonNode name = entry.at("dye");
+  std::filesystem::path p(name.string());
+  if (p.is_relative()) p = entry.base_dir() / p;
+  const JsonNode dye = JsonNode::load_file(p);
+  if (!dye.is_object()) dye.fail("expected a dye object");
+  if (!dye.has("kasha_dye")) dye.fail("missing \"kasha_dye\": 1 (not a kasha dye file)");
+  if (dye.at("kasha_dye").integer_in(0, 1000) != 1) dye.at("kasha_dye").fail("unsupported dye version");
+  for (const char* key : {"name", "solvent", "source"})
+    if (auto text = dye.find(key)) text->string();
+  f.absorption = parse_spectrum(dye.at("molar_absorption"));
+  f.emission = parse_spectrum(dye.at("emission"));
+  f.quantum_yield = dye.at("quantum_yield").number_in(0, 1);
+  dye.finish();
+  for (const char* key : {"absorption", "molar_absorption", "emission"})
+    if (auto own = entry.find(key))
+      own->fail(std::string("a fluorophore with a \"dye\" file takes its \"") + key + "\" from it");
+}
+
 // One entry of a medium's "fluorophores": "absorption" (per scene unit of length), or
 // "molar_absorption" (decadic, L·mol⁻¹·cm⁻¹) with "concentration" (mol·L⁻¹) and "unit_cm" (the
-// scene's unit of length in cm, 100: metres); "quantum_yield" in [0, 1]; "emission".
+// scene's unit of length in cm, 100: metres), or a "dye" file with "concentration";
+// "quantum_yield" in [0, 1] (a dye file's unless given); "emission".
 static FluorophoreDesc parse_fluorophore(const JsonNode& node) {
   if (!node.is_object()) node.fail("expected a fluorophore object");
   FluorophoreDesc f;
   f.where = node.where();
   auto absorption = node.find("absorption"), molar = node.find("molar_absorption");
+  const bool dye = node.has("dye");
   if (absorption && molar) molar->fail("give \"absorption\" or \"molar_absorption\", not both");
+  if (dye) read_dye_file(node, f);
   if (absorption) {
     f.absorption = parse_spectrum(*absorption);
-  } else if (molar) {
+  } else if (molar || dye) {
     const double c = node.at("concentration").number_in(0, 1e3);
     double unit_cm = 100;
     if (auto u = node.find("unit_cm")) unit_cm = u->number_in(1e-12, 1e12);
     // Decadic absorbance per cm, ε c, as natural attenuation per scene unit: ln 10 · ε c · unit.
-    f.absorption = parse_spectrum(*molar);
+    if (molar) f.absorption = parse_spectrum(*molar);
     f.absorption_scale = std::log(10.0) * c * unit_cm;
   } else {
-    node.fail("a fluorophore needs its \"absorption\" (or \"molar_absorption\" and \"concentration\")");
+    node.fail("a fluorophore needs its \"absorption\" (or \"molar_absorption\" and \"concentration\", or a \"dye\" file and \"concentration\")");
   }
-  f.quantum_yield = node.has("quantum_yield") ? node.at("quantum_yield").number_in(0, 1) : 1.0;
-  f.emission = parse_spectrum(node.at("emission"));
+  if (node.has("quantum_yield")) f.quantum_yield = node.at("quantum_yield").number_in(0, 1);
+  if (!dye) f.emission = parse_spectrum(node.at("emission"));
   node.finish();
   return f;
 }
