@@ -3,7 +3,9 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/printable.h"
 #include "scene/transform.h"
+#include "scene/vdb_grid.h"
 #include "spectrum/spectrum_parser.h"
 
 namespace kasha {
@@ -66,13 +68,33 @@ static FluorophoreDesc parse_fluorophore(const JsonNode& node) {
   return f;
 }
 
+// A grid read from an OpenVDB file: {"vdb": FILE, "grid": NAME ("density")}; its own map from
+// index to the medium's space, then the medium's "transform" to the world's. No "bounds".
+static DensityGrid parse_vdb_density(const JsonNode& node, const JsonNode& density) {
+  const JsonNode file = density.at("vdb");
+  std::filesystem::path p(file.string());
+  if (p.is_relative()) p = density.base_dir() / p;
+  const std::string name = density.has("grid") ? density.at("grid").string() : "density";
+  density.finish();
+  if (auto b = node.find("bounds")) b->fail("an OpenVDB grid's bounds are its own");
+  DensityGrid g = read_vdb_density(p.string(), file.where() + ": " + printable(p.string()), name);
+  if (auto t = node.find("transform")) {
+    const Eigen::Affine3d to_world = parse_transform(*t);
+    if (std::abs(to_world.linear().determinant()) < 1e-12) t->fail("the transform is singular");
+    g.to_world = to_world * g.to_world;
+  }
+  return g;
+}
+
 // A "grid" medium's "density": {"size": [nx, ny, nz], "values": [...]}, "bounds": {"min", "max"}
 // (default the unit cube) and "transform" (the medium's space to the world's).
 static DensityGrid parse_density_grid(const JsonNode& node) {
   DensityGrid g;
   if (!node.has("density")) node.fail("a grid medium needs its \"density\"");
   const JsonNode density = node.at("density");
-  if (!density.is_object()) density.fail("expected {\"size\": [nx, ny, nz], \"values\": [...]}");
+  if (!density.is_object())
+    density.fail("expected {\"size\": [nx, ny, nz], \"values\": [...]} or {\"vdb\": FILE}");
+  if (density.has("vdb")) return parse_vdb_density(node, density);
   const JsonNode size = density.at("size");
   const std::vector<double> n = size.numbers();
   if (n.size() != 3) size.fail("expected [nx, ny, nz]");

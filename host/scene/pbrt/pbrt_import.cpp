@@ -19,6 +19,7 @@
 #include "scene/pbrt/pbrt_spectra.h"
 #include "scene/pbrt/pbrt_tokenizer.h"
 #include "scene/pixel_filter.h"
+#include "scene/vdb_grid.h"
 
 namespace kasha {
 
@@ -752,17 +753,24 @@ class Importer {
     const std::string type = params.get_string("type", "");
     if (type.empty()) pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) + ": no \"type\"");
     if (name.empty()) pbrt_fail(where, "MakeNamedMedium: a medium's name must not be empty");
-    if (type != "homogeneous" && type != "uniformgrid") {
-      refused_media_[name] = "MakeNamedMedium " + in_quotes(name) + " (" + where.str() +
-                             ") is a \"" + type +
-                             "\" medium, which kasha does not build (homogeneous, uniformgrid)";
-      media_.erase(name);
+    if (type != "homogeneous" && type != "uniformgrid" && type != "nanovdb") {
+      refuse_medium(name, where, "is a \"" + type +
+                                     "\" medium, which kasha does not build (homogeneous, "
+                                     "uniformgrid, nanovdb given a .vdb file)");
+      return;
+    }
+    if (type == "nanovdb" && vdb_file(params).extension() != ".vdb") {
+      refuse_medium(name, where,
+                    "is a \"nanovdb\" medium whose file is not an OpenVDB .vdb file: kasha reads "
+                    "grids through Debian's OpenVDB, which has no NanoVDB (convert it to .vdb with "
+                    "NanoVDB's nanovdb_convert)");
       return;
     }
     if (params.find("preset", "string"))
       pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) +
                            ": \"preset\" is not built in kasha: give \"sigma_a\" and \"sigma_s\"");
-    if (const PbrtParameter* le = params.find("Le", "rgb spectrum blackbody float")) {
+    const PbrtParameter* le = type == "nanovdb" ? nullptr : params.find("Le", "rgb spectrum blackbody float");
+    if (le) {
       const nlohmann::json v = pbrt_spectrum(*le, PbrtSpectrumUse::kIlluminant, base_dir_);
       // A grid's "Lescale" is a grid of its own: any Le of one emits.
       const bool scaled_off = type == "homogeneous" && params.get_float("Lescale", 1) == 0;
@@ -771,6 +779,7 @@ class Importer {
     }
     nlohmann::json m = {{"type", "homogeneous"}};
     if (type == "uniformgrid") m = grid_medium(name, params, where);
+    if (type == "nanovdb") m = vdb_medium(name, params, where);
     for (const char* key : {"sigma_a", "sigma_s"})
       if (const PbrtParameter* p = params.find(key, "rgb spectrum blackbody float"))
         m[key] = pbrt_spectrum(*p, PbrtSpectrumUse::kUnbounded, base_dir_);
@@ -814,6 +823,38 @@ class Importer {
     return {{"type", "grid"},
             {"density", {{"size", {nx, ny, nz}}, {"values", density}}},
             {"bounds", {{"min", p0}, {"max", p1}}},
+            {"transform", {{"matrix", row_major(state_.ctm)}}}};
+  }
+
+  // A medium kasha does not build: refused where a shape, the camera or a light is put in it.
+  void refuse_medium(const std::string& name, const PbrtLocation& where, const std::string& why) {
+    refused_media_[name] = "MakeNamedMedium " + in_quotes(name) + " (" + where.str() + ") " + why;
+    media_.erase(name);
+  }
+
+  std::filesystem::path vdb_file(const PbrtParameters& params) const {
+    std::filesystem::path path(params.get_string("filename", ""));
+    return path.is_relative() && !path.empty() ? base_dir_ / path : path;
+  }
+
+  // pbrt-v4's nanovdb medium (NanoVDBMedium::Create) given an OpenVDB .vdb file: its "gridname"
+  // grid, in the space of the transform current at MakeNamedMedium; an emitting one (a
+  // "temperaturename" grid in the file, "Lescale" not 0) refused.
+  nlohmann::json vdb_medium(const std::string& name, const PbrtParameters& params,
+                            const PbrtLocation& where) {
+    const std::string what = "MakeNamedMedium " + in_quotes(name);
+    const std::filesystem::path file = vdb_file(params);
+    if (file.empty()) pbrt_fail(where, what + ": Must supply \"filename\" to \"nanovdb\" medium");
+    const std::string grid = params.get_string("gridname", "density");
+    const std::string temperature = params.get_string("temperaturename", "temperature");
+    for (const char* unused_without_emission : {"temperatureoffset", "temperaturecutoff", "temperaturescale"})
+      params.find(unused_without_emission, "float");
+    if (params.get_float("Lescale", 1) != 0 && vdb_has_grid(file.string(), temperature))
+      pbrt_fail(where, what + ": an emitting grid (\"" + temperature + "\" in " + printable(file.string()) +
+                           ") is not built in kasha");
+    check_affine(state_.ctm, where);
+    return {{"type", "grid"},
+            {"density", {{"vdb", file.string()}, {"grid", grid}}},
             {"transform", {{"matrix", row_major(state_.ctm)}}}};
   }
 

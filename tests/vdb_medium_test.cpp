@@ -1,0 +1,179 @@
+// Grid media read from OpenVDB files (docs/media.md#openvdb-grids): kasha's reconstruction of a
+// sparse, turned, offset .vdb grid against OpenVDB's own trilinear sampler, through a render; the
+// file's refusals, each one line; pbrt-v4's nanovdb medium given a .vdb file.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "render_support.h"
+#include "scene/pbrt/pbrt_import.h"
+#include "scene/scene.h"
+#include "test_support.h"
+#include "vdb_writer.h"
+
+using namespace kasha;
+using namespace kasha::test;
+
+namespace {
+
+// 9 × 8 × 8 voxels from index (−4, −3, 0), a fifth of them inactive, each 0.12 across, turned
+// 25° about z and moved so the grid spans about [-0.7, 0.7]² × [0.35, 1.4] in its medium's space.
+TestVdbGrid sparse_grid() {
+  TestVdbGrid g;
+  g.origin = {-4, -3, 0};
+  g.size = {9, 8, 8};
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<float> u(0, 1);
+  for (int k = 0; k < 9 * 8 * 8; ++k) g.values.push_back(u(rng) < 0.2f ? 0.0f : 3 * u(rng));
+  g.index_to_world = Eigen::Translation3d(0.05, -0.1, 0.45) *
+                     Eigen::AngleAxisd(25 * M_PI / 180, Eigen::Vector3d::UnitZ()) *
+                     Eigen::Scaling(0.12);
+  return g;
+}
+
+// A lamp at z = −1 seen along −z by an orthographic camera from z = 3 through an interface box
+// holding the VDB medium; the scene turns the medium 30° about y and moves it by its own
+// "transform", so the camera's window, [-1, 1]², cuts the grid off at x = 1.
+const Eigen::Affine3d kSceneTransform =
+    Eigen::Translation3d(0.3, 0, 0.1) * Eigen::AngleAxisd(30 * M_PI / 180, Eigen::Vector3d::UnitY());
+
+std::string vdb_scene(const std::string& vdb) {
+  return R"({"kasha_scene": 1,
+    "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "type": "orthographic", "width": 8, "height": 8},
+    "media": {"smoke": {"type": "grid", "sigma_a": {"nm": [380, 780], "value": [2.0, 0.2]}, "sigma_s": 0,
+                        "density": {"vdb": ")" + vdb + R"("},
+                        "transform": {"rotate": {"axis": [0, 1, 0], "deg": 30}, "translate": [0.3, 0, 0.1]}}},
+    "materials": {"black": {}},
+    "shapes": [
+      {"type": "quad", "corner": [-2, -2, -1], "u": [4, 0, 0], "v": [0, 4, 0], "material": "black", "emission": 0.01},
+      {"type": "box", "min": [-2, -2, -0.6], "max": [2, 2, 2.2], "interface": true, "medium": {"inside": "smoke"}}]})";
+}
+
+}  // namespace
+
+// The truth is the window's mean of exp(−σa,i ∫ density dz) with the density from OpenVDB's
+// BoxSampler (not kasha's code), by the midpoint rule in 400 steps over 160 × 160 points; backward
+// against it per bin within 0.5 %. Measured: 0.00 %; without the background border 3.6 % off,
+// the scene's transform applied before the file's map instead of after it 8.4 %.
+TEST(VdbMedium, AnEmitterSeenThroughAVdbGridFollowsOpenVdbsSampler) {
+  const std::string vdb = (scratch_dir() / "sparse.vdb").string();
+  write_vdb(vdb, {sparse_grid()});
+  const std::string path = write_file("vdb_slab.json", vdb_scene(vdb));
+  const Scene loaded = load_scene(path);
+  ASSERT_TRUE(loaded.media.at(0).grid.has_value());
+  EXPECT_EQ(loaded.media.at(0).grid->nx, 11);  // the active box and one background voxel each side
+  const VdbSampler density(vdb, "density");
+  std::vector<double> truth(loaded.media.at(0).sigma_a.size(), 0.0);
+  constexpr int kSide = 160, kSteps = 400;
+  for (int y = 0; y < kSide; ++y)
+    for (int x = 0; x < kSide; ++x) {
+      double optical = 0;
+      for (int k = 0; k < kSteps; ++k)
+        optical += density(kSceneTransform.inverse() *
+                           Eigen::Vector3d(-1 + (x + 0.5) * 2 / kSide, -1 + (y + 0.5) * 2 / kSide,
+                                           -0.6 + 2.8 * (k + 0.5) / kSteps));
+      optical *= 2.8 / kSteps;
+      for (size_t i = 0; i < truth.size(); ++i)
+        truth[i] += std::exp(-loaded.media.at(0).sigma_a[i] * optical) / (kSide * kSide);
+    }
+  RenderSettings s;
+  s.integrator = "backward";
+  s.integrator_settings.spp = 64;
+  s.passes = 4;
+  RenderResult r = render_scene(path, s);
+  std::vector<double> expected = r.scene.emitters.at(0).per_bin;
+  for (size_t i = 0; i < expected.size(); ++i) expected[i] *= truth[i];
+  const BinStats b = pixel_statistics(r.image, true);
+  double worst = 0;
+  for (size_t i = 0; i < expected.size(); ++i)
+    worst = std::max(worst, std::abs(b.mean[i] / expected[i] - 1));
+  std::printf("  backward: the largest bin's difference %.2f %%\n", 100 * worst);
+  expect_bins_match(r, expected, 0.005, "backward through the VDB grid", false);
+}
+
+TEST(VdbMedium, BadVdbFilesAreOneLine) {
+  const std::filesystem::path dir = scratch_dir();
+  TestVdbGrid negative = sparse_grid(), background = sparse_grid(), level_set = sparse_grid();
+  negative.values[17] = -1;
+  background.background = 0.5f;
+  level_set.level_set = true;
+  write_vdb((dir / "negative.vdb").string(), {negative});
+  write_vdb((dir / "background.vdb").string(), {background});
+  write_vdb((dir / "level_set.vdb").string(), {level_set});
+  write_vec3_vdb((dir / "vector.vdb").string(), "density");
+  write_file("garbage.vdb", "not an OpenVDB file\n");
+  write_vdb((dir / "good.vdb").string(), {sparse_grid()});
+  struct Case {
+    std::string density, message;
+  };
+  const std::vector<Case> cases = {
+      {R"({"vdb": "garbage.vdb"})", "cannot read it as an OpenVDB file"},
+      {R"({"vdb": "absent.vdb"})", "cannot read it as an OpenVDB file"},
+      {R"({"vdb": "good.vdb", "grid": "temperature"})", "no grid named \"temperature\""},
+      {R"({"vdb": "negative.vdb"})", "a density must be finite and not negative"},
+      {R"({"vdb": "background.vdb"})", "its background must be 0"},
+      {R"({"vdb": "level_set.vdb"})", "is a level set"},
+      {R"({"vdb": "vector.vdb"})", "not float densities"},
+      {R"({"vdb": "good.vdb"}, "bounds": {"min": [0, 0, 0], "max": [1, 1, 1]})", "an OpenVDB grid's bounds are its own"},
+      {R"({"vdb": "good.vdb", "values": [1]})", "unknown key"},
+  };
+  for (const Case& c : cases) {
+    const std::string e = error_of([&] {
+      load_scene(write_file("bad_vdb.json", R"({"kasha_scene": 1, "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "fog"},
+        "materials": {"m": {}}, "media": {"fog": {"type": "grid", "density": )" + c.density + R"(}},
+        "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], "material": "m", "emission": 1}]})"));
+    });
+    EXPECT_NE(e.find(c.message), std::string::npos) << c.density << "\n  got: " << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  }
+}
+
+// pbrt-v4's nanovdb medium given a .vdb file: its grid, in the space of the transform current at
+// MakeNamedMedium, as kasha's VDB grid. A NanoVDB file, or a file with an emitting temperature
+// grid ("Lescale" not 0), is refused with one line.
+TEST(VdbMedium, PbrtNanovdbWithAVdbFileImportsAsKashasGrid) {
+  const std::filesystem::path dir = scratch_dir();
+  TestVdbGrid temperature = sparse_grid();
+  temperature.name = "temperature";
+  write_vdb((dir / "pbrt_smoke.vdb").string(), {sparse_grid()});
+  write_vdb((dir / "pbrt_fire.vdb").string(), {sparse_grid(), temperature});
+  const auto pbrt = [&](const std::string& medium) {
+    return write_file("vdb_medium.pbrt", R"(LookAt 0 1 3  0 0 0  0 1 0
+Camera "perspective"
+WorldBegin
+AttributeBegin
+  Translate 1 2 3
+  MakeNamedMedium "smoke" "string type" "nanovdb" )" + medium + R"( "rgb sigma_a" [1 1 1] "rgb sigma_s" [2 2 2]
+AttributeEnd
+AttributeBegin
+  MediumInterface "smoke" ""
+  Material "interface"
+  Shape "sphere" "float radius" 3
+AttributeEnd
+)");
+  };
+  const std::string path = pbrt(R"("string filename" "pbrt_smoke.vdb")");
+  const nlohmann::json s = import_pbrt_scene(path, {});
+  const nlohmann::json& m = s.at("media").at("smoke");
+  EXPECT_EQ(m.at("type"), "grid");
+  EXPECT_EQ(m.at("density").at("vdb"), (dir / "pbrt_smoke.vdb").string());
+  EXPECT_EQ(m.at("density").at("grid"), "density");
+  const Scene scene = load_scene(path);
+  const DensityGrid& g = *scene.media.at(0).grid;
+  EXPECT_EQ(g.nx, 11);
+  const Eigen::Vector3d expected = Eigen::Vector3d(1, 2, 3) + sparse_grid().index_to_world.translation();
+  EXPECT_LT((g.to_world.translation() - expected).norm(), 1e-9);
+  // An emitting grid scaled off loads; scaled on, or a NanoVDB file, is one line.
+  EXPECT_NO_THROW(import_pbrt_scene(pbrt(R"("string filename" "pbrt_fire.vdb" "float Lescale" 0)"), {}));
+  const std::vector<std::pair<std::string, std::string>> bad = {
+      {R"("string filename" "pbrt_fire.vdb")", "an emitting grid (\"temperature\" in"},
+      {R"("string filename" "cloud.nvdb")", "whose file is not an OpenVDB .vdb file"},
+      {R"("string filename" "pbrt_smoke.vdb" "string gridname" "smoke")", "no grid named \"smoke\""},
+  };
+  for (const auto& [medium, message] : bad) {
+    const std::string e = error_of([&] { load_scene(pbrt(medium)); });
+    EXPECT_NE(e.find(message), std::string::npos) << medium << "\n  got: " << e;
+    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  }
+}
