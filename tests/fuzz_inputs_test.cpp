@@ -49,6 +49,7 @@
 #include "scene/ply_mesh.h"
 #include "scene/scene.h"
 #include "test_support.h"
+#include "vdb_writer.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #include <sanitizer/common_interface_defs.h>
@@ -179,6 +180,8 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
      "medium": {"inside": "haze"}},
     {"type": "box", "min": [0.15, 0.1, 0.3], "max": [0.45, 0.5, 0.7], "interface": true,
      "medium": {"inside": "smoke"}},
+    {"type": "box", "min": [-0.7, 0.3, 0.9], "max": [-0.3, 0.7, 1.3], "interface": true,
+     "medium": {"inside": "cloud"}},
     {"type": "box", "min": [0.4, -1, 0.2], "max": [0.7, -0.7, 0.5], "material": "metal"},
     {"type": "box", "min": [-0.8, -1, 1.1], "max": [-0.5, -0.8, 1.4], "material": "lacquer"},
     {"type": "mesh", "file": "mesh.ply", "material": "lacquer", "transform": {"scale": 0.2, "translate": [0.2, -0.9, 0.3]}},
@@ -191,6 +194,8 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
               "density": {"size": [2, 3, 2], "values": [0, 1, 2, 0.5, 1, 0, 3, 1, 0.2, 0.7, 1.5, 0]},
               "bounds": {"min": [-0.2, -0.2, -0.2], "max": [0.2, 0.2, 0.2]},
               "transform": {"rotate": {"axis": [0, 1, 0], "deg": 30}, "translate": [0.3, 0.3, 0.5]}},
+    "cloud": {"type": "grid", "sigma_a": 0.5, "sigma_s": 4, "density": {"vdb": "grid.vdb"},
+              "transform": {"translate": [-0.5, 0.5, 1.1]}},
     "glow": {"sigma_a": 0.01, "sigma_s": 0.5, "fluorophores": [
       {"absorption": {"nm": [380, 480], "value": [2, 0]}, "quantum_yield": 0.9, "emission": {"gaussian_nm": 520, "fwhm_nm": 40}},
       {"molar_absorption": 7e4, "concentration": 1e-6, "unit_cm": 100, "emission": {"line_nm": 610}},
@@ -215,11 +220,13 @@ struct Seeds {
   std::string scene, material, reflectance, lamp, mesh, sky;  // sky: PNG bytes
   std::string ply, glb;  // binary: a PLY and a GLB mesh (read by Assimp)
   std::string dye, dye_table;  // a dye file (scenes/dyes) and its table
+  std::string vdb;             // an OpenVDB file: a small grid of densities
 };
 
-// A binary mutation of a PNG: flipped bytes, its header's width or height overwritten, or the
-// file cut short.
-std::string mutated_png(std::string b, std::mt19937& rng) {
+// A binary mutation (a PNG, a VDB): flipped bytes, the 32-bit fields at bytes 16 and 20
+// overwritten (a PNG's width and height; a VDB's library version and the start of its header), or
+// the file cut short.
+std::string mutated_binary(std::string b, std::mt19937& rng) {
   const int kind = static_cast<int>(rng() % 3);
   if (kind == 0) {
     const int flips = 1 + static_cast<int>(rng() % 8);
@@ -269,6 +276,13 @@ Seeds make_seeds() {
   for (size_t at; (at = s.dye.find("fluorescein_basic_ethanol.csv")) != std::string::npos;)
     s.dye.replace(at, std::string("fluorescein_basic_ethanol.csv").size(), "dye.csv");
   s.dye_table = read_text(source_path("scenes/dyes/fluorescein_basic_ethanol.csv"));
+  TestVdbGrid grid;  // 3 × 2 × 3 voxels of 0.1, about the origin
+  grid.origin = {-1, -1, -1};
+  grid.size = {3, 2, 3};
+  grid.values = {0.5, 1, 2, 0, 3, 1, 0.2, 0.7, 1.5, 0, 1, 2, 0.4, 0.9, 0, 2.5, 1.2, 0.3};
+  grid.index_to_world = Eigen::Scaling(0.1);
+  write_vdb((s.dir / "seed_grid.vdb").string(), {grid});
+  s.vdb = read_text(s.dir / "seed_grid.vdb");
   Image sky;  // a small sky, bright above
   sky.width = 16;
   sky.height = 8;
@@ -286,11 +300,12 @@ std::string write_case(const Seeds& s, int which, std::mt19937& rng) {
   write_text(s.dir / "reflectance.csv", which == 2 ? mutated(s.reflectance, rng) : s.reflectance);
   write_text(s.dir / "lamp.csv", which == 3 ? mutated(s.lamp, rng) : s.lamp);
   write_text(s.dir / "mesh.obj", which == 4 ? mutated(s.mesh, rng) : s.mesh);
-  write_text(s.dir / "sky.png", which == 5 ? mutated_png(s.sky, rng) : s.sky);
+  write_text(s.dir / "sky.png", which == 5 ? mutated_binary(s.sky, rng) : s.sky);
   write_text(s.dir / "mesh.ply", which == 6 ? mutated(s.ply, rng) : s.ply);
   write_text(s.dir / "mesh.glb", which == 7 ? mutated(s.glb, rng) : s.glb);
   write_text(s.dir / "dye.json", which == 8 ? mutated(s.dye, rng) : s.dye);
   write_text(s.dir / "dye.csv", s.dye_table);
+  write_text(s.dir / "grid.vdb", which == 9 ? mutated_binary(s.vdb, rng) : s.vdb);
   const fs::path scene = s.dir / "scene.json";
   write_text(scene, which == 0 ? mutated(s.scene, rng) : s.scene);
   return scene.string();
@@ -336,7 +351,8 @@ TEST(Fuzz, MutatedInputsLoadOrGiveOneLineAndRenderFinite) {
   const std::vector<std::string> integrators = IntegratorRegistry::names(true);
   int loaded = 0, refused = 0, rendered = 0;
   for (int c = 0; c < cases; ++c) {
-    const int which = c % 9;  // scene, material, reflectance CSV, lamp CSV, OBJ, PNG, PLY, GLB, dye
+    // scene, material, reflectance CSV, lamp CSV, OBJ, PNG, PLY, GLB, dye, VDB
+    const int which = c % 10;
     const std::string path = write_case(seeds, which, rng);
     SCOPED_TRACE("case " + std::to_string(c) + ", input " + std::to_string(which));
     try {
