@@ -86,7 +86,10 @@ INSTANTIATE_TEST_SUITE_P(
                       ReferenceCase{"fog", {}, 32},
                       // Smoke on a grid of density (uniformgrid), turned and stretched: the
                       // lattice's exact tracking against pbrt-v4's delta and ratio tracking.
-                      ReferenceCase{"smoke", {}, 32}),
+                      ReferenceCase{"smoke", {}, 32},
+                      // Smoke on a sparse OpenVDB grid with its own turned map (nanovdb given a
+                      // .vdb file), against pbrt-v4's render of the same grid as NanoVDB.
+                      ReferenceCase{"vdb_smoke", {}, 32}),
     [](const auto& info) { return info.param.scene; });
 
 // --max-depth N as pbrt-v4's maxdepth: the Cornell box with direct light alone (1) and one bounce

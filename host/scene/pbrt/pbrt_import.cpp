@@ -853,8 +853,9 @@ class Importer {
       pbrt_fail(where, what + ": an emitting grid (\"" + temperature + "\" in " + printable(file.string()) +
                            ") is not built in kasha");
     check_affine(state_.ctm, where);
+    // As a mesh's "filename": relative to the scene's folder, which the JSON reader resolves.
     return {{"type", "grid"},
-            {"density", {{"vdb", file.string()}, {"grid", grid}}},
+            {"density", {{"vdb", params.get_string("filename", "")}, {"grid", grid}}},
             {"transform", {{"matrix", row_major(state_.ctm)}}}};
   }
 

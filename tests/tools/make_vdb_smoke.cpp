@@ -1,0 +1,55 @@
+// Writes scenes/pbrt/vdb_smoke.vdb, the OpenVDB grid of scenes/pbrt/vdb_smoke.pbrt, and the same
+// grid as a NanoVDB file for pbrt-v4, whose nanovdb medium reads only those; pbrt-v4's render of
+// the scene with the .nvdb file is tests/data/pbrt-v4/vdb_smoke.exr (tests/data/SOURCES.md).
+// Not built by CMake: it needs NanoVDB's headers, which Debian lacks and pbrt-v4's sources carry.
+//
+//   g++ -std=c++17 -O2 -I $PBRT/src/ext/openvdb/nanovdb tests/tools/make_vdb_smoke.cpp \
+//     -DOPENVDB_ABI_VERSION_NUMBER=10 -lopenvdb -ltbb -lImath-3_1 -o make_vdb_smoke
+//   ./make_vdb_smoke scenes/pbrt/vdb_smoke.vdb vdb_smoke.nvdb
+//
+// The smoke is scripts/make_pbrt_smoke.py's lopsided, rippled blob, sampled at the voxels of a
+// 41 × 41 × 41 lattice 0.025 apart, turned 12° about x by the file's own map; voxels below 0.002
+// stay inactive, so the grid is sparse and fades out to nothing at its edges.
+#include <openvdb/openvdb.h>
+
+#include <cmath>
+#include <cstdio>
+#include <nanovdb/util/IO.h>
+#include <nanovdb/util/OpenToNanoVDB.h>
+
+namespace {
+
+double smoke(double x, double y, double z) {  // x, y, z in the unit cube
+  const double r2 = std::pow(x - 0.45, 2) + 2 * std::pow(y - 0.4, 2) + 0.7 * std::pow(z - 0.55, 2);
+  return std::max(0.0, 2.5 * std::exp(-r2 / 0.05) * (1 + 0.6 * std::sin(11 * x + 4 * z + 3 * y)));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 3) {
+    std::fprintf(stderr, "usage: make_vdb_smoke OUT.vdb OUT.nvdb\n");
+    return 2;
+  }
+  openvdb::initialize();
+  openvdb::FloatGrid::Ptr grid = openvdb::FloatGrid::create(0.0f);
+  grid->setName("density");
+  grid->setGridClass(openvdb::GRID_FOG_VOLUME);
+  openvdb::math::Transform::Ptr map = openvdb::math::Transform::createLinearTransform(0.025);
+  map->postRotate(12 * M_PI / 180, openvdb::math::X_AXIS);
+  grid->setTransform(map);
+  openvdb::FloatGrid::Accessor at = grid->getAccessor();
+  int active = 0;
+  for (int k = -20; k <= 20; ++k)
+    for (int j = 0; j <= 40; ++j)
+      for (int i = -20; i <= 20; ++i) {
+        const double v = smoke(0.5 + i / 40.0, j / 40.0, 0.5 + k / 40.0);
+        if (v < 0.002) continue;
+        at.setValue(openvdb::Coord(i, j, k), static_cast<float>(v));
+        ++active;
+      }
+  openvdb::io::File(argv[1]).write({grid});
+  nanovdb::io::writeGrid(argv[2], nanovdb::openToNanoVDB(*grid));
+  std::printf("%d active voxels\n", active);
+  return 0;
+}
