@@ -21,7 +21,7 @@ static void place_grid(const DensityGrid& g, std::vector<float>& spectra, KMediu
     throw Error("media: the grids' samples exceed 2^31 floats, more than the kernels can index");
   k.density = static_cast<int>(spectra.size());
   spectra.insert(spectra.end(), g.values.begin(), g.values.end());
-  k.grid_size[0] = g.nx, k.grid_size[1] = g.ny, k.grid_size[2] = g.nz, k.grid_size[3] = 0;
+  k.grid_size[0] = g.nx, k.grid_size[1] = g.ny, k.grid_size[2] = g.nz;
   const Eigen::Vector3d n(g.nx, g.ny, g.nz), extent = g.p1 - g.p0;
   Eigen::Affine3d lattice = Eigen::Affine3d::Identity();
   lattice.translate(Eigen::Vector3d::Constant(-0.5));
@@ -64,6 +64,7 @@ DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_
     k.elastic_share = k.events > 0 ? static_cast<float>(scattered / (scattered + reemitted)) : 0.0f;
     k.density = -1;
     if (m.grid) place_grid(*m.grid, spectra, k);
+    k.emission = m.emission.empty() ? -1 : append_spectrum(spectra, m.emission);
     d.media.push_back(k);
   }
   if (!scene.triangle_media.empty())

@@ -11,6 +11,13 @@ static const std::string& lit(const Scene& scene, const DeviceScene& device_scen
     throw Error(scene.file + ": no emitter has power on the wavelength grid " +
                 scene.grid.describe() + " (zero area, or emission outside the grid); the " +
                 integrator + " integrator needs light");
+  // Light tracing and photon mapping carry light that starts at lights and emitters only: an
+  // emitting medium's light, scattered before the camera path meets it, they never find.
+  if (const int m = scene.emitting_medium();
+      m >= 0 && (integrator == "forward" || integrator == "photon" || integrator == "ppm"))
+    throw Error(scene.medium_descs[m].where + ": the medium emits, and " + integrator +
+                " takes light from light paths, which start only at lights and emitters: render "
+                "it with backward, vcm or bpt");
   return integrator;
 }
 

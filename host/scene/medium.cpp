@@ -13,7 +13,7 @@ namespace kasha {
 bool Medium::scatters() const {
   for (double s : sigma_s)
     if (s > 0) return true;
-  return !fluorophores.empty();
+  return !fluorophores.empty() || !emission.empty();
 }
 
 // A dye file ({"kasha_dye": 1, ...}): a dye's "molar_absorption", "emission" and
@@ -156,6 +156,7 @@ MediumDesc parse_medium(const JsonNode& node, const std::string& name) {
     d.g = g->number();
     if (!(std::abs(d.g) < 1)) g->fail("the phase function's g must lie strictly between -1 and 1");
   }
+  if (auto e = node.find("emission")) d.emission = parse_spectrum(*e);
   node.finish();
   return d;
 }
@@ -186,6 +187,17 @@ Medium discretize_medium(const MediumDesc& desc, const WavelengthGrid& grid) {
   for (double& v : m.sigma_s) v *= desc.scale;
   m.g = desc.g;
   m.grid = desc.grid;
+  if (desc.emission) {
+    // Emitted radiance per unit length: σa·Le (pbrt-v4's), nothing where the medium absorbs nothing.
+    const std::vector<double> le = grid.resample(*desc.emission);
+    double total = 0;
+    for (size_t i = 0; i < le.size(); ++i) {
+      if (!(le[i] >= 0)) throw Error(desc.where + "/emission: a negative or non-finite radiance");
+      m.emission.push_back(m.sigma_a[i] * le[i] * desc.emission_scale);
+      total += m.emission.back();
+    }
+    if (!(total > 0)) m.emission.clear();
+  }
   for (const FluorophoreDesc& fd : desc.fluorophores) {
     Fluorophore f;
     f.absorption = grid.resample(*fd.absorption);

@@ -50,6 +50,8 @@ struct MediumDesc {
   double g = 0;  // Henyey–Greenstein asymmetry, |g| < 1
   std::vector<FluorophoreDesc> fluorophores;
   std::optional<DensityGrid> grid;  // "grid": σa, σs and the dyes times its density
+  SpectrumPtr emission;             // "emission": Le, radiance emitted per unit σa (null: none)
+  double emission_scale = 1;        // pbrt-v4's "Lescale"
 };
 
 // A fluorophore on the grid: absorption per bin, and ê (sums to 1 over the bins).
@@ -64,7 +66,9 @@ struct Medium {
   double g = 0;
   std::vector<Fluorophore> fluorophores;
   std::optional<DensityGrid> grid;
-  // Some collision in it sends light on: σs > 0 in some bin, or a fluorophore.
+  std::vector<double> emission;  // σa·Le per bin (times the grid's density), empty: none
+  // Some collision in it sends light on (σs > 0 in some bin, or a fluorophore) or emits: its
+  // collisions are sampled.
   bool scatters() const;
 };
 

@@ -98,6 +98,13 @@ bool Scene::scattering() const {
   return false;
 }
 
+int Scene::emitting_medium() const {
+  const std::vector<bool> used = used_media();
+  for (size_t m = 0; m < media.size(); ++m)
+    if (used[m] && !media[m].emission.empty()) return static_cast<int>(m);
+  return -1;
+}
+
 bool Scene::has_media() const {
   if (camera_medium >= 0 || !triangle_media.empty()) return true;
   for (int m : light_media)
@@ -1110,11 +1117,15 @@ static void discretize(const GridRequest& request, const std::vector<bool>& mate
   for (size_t m = 0; m < scene.material_descs.size(); ++m)
     if (material_used[m] && scene.material_descs[m].excitation)
       exciting.push_back(scene.material_descs[m].excitation->support());
-  // A used medium's fluorophores excite as a material's fluorescent part does.
+  // A used medium's fluorophores excite as a material's fluorescent part does; its emission
+  // emits as an emitter does.
   const std::vector<bool> media_used = scene.used_media();
-  for (size_t m = 0; m < scene.medium_descs.size(); ++m)
+  for (size_t m = 0; m < scene.medium_descs.size(); ++m) {
+    if (!media_used[m]) continue;
     for (const FluorophoreDesc& f : scene.medium_descs[m].fluorophores)
-      if (media_used[m]) exciting.push_back(f.absorption->support());
+      exciting.push_back(f.absorption->support());
+    if (scene.medium_descs[m].emission) emitting.push_back(scene.medium_descs[m].emission->support());
+  }
   scene.grid = choose_grid(request, emitting, exciting);
 
   for (const MaterialDesc& d : scene.material_descs)

@@ -103,6 +103,7 @@ struct Scene {
   bool has_media() const;
   std::vector<bool> used_media() const;  // per medium: something is in it (a shape's side, ...)
   bool scattering() const;               // some used medium scatters in some bin
+  int emitting_medium() const;           // the first used medium that emits, -1: none
   bool normal_mapped() const;  // some shape's material has a normal map (its ∂p/∂u frame)
   // Some used material scatters by a delta lobe: an ideal mirror, a smooth dielectric or
   // conductor, or a smooth coat's reflection.

@@ -223,7 +223,9 @@ typedef struct {
    * homogeneous medium), how many along x, y, z, and the affine map (row-major 3 × 4) from the
    * world to its lattice, where sample (i, j, k) sits at (i, j, k). */
   int density;
-  int grid_size[4];
+  int grid_size[3];
+  /* Its emission σa·Le per bin in the spectra buffer (times the grid's density), -1: none. */
+  int emission;
   float to_grid[12];
 } KMedium;
 KASHA_STATIC_SIZE(KMedium, 160);

@@ -145,7 +145,15 @@ inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sa
   float tbar;
   int reached = flight(&w->p, s, f, w->org, w->dir, &w->medium, sample_2d(sampler), h, &tbar);
   v->in_medium = reached == KASHA_FLIGHT_SCATTERED;
-  if (v->in_medium) return walk_medium_samples(w, sampler, v);
+  if (v->in_medium) {
+#if KASHA_MEDIUM_EMISSION
+    /* The medium's emission at the collision, σa·Le over the flight's density (medium_flight.h);
+     * no other technique finds it, so it counts whole (pbrt-v4's volpath does the same). */
+    if (s->media[w->medium].emission >= 0)
+      pw_add(&w->p, f, s->spectra + s->media[w->medium].emission, 0, 1.0f, rows);
+#endif
+    return walk_medium_samples(w, sampler, v);
+  }
   bool hit = reached == KASHA_FLIGHT_SURFACE;
 #else
   bool hit = walk_intersect(w, s, h);

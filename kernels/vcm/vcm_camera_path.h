@@ -132,6 +132,10 @@ inline bool vcm_camera_collision(VcmCamera* c, const SceneView* s, const FilmVie
   const __global KMedium* m = &s->media[c->w.medium];
   float probs[1 + KASHA_MEDIUM_FLUOROPHORES];
   v->in_medium = true;
+#if KASHA_MEDIUM_EMISSION
+  /* The medium's emission at the collision counts whole: no light subpath starts in a medium. */
+  if (m->emission >= 0) pw_add(&c->w.p, f, s->spectra + m->emission, 0, 1.0f, rows);
+#endif
   if (!walk_medium_samples(&c->w, sampler, v) || !medium_branches(&c->w, s, f, m, probs)) return false;
   VcmVertex cv;
   cv.ns = cv.nf = cv.ng = (float3)(0.0f, 0.0f, 0.0f);

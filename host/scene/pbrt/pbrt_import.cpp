@@ -770,12 +770,17 @@ class Importer {
       pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) +
                            ": \"preset\" is not built in kasha: give \"sigma_a\" and \"sigma_s\"");
     const PbrtParameter* le = type == "nanovdb" ? nullptr : params.find("Le", "rgb spectrum blackbody float");
+    nlohmann::json emission;
     if (le) {
       const nlohmann::json v = pbrt_spectrum(*le, PbrtSpectrumUse::kIlluminant, base_dir_);
-      // A grid's "Lescale" is a grid of its own: any Le of one emits.
-      const bool scaled_off = type == "homogeneous" && params.get_float("Lescale", 1) == 0;
-      if (!(v.is_number() && v.get<double>() == 0) && !scaled_off)
-        pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) + ": an emitting medium (\"Le\") is not built in kasha");
+      const double le_scale = params.get_float("Lescale", 1);
+      // A grid's "Lescale" is a grid of its own: any Le of one emits, and is refused.
+      if (!(v.is_number() && v.get<double>() == 0) && (type != "homogeneous" || le_scale != 0)) {
+        if (type != "homogeneous")
+          pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) + ": an emitting grid (\"Le\") is not built in kasha");
+        // pbrt-v4's HomogeneousMedium: Le times Lescale over Le's photometric integral, as a light's.
+        emission = pbrt_light_spectrum(le, le_scale, base_dir_);
+      }
     }
     nlohmann::json m = {{"type", "homogeneous"}};
     if (type == "uniformgrid") m = grid_medium(name, params, where);
@@ -785,6 +790,7 @@ class Importer {
         m[key] = pbrt_spectrum(*p, PbrtSpectrumUse::kUnbounded, base_dir_);
     m["scale"] = params.get_float("scale", 1);
     m["g"] = params.get_float("g", 0);
+    if (!emission.is_null()) m["emission"] = emission;
     params.warn_unused("MakeNamedMedium " + in_quotes(name));
     media_[name] = m;
     refused_media_.erase(name);
