@@ -89,7 +89,10 @@ INSTANTIATE_TEST_SUITE_P(
                       ReferenceCase{"smoke", {}, 32},
                       // Smoke on a sparse OpenVDB grid with its own turned map (nanovdb given a
                       // .vdb file), against pbrt-v4's render of the same grid as NanoVDB.
-                      ReferenceCase{"vdb_smoke", {}, 32}),
+                      ReferenceCase{"vdb_smoke", {}, 32},
+                      // The fog cube glowing as well (a homogeneous medium's Le and Lescale):
+                      // emission picked up at the camera path's collisions.
+                      ReferenceCase{"emitting_fog", {}, 32}),
     [](const auto& info) { return info.param.scene; });
 
 // --max-depth N as pbrt-v4's maxdepth: the Cornell box with direct light alone (1) and one bounce
