@@ -317,7 +317,8 @@ TEST(Medium, AnEmittingFurnaceShowsTheEmittersRadianceInEveryIntegrator) {
                       integrator + " emitting furnace");
   }
   for (const std::string integrator : {"forward", "photon", "ppm"}) {
-    const std::string e = error_of([&] { render_furnace("emitting_furnace.json", scene, integrator); });
+    const std::string e =
+        error_of([&] { render_furnace("emitting_furnace.json", scene, integrator); });
     EXPECT_NE(e.find("/media/fill: the medium emits, and " + integrator), std::string::npos) << e;
     EXPECT_EQ(e.find('\n'), std::string::npos) << e;
   }
@@ -387,17 +388,21 @@ TEST(Medium, BadFluorophoresAreOneLine) {
 // within the table's curvature over a bin.
 TEST(Medium, ShippedDyesCarryTheirPublishedPeaks) {
   const std::string dyes = source_path("scenes/dyes");
-  const std::string text = R"({"kasha_scene": 1, "wavelengths": {"min_nm": 300, "max_nm": 700, "bin_nm": 2},
+  const std::string text =
+      R"({"kasha_scene": 1, "wavelengths": {"min_nm": 300, "max_nm": 700, "bin_nm": 2},
     "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "water"}, "materials": {"m": {}},
     "media": {"water": {"sigma_s": 0, "fluorophores": [
-      {"dye": ")" + dyes + R"(/fluorescein_basic_ethanol.json", "concentration": 1e-6},
-      {"dye": ")" + dyes + R"(/quinine_sulfate_0.5M_H2SO4.json", "concentration": 2e-6, "quantum_yield": 0.5}]}},
+      {"dye": ")" +
+      dyes + R"(/fluorescein_basic_ethanol.json", "concentration": 1e-6},
+      {"dye": ")" +
+      dyes + R"(/quinine_sulfate_0.5M_H2SO4.json", "concentration": 2e-6, "quantum_yield": 0.5}]}},
     "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], "material": "m", "emission": 1}]})";
   const Scene scene = load_scene(write_file("shipped_dyes.json", text));
   struct Want {
     double epsilon, concentration, absorb_lo, absorb_hi, emit_lo, emit_hi, yield;
   };
-  const Want want[2] = {{92300, 1e-6, 496, 504, 530, 550, 0.97}, {5700, 2e-6, 338, 352, 440, 462, 0.5}};
+  const Want want[2] = {{92300, 1e-6, 496, 504, 530, 550, 0.97},
+                        {5700, 2e-6, 338, 352, 440, 462, 0.5}};
   const WavelengthGrid& grid = scene.grid;
   for (int f = 0; f < 2; ++f) {
     const Fluorophore& dye = scene.media.at(0).fluorophores.at(f);
@@ -412,14 +417,17 @@ TEST(Medium, ShippedDyesCarryTheirPublishedPeaks) {
     }
     EXPECT_GT(grid.center(peak), w.absorb_lo) << f;
     EXPECT_LT(grid.center(peak), w.absorb_hi) << f;
-    EXPECT_NEAR(dye.absorption[peak] / (std::log(10.0) * w.epsilon * w.concentration * 100), 1, 0.02) << f;
+    EXPECT_NEAR(dye.absorption[peak] / (std::log(10.0) * w.epsilon * w.concentration * 100), 1,
+                0.02)
+        << f;
     EXPECT_GT(grid.center(emit), w.emit_lo) << f;
     EXPECT_LT(grid.center(emit), w.emit_hi) << f;
     EXPECT_DOUBLE_EQ(dye.quantum_yield, w.yield) << f;  // the file's, or the entry's over it
   }
   // A dye file's entry names its concentration and nothing the file gives.
   const std::string fluorescein = dyes + "/fluorescein_basic_ethanol.json";
-  const std::string not_a_dye = write_file("not_a_dye.json", R"({"molar_absorption": 1, "emission": 1, "quantum_yield": 1})");
+  const std::string not_a_dye =
+      write_file("not_a_dye.json", R"({"molar_absorption": 1, "emission": 1, "quantum_yield": 1})");
   const std::vector<std::pair<std::string, std::string>> bad = {
       {R"({"dye": ")" + fluorescein + R"("})", "missing required key \"concentration\""},
       {R"({"dye": ")" + fluorescein + R"(", "concentration": 1e-6, "emission": 1})",
@@ -429,8 +437,11 @@ TEST(Medium, ShippedDyesCarryTheirPublishedPeaks) {
   };
   for (const auto& [entry, message] : bad) {
     const std::string e = error_of([&] {
-      load_scene(write_file("bad_dye.json", R"({"kasha_scene": 1, "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "fog"},
-      "materials": {"m": {}}, "media": {"fog": {"sigma_s": 0, "fluorophores": [)" + entry + R"(]}},
+      load_scene(write_file(
+          "bad_dye.json",
+          R"({"kasha_scene": 1, "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "fog"},
+      "materials": {"m": {}}, "media": {"fog": {"sigma_s": 0, "fluorophores": [)" +
+              entry + R"(]}},
       "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], "material": "m", "emission": 1}]})"));
     });
     EXPECT_NE(e.find(message), std::string::npos) << entry << "\n  got: " << e;

@@ -36,13 +36,15 @@ TestVdbGrid sparse_grid() {
 // holding the VDB medium; the scene turns the medium 30° about y and moves it by its own
 // "transform", so the camera's window, [-1, 1]², cuts the grid off at x = 1.
 const Eigen::Affine3d kSceneTransform =
-    Eigen::Translation3d(0.3, 0, 0.1) * Eigen::AngleAxisd(30 * M_PI / 180, Eigen::Vector3d::UnitY());
+    Eigen::Translation3d(0.3, 0, 0.1) *
+    Eigen::AngleAxisd(30 * M_PI / 180, Eigen::Vector3d::UnitY());
 
 std::string vdb_scene(const std::string& vdb) {
   return R"({"kasha_scene": 1,
     "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "type": "orthographic", "width": 8, "height": 8},
     "media": {"smoke": {"type": "grid", "sigma_a": {"nm": [380, 780], "value": [2.0, 0.2]}, "sigma_s": 0,
-                        "density": {"vdb": ")" + vdb + R"("},
+                        "density": {"vdb": ")" +
+         vdb + R"("},
                         "transform": {"rotate": {"axis": [0, 1, 0], "deg": 30}, "translate": [0.3, 0, 0.1]}}},
     "materials": {"black": {}},
     "shapes": [
@@ -115,13 +117,17 @@ TEST(VdbMedium, BadVdbFilesAreOneLine) {
       {R"({"vdb": "background.vdb"})", "its background must be 0"},
       {R"({"vdb": "level_set.vdb"})", "is a level set"},
       {R"({"vdb": "vector.vdb"})", "not float densities"},
-      {R"({"vdb": "good.vdb"}, "bounds": {"min": [0, 0, 0], "max": [1, 1, 1]})", "an OpenVDB grid's bounds are its own"},
+      {R"({"vdb": "good.vdb"}, "bounds": {"min": [0, 0, 0], "max": [1, 1, 1]})",
+       "an OpenVDB grid's bounds are its own"},
       {R"({"vdb": "good.vdb", "values": [1]})", "unknown key"},
   };
   for (const Case& c : cases) {
     const std::string e = error_of([&] {
-      load_scene(write_file("bad_vdb.json", R"({"kasha_scene": 1, "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "fog"},
-        "materials": {"m": {}}, "media": {"fog": {"type": "grid", "density": )" + c.density + R"(}},
+      load_scene(write_file(
+          "bad_vdb.json",
+          R"({"kasha_scene": 1, "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "fog"},
+        "materials": {"m": {}}, "media": {"fog": {"type": "grid", "density": )" +
+              c.density + R"(}},
         "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], "material": "m", "emission": 1}]})"));
     });
     EXPECT_NE(e.find(c.message), std::string::npos) << c.density << "\n  got: " << e;
@@ -144,7 +150,9 @@ Camera "perspective"
 WorldBegin
 AttributeBegin
   Translate 1 2 3
-  MakeNamedMedium "smoke" "string type" "nanovdb" )" + medium + R"( "rgb sigma_a" [1 1 1] "rgb sigma_s" [2 2 2]
+  MakeNamedMedium "smoke" "string type" "nanovdb" )" +
+                                             medium +
+                                             R"( "rgb sigma_a" [1 1 1] "rgb sigma_s" [2 2 2]
 AttributeEnd
 AttributeBegin
   MediumInterface "smoke" ""
@@ -162,14 +170,17 @@ AttributeEnd
   const Scene scene = load_scene(path);
   const DensityGrid& g = *scene.media.at(0).grid;
   EXPECT_EQ(g.nx, 11);
-  const Eigen::Vector3d expected = Eigen::Vector3d(1, 2, 3) + sparse_grid().index_to_world.translation();
+  const Eigen::Vector3d expected =
+      Eigen::Vector3d(1, 2, 3) + sparse_grid().index_to_world.translation();
   EXPECT_LT((g.to_world.translation() - expected).norm(), 1e-9);
   // An emitting grid scaled off loads; scaled on, or a NanoVDB file, is one line.
-  EXPECT_NO_THROW(import_pbrt_scene(pbrt(R"("string filename" "pbrt_fire.vdb" "float Lescale" 0)"), {}));
+  EXPECT_NO_THROW(
+      import_pbrt_scene(pbrt(R"("string filename" "pbrt_fire.vdb" "float Lescale" 0)"), {}));
   const std::vector<std::pair<std::string, std::string>> bad = {
       {R"("string filename" "pbrt_fire.vdb")", "an emitting grid (\"temperature\" in"},
       {R"("string filename" "cloud.nvdb")", "whose file is not an OpenVDB .vdb file"},
-      {R"("string filename" "pbrt_smoke.vdb" "string gridname" "smoke")", "no grid named \"smoke\""},
+      {R"("string filename" "pbrt_smoke.vdb" "string gridname" "smoke")",
+       "no grid named \"smoke\""},
   };
   for (const auto& [medium, message] : bad) {
     const std::string e = error_of([&] { load_scene(pbrt(medium)); });

@@ -26,7 +26,8 @@ static void read_dye_file(const JsonNode& entry, FluorophoreDesc& f) {
   const JsonNode dye = JsonNode::load_file(p);
   if (!dye.is_object()) dye.fail("expected a dye object");
   if (!dye.has("kasha_dye")) dye.fail("missing \"kasha_dye\": 1 (not a kasha dye file)");
-  if (dye.at("kasha_dye").integer_in(0, 1000) != 1) dye.at("kasha_dye").fail("unsupported dye version");
+  if (dye.at("kasha_dye").integer_in(0, 1000) != 1)
+    dye.at("kasha_dye").fail("unsupported dye version");
   for (const char* key : {"name", "solvent", "source"})
     if (auto text = dye.find(key)) text->string();
   f.absorption = parse_spectrum(dye.at("molar_absorption"));
@@ -60,7 +61,9 @@ static FluorophoreDesc parse_fluorophore(const JsonNode& node) {
     if (molar) f.absorption = parse_spectrum(*molar);
     f.absorption_scale = std::log(10.0) * c * unit_cm;
   } else {
-    node.fail("a fluorophore needs its \"absorption\" (or \"molar_absorption\" and \"concentration\", or a \"dye\" file and \"concentration\")");
+    node.fail(
+        "a fluorophore needs its \"absorption\" (or \"molar_absorption\" and \"concentration\", or "
+        "a \"dye\" file and \"concentration\")");
   }
   if (node.has("quantum_yield")) f.quantum_yield = node.at("quantum_yield").number_in(0, 1);
   if (!dye) f.emission = parse_spectrum(node.at("emission"));
@@ -188,7 +191,8 @@ Medium discretize_medium(const MediumDesc& desc, const WavelengthGrid& grid) {
   m.g = desc.g;
   m.grid = desc.grid;
   if (desc.emission) {
-    // Emitted radiance per unit length: σa·Le (pbrt-v4's), nothing where the medium absorbs nothing.
+    // Emitted radiance per unit length: σa·Le (pbrt-v4's), nothing where the medium absorbs
+    // nothing.
     const std::vector<double> le = grid.resample(*desc.emission);
     double total = 0;
     for (size_t i = 0; i < le.size(); ++i) {

@@ -1124,7 +1124,8 @@ static void discretize(const GridRequest& request, const std::vector<bool>& mate
     if (!media_used[m]) continue;
     for (const FluorophoreDesc& f : scene.medium_descs[m].fluorophores)
       exciting.push_back(f.absorption->support());
-    if (scene.medium_descs[m].emission) emitting.push_back(scene.medium_descs[m].emission->support());
+    if (scene.medium_descs[m].emission)
+      emitting.push_back(scene.medium_descs[m].emission->support());
   }
   scene.grid = choose_grid(request, emitting, exciting);
 

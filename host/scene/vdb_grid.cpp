@@ -84,7 +84,8 @@ DensityGrid read_vdb_density(const std::string& path, const std::string& shown,
         const float v = at.getValue(openvdb::Coord(x, y, z));
         if (!(v >= 0 && std::isfinite(v)))
           throw Error(who + ": a density must be finite and not negative (voxel " +
-                      std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) + ")");
+                      std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) +
+                      ")");
         d.values.push_back(v);
       }
   // Sample k sits at the centre of cell k of [p0, p1]: index lo + k.

@@ -10,12 +10,12 @@
 // The smoke is scripts/make_pbrt_smoke.py's lopsided, rippled blob, sampled at the voxels of a
 // 41 × 41 × 41 lattice 0.025 apart, turned 12° about x by the file's own map; voxels below 0.002
 // stay inactive, so the grid is sparse and fades out to nothing at its edges.
+#include <nanovdb/util/IO.h>
+#include <nanovdb/util/OpenToNanoVDB.h>
 #include <openvdb/openvdb.h>
 
 #include <cmath>
 #include <cstdio>
-#include <nanovdb/util/IO.h>
-#include <nanovdb/util/OpenToNanoVDB.h>
 
 namespace {
 

@@ -754,9 +754,10 @@ class Importer {
     if (type.empty()) pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) + ": no \"type\"");
     if (name.empty()) pbrt_fail(where, "MakeNamedMedium: a medium's name must not be empty");
     if (type != "homogeneous" && type != "uniformgrid" && type != "nanovdb") {
-      refuse_medium(name, where, "is a \"" + type +
-                                     "\" medium, which kasha does not build (homogeneous, "
-                                     "uniformgrid, nanovdb given a .vdb file)");
+      refuse_medium(name, where,
+                    "is a \"" + type +
+                        "\" medium, which kasha does not build (homogeneous, "
+                        "uniformgrid, nanovdb given a .vdb file)");
       return;
     }
     if (type == "nanovdb" && vdb_file(params).extension() != ".vdb") {
@@ -769,7 +770,8 @@ class Importer {
     if (params.find("preset", "string"))
       pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) +
                            ": \"preset\" is not built in kasha: give \"sigma_a\" and \"sigma_s\"");
-    const PbrtParameter* le = type == "nanovdb" ? nullptr : params.find("Le", "rgb spectrum blackbody float");
+    const PbrtParameter* le =
+        type == "nanovdb" ? nullptr : params.find("Le", "rgb spectrum blackbody float");
     nlohmann::json emission;
     if (le) {
       const nlohmann::json v = pbrt_spectrum(*le, PbrtSpectrumUse::kIlluminant, base_dir_);
@@ -777,8 +779,10 @@ class Importer {
       // A grid's "Lescale" is a grid of its own: any Le of one emits, and is refused.
       if (!(v.is_number() && v.get<double>() == 0) && (type != "homogeneous" || le_scale != 0)) {
         if (type != "homogeneous")
-          pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) + ": an emitting grid (\"Le\") is not built in kasha");
-        // pbrt-v4's HomogeneousMedium: Le times Lescale over Le's photometric integral, as a light's.
+          pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) +
+                               ": an emitting grid (\"Le\") is not built in kasha");
+        // pbrt-v4's HomogeneousMedium: Le times Lescale over Le's photometric integral, as a
+        // light's.
         emission = pbrt_light_spectrum(le, le_scale, base_dir_);
       }
     }
@@ -853,11 +857,12 @@ class Importer {
     if (file.empty()) pbrt_fail(where, what + ": Must supply \"filename\" to \"nanovdb\" medium");
     const std::string grid = params.get_string("gridname", "density");
     const std::string temperature = params.get_string("temperaturename", "temperature");
-    for (const char* unused_without_emission : {"temperatureoffset", "temperaturecutoff", "temperaturescale"})
+    for (const char* unused_without_emission :
+         {"temperatureoffset", "temperaturecutoff", "temperaturescale"})
       params.find(unused_without_emission, "float");
     if (params.get_float("Lescale", 1) != 0 && vdb_has_grid(file.string(), temperature))
-      pbrt_fail(where, what + ": an emitting grid (\"" + temperature + "\" in " + printable(file.string()) +
-                           ") is not built in kasha");
+      pbrt_fail(where, what + ": an emitting grid (\"" + temperature + "\" in " +
+                           printable(file.string()) + ") is not built in kasha");
     check_affine(state_.ctm, where);
     // As a mesh's "filename": relative to the scene's folder, which the JSON reader resolves.
     return {{"type", "grid"},
