@@ -113,7 +113,7 @@ TEST(VdbMedium, BadVdbFilesAreOneLine) {
       {R"({"vdb": "garbage.vdb"})", "cannot read it as an OpenVDB file"},
       {R"({"vdb": "absent.vdb"})", "cannot read it as an OpenVDB file"},
       {R"({"vdb": "good.vdb", "grid": "temperature"})", "no grid named \"temperature\""},
-      {R"({"vdb": "negative.vdb"})", "a density must be finite and not negative"},
+      {R"({"vdb": "negative.vdb"})", "a density must be finite, not negative and at most 1e30"},
       {R"({"vdb": "background.vdb"})", "its background must be 0"},
       {R"({"vdb": "level_set.vdb"})", "is a level set"},
       {R"({"vdb": "vector.vdb"})", "not float densities"},

@@ -197,7 +197,7 @@ Medium discretize_medium(const MediumDesc& desc, const WavelengthGrid& grid) {
     double total = 0;
     for (size_t i = 0; i < le.size(); ++i) {
       if (!(le[i] >= 0)) throw Error(desc.where + "/emission: a negative or non-finite radiance");
-      m.emission.push_back(m.sigma_a[i] * le[i] * desc.emission_scale);
+      m.emission.push_back(m.sigma_a[i] * le[i]);
       total += m.emission.back();
     }
     if (!(total > 0)) m.emission.clear();

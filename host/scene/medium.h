@@ -51,7 +51,6 @@ struct MediumDesc {
   std::vector<FluorophoreDesc> fluorophores;
   std::optional<DensityGrid> grid;  // "grid": σa, σs and the dyes times its density
   SpectrumPtr emission;             // "emission": Le, radiance emitted per unit σa (null: none)
-  double emission_scale = 1;        // pbrt-v4's "Lescale"
 };
 
 // A fluorophore on the grid: absorption per bin, and ê (sums to 1 over the bins).

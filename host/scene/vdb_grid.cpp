@@ -3,6 +3,7 @@
 #include <openvdb/openvdb.h>
 
 #include <cmath>
+#include <cstdint>
 #include <mutex>
 
 #include "core/error.h"
@@ -67,30 +68,36 @@ DensityGrid read_vdb_density(const std::string& path, const std::string& shown,
   const openvdb::CoordBBox active = grid->evalActiveVoxelBoundingBox();
   if (active.empty()) throw Error(who + " has no active voxels");
   // One background voxel on each side, so trilinear reconstruction falls to 0 as OpenVDB's does.
-  const openvdb::Coord lo = active.min() - openvdb::Coord(1), hi = active.max() + openvdb::Coord(1);
-  const double n[3] = {double(hi.x()) - lo.x() + 1, double(hi.y()) - lo.y() + 1,
-                       double(hi.z()) - lo.z() + 1};
-  if (n[0] * n[1] * n[2] > static_cast<double>(1 << 28))
-    throw Error(who + ": " + std::to_string(static_cast<long long>(n[0])) + " x " +
-                std::to_string(static_cast<long long>(n[1])) + " x " +
-                std::to_string(static_cast<long long>(n[2])) +
-                " voxels with its border; a grid holds at most 2^28 samples");
+  // In 64 bits: a file's coordinates may sit at the ends of int's range.
+  const int64_t lo[3] = {int64_t(active.min().x()) - 1, int64_t(active.min().y()) - 1,
+                         int64_t(active.min().z()) - 1};
+  int64_t n[3];
+  for (int a = 0; a < 3; ++a) {
+    n[a] = int64_t(active.max()[a]) + 1 - lo[a] + 1;
+    if (lo[a] < INT32_MIN || lo[a] + n[a] - 1 > INT32_MAX)
+      throw Error(who + ": its voxels reach the ends of OpenVDB's coordinate range");
+  }
+  if (double(n[0]) * double(n[1]) * double(n[2]) > static_cast<double>(1 << 28))
+    throw Error(who + ": " + std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " +
+                std::to_string(n[2]) + " voxels with its border; a grid holds at most 2^28 samples");
   d.nx = static_cast<int>(n[0]), d.ny = static_cast<int>(n[1]), d.nz = static_cast<int>(n[2]);
   d.values.reserve(static_cast<size_t>(d.nx) * d.ny * d.nz);
   const openvdb::FloatGrid::ConstAccessor at = grid->getConstAccessor();
-  for (int z = lo.z(); z <= hi.z(); ++z)
-    for (int y = lo.y(); y <= hi.y(); ++y)
-      for (int x = lo.x(); x <= hi.x(); ++x) {
-        const float v = at.getValue(openvdb::Coord(x, y, z));
-        if (!(v >= 0 && std::isfinite(v)))
-          throw Error(who + ": a density must be finite and not negative (voxel " +
-                      std::to_string(x) + ", " + std::to_string(y) + ", " + std::to_string(z) +
-                      ")");
+  for (int z = 0; z < d.nz; ++z)
+    for (int y = 0; y < d.ny; ++y)
+      for (int x = 0; x < d.nx; ++x) {
+        const openvdb::Coord c(int(lo[0] + x), int(lo[1] + y), int(lo[2] + z));
+        const float v = at.getValue(c);
+        // The JSON grids' bound: σ times a density must stay finite in the kernels.
+        if (!(v >= 0 && v <= 1e30f))
+          throw Error(who + ": a density must be finite, not negative and at most 1e30 (voxel " +
+                      std::to_string(c.x()) + ", " + std::to_string(c.y()) + ", " +
+                      std::to_string(c.z()) + ")");
         d.values.push_back(v);
       }
   // Sample k sits at the centre of cell k of [p0, p1]: index lo + k.
-  d.p0 = Eigen::Vector3d(lo.x(), lo.y(), lo.z()) - Eigen::Vector3d::Constant(0.5);
-  d.p1 = Eigen::Vector3d(hi.x(), hi.y(), hi.z()) + Eigen::Vector3d::Constant(0.5);
+  d.p0 = Eigen::Vector3d(double(lo[0]), double(lo[1]), double(lo[2])) - Eigen::Vector3d::Constant(0.5);
+  d.p1 = d.p0 + Eigen::Vector3d(double(n[0]), double(n[1]), double(n[2]));
   return d;
 }
 

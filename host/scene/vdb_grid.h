@@ -1,6 +1,7 @@
 #pragma once
 // Density grids from OpenVDB files (docs/media.md#openvdb-grids): one float grid of a .vdb file as
-// a DensityGrid that reconstructs it exactly as OpenVDB's trilinear BoxSampler does.
+// a DensityGrid that reconstructs it as OpenVDB's trilinear BoxSampler does (exactly where the
+// voxels beyond the active ones hold the background, as a fog volume's do).
 #include <string>
 
 #include "scene/medium.h"

@@ -1,6 +1,7 @@
 #include "scene/pbrt/pbrt_import.h"
 
 #include <Eigen/Dense>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -747,8 +748,9 @@ class Importer {
     }
   }
 
-  // MakeNamedMedium (pbrt-v4's media.cpp): a homogeneous or uniformgrid medium as kasha's "media"
-  // entry; the other types are read but refused where a shape, the camera or a light is put in one.
+  // MakeNamedMedium (pbrt-v4's media.cpp): a homogeneous, uniformgrid or nanovdb (a .vdb file)
+  // medium as kasha's "media" entry; the other types are read but refused where a shape, the
+  // camera or a light is put in one.
   void make_medium(const std::string& name, const PbrtParameters& params, const PbrtLocation& where) {
     const std::string type = params.get_string("type", "");
     if (type.empty()) pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) + ": no \"type\"");
@@ -760,7 +762,10 @@ class Importer {
                         "uniformgrid, nanovdb given a .vdb file)");
       return;
     }
-    if (type == "nanovdb" && vdb_file(params).extension() != ".vdb") {
+    if (type == "nanovdb" && params.get_string("filename", "").empty())
+      pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) +
+                           ": Must supply \"filename\" to \"nanovdb\" medium");
+    if (type == "nanovdb" && !is_vdb(vdb_file(params))) {
       refuse_medium(name, where,
                     "is a \"nanovdb\" medium whose file is not an OpenVDB .vdb file: kasha reads "
                     "grids through Debian's OpenVDB, which has no NanoVDB (convert it to .vdb with "
@@ -842,6 +847,12 @@ class Importer {
     media_.erase(name);
   }
 
+  static bool is_vdb(const std::filesystem::path& file) {
+    std::string ext = file.extension().string();
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext == ".vdb";
+  }
+
   std::filesystem::path vdb_file(const PbrtParameters& params) const {
     std::filesystem::path path(params.get_string("filename", ""));
     return path.is_relative() && !path.empty() ? base_dir_ / path : path;
@@ -854,7 +865,6 @@ class Importer {
                             const PbrtLocation& where) {
     const std::string what = "MakeNamedMedium " + in_quotes(name);
     const std::filesystem::path file = vdb_file(params);
-    if (file.empty()) pbrt_fail(where, what + ": Must supply \"filename\" to \"nanovdb\" medium");
     const std::string grid = params.get_string("gridname", "density");
     const std::string temperature = params.get_string("temperaturename", "temperature");
     for (const char* unused_without_emission :
