@@ -328,14 +328,16 @@ TEST(Medium, AnEmittingFurnaceShowsTheEmittersRadianceInEveryIntegrator) {
 // camera against black: L = Le (1 − exp(−σa ∫ρ dz)) in each bin, per bin within 1 %, whatever the
 // density ρ along z. Homogeneous (ρ = 1 over d = 1) in backward and vcm, vcm also with its light
 // subpaths in several chunks (each replays the camera paths: the emission must count once); as a
-// grid of density 0.5 (∫ρ dz = 0.5 · 0.9375: it falls to half at the box's faces) in backward, where
-// σa·Le, like the flight's weights, leaves the density out. At --max-depth 0 the slab shows
+// grid of density 0.5 (∫ρ dz = 0.5 · 0.9375: it falls to half at the box's faces) in backward,
+// where σa·Le, like the flight's weights, leaves the density out. At --max-depth 0 the slab shows
 // nothing (pbrt-v4's volpath adds a medium's emission only below its maxdepth), at 1 all of it.
 TEST(Medium, AnEmittingSlabFollowsItsClosedForm) {
-  const std::string homogeneous = R"({"sigma_a": {"nm": [380, 780], "value": [2.0, 0.1]}, "sigma_s": 0,
+  const std::string homogeneous =
+      R"({"sigma_a": {"nm": [380, 780], "value": [2.0, 0.1]}, "sigma_s": 0,
                        "emission": {"nm": [380, 780], "value": [0.02, 0.05]}})";
   std::string grid = homogeneous;
-  grid.replace(1, 0, R"("type": "grid", "density": {"size": [2, 2, 4], "values": [0.5, 0.5, 0.5, 0.5,
+  grid.replace(1, 0,
+               R"("type": "grid", "density": {"size": [2, 2, 4], "values": [0.5, 0.5, 0.5, 0.5,
       0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5, 0.5]},
       "bounds": {"min": [-3, -3, 0.5], "max": [3, 3, 1.5]}, )");
   struct Case {
@@ -345,12 +347,10 @@ TEST(Medium, AnEmittingSlabFollowsItsClosedForm) {
     int max_depth;
   };
   const int none = IntegratorSettings::kNoDepthCap;
-  const std::vector<Case> cases = {{homogeneous, "backward", 1, 0, none},
-                                   {homogeneous, "vcm", 1, 0, none},
-                                   {homogeneous, "vcm", 1, 1 << 20, none},
-                                   {grid, "backward", 0.5 * 0.9375, 0, none},
-                                   {homogeneous, "backward", 1, 0, 1},
-                                   {homogeneous, "backward", 0, 0, 0}};
+  const std::vector<Case> cases = {
+      {homogeneous, "backward", 1, 0, none},  {homogeneous, "vcm", 1, 0, none},
+      {homogeneous, "vcm", 1, 1 << 20, none}, {grid, "backward", 0.5 * 0.9375, 0, none},
+      {homogeneous, "backward", 1, 0, 1},     {homogeneous, "backward", 0, 0, 0}};
   for (const Case& c : cases) {
     const std::string path = write_file("emitting_slab.json", R"({"kasha_scene": 1,
     "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "type": "orthographic", "width": 8, "height": 8},
@@ -370,7 +370,8 @@ TEST(Medium, AnEmittingSlabFollowsItsClosedForm) {
     const Medium& glow = r.scene.media.at(0);
     std::vector<double> expected(glow.sigma_a.size());
     for (size_t i = 0; i < expected.size(); ++i)
-      expected[i] = glow.emission[i] / glow.sigma_a[i] * (1 - std::exp(-glow.sigma_a[i] * c.optical));
+      expected[i] =
+          glow.emission[i] / glow.sigma_a[i] * (1 - std::exp(-glow.sigma_a[i] * c.optical));
     const std::string what = c.integrator + " emitting slab, optical length " +
                              std::to_string(c.optical) + ", memory " + std::to_string(c.memory);
     if (c.optical == 0) {

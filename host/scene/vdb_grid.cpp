@@ -79,7 +79,8 @@ DensityGrid read_vdb_density(const std::string& path, const std::string& shown,
   }
   if (double(n[0]) * double(n[1]) * double(n[2]) > static_cast<double>(1 << 28))
     throw Error(who + ": " + std::to_string(n[0]) + " x " + std::to_string(n[1]) + " x " +
-                std::to_string(n[2]) + " voxels with its border; a grid holds at most 2^28 samples");
+                std::to_string(n[2]) +
+                " voxels with its border; a grid holds at most 2^28 samples");
   d.nx = static_cast<int>(n[0]), d.ny = static_cast<int>(n[1]), d.nz = static_cast<int>(n[2]);
   d.values.reserve(static_cast<size_t>(d.nx) * d.ny * d.nz);
   const openvdb::FloatGrid::ConstAccessor at = grid->getConstAccessor();
@@ -96,7 +97,8 @@ DensityGrid read_vdb_density(const std::string& path, const std::string& shown,
         d.values.push_back(v);
       }
   // Sample k sits at the centre of cell k of [p0, p1]: index lo + k.
-  d.p0 = Eigen::Vector3d(double(lo[0]), double(lo[1]), double(lo[2])) - Eigen::Vector3d::Constant(0.5);
+  d.p0 =
+      Eigen::Vector3d(double(lo[0]), double(lo[1]), double(lo[2])) - Eigen::Vector3d::Constant(0.5);
   d.p1 = d.p0 + Eigen::Vector3d(double(n[0]), double(n[1]), double(n[2]));
   return d;
 }
