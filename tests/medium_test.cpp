@@ -634,20 +634,7 @@ TEST(Medium, AnEmitterSeenThroughAGridOfDyeFollowsItsIntegral) {
         truth[i] += std::exp(-loaded.media.at(0).sigma_a[i] * optical - 2 * 0.1) / (kSide * kSide);
     }
   for (const std::string integrator : {"backward", "forward"}) {
-    RenderSettings s;
-    s.integrator = integrator;
-    s.integrator_settings.spp = 64;
-    s.integrator_settings.photons = 1 << 17;
-    s.passes = 4;
-    RenderResult r = render_scene(path, s);
-    std::vector<double> expected = r.scene.emitters.at(0).per_bin;
-    for (size_t i = 0; i < expected.size(); ++i) expected[i] *= truth[i];
-    const BinStats b = pixel_statistics(r.image, true);
-    double worst = 0;
-    for (size_t i = 0; i < expected.size(); ++i)
-      worst = std::max(worst, std::abs(b.mean[i] / expected[i] - 1));
-    std::printf("  %s: the largest bin's difference %.2f %%\n", integrator.c_str(), 100 * worst);
-    expect_bins_match(r, expected, 0.005, integrator + " through the grid", false);
+    expect_emitter_seen_through(path, integrator, truth, 0.005, integrator + " through the grid");
   }
 }
 

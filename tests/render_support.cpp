@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 
 #include "image/exr_io.h"
@@ -158,6 +159,25 @@ std::map<std::string, std::vector<size_t>> primary_hit_regions(const Scene& scen
   }
   for (auto& [name, pixels] : regions) std::sort(pixels.begin(), pixels.end());
   return regions;
+}
+
+void expect_emitter_seen_through(const std::string& path, const std::string& integrator,
+                                 const std::vector<double>& transmittance, double tolerance,
+                                 const std::string& label) {
+  RenderSettings s;
+  s.integrator = integrator;
+  s.integrator_settings.spp = 64;
+  s.integrator_settings.photons = 1 << 17;
+  s.passes = 4;
+  RenderResult r = render_scene(path, s);
+  std::vector<double> expected = r.scene.emitters.at(0).per_bin;
+  for (size_t i = 0; i < expected.size(); ++i) expected[i] *= transmittance.at(i);
+  const BinStats b = pixel_statistics(r.image, true);
+  double worst = 0;
+  for (size_t i = 0; i < expected.size(); ++i)
+    worst = std::max(worst, std::abs(b.mean[i] / expected[i] - 1));
+  std::printf("  %s: the largest bin's difference %.2f %%\n", integrator.c_str(), 100 * worst);
+  expect_bins_match(r, expected, tolerance, label, false);
 }
 
 }  // namespace kasha::test

@@ -62,6 +62,13 @@ BinStats difference_statistics(const Image& a, const Image& b, bool spectral,
 void expect_bins_match(const RenderResult& r, const std::vector<double>& truth, double tolerance,
                        const std::string& label, bool unbiased = true);
 
+// The scene at `path` with `integrator` (64 samples a pixel or 2^17 photons, 4 passes): its first
+// emitter's radiance times `transmittance` per bin, within `tolerance` (expect_bins_match,
+// consistent estimators); prints the largest bin's difference.
+void expect_emitter_seen_through(const std::string& path, const std::string& integrator,
+                                 const std::vector<double>& transmittance, double tolerance,
+                                 const std::string& label);
+
 // The furnace scenes every integrator is tested in, and a test-name suffix for each.
 extern const std::vector<const char*> kFurnaceScenes;
 std::string furnace_test_name(const ::testing::TestParamInfo<const char*>& info);
