@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
-  libembree-dev libopenexr-dev libnanoflann-dev libopenvdb-dev libboost-iostreams-dev
+  libembree-dev libopenexr-dev libnanoflann-dev libopenvdb-dev libnanovdb-dev libboost-iostreams-dev
   nlohmann-json3-dev libtinyobjloader-dev libassimp-dev zlib1g-dev libpng-dev libstb-dev libqoi-dev libcli11-dev libeigen3-dev
   libgtest-dev
   libopenmpi-dev openmpi-bin

@@ -182,6 +182,8 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
      "medium": {"inside": "smoke"}},
     {"type": "box", "min": [-0.7, 0.3, 0.9], "max": [-0.3, 0.7, 1.3], "interface": true,
      "medium": {"inside": "cloud"}},
+    {"type": "box", "min": [-0.2, 0.6, 1.2], "max": [0.1, 0.9, 1.5], "interface": true,
+     "medium": {"inside": "puff"}},
     {"type": "box", "min": [0.4, -1, 0.2], "max": [0.7, -0.7, 0.5], "material": "metal"},
     {"type": "box", "min": [-0.8, -1, 1.1], "max": [-0.5, -0.8, 1.4], "material": "lacquer"},
     {"type": "mesh", "file": "mesh.ply", "material": "lacquer", "transform": {"scale": 0.2, "translate": [0.2, -0.9, 0.3]}},
@@ -196,6 +198,8 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
               "transform": {"rotate": {"axis": [0, 1, 0], "deg": 30}, "translate": [0.3, 0.3, 0.5]}},
     "cloud": {"type": "grid", "sigma_a": 0.5, "sigma_s": 4, "density": {"vdb": "grid.vdb"},
               "transform": {"translate": [-0.5, 0.5, 1.1]}},
+    "puff": {"type": "grid", "sigma_a": 0.3, "sigma_s": 2, "density": {"vdb": "grid.nvdb"},
+             "transform": {"translate": [-0.05, 0.75, 1.35]}},
     "glow": {"sigma_a": 0.01, "sigma_s": 0.5, "fluorophores": [
       {"absorption": {"nm": [380, 480], "value": [2, 0]}, "quantum_yield": 0.9, "emission": {"gaussian_nm": 520, "fwhm_nm": 40}},
       {"molar_absorption": 7e4, "concentration": 1e-6, "unit_cm": 100, "emission": {"line_nm": 610}},
@@ -221,6 +225,7 @@ struct Seeds {
   std::string ply, glb;  // binary: a PLY and a GLB mesh (read by Assimp)
   std::string dye, dye_table;  // a dye file (scenes/dyes) and its table
   std::string vdb;             // an OpenVDB file: a small grid of densities
+  std::string nvdb;            // the same grid as a zipped NanoVDB file
 };
 
 // A binary mutation (a PNG, a VDB): flipped bytes, the 32-bit fields at bytes 16 and 20
@@ -283,6 +288,8 @@ Seeds make_seeds() {
   grid.index_to_world = Eigen::Scaling(0.1);
   write_vdb((s.dir / "seed_grid.vdb").string(), {grid});
   s.vdb = read_text(s.dir / "seed_grid.vdb");
+  write_nvdb((s.dir / "seed_grid.nvdb").string(), {grid}, true);
+  s.nvdb = read_text(s.dir / "seed_grid.nvdb");
   Image sky;  // a small sky, bright above
   sky.width = 16;
   sky.height = 8;
@@ -306,9 +313,12 @@ std::string write_case(const Seeds& s, int which, std::mt19937& rng) {
   write_text(s.dir / "dye.json", which == 8 ? mutated(s.dye, rng) : s.dye);
   write_text(s.dir / "dye.csv", s.dye_table);
   // OpenVDB allocates what a mutated header says (terabytes): a std::bad_alloc, one line here,
-  // but AddressSanitizer aborts on it, so scripts/sanitize.sh leaves the .vdb seed whole.
+  // but AddressSanitizer aborts on it, so scripts/sanitize.sh leaves the grid seeds whole. Input 9
+  // is the OpenVDB file or the NanoVDB one, by turns.
   static const bool vdb_whole = std::getenv("KASHA_FUZZ_VDB_WHOLE") != nullptr;
-  write_text(s.dir / "grid.vdb", which == 9 && !vdb_whole ? mutated_binary(s.vdb, rng) : s.vdb);
+  const bool grids = which == 9 && !vdb_whole, nano = grids && rng() % 2 == 0;
+  write_text(s.dir / "grid.vdb", grids && !nano ? mutated_binary(s.vdb, rng) : s.vdb);
+  write_text(s.dir / "grid.nvdb", nano ? mutated_binary(s.nvdb, rng) : s.nvdb);
   const fs::path scene = s.dir / "scene.json";
   write_text(scene, which == 0 ? mutated(s.scene, rng) : s.scene);
   return scene.string();
@@ -354,7 +364,7 @@ TEST(Fuzz, MutatedInputsLoadOrGiveOneLineAndRenderFinite) {
   const std::vector<std::string> integrators = IntegratorRegistry::names(true);
   int loaded = 0, refused = 0, rendered = 0;
   for (int c = 0; c < cases; ++c) {
-    // scene, material, reflectance CSV, lamp CSV, OBJ, PNG, PLY, GLB, dye, VDB
+    // scene, material, reflectance CSV, lamp CSV, OBJ, PNG, PLY, GLB, dye, VDB or NanoVDB
     const int which = c % 10;
     const std::string path = write_case(seeds, which, rng);
     SCOPED_TRACE("case " + std::to_string(c) + ", input " + std::to_string(which));

@@ -87,8 +87,8 @@ INSTANTIATE_TEST_SUITE_P(
                       // Smoke on a grid of density (uniformgrid), turned and stretched: the
                       // lattice's exact tracking against pbrt-v4's delta and ratio tracking.
                       ReferenceCase{"smoke", {}, 32},
-                      // Smoke on a sparse OpenVDB grid with its own turned map (nanovdb given a
-                      // .vdb file), against pbrt-v4's render of the same grid as NanoVDB.
+                      // Smoke on a sparse grid with its own turned map (nanovdb, a zipped .nvdb
+                      // file, read as pbrt-v4 reads it), against pbrt-v4's render.
                       ReferenceCase{"vdb_smoke", {}, 32},
                       // The fog cube glowing as well (a homogeneous medium's Le and Lescale):
                       // emission picked up at the camera path's collisions.

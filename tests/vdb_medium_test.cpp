@@ -1,9 +1,12 @@
 // Grid media read from OpenVDB files (docs/media.md#openvdb-grids): kasha's reconstruction of a
 // sparse, turned, offset .vdb grid against OpenVDB's own trilinear sampler, through a render; the
-// file's refusals, each one line; pbrt-v4's nanovdb medium given a .vdb file.
+// file's refusals, each one line; NanoVDB's .nvdb files as their OpenVDB twins; pbrt-v4's nanovdb
+// medium.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <random>
 
 #include "render_support.h"
@@ -50,6 +53,20 @@ std::string vdb_scene(const std::string& vdb) {
     "shapes": [
       {"type": "quad", "corner": [-2, -2, -1], "u": [4, 0, 0], "v": [0, 4, 0], "material": "black", "emission": 0.01},
       {"type": "box", "min": [-2, -2, -0.6], "max": [2, 2, 2.2], "interface": true, "medium": {"inside": "smoke"}}]})";
+}
+
+// A scene whose grid medium's "density" is `density` is refused with one line holding `message`.
+void expect_refused(const std::string& density, const std::string& message) {
+  const std::string e = error_of([&] {
+    load_scene(write_file(
+        "bad_vdb.json",
+        R"({"kasha_scene": 1, "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "fog"},
+        "materials": {"m": {}}, "media": {"fog": {"type": "grid", "density": )" +
+            density + R"(}},
+        "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], "material": "m", "emission": 1}]})"));
+  });
+  EXPECT_NE(e.find(message), std::string::npos) << density << "\n  got: " << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos) << e;
 }
 
 }  // namespace
@@ -99,7 +116,7 @@ TEST(VdbMedium, BadVdbFilesAreOneLine) {
   };
   const std::vector<Case> cases = {
       {R"({"vdb": "garbage.vdb"})", "cannot read it as an OpenVDB file"},
-      {R"({"vdb": "absent.vdb"})", "cannot read it as an OpenVDB file"},
+      {R"({"vdb": "absent.vdb"})", "cannot open it"},
       {R"({"vdb": "good.vdb", "grid": "temperature"})", "no grid named \"temperature\""},
       {R"({"vdb": "negative.vdb"})", "a density must be finite, not negative and at most 1e30"},
       {R"({"vdb": "background.vdb"})", "its background must be 0"},
@@ -109,24 +126,72 @@ TEST(VdbMedium, BadVdbFilesAreOneLine) {
        "an OpenVDB grid's bounds are its own"},
       {R"({"vdb": "good.vdb", "values": [1]})", "unknown key"},
   };
-  for (const Case& c : cases) {
-    const std::string e = error_of([&] {
-      load_scene(write_file(
-          "bad_vdb.json",
-          R"({"kasha_scene": 1, "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "fog"},
-        "materials": {"m": {}}, "media": {"fog": {"type": "grid", "density": )" +
-              c.density + R"(}},
-        "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], "material": "m", "emission": 1}]})"));
-    });
-    EXPECT_NE(e.find(c.message), std::string::npos) << c.density << "\n  got: " << e;
-    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+  for (const Case& c : cases) expect_refused(c.density, c.message);
+}
+
+// A NanoVDB file (pbrt-v4's .nvdb), plain or zipped, written from the same OpenVDB grid by
+// NanoVDB's own converter, loads as the OpenVDB file does: the same samples bit for bit and the
+// same map (so the render test above holds for it too).
+TEST(VdbMedium, ANanoVdbFileLoadsAsItsOpenVdbTwin) {
+  const std::filesystem::path dir = scratch_dir();
+  write_vdb((dir / "twin.vdb").string(), {sparse_grid()});
+  write_nvdb((dir / "twin.nvdb").string(), {sparse_grid()});
+  write_nvdb((dir / "twin_zip.nvdb").string(), {sparse_grid()}, true);
+  const auto grid_of = [&](const std::string& file) {
+    return *load_scene(write_file("twin.json", vdb_scene(file))).media.at(0).grid;
+  };
+  const DensityGrid truth = grid_of("twin.vdb");
+  EXPECT_EQ(truth.nx, 11);
+  for (const char* file : {"twin.nvdb", "twin_zip.nvdb"}) {
+    const DensityGrid g = grid_of(file);
+    EXPECT_TRUE(g.nx == truth.nx && g.ny == truth.ny && g.nz == truth.nz) << file;
+    EXPECT_EQ(g.values, truth.values) << file;
+    EXPECT_LT((g.to_world.matrix() - truth.to_world.matrix()).norm(), 1e-9) << file;
+    EXPECT_LT((g.p0 - truth.p0).norm() + (g.p1 - truth.p1).norm(), 1e-12) << file;
   }
 }
 
-// pbrt-v4's nanovdb medium given a .vdb file: its grid, in the space of the transform current at
-// MakeNamedMedium, as kasha's VDB grid. A NanoVDB file, or a file with an emitting temperature
-// grid ("Lescale" not 0), is refused with one line.
-TEST(VdbMedium, PbrtNanovdbWithAVdbFileImportsAsKashasGrid) {
+// Damaged and unsuitable NanoVDB files are one line each: a cut file, an older format, a flipped
+// byte (the full checksum NanoVDB wrote), a header claiming more than the file holds, a grid of
+// 3-vectors, a grid that is not there, a level set.
+TEST(VdbMedium, BadNanoVdbFilesAreOneLine) {
+  const std::filesystem::path dir = scratch_dir();
+  write_nvdb((dir / "good.nvdb").string(), {sparse_grid()});
+  std::ifstream in(dir / "good.nvdb", std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  write_file("cut.nvdb", bytes.substr(0, bytes.size() - 64));
+  std::string flipped = bytes;
+  flipped[flipped.size() - 100] ^= 0x5a;  // a leaf's value
+  write_file("flipped.nvdb", flipped);
+  std::string old = bytes;
+  old[11] = 0x03;  // the version's major number (its top bits), 32 made 24
+  write_file("old.nvdb", old);
+  std::string huge = bytes;
+  huge[16 + 8 + 7] = 0x7f;  // the first grid's size on disk (MetaData::fileSize), past the file
+  write_file("huge.nvdb", huge);
+  write_vec3_nvdb((dir / "vector.nvdb").string(), "density");
+  TestVdbGrid level_set = sparse_grid();
+  level_set.level_set = true;
+  write_nvdb((dir / "level_set.nvdb").string(), {level_set});
+  struct Case {
+    std::string density, message;
+  };
+  const std::vector<Case> cases = {
+      {R"({"vdb": "cut.nvdb"})", "its grids run past its end"},
+      {R"({"vdb": "old.nvdb"})", "cannot read it as a NanoVDB file"},
+      {R"({"vdb": "flipped.nvdb"})", "NanoVDB's validator refuses it"},
+      {R"({"vdb": "huge.nvdb"})", "a grid's size disagrees with the file's"},
+      {R"({"vdb": "vector.nvdb"})", "holds Vec3f values, not float densities"},
+      {R"({"vdb": "good.nvdb", "grid": "smoke"})", "no grid named \"smoke\""},
+      {R"({"vdb": "level_set.nvdb"})", "is a level set"},
+  };
+  for (const Case& c : cases) expect_refused(c.density, c.message);
+}
+
+// pbrt-v4's nanovdb medium given a .vdb or .nvdb file: its grid, in the space of the transform
+// current at MakeNamedMedium, as kasha's VDB grid. A file with an emitting temperature grid
+// ("Lescale" not 0), or none at all, is refused with one line.
+TEST(VdbMedium, PbrtNanovdbImportsAsKashasGrid) {
   const std::filesystem::path dir = scratch_dir();
   TestVdbGrid temperature = sparse_grid();
   temperature.name = "temperature";
@@ -161,12 +226,19 @@ AttributeEnd
   const Eigen::Vector3d expected =
       Eigen::Vector3d(1, 2, 3) + sparse_grid().index_to_world.translation();
   EXPECT_LT((g.to_world.translation() - expected).norm(), 1e-9);
-  // An emitting grid scaled off loads; scaled on, or a NanoVDB file, is one line.
+  // The same grid as NanoVDB, the file pbrt-v4 reads: the same medium.
+  write_nvdb((dir / "pbrt_smoke.nvdb").string(), {sparse_grid()});
+  write_nvdb((dir / "pbrt_fire.nvdb").string(), {sparse_grid(), temperature});
+  const Scene nano = load_scene(pbrt(R"("string filename" "pbrt_smoke.nvdb")"));
+  EXPECT_EQ(nano.media.at(0).grid->values, g.values);
+  EXPECT_LT((nano.media.at(0).grid->to_world.matrix() - g.to_world.matrix()).norm(), 1e-9);
+  // An emitting grid scaled off loads; scaled on, or a file that is not there, is one line.
   EXPECT_NO_THROW(
       import_pbrt_scene(pbrt(R"("string filename" "pbrt_fire.vdb" "float Lescale" 0)"), {}));
   const std::vector<std::pair<std::string, std::string>> bad = {
       {R"("string filename" "pbrt_fire.vdb")", "an emitting grid (\"temperature\" in"},
-      {R"("string filename" "cloud.nvdb")", "whose file is not an OpenVDB .vdb file"},
+      {R"("string filename" "pbrt_fire.nvdb")", "an emitting grid (\"temperature\" in"},
+      {R"("string filename" "cloud.nvdb")", "cannot open it"},
       {R"("string filename" "pbrt_smoke.vdb" "string gridname" "smoke")",
        "no grid named \"smoke\""},
   };

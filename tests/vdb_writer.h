@@ -1,6 +1,6 @@
 #pragma once
-// OpenVDB files written for the VDB medium tests and the fuzz harness's seeds, and OpenVDB's own
-// trilinear sampler as the truth to test kasha's reconstruction against.
+// OpenVDB (and NanoVDB) files written for the VDB medium tests and the fuzz harness's seeds, and
+// OpenVDB's own trilinear sampler as the truth to test kasha's reconstruction against.
 #include <Eigen/Geometry>
 #include <array>
 #include <memory>
@@ -22,6 +22,10 @@ struct TestVdbGrid {
 
 // Writes the grids to one .vdb file.
 void write_vdb(const std::string& path, const std::vector<TestVdbGrid>& grids);
+// Writes the grids to one NanoVDB .nvdb file (pbrt-v4's), with full checksums, zipped or not.
+void write_nvdb(const std::string& path, const std::vector<TestVdbGrid>& grids, bool zip = false);
+// Writes a NanoVDB grid of 3-vectors named `name`.
+void write_vec3_nvdb(const std::string& path, const std::string& name);
 // Writes a grid of 3-vectors named `name` (kasha reads float grids only).
 void write_vec3_vdb(const std::string& path, const std::string& name);
 

@@ -1,9 +1,15 @@
 #include "scene/vdb_grid.h"
 
+#include <nanovdb/util/GridValidator.h>
+#include <nanovdb/util/IO.h>
+#include <nanovdb/util/NanoToOpenVDB.h>
 #include <openvdb/openvdb.h>
 
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iostream>  // before NanoVDB 32.4's GridValidator.h, which uses std::cerr without it
 #include <mutex>
 
 #include "core/error.h"
@@ -18,11 +24,136 @@ void initialize_openvdb() {
   std::call_once(once, [] { openvdb::initialize(); });
 }
 
+// Whether the file starts as a NanoVDB file does (pbrt-v4's own grids, .nvdb) rather than as
+// an OpenVDB one: the contents decide, as each library's reader would.
+bool is_nanovdb_file(const std::string& path, const std::string& shown) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in || std::filesystem::is_directory(path)) throw Error(shown + ": cannot open it");
+  uint64_t magic = 0;
+  return in.read(reinterpret_cast<char*>(&magic), sizeof magic) &&
+         (magic == NANOVDB_MAGIC_NUMBER ||
+          magic == nanovdb::io::reverseEndianness(NANOVDB_MAGIC_NUMBER));
+}
+
+// NanoVDB's reader trusts the counts and sizes in a file's segment headers (allocating what they
+// say): they are checked against the file's length first, so a damaged file is one line.
+void check_nanovdb_headers(const std::string& path, const std::string& shown) {
+  std::ifstream in(path, std::ios::binary);
+  const uint64_t length = std::filesystem::file_size(path);
+  uint64_t at = 0;
+  nanovdb::io::Header header;
+  while (at < length && in.read(reinterpret_cast<char*>(&header), sizeof header)) {
+    at += sizeof header;
+    if (header.magic != NANOVDB_MAGIC_NUMBER) return;  // NanoVDB's reader says what is wrong
+    // The segment's grid headers, then their grids' bytes.
+    uint64_t data = 0;
+    for (int g = 0; g < header.gridCount; ++g) {
+      nanovdb::io::MetaData meta;
+      if (!in.read(reinterpret_cast<char*>(&meta), sizeof meta) || meta.nameSize > length - at)
+        throw Error(shown + ": a damaged NanoVDB file (a grid's header runs past its end)");
+      at += sizeof meta + meta.nameSize;
+      in.seekg(meta.nameSize, std::ios::cur);
+      // Uncompressed, a grid's bytes in memory are its bytes on disk; a zipped one is capped.
+      const bool plain = header.codec == nanovdb::io::Codec::NONE;
+      if (meta.fileSize > length || (plain && meta.gridSize != meta.fileSize) ||
+          meta.gridSize > (uint64_t(1) << 36))
+        throw Error(shown + ": a damaged NanoVDB file (a grid's size disagrees with the file's)");
+      data += meta.fileSize;
+    }
+    if (at > length || data > length - at)
+      throw Error(shown + ": a damaged NanoVDB file (its grids run past its end)");
+    at += data;
+    in.seekg(static_cast<std::streamoff>(at));
+  }
+}
+
+// What NanoVDB's validator reads before it can check anything (the grid's and tree's headers,
+// the root's table, each level's run of nodes) lies inside the buffer read: a damaged size field
+// would otherwise send it, or the checksum's walk, past the buffer's end.
+void check_nanovdb_layout(const nanovdb::GridHandle<nanovdb::HostBuffer>& handle,
+                          const std::string& who) {
+  using Tree = nanovdb::NanoTree<float>;
+  const uint64_t size = handle.size(), head = sizeof(nanovdb::GridData) + sizeof(Tree::DataType);
+  const uint8_t* data = handle.data();
+  const auto damaged = [&](const char* what) {
+    return Error(who + ": a damaged NanoVDB file (" + what + ")");
+  };
+  if (!data || size < head) throw damaged("its grid is shorter than its headers");
+  const auto* grid = reinterpret_cast<const nanovdb::GridData*>(data);
+  if (grid->mMagic != NANOVDB_MAGIC_NUMBER || grid->mGridSize != size)
+    throw damaged("its grid's header disagrees with its size");
+  const auto* tree = reinterpret_cast<const Tree::DataType*>(data + sizeof(nanovdb::GridData));
+  const uint64_t tree_at = sizeof(nanovdb::GridData);
+  const uint64_t node_size[3] = {sizeof(nanovdb::NanoLeaf<float>),
+                                 sizeof(nanovdb::NanoLower<float>),
+                                 sizeof(nanovdb::NanoUpper<float>)};
+  for (int level = 0; level < 3; ++level) {
+    const uint64_t at = tree->mNodeOffset[level], count = tree->mNodeCount[level];
+    if (count > 0 && (at > size - tree_at || count > (size - tree_at - at) / node_size[level]))
+      throw damaged("its nodes run past its end");
+  }
+  const uint64_t root = tree->mNodeOffset[3];
+  const uint64_t root_head = sizeof(nanovdb::NanoRoot<float>);
+  if (root > size - tree_at || root_head > size - tree_at - root)
+    throw damaged("its root runs past its end");
+  const auto* root_data =
+      reinterpret_cast<const nanovdb::NanoRoot<float>::DataType*>(data + tree_at + root);
+  if (root_data->mTableSize >
+      (size - tree_at - root - root_head) / sizeof(nanovdb::NanoRoot<float>::Tile))
+    throw damaged("its root's table runs past its end");
+}
+
+// The named float grid of a NanoVDB file as an OpenVDB grid (null where it has none), checked by
+// NanoVDB's validator (its checksum where the file has one) before it is walked.
+openvdb::GridBase::Ptr read_nanovdb_grid(const std::string& path, const std::string& shown,
+                                         const std::string& name, bool tree) {
+  const std::string who = shown + ": grid \"" + printable(name) + "\"";
+  nanovdb::GridHandle<nanovdb::HostBuffer> handle;
+  try {
+    check_nanovdb_headers(path, shown);
+    if (!nanovdb::io::hasGrid(path, name)) return nullptr;
+    if (!tree) return openvdb::FloatGrid::create();  // only whether it is there
+    handle = nanovdb::io::readGrid<nanovdb::HostBuffer>(path, name);
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(shown + ": cannot read it as a NanoVDB file (" + printable(e.what()) + ")");
+  }
+  const nanovdb::GridMetaData* meta = handle.gridMetaData();
+  if (!meta || handle.size() < sizeof(nanovdb::GridData))
+    throw Error(who + ": a damaged NanoVDB file (no grid in its buffer)");
+  const nanovdb::NanoGrid<float>* grid = handle.grid<float>();
+  if (!grid) {
+    const nanovdb::GridType type = meta->gridType();  // toStr's table stops at End
+    throw Error(who + " holds " +
+                (type < nanovdb::GridType::End ? nanovdb::toStr(type) : "unknown") +
+                " values, not float densities");
+  }
+  check_nanovdb_layout(handle, who);
+  if (!nanovdb::isValid(*grid, true, false))
+    throw Error(who + ": a damaged NanoVDB file (NanoVDB's validator refuses it)");
+  openvdb::FloatGrid::Ptr open = nanovdb::nanoToOpenVDB(*grid);
+  // The map as NanoVDB applies it (pbrt-v4 samples through it): NanoVDB 32.4's converter hands
+  // OpenVDB its rotation transposed. Its columns: where the index axes go.
+  const nanovdb::Vec3d o = grid->indexToWorld(nanovdb::Vec3d(0, 0, 0));
+  openvdb::Mat4d m = openvdb::Mat4d::identity();
+  for (int a = 0; a < 3; ++a) {
+    nanovdb::Vec3d e(0, 0, 0);
+    e[a] = 1;
+    const nanovdb::Vec3d axis = grid->indexToWorld(e) - o;
+    for (int r = 0; r < 3; ++r) m(a, r) = axis[r];  // OpenVDB's rows map index axis a
+    m(3, a) = o[a];
+  }
+  open->setTransform(openvdb::math::Transform::createLinearTransform(m));
+  return open;
+}
+
 // The named grid of the file (null where it has none), or one line naming the file. With
-// `tree` false, only whether it is there.
+// `tree` false, only whether it is there. A NanoVDB file is read through NanoVDB and converted.
 openvdb::GridBase::Ptr read_grid(const std::string& path, const std::string& shown,
                                  const std::string& name, bool tree) {
   initialize_openvdb();
+  if (is_nanovdb_file(path, shown)) return read_nanovdb_grid(path, shown, name, tree);
   try {
     openvdb::io::File file(path);
     file.open(false);  // no delayed loading: the file is read once and closed

@@ -1,11 +1,11 @@
-// Writes scenes/pbrt/vdb_smoke.vdb, the OpenVDB grid of scenes/pbrt/vdb_smoke.pbrt, and the same
-// grid as a NanoVDB file for pbrt-v4, whose nanovdb medium reads only those; pbrt-v4's render of
-// the scene with the .nvdb file is tests/data/pbrt-v4/vdb_smoke.exr (tests/data/SOURCES.md).
-// Not built by CMake: it needs NanoVDB's headers, which Debian lacks and pbrt-v4's sources carry.
+// Writes the grid of scenes/pbrt/vdb_smoke.pbrt as an OpenVDB file and as the zipped NanoVDB file
+// that scene names (pbrt-v4's nanovdb medium reads only NanoVDB); pbrt-v4's render of the scene is
+// tests/data/pbrt-v4/vdb_smoke.exr (tests/data/SOURCES.md). Not built by CMake (a one-off); with
+// Debian's libopenvdb-dev and libnanovdb-dev:
 //
-//   g++ -std=c++17 -O2 -I $PBRT/src/ext/openvdb/nanovdb tests/tools/make_vdb_smoke.cpp \
-//     -DOPENVDB_ABI_VERSION_NUMBER=10 -lopenvdb -ltbb -lImath-3_1 -o make_vdb_smoke
-//   ./make_vdb_smoke scenes/pbrt/vdb_smoke.vdb vdb_smoke.nvdb
+//   g++ -std=c++17 -O2 -DNANOVDB_USE_ZIP tests/tools/make_vdb_smoke.cpp \
+//     -DOPENVDB_ABI_VERSION_NUMBER=10 -lopenvdb -ltbb -lImath-3_1 -lz -o make_vdb_smoke
+//   ./make_vdb_smoke vdb_smoke.vdb scenes/pbrt/vdb_smoke.nvdb
 //
 // The smoke is scripts/make_pbrt_smoke.py's lopsided, rippled blob, sampled at the voxels of a
 // 41 × 41 × 41 lattice 0.025 apart, turned 12° about x by the file's own map; voxels below 0.002
@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
         ++active;
       }
   openvdb::io::File(argv[1]).write({grid});
-  nanovdb::io::writeGrid(argv[2], nanovdb::openToNanoVDB(*grid));
+  nanovdb::io::writeGrid(argv[2], nanovdb::openToNanoVDB(*grid), nanovdb::io::Codec::ZIP);
   std::printf("%d active voxels\n", active);
   return 0;
 }

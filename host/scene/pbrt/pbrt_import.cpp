@@ -748,9 +748,9 @@ class Importer {
     }
   }
 
-  // MakeNamedMedium (pbrt-v4's media.cpp): a homogeneous, uniformgrid or nanovdb (a .vdb file)
-  // medium as kasha's "media" entry; the other types are read but refused where a shape, the
-  // camera or a light is put in one.
+  // MakeNamedMedium (pbrt-v4's media.cpp): a homogeneous, uniformgrid or nanovdb medium as kasha's
+  // "media" entry; the other types are read but refused where a shape, the camera or a light is put
+  // in one.
   void make_medium(const std::string& name, const PbrtParameters& params, const PbrtLocation& where) {
     const std::string type = params.get_string("type", "");
     if (type.empty()) pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) + ": no \"type\"");
@@ -759,19 +759,12 @@ class Importer {
       refuse_medium(name, where,
                     "is a \"" + type +
                         "\" medium, which kasha does not build (homogeneous, "
-                        "uniformgrid, nanovdb given a .vdb file)");
+                        "uniformgrid, nanovdb)");
       return;
     }
     if (type == "nanovdb" && params.get_string("filename", "").empty())
       pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) +
                            ": Must supply \"filename\" to \"nanovdb\" medium");
-    if (type == "nanovdb" && !is_vdb(vdb_file(params))) {
-      refuse_medium(name, where,
-                    "is a \"nanovdb\" medium whose file is not an OpenVDB .vdb file: kasha reads "
-                    "grids through Debian's OpenVDB, which has no NanoVDB (convert it to .vdb with "
-                    "NanoVDB's nanovdb_convert)");
-      return;
-    }
     if (params.find("preset", "string"))
       pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) +
                            ": \"preset\" is not built in kasha: give \"sigma_a\" and \"sigma_s\"");
@@ -847,20 +840,15 @@ class Importer {
     media_.erase(name);
   }
 
-  static bool is_vdb(const std::filesystem::path& file) {
-    std::string ext = file.extension().string();
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext == ".vdb";
-  }
-
   std::filesystem::path vdb_file(const PbrtParameters& params) const {
     std::filesystem::path path(params.get_string("filename", ""));
     return path.is_relative() && !path.empty() ? base_dir_ / path : path;
   }
 
-  // pbrt-v4's nanovdb medium (NanoVDBMedium::Create) given an OpenVDB .vdb file: its "gridname"
-  // grid, in the space of the transform current at MakeNamedMedium; an emitting one (a
-  // "temperaturename" grid in the file, "Lescale" not 0) refused.
+  // pbrt-v4's nanovdb medium (NanoVDBMedium::Create): its "gridname" grid of a NanoVDB .nvdb file
+  // (or of an OpenVDB .vdb file: the contents decide), in the space of the transform current at
+  // MakeNamedMedium; an emitting one (a "temperaturename" grid in the file, "Lescale" not 0)
+  // refused.
   nlohmann::json vdb_medium(const std::string& name, const PbrtParameters& params,
                             const PbrtLocation& where) {
     const std::string what = "MakeNamedMedium " + in_quotes(name);
