@@ -92,7 +92,13 @@ INSTANTIATE_TEST_SUITE_P(
                       ReferenceCase{"vdb_smoke", {}, 32},
                       // The fog cube glowing as well (a homogeneous medium's Le and Lescale):
                       // emission picked up at the camera path's collisions.
-                      ReferenceCase{"emitting_fog", {}, 32}),
+                      ReferenceCase{"emitting_fog", {}, 32},
+                      // A uniformgrid glowing as a blackbody of its temperature grid (offset and
+                      // scaled) times its Lescale grid, and scattering.
+                      ReferenceCase{"fire_grid", {}, 32},
+                      // The same file's temperature grid glowing (nanovdb's temperaturename,
+                      // offset, scale and Lescale), read on the density's voxels.
+                      ReferenceCase{"vdb_fire", {}, 32}),
     [](const auto& info) { return info.param.scene; });
 
 // --max-depth N as pbrt-v4's maxdepth: the Cornell box with direct light alone (1) and one bounce

@@ -121,7 +121,7 @@ TEST(VdbMedium, BadVdbFilesAreOneLine) {
       {R"({"vdb": "negative.vdb"})", "a density must be finite, not negative and at most 1e30"},
       {R"({"vdb": "background.vdb"})", "its background must be 0"},
       {R"({"vdb": "level_set.vdb"})", "is a level set"},
-      {R"({"vdb": "vector.vdb"})", "not float densities"},
+      {R"({"vdb": "vector.vdb"})", "values, not floats"},
       {R"({"vdb": "good.vdb"}, "bounds": {"min": [0, 0, 0], "max": [1, 1, 1]})",
        "an OpenVDB grid's bounds are its own"},
       {R"({"vdb": "good.vdb", "values": [1]})", "unknown key"},
@@ -181,7 +181,7 @@ TEST(VdbMedium, BadNanoVdbFilesAreOneLine) {
       {R"({"vdb": "old.nvdb"})", "cannot read it as a NanoVDB file"},
       {R"({"vdb": "flipped.nvdb"})", "NanoVDB's validator refuses it"},
       {R"({"vdb": "huge.nvdb"})", "a grid's size disagrees with the file's"},
-      {R"({"vdb": "vector.nvdb"})", "holds Vec3f values, not float densities"},
+      {R"({"vdb": "vector.nvdb"})", "holds Vec3f values, not floats"},
       {R"({"vdb": "good.nvdb", "grid": "smoke"})", "no grid named \"smoke\""},
       {R"({"vdb": "level_set.nvdb"})", "is a level set"},
   };
@@ -189,8 +189,8 @@ TEST(VdbMedium, BadNanoVdbFilesAreOneLine) {
 }
 
 // pbrt-v4's nanovdb medium given a .vdb or .nvdb file: its grid, in the space of the transform
-// current at MakeNamedMedium, as kasha's VDB grid. A file with an emitting temperature grid
-// ("Lescale" not 0), or none at all, is refused with one line.
+// current at MakeNamedMedium, as kasha's VDB grid, with its temperature grid's blackbody emission
+// where it has one; a temperature off the density's voxels, or no file, is refused in one line.
 TEST(VdbMedium, PbrtNanovdbImportsAsKashasGrid) {
   const std::filesystem::path dir = scratch_dir();
   TestVdbGrid temperature = sparse_grid();
@@ -232,12 +232,26 @@ AttributeEnd
   const Scene nano = load_scene(pbrt(R"("string filename" "pbrt_smoke.nvdb")"));
   EXPECT_EQ(nano.media.at(0).grid->values, g.values);
   EXPECT_LT((nano.media.at(0).grid->to_world.matrix() - g.to_world.matrix()).norm(), 1e-9);
-  // An emitting grid scaled off loads; scaled on, or a file that is not there, is one line.
-  EXPECT_NO_THROW(
-      import_pbrt_scene(pbrt(R"("string filename" "pbrt_fire.vdb" "float Lescale" 0)"), {}));
+  // A file with a temperature grid emits its blackbody (pbrt-v4's NanoVDBMedium), times Lescale,
+  // the temperature read on the density's samples (here the same values); scaled off, not.
+  for (const char* file : {"pbrt_fire.vdb", "pbrt_fire.nvdb"}) {
+    const Scene fire = load_scene(pbrt(std::string(R"("string filename" ")") + file +
+                                       R"(" "float Lescale" 2 "float temperaturescale" 100)"));
+    const Medium& m = fire.media.at(0);
+    ASSERT_TRUE(m.blackbody.has_value()) << file;
+    EXPECT_EQ(m.grid->temperature, m.grid->values) << file;
+    EXPECT_EQ(m.blackbody->scale, 100) << file;
+    EXPECT_NEAR(m.emission.at(0), 2 * m.sigma_a.at(0), 1e-9) << file;  // σa · Lescale
+  }
+  EXPECT_FALSE(load_scene(pbrt(R"("string filename" "pbrt_fire.vdb" "float Lescale" 0)"))
+                   .media.at(0)
+                   .blackbody.has_value());
+  // A temperature grid on another map than the density's, or no file, is one line.
+  TestVdbGrid shifted = temperature;
+  shifted.index_to_world = Eigen::Translation3d(0.01, 0, 0) * temperature.index_to_world;
+  write_vdb((dir / "pbrt_shifted.vdb").string(), {sparse_grid(), shifted});
   const std::vector<std::pair<std::string, std::string>> bad = {
-      {R"("string filename" "pbrt_fire.vdb")", "an emitting grid (\"temperature\" in"},
-      {R"("string filename" "pbrt_fire.nvdb")", "an emitting grid (\"temperature\" in"},
+      {R"("string filename" "pbrt_shifted.vdb")", "do not line up with the density's"},
       {R"("string filename" "cloud.nvdb")", "cannot open it"},
       {R"("string filename" "pbrt_smoke.vdb" "string gridname" "smoke")",
        "no grid named \"smoke\""},

@@ -35,6 +35,33 @@ static void place_grid(const DensityGrid& g, std::vector<float>& spectra, KMediu
       throw Error("media: a grid's box or transform maps the world beyond float range");
 }
 
+// An emitting grid's scale and temperature samples, and the nodes its blackbody is evaluated at:
+// two per bin (Gauss–Legendre), so each bin holds the blackbody's mean over it.
+static void place_emission_grids(const Medium& m, const WavelengthGrid& grid,
+                                 std::vector<float>& spectra, KMedium& k) {
+  k.emission_scale = k.temperature = k.bin_nodes = -1;
+  k.temperature_offset = 0.0f, k.temperature_scale = 1.0f;
+  if (m.emission.empty() || !m.grid) return;
+  const auto place = [&](const std::vector<float>& v) {
+    if (v.empty()) return -1;
+    if (spectra.size() + v.size() > static_cast<size_t>(std::numeric_limits<int>::max()))
+      throw Error("media: the grids' samples exceed 2^31 floats, more than the kernels can index");
+    const int at = static_cast<int>(spectra.size());
+    spectra.insert(spectra.end(), v.begin(), v.end());
+    return at;
+  };
+  k.emission_scale = place(m.grid->emission_scale);
+  if (!m.blackbody) return;
+  k.temperature = place(m.grid->temperature);
+  k.temperature_offset = static_cast<float>(m.blackbody->offset);
+  k.temperature_scale = static_cast<float>(m.blackbody->scale);
+  std::vector<double> nodes;
+  for (int i = 0; i < grid.bins; ++i)
+    for (double side : {-1.0, 1.0})
+      nodes.push_back(grid.center(i) + side * grid.bin_nm / (2 * std::sqrt(3.0)));
+  k.bin_nodes = append_spectrum(spectra, nodes);
+}
+
 DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_triangles,
                          std::vector<float>& spectra) {
   DeviceMedia d;
@@ -65,6 +92,7 @@ DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_
     k.density = -1;
     if (m.grid) place_grid(*m.grid, spectra, k);
     k.emission = m.emission.empty() ? -1 : append_spectrum(spectra, m.emission);
+    place_emission_grids(m, scene.grid, spectra, k);
     d.media.push_back(k);
   }
   if (!scene.triangle_media.empty())

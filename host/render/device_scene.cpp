@@ -632,6 +632,11 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
                                        [](const Medium& m) { return m.grid.has_value(); });
   d["KASHA_MEDIUM_GRIDS"] = grids ? "1" : "0";
   d["KASHA_MEDIUM_EMISSION"] = scene.emitting_medium() >= 0 ? "1" : "0";
+  // A blackbody's spectrum is computed per collision, in registers: only where a medium has one.
+  const bool blackbody = scene.emitting_medium() >= 0 &&
+                         std::any_of(scene.media.begin(), scene.media.end(),
+                                     [](const Medium& m) { return m.blackbody.has_value(); });
+  d["KASHA_MEDIUM_BLACKBODY"] = grids && blackbody ? "1" : "0";
   d["KASHA_MEDIA_COUNT"] = std::to_string(std::max<size_t>(1, scene.media.size()));
   d["KASHA_SCRATCH_MEDIA"] = std::to_string(scratch_media_offset(scene));
   return d;

@@ -81,6 +81,7 @@ static DensityGrid parse_vdb_density(const JsonNode& node, const JsonNode& densi
   density.finish();
   if (auto b = node.find("bounds")) b->fail("an OpenVDB grid's bounds are its own");
   DensityGrid g = read_vdb_density(p.string(), file.where() + ": " + printable(p.string()), name);
+  g.file_map = g.to_world;
   if (auto t = node.find("transform")) {
     const Eigen::Affine3d to_world = parse_transform(*t);
     if (std::abs(to_world.linear().determinant()) < 1e-12) t->fail("the transform is singular");
@@ -132,6 +133,68 @@ static DensityGrid parse_density_grid(const JsonNode& node) {
   return g;
 }
 
+// Values on a grid medium's samples: {"values": [...]} (one per sample, x fastest) or, for a grid
+// from a VDB file, {"vdb": FILE, "grid": NAME}, a grid of a file whose voxels line up with the
+// density's (the same index-to-world map). Each in [lo, 1e30].
+static std::vector<float> parse_lattice_values(const JsonNode& node, const DensityGrid& lattice,
+                                               double lo) {
+  if (!node.is_object())
+    node.fail("expected {\"values\": [...]} or {\"vdb\": FILE, \"grid\": NAME}");
+  if (node.has("vdb")) {
+    const JsonNode file = node.at("vdb");
+    std::filesystem::path p(file.string());
+    if (p.is_relative()) p = node.base_dir() / p;
+    const JsonNode grid = node.at("grid");
+    node.finish();
+    return read_vdb_on_lattice(p.string(), file.where() + ": " + printable(p.string()),
+                               grid.string(), lattice);
+  }
+  const JsonNode values = node.at("values");
+  node.finish();
+  const std::vector<double> v = values.numbers();
+  const size_t want = static_cast<size_t>(lattice.nx) * lattice.ny * lattice.nz;
+  if (v.size() != want)
+    values.fail("the density's " + std::to_string(lattice.nx) + " x " + std::to_string(lattice.ny) +
+                " x " + std::to_string(lattice.nz) + " samples need " + std::to_string(want) +
+                " values, not " + std::to_string(v.size()));
+  std::vector<float> out;
+  for (double x : v) {
+    if (!(x >= lo && x <= 1e30))
+      values.fail(lo == 0 ? "a value must be finite and not negative" : "a value must be finite");
+    out.push_back(static_cast<float>(x));
+  }
+  return out;
+}
+
+// A medium's emission beyond "emission" (docs/media.md#emitting-grids): "emission_scale" (a
+// number, or a grid's values) and a grid's "temperature" with "temperature_offset" and
+// "temperature_scale".
+static void parse_emission_grids(const JsonNode& node, MediumDesc& d) {
+  if (auto t = node.find("temperature")) {
+    if (!d.grid) t->fail("a temperature needs a grid medium");
+    if (node.has("emission"))
+      t->fail(
+          "a medium emits a spectrum (\"emission\") or a blackbody (\"temperature\"), not both");
+    d.grid->temperature = parse_lattice_values(*t, *d.grid, -1e30);
+    d.blackbody = Blackbody{};
+    if (auto o = node.find("temperature_offset")) d.blackbody->offset = o->number_in(-1e30, 1e30);
+    if (auto c = node.find("temperature_scale")) d.blackbody->scale = c->number_in(0, 1e30);
+  } else {
+    for (const char* key : {"temperature_offset", "temperature_scale"})
+      if (auto k = node.find(key)) k->fail("only with a \"temperature\"");
+  }
+  if (auto e = node.find("emission_scale")) {
+    if (!node.has("emission") && !d.blackbody)
+      e->fail("scales a medium's \"emission\" or \"temperature\", which it has not");
+    if (e->is_number()) {
+      d.emission_scale = e->number_in(0, 1e30);
+    } else {
+      if (!d.grid) e->fail("a grid of emission scales needs a grid medium");
+      d.grid->emission_scale = parse_lattice_values(*e, *d.grid, 0);
+    }
+  }
+}
+
 MediumDesc parse_medium(const JsonNode& node, const std::string& name) {
   if (!node.is_object()) node.fail("expected a medium object");
   MediumDesc d;
@@ -160,6 +223,7 @@ MediumDesc parse_medium(const JsonNode& node, const std::string& name) {
     if (!(std::abs(d.g) < 1)) g->fail("the phase function's g must lie strictly between -1 and 1");
   }
   if (auto e = node.find("emission")) d.emission = parse_spectrum(*e);
+  parse_emission_grids(node, d);
   node.finish();
   return d;
 }
@@ -190,17 +254,19 @@ Medium discretize_medium(const MediumDesc& desc, const WavelengthGrid& grid) {
   for (double& v : m.sigma_s) v *= desc.scale;
   m.g = desc.g;
   m.grid = desc.grid;
-  if (desc.emission) {
+  if (desc.emission || desc.blackbody) {
     // Emitted radiance per unit length: σa·Le (pbrt-v4's), nothing where the medium absorbs
-    // nothing.
-    const std::vector<double> le = grid.resample(*desc.emission);
+    // nothing; a blackbody's spectrum is the kernels' to evaluate at each point's temperature.
+    const std::vector<double> le =
+        desc.emission ? grid.resample(*desc.emission) : std::vector<double>(grid.bins, 1.0);
     double total = 0;
     for (size_t i = 0; i < le.size(); ++i) {
       if (!(le[i] >= 0)) throw Error(desc.where + "/emission: a negative or non-finite radiance");
-      m.emission.push_back(m.sigma_a[i] * le[i]);
+      m.emission.push_back(m.sigma_a[i] * le[i] * desc.emission_scale);
       total += m.emission.back();
     }
     if (!(total > 0)) m.emission.clear();
+    if (!m.emission.empty()) m.blackbody = desc.blackbody;
   }
   for (const FluorophoreDesc& fd : desc.fluorophores) {
     Fluorophore f;

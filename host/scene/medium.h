@@ -38,6 +38,20 @@ struct DensityGrid {
   std::vector<float> values;  // x fastest: values[(z * ny + y) * nx + x], each ≥ 0
   Eigen::Vector3d p0{0, 0, 0}, p1{1, 1, 1};
   Eigen::Affine3d to_world = Eigen::Affine3d::Identity();  // the medium's space to the world's
+  // A VDB grid's own index-to-world map (before the medium's transform), which a temperature
+  // grid of the same file must share; the identity for a grid given by its values.
+  Eigen::Affine3d file_map = Eigen::Affine3d::Identity();
+  // Emission beyond a spectrum (pbrt-v4's emitting grids), on the same samples, empty: none. A
+  // scale of the emission per sample (pbrt-v4's "Lescale" grid), and a temperature per sample
+  // whose blackbody the medium emits (docs/media.md#emitting-grids).
+  std::vector<float> emission_scale, temperature;
+};
+
+// A medium's blackbody emission (pbrt-v4's temperature grids): at a point whose interpolated
+// temperature grid value v gives T = (v − offset)·scale above 100 K, it emits σa times the
+// blackbody of T normalized to peak 1 (pbrt-v4's BlackbodySpectrum), times its emission scale.
+struct Blackbody {
+  double offset = 0, scale = 1;
 };
 
 // A medium as the scene gives it (JSON "media", pbrt-v4's MakeNamedMedium "homogeneous" and
@@ -51,6 +65,8 @@ struct MediumDesc {
   std::vector<FluorophoreDesc> fluorophores;
   std::optional<DensityGrid> grid;  // "grid": σa, σs and the dyes times its density
   SpectrumPtr emission;             // "emission": Le, radiance emitted per unit σa (null: none)
+  double emission_scale = 1;        // "emission_scale" given as a number
+  std::optional<Blackbody> blackbody;  // "temperature" (its grid in grid->temperature)
 };
 
 // A fluorophore on the grid: absorption per bin, and ê (sums to 1 over the bins).
@@ -65,7 +81,10 @@ struct Medium {
   double g = 0;
   std::vector<Fluorophore> fluorophores;
   std::optional<DensityGrid> grid;
-  std::vector<double> emission;  // σa·Le per bin (times the grid's density), empty: none
+  // σa·Le per bin (times the grid's density, its emission scale and, with a blackbody, the
+  // blackbody's spectrum instead of Le), empty: none.
+  std::vector<double> emission;
+  std::optional<Blackbody> blackbody;
   // Some collision in it sends light on (σs > 0 in some bin, or a fluorophore) or emits: its
   // collisions are sampled.
   bool scatters() const;

@@ -1,5 +1,8 @@
 #include "scene/vdb_grid.h"
 
+// clang-format off: before NanoVDB 32.4's GridValidator.h, which uses std::cerr unincluded.
+#include <iostream>
+// clang-format on
 #include <nanovdb/util/GridValidator.h>
 #include <nanovdb/util/IO.h>
 #include <nanovdb/util/NanoToOpenVDB.h>
@@ -9,7 +12,6 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
-#include <iostream>  // before NanoVDB 32.4's GridValidator.h, which uses std::cerr without it
 #include <mutex>
 
 #include "core/error.h"
@@ -127,7 +129,7 @@ openvdb::GridBase::Ptr read_nanovdb_grid(const std::string& path, const std::str
     const nanovdb::GridType type = meta->gridType();  // toStr's table stops at End
     throw Error(who + " holds " +
                 (type < nanovdb::GridType::End ? nanovdb::toStr(type) : "unknown") +
-                " values, not float densities");
+                " values, not floats");
   }
   check_nanovdb_layout(handle, who);
   if (!nanovdb::isValid(*grid, true, false))
@@ -181,15 +183,22 @@ Eigen::Affine3d index_to_world(const openvdb::GridBase& grid, const std::string&
   return a;
 }
 
+// The file's float grid of that name, or one line.
+openvdb::FloatGrid::Ptr read_float_grid(const std::string& path, const std::string& shown,
+                                        const std::string& grid_name, const std::string& who) {
+  const openvdb::GridBase::Ptr base = read_grid(path, shown, grid_name, true);
+  if (!base) throw Error(shown + ": no grid named \"" + printable(grid_name) + "\"");
+  const openvdb::FloatGrid::Ptr grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
+  if (!grid) throw Error(who + " holds " + base->valueType() + " values, not floats");
+  return grid;
+}
+
 }  // namespace
 
 DensityGrid read_vdb_density(const std::string& path, const std::string& shown,
                              const std::string& grid_name) {
-  const openvdb::GridBase::Ptr base = read_grid(path, shown, grid_name, true);
   const std::string who = shown + ": grid \"" + printable(grid_name) + "\"";
-  if (!base) throw Error(shown + ": no grid named \"" + printable(grid_name) + "\"");
-  const openvdb::FloatGrid::Ptr grid = openvdb::gridPtrCast<openvdb::FloatGrid>(base);
-  if (!grid) throw Error(who + " holds " + base->valueType() + " values, not float densities");
+  const openvdb::FloatGrid::Ptr grid = read_float_grid(path, shown, grid_name, who);
   if (grid->getGridClass() == openvdb::GRID_LEVEL_SET)
     throw Error(who + " is a level set, not a fog volume of densities");
   // Beyond the active voxels a grid holds its background: a medium without end unless it is 0.
@@ -232,6 +241,32 @@ DensityGrid read_vdb_density(const std::string& path, const std::string& shown,
       Eigen::Vector3d(double(lo[0]), double(lo[1]), double(lo[2])) - Eigen::Vector3d::Constant(0.5);
   d.p1 = d.p0 + Eigen::Vector3d(double(n[0]), double(n[1]), double(n[2]));
   return d;
+}
+
+std::vector<float> read_vdb_on_lattice(const std::string& path, const std::string& shown,
+                                       const std::string& grid_name, const DensityGrid& lattice) {
+  const std::string who = shown + ": grid \"" + printable(grid_name) + "\"";
+  const openvdb::FloatGrid::Ptr grid = read_float_grid(path, shown, grid_name, who);
+  if (!index_to_world(*grid, who).isApprox(lattice.file_map, 1e-9))
+    throw Error(who + ": its voxels do not line up with the density's (another transform)");
+  // The lattice's samples are at whole indices from p0 + ½ (read_vdb_density).
+  const Eigen::Vector3d lo = lattice.p0 + Eigen::Vector3d::Constant(0.5);
+  std::vector<float> values;
+  values.reserve(static_cast<size_t>(lattice.nx) * lattice.ny * lattice.nz);
+  const openvdb::FloatGrid::ConstAccessor at = grid->getConstAccessor();
+  for (int z = 0; z < lattice.nz; ++z)
+    for (int y = 0; y < lattice.ny; ++y)
+      for (int x = 0; x < lattice.nx; ++x) {
+        const openvdb::Coord c(static_cast<int>(std::lround(lo.x())) + x,
+                               static_cast<int>(std::lround(lo.y())) + y,
+                               static_cast<int>(std::lround(lo.z())) + z);
+        const float v = at.getValue(c);
+        if (!(std::abs(v) <= 1e30f))
+          throw Error(who + ": a value must be finite (voxel " + std::to_string(c.x()) + ", " +
+                      std::to_string(c.y()) + ", " + std::to_string(c.z()) + ")");
+        values.push_back(v);
+      }
+  return values;
 }
 
 bool vdb_has_grid(const std::string& path, const std::string& grid_name) {

@@ -16,6 +16,12 @@ namespace kasha {
 DensityGrid read_vdb_density(const std::string& path, const std::string& shown,
                              const std::string& grid_name);
 
+// The float grid `grid_name` of a .vdb or .nvdb file on the samples of `lattice`, a grid read by
+// read_vdb_density whose file_map the grid must share (a temperature beside a density). Refused
+// with one line as above, and where the maps differ or a value is not finite.
+std::vector<float> read_vdb_on_lattice(const std::string& path, const std::string& shown,
+                                       const std::string& grid_name, const DensityGrid& lattice);
+
 // Whether the .vdb file at `path` holds a grid named `grid_name` (false where it cannot be read).
 bool vdb_has_grid(const std::string& path, const std::string& grid_name);
 

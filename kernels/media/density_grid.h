@@ -18,27 +18,39 @@
 #endif
 
 #if KASHA_MEDIA && KASHA_MEDIUM_GRIDS
-/* Sample (x, y, z) of m's grid; 0 outside it. */
-inline float grid_sample(const SceneView* s, const __global KMedium* m, int x, int y, int z) {
+/* Sample (x, y, z) of the grid of m's lattice whose samples start at `base` in the spectra
+ * buffer (its density, or an emitting grid's scale or temperature); 0 outside it. */
+inline float grid_sample_in(const SceneView* s, const __global KMedium* m, int base, int x, int y, int z) {
   if (x < 0 || y < 0 || z < 0 || x >= m->grid_size[0] || y >= m->grid_size[1] || z >= m->grid_size[2]) return 0.0f;
-  return s->spectra[m->density + (z * m->grid_size[1] + y) * m->grid_size[0] + x];
+  return s->spectra[base + (z * m->grid_size[1] + y) * m->grid_size[0] + x];
 }
 
-/* The density at lattice point q inside the cell whose lowest corner is sample (x, y, z):
+/* That grid's value at lattice point q inside the cell whose lowest corner is sample (x, y, z):
  * trilinear between its eight samples (q's offsets clamped to the cell). */
-inline float grid_trilinear(const SceneView* s, const __global KMedium* m, int x, int y, int z, float3 q) {
+inline float grid_trilinear_in(const SceneView* s, const __global KMedium* m, int base, int x, int y, int z,
+                               float3 q) {
   float3 d = clamp(q - (float3)((float)x, (float)y, (float)z), 0.0f, 1.0f);
-  float c00 = mix(grid_sample(s, m, x, y, z), grid_sample(s, m, x + 1, y, z), d.x);
-  float c10 = mix(grid_sample(s, m, x, y + 1, z), grid_sample(s, m, x + 1, y + 1, z), d.x);
-  float c01 = mix(grid_sample(s, m, x, y, z + 1), grid_sample(s, m, x + 1, y, z + 1), d.x);
-  float c11 = mix(grid_sample(s, m, x, y + 1, z + 1), grid_sample(s, m, x + 1, y + 1, z + 1), d.x);
+  float c00 = mix(grid_sample_in(s, m, base, x, y, z), grid_sample_in(s, m, base, x + 1, y, z), d.x);
+  float c10 = mix(grid_sample_in(s, m, base, x, y + 1, z), grid_sample_in(s, m, base, x + 1, y + 1, z), d.x);
+  float c01 = mix(grid_sample_in(s, m, base, x, y, z + 1), grid_sample_in(s, m, base, x + 1, y, z + 1), d.x);
+  float c11 = mix(grid_sample_in(s, m, base, x, y + 1, z + 1), grid_sample_in(s, m, base, x + 1, y + 1, z + 1), d.x);
   return mix(mix(c00, c10, d.y), mix(c01, c11, d.y), d.z);
 }
 
-/* The density at lattice point q (pbrt-v4's SampledGrid::Lookup). */
-inline float grid_density_at(const SceneView* s, const __global KMedium* m, float3 q) {
+/* The density there. */
+inline float grid_trilinear(const SceneView* s, const __global KMedium* m, int x, int y, int z, float3 q) {
+  return grid_trilinear_in(s, m, m->density, x, y, z, q);
+}
+
+/* The value at lattice point q of the grid at `base` (pbrt-v4's SampledGrid::Lookup). */
+inline float grid_value_at(const SceneView* s, const __global KMedium* m, int base, float3 q) {
   float3 f = floor(q);
-  return grid_trilinear(s, m, (int)f.x, (int)f.y, (int)f.z, q);
+  return grid_trilinear_in(s, m, base, (int)f.x, (int)f.y, (int)f.z, q);
+}
+
+/* The density at lattice point q. */
+inline float grid_density_at(const SceneView* s, const __global KMedium* m, float3 q) {
+  return grid_value_at(s, m, m->density, q);
 }
 
 /* A world point's (w = 1) or direction's (w = 0) place in m's lattice. */

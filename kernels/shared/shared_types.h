@@ -227,8 +227,19 @@ typedef struct {
   /* Its emission σa·Le per bin in the spectra buffer (times the grid's density), -1: none. */
   int emission;
   float to_grid[12];
+  /* A grid's emission beyond a spectrum (kernels/media/medium_emission.h), on the density's
+   * samples in the spectra buffer, -1: none: a scale per sample, and a temperature per sample
+   * whose blackbody (peak 1) takes Le's place where T = (v − temperature_offset) ·
+   * temperature_scale > 100 K, averaged over each bin at its two Gauss nodes (bin_nodes: 2 per
+   * bin, in nm). */
+  int emission_scale;
+  int temperature;
+  int bin_nodes;
+  float temperature_offset;
+  float temperature_scale;
+  int pad[3];
 } KMedium;
-KASHA_STATIC_SIZE(KMedium, 160);
+KASHA_STATIC_SIZE(KMedium, 192);
 
 /* Per leaf triangle (KASHA_MEDIA), its shape's media: inside (behind the front side) and outside,
  * KMedium indices, -1 for vacuum. Equal sides are no boundary: a ray keeps its medium there. */

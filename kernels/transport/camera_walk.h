@@ -150,11 +150,11 @@ inline bool walk_vertex(CameraWalk* w, const SceneView* s, const FilmView* f, Sa
     /* The medium's emission at the collision, σa·Le over the flight's density (medium_flight.h);
      * no other technique finds it, so it counts whole (pbrt-v4's volpath does the same, and
      * only below its maxdepth: the collision would be one scattering vertex more). */
-    bool emits = s->media[w->medium].emission >= 0;
+    bool emits = true;
 #ifdef KASHA_DEPTH_CAP
-    emits = emits && w->depth < KASHA_DEPTH_CAP;
+    emits = w->depth < KASHA_DEPTH_CAP;
 #endif
-    if (emits) pw_add(&w->p, f, s->spectra + s->media[w->medium].emission, 0, 1.0f, rows);
+    if (emits) medium_emission_add(&w->p, s, f, w->medium, h->x, rows);
 #endif
     return walk_medium_samples(w, sampler, v);
   }

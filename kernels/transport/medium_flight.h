@@ -180,6 +180,74 @@ inline int flight(PathWeight* p, const SceneView* s, const FilmView* f, float3 o
   *tbar = pw_flight(p, s, f, &trail, reached == KASHA_FLIGHT_SCATTERED ? *medium : -1, total);
   return reached;
 }
+
+#if KASHA_MEDIUM_EMISSION
+#ifndef KASHA_MEDIUM_BLACKBODY
+#define KASHA_MEDIUM_BLACKBODY 0
+#endif
+#if KASHA_MEDIUM_BLACKBODY
+/* pbrt-v4's BlackbodySpectrum: Planck's law at nm and T kelvin over its value at Wien's peak, a
+ * function of λT alone: (b / λT)^5 (e^(c2/b) − 1) / (e^(c2/λT) − 1). */
+inline float blackbody_normalized(float nm, float T) {
+  const float b = 2.8977721e-3f, c2 = 1.4387769e-2f, peak = 142.32146f; /* e^(c2/b) − 1 */
+  float x = nm * 1e-9f * T, r = b / x;
+  return r * r * r * r * r * peak / (exp(c2 / x) - 1.0f);
+}
+
+/* rows += scale · the path's weight ∘ em ∘ B̂(T), em the medium's σa per bin and B̂ each bin's
+ * blackbody, the mean at its two Gauss nodes (in registers: the spectrum changes per point). */
+inline void pw_add_blackbody(const PathWeight* p, const SceneView* s, const FilmView* f, const __global KMedium* m,
+                             float T, float scale, float* rows) {
+  const __global float* node = s->spectra + m->bin_nodes;
+  const __global float* em = s->spectra + m->emission;
+  float le[KASHA_BINS];
+  for (int i = 0; i < KASHA_BINS; ++i)
+    le[i] = 0.5f * (blackbody_normalized(node[2 * i], T) + blackbody_normalized(node[2 * i + 1], T));
+#if KASHA_FULL_MATRIX
+  for (int r = 0; r < KASHA_FILM_ROWS; ++r) {
+    float sum = 0.0f;
+    for (int i = 0; i < KASHA_BINS; ++i) sum += p->T[r][i] * em[i] * le[i];
+    rows[r] += scale * sum;
+  }
+#else
+#if KASHA_FLUORESCENCE
+  if (p->rank1) {
+    float sum = 0.0f;
+    for (int i = 0; i < KASHA_BINS; ++i) sum += p->b[i] * em[i] * le[i];
+    for (int r = 0; r < KASHA_FILM_ROWS; ++r) rows[r] += scale * sum * p->c[r];
+    return;
+  }
+#endif
+  for (int i = 0; i < KASHA_BINS; ++i) le[i] *= p->w[i];
+  film_rows(f, le, em, 0, scale, rows);
+#endif
+}
+#endif
+
+/* A camera path's collision at x in `medium` picks up what the medium emits there (docs/media.md
+ * #emitting-media): σa·Le over the flight's density (which the flight's weight divides out),
+ * times an emitting grid's scale at x, with a temperature grid's blackbody in Le's place. */
+inline void medium_emission_add(const PathWeight* p, const SceneView* s, const FilmView* f, int medium, float3 x,
+                                float* rows) {
+  const __global KMedium* m = &s->media[medium];
+  if (m->emission < 0) return;
+  float scale = 1.0f;
+#if KASHA_MEDIUM_GRIDS
+  if (m->density >= 0 && (m->emission_scale >= 0 || m->temperature >= 0)) {
+    float3 q = grid_map(m, x, 1.0f);
+    if (m->emission_scale >= 0) scale = grid_value_at(s, m, m->emission_scale, q);
+#if KASHA_MEDIUM_BLACKBODY
+    if (m->temperature >= 0) {
+      float T = (grid_value_at(s, m, m->temperature, q) - m->temperature_offset) * m->temperature_scale;
+      if (T > 100.0f && scale > 0.0f) pw_add_blackbody(p, s, f, m, T, scale, rows);
+      return;
+    }
+#endif
+  }
+#endif
+  if (scale > 0.0f) pw_add(p, f, s->spectra + m->emission, 0, scale, rows);
+}
+#endif
 #endif
 
 #endif

@@ -136,11 +136,11 @@ inline bool vcm_camera_collision(VcmCamera* c, const SceneView* s, const FilmVie
   /* The medium's emission at the collision counts whole: no light subpath starts in a medium.
    * Once per camera path (`own`: the path is replayed for each chunk of light subpaths), and, as
    * pbrt-v4's volpath, only below the --max-depth cap (the collision would be one vertex more). */
-  bool emits = in->own && m->emission >= 0 && VCM_LENGTH_COUNTS(c->w.depth + 1);
+  bool emits = in->own && VCM_LENGTH_COUNTS(c->w.depth + 1);
 #ifdef KASHA_DEPTH_CAP
   emits = emits && c->w.depth < KASHA_DEPTH_CAP;
 #endif
-  if (emits) pw_add(&c->w.p, f, s->spectra + m->emission, 0, 1.0f, rows);
+  if (emits) medium_emission_add(&c->w.p, s, f, c->w.medium, v->h.x, rows);
 #endif
   if (!walk_medium_samples(&c->w, sampler, v) || !medium_branches(&c->w, s, f, m, probs)) return false;
   VcmVertex cv;

@@ -773,19 +773,15 @@ class Importer {
     nlohmann::json emission;
     if (le) {
       const nlohmann::json v = pbrt_spectrum(*le, PbrtSpectrumUse::kIlluminant, base_dir_);
-      const double le_scale = params.get_float("Lescale", 1);
-      // A grid's "Lescale" is a grid of its own: any Le of one emits, and is refused.
-      if (!(v.is_number() && v.get<double>() == 0) && (type != "homogeneous" || le_scale != 0)) {
-        if (type != "homogeneous")
-          pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) +
-                               ": an emitting grid (\"Le\") is not built in kasha");
-        // pbrt-v4's HomogeneousMedium: Le times Lescale over Le's photometric integral, as a
-        // light's.
+      // pbrt-v4: Le over its photometric integral, as a light's, times "Lescale" — a number for
+      // a homogeneous medium, a grid of its own for a uniformgrid (grid_medium).
+      const double le_scale = type == "homogeneous" ? params.get_float("Lescale", 1) : 1;
+      if (!(v.is_number() && v.get<double>() == 0) && le_scale != 0)
         emission = pbrt_light_spectrum(le, le_scale, base_dir_);
-      }
     }
     nlohmann::json m = {{"type", "homogeneous"}};
-    if (type == "uniformgrid") m = grid_medium(name, params, where);
+    if (type == "uniformgrid")
+      m = grid_medium(name, params, where, le != nullptr, !emission.is_null());
     if (type == "nanovdb") m = vdb_medium(name, params, where);
     for (const char* key : {"sigma_a", "sigma_s"})
       if (const PbrtParameter* p = params.find(key, "rgb spectrum blackbody float"))
@@ -800,13 +796,11 @@ class Importer {
   }
 
   // pbrt-v4's uniformgrid (GridMedium::Create): its density samples over [p0, p1] in the space of
-  // the transform current at MakeNamedMedium; an emitting grid ("temperature", an "Le") refused.
+  // the transform current at MakeNamedMedium; its emission (an "Le" or a "temperature" grid,
+  // times an "Lescale" grid) in emitting_grid.
   nlohmann::json grid_medium(const std::string& name, const PbrtParameters& params,
-                             const PbrtLocation& where) {
+                             const PbrtLocation& where, bool has_le, bool emits_le) {
     const std::string what = "MakeNamedMedium " + in_quotes(name);
-    if (params.find("temperature", "float"))
-      pbrt_fail(where, what + ": an emitting grid (\"temperature\") is not built in kasha");
-    params.find("Lescale", "float");  // it scales "Le" alone, refused above where it emits
     const std::vector<double> density = params.get_numbers("density", "float");
     if (density.empty()) pbrt_fail(where, what + ": no \"density\" value provided for grid medium");
     const int nx = params.get_int("nx", 1), ny = params.get_int("ny", 1),
@@ -828,10 +822,40 @@ class Importer {
         pbrt_fail(where, what + ": \"p0\" and \"p1\" must differ on every axis");
     }
     check_affine(state_.ctm, where);
-    return {{"type", "grid"},
-            {"density", {{"size", {nx, ny, nz}}, {"values", density}}},
-            {"bounds", {{"min", p0}, {"max", p1}}},
-            {"transform", {{"matrix", row_major(state_.ctm)}}}};
+    nlohmann::json m = {{"type", "grid"},
+                        {"density", {{"size", {nx, ny, nz}}, {"values", density}}},
+                        {"bounds", {{"min", p0}, {"max", p1}}},
+                        {"transform", {{"matrix", row_major(state_.ctm)}}}};
+    emitting_grid(m, params, where, what, density.size(), has_le, emits_le);
+    return m;
+  }
+
+  // A uniformgrid's emission as pbrt-v4's GridMedium::Create reads it: a "temperature" per sample
+  // (its blackbody, with "temperatureoffset" or "temperaturecutoff" and "temperaturescale") or
+  // "Le", either times an "Lescale" per sample.
+  void emitting_grid(nlohmann::json& m, const PbrtParameters& params, const PbrtLocation& where,
+                     const std::string& what, size_t samples, bool has_le, bool emits_le) {
+    const std::vector<double> temperature = params.get_numbers("temperature", "float");
+    const std::vector<double> le_scale = params.get_numbers("Lescale", "float");
+    const double offset =
+        params.get_float("temperatureoffset", params.get_float("temperaturecutoff", 0));
+    const double scale = params.get_float("temperaturescale", 1);
+    if (!temperature.empty()) {
+      if (temperature.size() != samples)
+        pbrt_fail(where, what + ": different number of samples (" + std::to_string(samples) +
+                             " vs " + std::to_string(temperature.size()) +
+                             ") provided for \"density\" and \"temperature\"");
+      if (has_le) pbrt_fail(where, what + ": both \"Le\" and \"temperature\" values were provided");
+      m["temperature"] = {{"values", temperature}};
+      m["temperature_offset"] = offset;
+      m["temperature_scale"] = scale;
+    }
+    if (!le_scale.empty() && le_scale.size() != samples)
+      pbrt_fail(where, what + ": expected " + std::to_string(samples) +
+                           " values for \"Lescale\" but were given " +
+                           std::to_string(le_scale.size()));
+    if (!le_scale.empty() && (emits_le || !temperature.empty()))
+      m["emission_scale"] = {{"values", le_scale}};
   }
 
   // A medium kasha does not build: refused where a shape, the camera or a light is put in it.
@@ -847,25 +871,32 @@ class Importer {
 
   // pbrt-v4's nanovdb medium (NanoVDBMedium::Create): its "gridname" grid of a NanoVDB .nvdb file
   // (or of an OpenVDB .vdb file: the contents decide), in the space of the transform current at
-  // MakeNamedMedium; an emitting one (a "temperaturename" grid in the file, "Lescale" not 0)
-  // refused.
+  // MakeNamedMedium; with its "temperaturename" grid, the blackbody of its temperature times
+  // "Lescale".
   nlohmann::json vdb_medium(const std::string& name, const PbrtParameters& params,
                             const PbrtLocation& where) {
     const std::string what = "MakeNamedMedium " + in_quotes(name);
     const std::filesystem::path file = vdb_file(params);
     const std::string grid = params.get_string("gridname", "density");
     const std::string temperature = params.get_string("temperaturename", "temperature");
-    for (const char* unused_without_emission :
-         {"temperatureoffset", "temperaturecutoff", "temperaturescale"})
-      params.find(unused_without_emission, "float");
-    if (params.get_float("Lescale", 1) != 0 && vdb_has_grid(file.string(), temperature))
-      pbrt_fail(where, what + ": an emitting grid (\"" + temperature + "\" in " +
-                           printable(file.string()) + ") is not built in kasha");
+    const double le_scale = params.get_float("Lescale", 1);
+    const double offset =
+        params.get_float("temperatureoffset", params.get_float("temperaturecutoff", 0));
+    const double scale = params.get_float("temperaturescale", 1);
     check_affine(state_.ctm, where);
     // As a mesh's "filename": relative to the scene's folder, which the JSON reader resolves.
-    return {{"type", "grid"},
-            {"density", {{"vdb", params.get_string("filename", "")}, {"grid", grid}}},
-            {"transform", {{"matrix", row_major(state_.ctm)}}}};
+    nlohmann::json m = {{"type", "grid"},
+                        {"density", {{"vdb", params.get_string("filename", "")}, {"grid", grid}}},
+                        {"transform", {{"matrix", row_major(state_.ctm)}}}};
+    // NanoVDBMedium: a file with its temperature grid emits LeScale times the blackbody.
+    if (le_scale != 0 && vdb_has_grid(file.string(), temperature)) {
+      if (!(le_scale > 0)) pbrt_fail(where, what + ": \"Lescale\" must not be negative");
+      m["temperature"] = {{"vdb", params.get_string("filename", "")}, {"grid", temperature}};
+      m["temperature_offset"] = offset;
+      m["temperature_scale"] = scale;
+      m["emission_scale"] = le_scale;
+    }
+    return m;
   }
 
   // A medium that a shape, the camera or a light is put in: its name, or null for vacuum ("").
