@@ -295,4 +295,10 @@ void JsonNode::finish() const {
       throw Error(printable(where_at(path_ + "/" + escape_pointer(it.key())) + ": unknown key"));
 }
 
+std::filesystem::path JsonNode::file_path() const {
+  std::filesystem::path file(string());
+  if (file.empty()) fail("empty file name");
+  return file.is_relative() ? base_dir_ / file : file;
+}
+
 }  // namespace kasha

@@ -40,6 +40,8 @@ class JsonNode {
   // Directory that relative paths in this document are resolved against (empty: the working
   // directory).
   std::filesystem::path base_dir() const { return base_dir_; }
+  // This string as a file's path, a relative one resolved against base_dir(); an empty one fails.
+  std::filesystem::path file_path() const;
 
   bool is_object() const { return json_->is_object(); }
   bool is_array() const { return json_->is_array(); }

@@ -14,7 +14,7 @@ static const std::string& lit(const Scene& scene, const DeviceScene& device_scen
   // Light tracing and photon mapping carry light that starts at lights and emitters only: an
   // emitting medium's light, scattered before the camera path meets it, they never find.
   if (const int m = scene.emitting_medium();
-      m >= 0 && (integrator == "forward" || integrator == "photon" || integrator == "ppm"))
+      m >= 0 && !IntegratorRegistry::find(integrator).traits.sees_medium_emission)
     throw Error(scene.medium_descs[m].where + ": the medium emits, and " + integrator +
                 " takes light from light paths, which start only at lights and emitters: render "
                 "it with backward, vcm or bpt");

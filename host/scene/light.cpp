@@ -103,9 +103,7 @@ Light parse_light(const JsonNode& node) {
       if (node.has("radiance"))
         node.at("radiance").fail("an infinite light takes \"radiance\" or \"image\", not both");
       auto env = std::make_shared<EnvironmentImage>();
-      std::filesystem::path file(image->string());
-      if (file.empty()) image->fail("empty file name");
-      if (file.is_relative()) file = node.base_dir() / file;
+      const std::filesystem::path file = image->file_path();
       env->file = file.string();
       try {
         env->image = read_rgb_image(env->file);

@@ -20,9 +20,7 @@ bool Medium::scatters() const {
 // "quantum_yield" as measured in one solvent, with "name", "solvent" and "source" for people;
 // the scene gives the concentration. Its "csv" paths resolve against the dye file's folder.
 static void read_dye_file(const JsonNode& entry, FluorophoreDesc& f) {
-  const JsonNode name = entry.at("dye");
-  std::filesystem::path p(name.string());
-  if (p.is_relative()) p = entry.base_dir() / p;
+  const std::filesystem::path p = entry.at("dye").file_path();
   const JsonNode dye = JsonNode::load_file(p);
   if (!dye.is_object()) dye.fail("expected a dye object");
   if (!dye.has("kasha_dye")) dye.fail("missing \"kasha_dye\": 1 (not a kasha dye file)");
@@ -75,8 +73,7 @@ static FluorophoreDesc parse_fluorophore(const JsonNode& node) {
 // index to the medium's space, then the medium's "transform" to the world's. No "bounds".
 static DensityGrid parse_vdb_density(const JsonNode& node, const JsonNode& density) {
   const JsonNode file = density.at("vdb");
-  std::filesystem::path p(file.string());
-  if (p.is_relative()) p = density.base_dir() / p;
+  const std::filesystem::path p = file.file_path();
   const std::string name = density.has("grid") ? density.at("grid").string() : "density";
   density.finish();
   if (auto b = node.find("bounds")) b->fail("an OpenVDB grid's bounds are its own");
@@ -142,8 +139,7 @@ static std::vector<float> parse_lattice_values(const JsonNode& node, const Densi
     node.fail("expected {\"values\": [...]} or {\"vdb\": FILE, \"grid\": NAME}");
   if (node.has("vdb")) {
     const JsonNode file = node.at("vdb");
-    std::filesystem::path p(file.string());
-    if (p.is_relative()) p = node.base_dir() / p;
+    const std::filesystem::path p = file.file_path();
     const JsonNode grid = node.at("grid");
     node.finish();
     return read_vdb_on_lattice(p.string(), file.where() + ": " + printable(p.string()),

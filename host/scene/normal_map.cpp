@@ -7,9 +7,7 @@
 namespace kasha {
 
 int read_normal_map(const JsonNode& node, std::vector<NormalMap>& maps) {
-  std::filesystem::path file(node.string());
-  if (file.empty()) node.fail("empty file name");
-  if (file.is_relative()) file = node.base_dir() / file;
+  const std::filesystem::path file = node.file_path();
   for (size_t i = 0; i < maps.size(); ++i)
     if (maps[i].file == file.string()) return static_cast<int>(i);
   NormalMap m;

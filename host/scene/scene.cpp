@@ -316,11 +316,6 @@ static Eigen::Vector3d vec(const JsonNode& n) {
   return {a[0], a[1], a[2]};
 }
 
-static std::filesystem::path relative_to(const JsonNode& node, const std::string& file) {
-  std::filesystem::path p(file);
-  return p.is_relative() ? node.base_dir() / p : p;
-}
-
 // The set of triangles met so far, by their float vertices: open addressing over 64-bit hashes
 // in one flat table, so a million-triangle scene costs one cache miss per triangle (an ordered
 // set took over a second there). -0 and +0 compare equal, so they hash alike.
@@ -476,10 +471,10 @@ static ShapeMesh indexed_triangles(const JsonNode& shape) {
 static ShapeMesh shape_triangles(const JsonNode& shape, const std::string& type) {
   ShapeMesh tris;
   if (type == "obj") {
-    std::filesystem::path file = relative_to(shape, shape.at("file").string());
+    std::filesystem::path file = shape.at("file").file_path();
     tris = obj_triangles(file.string());
   } else if (type == "mesh") {
-    std::filesystem::path file = relative_to(shape, shape.at("file").string());
+    std::filesystem::path file = shape.at("file").file_path();
     tris = mesh_file_triangles(file.string());
   } else if (type == "quad") {
     Eigen::Vector3d u = vec(shape.at("u")), v = vec(shape.at("v"));
@@ -843,7 +838,7 @@ static void parse_materials(const JsonNode& materials, Scene& scene) {
       scene.material_textures.back().normal_map_where = normal_map->where();
     }
     if (auto file = m.find("file")) {
-      std::filesystem::path p = relative_to(m, file->string());
+      std::filesystem::path p = file->file_path();
       auto coat = m.find("coat");  // a measured material under a lacquer
       m.finish();
       scene.material_descs.push_back(load_material_file(p.string(), name));

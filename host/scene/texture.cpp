@@ -32,9 +32,7 @@ void parse_image_texture(const JsonNode& node, Texture& t) {
     }
   }
   JsonNode f = node.at("file");
-  std::filesystem::path file(f.string());
-  if (file.empty()) f.fail("empty file name");
-  if (file.is_relative()) file = node.base_dir() / file;
+  const std::filesystem::path file = f.file_path();
   t.file = file.string();
   try {
     t.image = read_rgb_image(t.file, t.encoding);

@@ -110,10 +110,8 @@ SpectrumPtr parse_spectrum(const JsonNode& node) {
   SpectrumPtr s;
   std::string where = node.where();
   if (auto csv = node.find("csv")) {
-    std::filesystem::path file = std::filesystem::path(csv->string());
-    // An empty name would resolve to the scene's own folder.
-    if (file.empty()) csv->fail("empty file name");
-    if (file.is_relative()) file = node.base_dir() / file;
+    // An empty name would resolve to the scene's own folder: file_path refuses it.
+    const std::filesystem::path file = csv->file_path();
     std::string column;
     if (auto c = node.find("column")) column = c->string();
     s = read_spectrum_csv(file.string(), column);

@@ -132,7 +132,8 @@ KASHA_REGISTER_INTEGRATOR(
     "light tracing: photons from the lights splatted to the camera, constant-energy branching",
     {{"--photons", IntegratorOption::Value::integer, 1, 2147483647, "photons per pass",
       number_text(kForwardPhotons), KASHA_SETTING(photons)}},
-    IntegratorTraits{/*physical*/ true, /*unbiased*/ true,
-                     /*sees camera mirrors*/ false, /*reference*/ false});
+    IntegratorTraits{/*physical*/ true, /*unbiased*/ true, /*sees camera mirrors*/ false,
+                     /*reference*/ false, /*direct by merges*/ false,
+                     /*samples seen light*/ false, /*sees medium emission*/ false});
 
 }  // namespace kasha

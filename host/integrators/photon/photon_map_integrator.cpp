@@ -364,6 +364,7 @@ KASHA_REGISTER_INTEGRATOR(
       "(--edge-correction=false leaves it out)",
       "on", KASHA_SETTING(edge_correction)}},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
-                     /*reference*/ false});
+                     /*reference*/ false, /*direct by merges*/ false,
+                     /*samples seen light*/ false, /*sees medium emission*/ false});
 
 }  // namespace kasha

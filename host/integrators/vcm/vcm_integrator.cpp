@@ -519,6 +519,7 @@ KASHA_REGISTER_INTEGRATOR(
     "non-delta vertex",
     vcm_options(VcmMode::ppm),
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
-                     /*reference*/ false, /*direct by merges*/ true, /*samples seen light*/ true});
+                     /*reference*/ false, /*direct by merges*/ true, /*samples seen light*/ true,
+                     /*sees medium emission*/ false});
 
 }  // namespace kasha
