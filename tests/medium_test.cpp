@@ -324,6 +324,19 @@ TEST(Medium, AnEmittingFurnaceShowsTheEmittersRadianceInEveryIntegrator) {
   }
 }
 
+// A box of `medium` over z in [0.5, 1.5] (an interface shape) seen face on from above by an
+// orthographic camera against black; a small dark emitter far behind the camera gives the scene
+// the light every integrator asks for.
+static std::string emitting_box_scene(const std::string& file, const std::string& medium) {
+  return write_file(file, R"({"kasha_scene": 1,
+    "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "type": "orthographic", "width": 8, "height": 8},
+    "media": {"glow": )" + medium + R"(},
+    "materials": {"black": {}},
+    "shapes": [
+      {"type": "box", "min": [-2, -2, 0.5], "max": [2, 2, 1.5], "interface": true, "medium": {"inside": "glow"}},
+      {"type": "quad", "corner": [-0.1, -0.1, 9], "u": [0.2, 0, 0], "v": [0, 0.2, 0], "material": "black", "emission": 1}]})");
+}
+
 // A slab of a medium that absorbs and emits but does not scatter, seen face on by an orthographic
 // camera against black: L = Le (1 − exp(−σa ∫ρ dz)) in each bin, per bin within 1 %, whatever the
 // density ρ along z. Homogeneous (ρ = 1 over d = 1) in backward and vcm, vcm also with its light
@@ -352,13 +365,7 @@ TEST(Medium, AnEmittingSlabFollowsItsClosedForm) {
       {homogeneous, "vcm", 1, 1 << 20, none}, {grid, "backward", 0.5 * 0.9375, 0, none},
       {homogeneous, "backward", 1, 0, 1},     {homogeneous, "backward", 0, 0, 0}};
   for (const Case& c : cases) {
-    const std::string path = write_file("emitting_slab.json", R"({"kasha_scene": 1,
-    "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "type": "orthographic", "width": 8, "height": 8},
-    "media": {"glow": )" + c.medium + R"(},
-    "materials": {"black": {}},
-    "shapes": [
-      {"type": "box", "min": [-2, -2, 0.5], "max": [2, 2, 1.5], "interface": true, "medium": {"inside": "glow"}},
-      {"type": "quad", "corner": [-0.1, -0.1, 9], "u": [0.2, 0, 0], "v": [0, 0.2, 0], "material": "black", "emission": 1}]})");
+    const std::string path = emitting_box_scene("emitting_slab.json", c.medium);
     RenderSettings s;
     s.integrator = c.integrator;
     s.integrator_settings.spp = 64;
@@ -414,13 +421,7 @@ TEST(Medium, AnEmittingTemperatureGridFollowsItsIntegral) {
     return std::pow(b / x, 5) * std::expm1(c2 / b) / std::expm1(c2 / x);
   };
   for (const std::string integrator : {"backward", "vcm"}) {
-    const std::string path = write_file("emitting_grid.json", R"({"kasha_scene": 1,
-    "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "type": "orthographic", "width": 8, "height": 8},
-    "media": {"fire": )" + medium + R"(},
-    "materials": {"black": {}},
-    "shapes": [
-      {"type": "box", "min": [-2, -2, 0.5], "max": [2, 2, 1.5], "interface": true, "medium": {"inside": "fire"}},
-      {"type": "quad", "corner": [-0.1, -0.1, 9], "u": [0.2, 0, 0], "v": [0, 0.2, 0], "material": "black", "emission": 1}]})");
+    const std::string path = emitting_box_scene("emitting_grid.json", medium);
     RenderSettings settings;
     settings.integrator = integrator;
     settings.integrator_settings.spp = 64;
