@@ -330,7 +330,8 @@ TEST(Medium, AnEmittingFurnaceShowsTheEmittersRadianceInEveryIntegrator) {
 static std::string emitting_box_scene(const std::string& file, const std::string& medium) {
   return write_file(file, R"({"kasha_scene": 1,
     "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "type": "orthographic", "width": 8, "height": 8},
-    "media": {"glow": )" + medium + R"(},
+    "media": {"glow": )" + medium +
+                              R"(},
     "materials": {"black": {}},
     "shapes": [
       {"type": "box", "min": [-2, -2, 0.5], "max": [2, 2, 1.5], "interface": true, "medium": {"inside": "glow"}},
