@@ -170,6 +170,13 @@ TEST(VdbMedium, BadNanoVdbFilesAreOneLine) {
   huge[16 + 8 + 7] = 0x7f;  // the first grid's size on disk (MetaData::fileSize), past the file
   write_file("huge.nvdb", huge);
   write_vec3_nvdb((dir / "vector.nvdb").string(), "density");
+  // A zipped file whose grid's size in memory reads 0: NanoVDB reads an empty buffer and ignores
+  // zlib's error (the fuzz harness's find, which then hung in the validator).
+  write_nvdb((dir / "zipped.nvdb").string(), {sparse_grid()}, true);
+  std::ifstream zin(dir / "zipped.nvdb", std::ios::binary);
+  std::string empty((std::istreambuf_iterator<char>(zin)), std::istreambuf_iterator<char>());
+  for (int b = 16; b < 24; ++b) empty[b] = 0;  // MetaData::gridSize
+  write_file("empty.nvdb", empty);
   TestVdbGrid level_set = sparse_grid();
   level_set.level_set = true;
   write_nvdb((dir / "level_set.nvdb").string(), {level_set});
@@ -178,7 +185,9 @@ TEST(VdbMedium, BadNanoVdbFilesAreOneLine) {
   };
   const std::vector<Case> cases = {
       {R"({"vdb": "cut.nvdb"})", "its grids run past its end"},
-      {R"({"vdb": "old.nvdb"})", "cannot read it as a NanoVDB file"},
+      {R"({"vdb": "old.nvdb"})", "cannot read it as a NanoVDB file (An unrecoverable error in "
+                                 "nanovdb::Segment::read: Incompatible file format"},
+      {R"({"vdb": "empty.nvdb"})", "no grid in its buffer"},
       {R"({"vdb": "flipped.nvdb"})", "NanoVDB's validator refuses it"},
       {R"({"vdb": "huge.nvdb"})", "a grid's size disagrees with the file's"},
       {R"({"vdb": "vector.nvdb"})", "holds Vec3f values, not floats"},

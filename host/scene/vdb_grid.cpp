@@ -8,6 +8,7 @@
 #include <nanovdb/util/NanoToOpenVDB.h>
 #include <openvdb/openvdb.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -119,7 +120,12 @@ openvdb::GridBase::Ptr read_nanovdb_grid(const std::string& path, const std::str
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {
-    throw Error(shown + ": cannot read it as a NanoVDB file (" + printable(e.what()) + ")");
+    // NanoVDB's messages run over lines and tabs: one line of single spaces here.
+    std::string why;
+    for (const char c : std::string(e.what()))
+      if (!std::isspace(static_cast<unsigned char>(c))) why += c;
+      else if (!why.empty() && why.back() != ' ') why += ' ';
+    throw Error(shown + ": cannot read it as a NanoVDB file (" + printable(why) + ")");
   }
   const nanovdb::GridMetaData* meta = handle.gridMetaData();
   if (!meta || handle.size() < sizeof(nanovdb::GridData))
