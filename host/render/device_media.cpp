@@ -13,14 +13,21 @@ static int append_spectrum(std::vector<float>& spectra, const std::vector<double
   return at;
 }
 
+// A grid's samples onto the spectra buffer: where they start (-1 for none).
+static int append_samples(std::vector<float>& spectra, const std::vector<float>& v) {
+  if (v.empty()) return -1;
+  // The kernels index the spectra buffer with an int.
+  if (spectra.size() + v.size() > static_cast<size_t>(std::numeric_limits<int>::max()))
+    throw Error("media: the grids' samples exceed 2^31 floats, more than the kernels can index");
+  const int at = static_cast<int>(spectra.size());
+  spectra.insert(spectra.end(), v.begin(), v.end());
+  return at;
+}
+
 // A grid's samples into the spectra buffer, and the map from the world to its lattice: the
 // medium's space, then the box's unit cube, then n·u − ½ (pbrt-v4's SampledGrid::Lookup).
 static void place_grid(const DensityGrid& g, std::vector<float>& spectra, KMedium& k) {
-  // The kernels index the spectra buffer with an int.
-  if (spectra.size() + g.values.size() > static_cast<size_t>(std::numeric_limits<int>::max()))
-    throw Error("media: the grids' samples exceed 2^31 floats, more than the kernels can index");
-  k.density = static_cast<int>(spectra.size());
-  spectra.insert(spectra.end(), g.values.begin(), g.values.end());
+  k.density = append_samples(spectra, g.values);
   k.grid_size[0] = g.nx, k.grid_size[1] = g.ny, k.grid_size[2] = g.nz;
   const Eigen::Vector3d n(g.nx, g.ny, g.nz), extent = g.p1 - g.p0;
   Eigen::Affine3d lattice = Eigen::Affine3d::Identity();
@@ -42,17 +49,9 @@ static void place_emission_grids(const Medium& m, const WavelengthGrid& grid,
   k.emission_scale = k.temperature = k.bin_nodes = -1;
   k.temperature_offset = 0.0f, k.temperature_scale = 1.0f;
   if (m.emission.empty() || !m.grid) return;
-  const auto place = [&](const std::vector<float>& v) {
-    if (v.empty()) return -1;
-    if (spectra.size() + v.size() > static_cast<size_t>(std::numeric_limits<int>::max()))
-      throw Error("media: the grids' samples exceed 2^31 floats, more than the kernels can index");
-    const int at = static_cast<int>(spectra.size());
-    spectra.insert(spectra.end(), v.begin(), v.end());
-    return at;
-  };
-  k.emission_scale = place(m.grid->emission_scale);
+  k.emission_scale = append_samples(spectra, m.grid->emission_scale);
   if (!m.blackbody) return;
-  k.temperature = place(m.grid->temperature);
+  k.temperature = append_samples(spectra, m.grid->temperature);
   k.temperature_offset = static_cast<float>(m.blackbody->offset);
   k.temperature_scale = static_cast<float>(m.blackbody->scale);
   std::vector<double> nodes;
