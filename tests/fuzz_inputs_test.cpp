@@ -184,6 +184,8 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
      "medium": {"inside": "cloud"}},
     {"type": "box", "min": [-0.2, 0.6, 1.2], "max": [0.1, 0.9, 1.5], "interface": true,
      "medium": {"inside": "puff"}},
+    {"type": "box", "min": [0.5, 0.6, 0.2], "max": [0.8, 0.9, 0.5], "interface": true,
+     "medium": {"inside": "tint"}},
     {"type": "box", "min": [0.4, -1, 0.2], "max": [0.7, -0.7, 0.5], "material": "metal"},
     {"type": "box", "min": [-0.8, -1, 1.1], "max": [-0.5, -0.8, 1.4], "material": "lacquer"},
     {"type": "mesh", "file": "mesh.ply", "material": "lacquer", "transform": {"scale": 0.2, "translate": [0.2, -0.9, 0.3]}},
@@ -198,6 +200,10 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
               "transform": {"rotate": {"axis": [0, 1, 0], "deg": 30}, "translate": [0.3, 0.3, 0.5]}},
     "cloud": {"type": "grid", "sigma_a": 0.5, "sigma_s": 4, "density": {"vdb": "grid.vdb"},
               "transform": {"translate": [-0.5, 0.5, 1.1]}},
+    "tint": {"type": "rgbgrid", "size": [2, 1, 2], "scale": 3, "g": -0.2,
+             "sigma_a": {"rgb_values": [1, 0.2, 0.1, 0, 0, 0, 0.5, 0.1, 0.05, 0.2, 0.4, 1]},
+             "sigma_s": {"rgb_values": [0.5, 0.5, 0.5, 1, 1, 1, 0.2, 0.2, 0.2, 0.1, 0.3, 0.9]},
+             "bounds": {"min": [0.5, 0.6, 0.2], "max": [0.8, 0.9, 0.5]}},
     "puff": {"type": "grid", "sigma_a": 0.3, "sigma_s": 2, "density": {"vdb": "grid.nvdb"},
              "transform": {"translate": [-0.05, 0.75, 1.35]}},
     "ember": {"type": "grid", "sigma_a": 2, "sigma_s": 0.1, "density": {"vdb": "grid.nvdb"},
@@ -472,6 +478,8 @@ AttributeBegin
   Shape "sphere" "float radius" 0.15
 AttributeEnd
 MakeNamedMedium "ink" "string type" "homogeneous" "rgb sigma_a" [0.5 2 4] "rgb sigma_s" [0 0 0] "float scale" 2
+MakeNamedMedium "tint" "string type" "rgbgrid" "integer nx" 2 "rgb sigma_a" [1 0.2 0.1 0.2 0.4 1]
+  "point3 p0" [0.5 0.6 0.2] "point3 p1" [0.8 0.9 0.5] "float scale" 2 "float g" 0.5
 MakeNamedMedium "haze" "string type" "homogeneous" "spectrum sigma_a" [400 0.1 830 0.3] "float sigma_s" 0 "float g" 0.3
 AttributeBegin
   Translate 0.2 0.5 0

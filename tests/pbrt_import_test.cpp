@@ -438,9 +438,9 @@ TEST(PbrtImport, BadInputIsOneLineWithItsFileAndLine) {
        "b.pbrt:5: \"texture reflectance\": no spectrum texture named \"nope\" was defined before"},
       {"MediumInterface \"fog\" \"\"\n" + std::string(kQuad),
        "b.pbrt:6: no medium named \"fog\" (MakeNamedMedium)"},
-      {"MakeNamedMedium \"smoke\" \"string type\" \"rgbgrid\"\nMediumInterface \"smoke\" \"\"\n" +
+      {"MakeNamedMedium \"smoke\" \"string type\" \"cloud\"\nMediumInterface \"smoke\" \"\"\n" +
            std::string(kQuad),
-       "b.pbrt:7: MakeNamedMedium \"smoke\" ("},  // (its FILE:LINE) is an "rgbgrid" medium …
+       "b.pbrt:7: MakeNamedMedium \"smoke\" ("},  // (its FILE:LINE) is a "cloud" medium …
       {"AttributeEnd", "b.pbrt:5: AttributeEnd without its AttributeBegin"},
       {"AttributeBegin", "b.pbrt:5: AttributeBegin without its AttributeEnd"},
       {"Include \"missing.pbrt\"", "b.pbrt:5: "},

@@ -61,9 +61,32 @@ static void place_emission_grids(const Medium& m, const WavelengthGrid& grid,
   k.bin_nodes = append_spectrum(spectra, nodes);
 }
 
+// A colour grid's components (kernels/media/colour_grid.h): their σt and σs spectra end to end
+// (in place of the medium's, which stay for its mean), and trail slots beyond the media's own for
+// all but the first.
+static void place_components(const Medium& m, std::vector<float>& spectra, KMedium& k,
+                             int& trail_slots) {
+  k.components = static_cast<int>(m.components.size());
+  k.uniform_last = m.components.back().values.empty() ? 1 : 0;
+  k.trail_extra = trail_slots;
+  trail_slots += k.components - 1;
+  k.sigma_t = static_cast<int>(spectra.size());
+  for (const GridComponent& c : m.components) append_spectrum(spectra, c.sigma_t);
+  k.sigma_s = static_cast<int>(spectra.size());
+  for (const GridComponent& c : m.components) append_spectrum(spectra, c.sigma_s);
+}
+
+// Its components' weights end to end (the box-wide one, last, has none): where they start.
+static int place_component_grids(const Medium& m, std::vector<float>& spectra) {
+  const int at = static_cast<int>(spectra.size());
+  for (const GridComponent& c : m.components) append_samples(spectra, c.values);
+  return at;
+}
+
 DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_triangles,
                          std::vector<float>& spectra) {
   DeviceMedia d;
+  d.trail_slots = static_cast<int>(scene.media.size());
   for (const Medium& m : scene.media) {
     std::vector<double> sigma_t(m.sigma_a.size());
     for (size_t i = 0; i < sigma_t.size(); ++i) sigma_t[i] = m.sigma_a[i] + m.sigma_s[i];
@@ -80,6 +103,7 @@ DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_
     }
     k.sigma_t = append_spectrum(spectra, sigma_t);
     k.sigma_s = append_spectrum(spectra, m.sigma_s);
+    if (!m.components.empty()) place_components(m, spectra, k, d.trail_slots);
     k.g = static_cast<float>(m.g);
     double sigma_sum = 0, scattered = 0, reemitted = 0;
     for (size_t i = 0; i < sigma_t.size(); ++i) sigma_sum += sigma_t[i], scattered += m.sigma_s[i];
@@ -90,6 +114,7 @@ DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_
     k.elastic_share = k.events > 0 ? static_cast<float>(scattered / (scattered + reemitted)) : 0.0f;
     k.density = -1;
     if (m.grid) place_grid(*m.grid, spectra, k);
+    if (!m.components.empty()) k.density = place_component_grids(m, spectra);
     k.emission = m.emission.empty() ? -1 : append_spectrum(spectra, m.emission);
     place_emission_grids(m, scene.grid, spectra, k);
     d.media.push_back(k);

@@ -578,9 +578,22 @@ static int scratch_media_offset(const Scene& scene) {
   return scratch_coat_offset(scene) + (scene.coated() ? 3 * scene.grid.bins : 0);
 }
 
+// The most components a colour grid of the scene has (kernels/media/colour_grid.h), 0: none.
+static size_t grid_components(const Scene& scene) {
+  size_t most = 0;
+  if (scene.has_media())
+    for (const Medium& m : scene.media) most = std::max(most, m.components.size());
+  return most;
+}
+
 // After the coat's: a shadow ray's transmittance through media (kernels/media/medium.h).
-int scratch_floats(const Scene& scene) {
+static int scratch_components_offset(const Scene& scene) {
   return scratch_media_offset(scene) + (scene.has_media() ? scene.grid.bins : 0);
+}
+
+// Then a colour grid's σt and σs at two points (kernels/media/colour_grid.h).
+int scratch_floats(const Scene& scene) {
+  return scratch_components_offset(scene) + (grid_components(scene) > 0 ? 4 * scene.grid.bins : 0);
 }
 
 KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
@@ -639,6 +652,12 @@ KernelDefines scene_defines(const Scene& scene, bool spectral_film) {
   d["KASHA_MEDIUM_BLACKBODY"] = grids && blackbody ? "1" : "0";
   d["KASHA_MEDIA_COUNT"] = std::to_string(std::max<size_t>(1, scene.media.size()));
   d["KASHA_SCRATCH_MEDIA"] = std::to_string(scratch_media_offset(scene));
+  // A colour grid's components: private arrays that size, a trail slot each.
+  d["KASHA_GRID_COMPONENTS"] = std::to_string(grid_components(scene));
+  size_t slots = std::max<size_t>(1, scene.media.size());
+  for (const Medium& m : scene.media) slots += std::max<size_t>(1, m.components.size()) - 1;
+  d["KASHA_TRAIL_SLOTS"] = std::to_string(slots);
+  d["KASHA_SCRATCH_COMPONENTS"] = std::to_string(scratch_components_offset(scene));
   return d;
 }
 

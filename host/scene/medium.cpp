@@ -5,6 +5,7 @@
 #include "core/error.h"
 #include "core/printable.h"
 #include "scene/transform.h"
+#include "scene/colour_grid.h"
 #include "scene/vdb_grid.h"
 #include "spectrum/spectrum_parser.h"
 
@@ -87,16 +88,8 @@ static DensityGrid parse_vdb_density(const JsonNode& node, const JsonNode& densi
   return g;
 }
 
-// A "grid" medium's "density": {"size": [nx, ny, nz], "values": [...]}, "bounds": {"min", "max"}
-// (default the unit cube) and "transform" (the medium's space to the world's).
-static DensityGrid parse_density_grid(const JsonNode& node) {
-  DensityGrid g;
-  if (!node.has("density")) node.fail("a grid medium needs its \"density\"");
-  const JsonNode density = node.at("density");
-  if (!density.is_object())
-    density.fail("expected {\"size\": [nx, ny, nz], \"values\": [...]} or {\"vdb\": FILE}");
-  if (density.has("vdb")) return parse_vdb_density(node, density);
-  const JsonNode size = density.at("size");
+// A lattice's "size": [nx, ny, nz], each in [1, 4096], at most 2^28 samples.
+static void parse_lattice_size(const JsonNode& size, DensityGrid& g) {
   const std::vector<double> n = size.numbers();
   if (n.size() != 3) size.fail("expected [nx, ny, nz]");
   for (double v : n)
@@ -105,6 +98,33 @@ static DensityGrid parse_density_grid(const JsonNode& node) {
   g.nx = static_cast<int>(n[0]), g.ny = static_cast<int>(n[1]), g.nz = static_cast<int>(n[2]);
   if (n[0] * n[1] * n[2] > static_cast<double>(1 << 28))
     size.fail("a grid holds at most 2^28 samples");
+}
+
+// A grid medium's "bounds": {"min", "max"} (default the unit cube) and "transform" (the medium's
+// space to the world's).
+static void parse_grid_box(const JsonNode& node, DensityGrid& g) {
+  if (auto b = node.find("bounds")) {
+    const auto lo = b->at("min").vec3(), hi = b->at("max").vec3();
+    g.p0 = {lo[0], lo[1], lo[2]}, g.p1 = {hi[0], hi[1], hi[2]};
+    if (!(g.p0.array() < g.p1.array()).all()) b->fail("each of \"min\" must be below \"max\"");
+    b->finish();
+  }
+  if (auto t = node.find("transform")) {
+    g.to_world = parse_transform(*t);
+    if (std::abs(g.to_world.linear().determinant()) < 1e-12) t->fail("the transform is singular");
+  }
+}
+
+// A "grid" medium's "density": {"size": [nx, ny, nz], "values": [...]}, "bounds" and "transform"
+// (parse_grid_box).
+static DensityGrid parse_density_grid(const JsonNode& node) {
+  DensityGrid g;
+  if (!node.has("density")) node.fail("a grid medium needs its \"density\"");
+  const JsonNode density = node.at("density");
+  if (!density.is_object())
+    density.fail("expected {\"size\": [nx, ny, nz], \"values\": [...]} or {\"vdb\": FILE}");
+  if (density.has("vdb")) return parse_vdb_density(node, density);
+  parse_lattice_size(density.at("size"), g);
   const JsonNode values = density.at("values");
   const std::vector<double> v = values.numbers();
   const size_t want = static_cast<size_t>(g.nx) * g.ny * g.nz;
@@ -117,16 +137,39 @@ static DensityGrid parse_density_grid(const JsonNode& node) {
     g.values.push_back(static_cast<float>(x));
   }
   density.finish();
-  if (auto b = node.find("bounds")) {
-    const auto lo = b->at("min").vec3(), hi = b->at("max").vec3();
-    g.p0 = {lo[0], lo[1], lo[2]}, g.p1 = {hi[0], hi[1], hi[2]};
-    if (!(g.p0.array() < g.p1.array()).all()) b->fail("each of \"min\" must be below \"max\"");
-    b->finish();
+  parse_grid_box(node, g);
+  return g;
+}
+
+// An "rgbgrid" medium (scene/colour_grid.h): "size", σa's and σs's {"rgb_values": [r, g, b, ...]}
+// (linear sRGB, 3 per sample, x fastest; either may be left out: 1 in the whole box, not both),
+// "bounds" and "transform".
+static DensityGrid parse_colour_grid(const JsonNode& node) {
+  DensityGrid g;
+  g.coloured = true;
+  parse_lattice_size(node.at("size"), g);
+  const size_t want = 3 * static_cast<size_t>(g.nx) * g.ny * g.nz;
+  for (const char* key : {"sigma_a", "sigma_s"}) {
+    auto c = node.find(key);
+    if (!c) continue;
+    if (!c->is_object() || !c->has("rgb_values"))
+      c->fail("expected {\"rgb_values\": [r, g, b, ...]}, a colour per sample");
+    const JsonNode values = c->at("rgb_values");
+    c->finish();
+    const std::vector<double> v = values.numbers();
+    if (v.size() != want)
+      values.fail("a grid of " + std::to_string(g.nx) + " x " + std::to_string(g.ny) + " x " +
+                  std::to_string(g.nz) + " needs " + std::to_string(want) + " values, not " +
+                  std::to_string(v.size()));
+    std::vector<float>& out = key[6] == 'a' ? g.sigma_a_rgb : g.sigma_s_rgb;
+    for (double x : v) {
+      if (!(x >= 0 && x <= 1e30)) values.fail("a colour must be finite and not negative");
+      out.push_back(static_cast<float>(x));
+    }
   }
-  if (auto t = node.find("transform")) {
-    g.to_world = parse_transform(*t);
-    if (std::abs(g.to_world.linear().determinant()) < 1e-12) t->fail("the transform is singular");
-  }
+  if (g.sigma_a_rgb.empty() && g.sigma_s_rgb.empty())
+    node.fail("an rgbgrid needs \"sigma_a\" or \"sigma_s\" colours");
+  parse_grid_box(node, g);
   return g;
 }
 
@@ -197,16 +240,22 @@ MediumDesc parse_medium(const JsonNode& node, const std::string& name) {
   d.name = name;
   d.where = node.where();
   const std::string type = node.has("type") ? node.at("type").string() : "homogeneous";
-  if (type != "homogeneous" && type != "grid")
-    node.at("type").fail("unknown medium type \"" + type + "\" (homogeneous, grid)");
+  if (type != "homogeneous" && type != "grid" && type != "rgbgrid")
+    node.at("type").fail("unknown medium type \"" + type + "\" (homogeneous, grid, rgbgrid)");
   if (type == "grid") d.grid = parse_density_grid(node);
+  if (type == "rgbgrid") {
+    d.grid = parse_colour_grid(node);
+    for (const char* key : {"fluorophores", "emission", "emission_scale", "temperature"})
+      if (auto k = node.find(key)) k->fail("an rgbgrid medium takes no \"" + std::string(key) + "\"");
+  }
   // pbrt-v4's defaults: σa = σs = 1, scale 1, g 0.
   const auto coefficient = [&](const char* key) -> SpectrumPtr {
     if (auto c = node.find(key)) return parse_spectrum(*c);
     return std::make_shared<ConstantSpectrum>(1.0);
   };
-  d.sigma_a = coefficient("sigma_a");
-  d.sigma_s = coefficient("sigma_s");
+  // An rgbgrid's colours are its grid's; its spectra stay pbrt-v4's 1 (unused).
+  d.sigma_a = type == "rgbgrid" ? std::make_shared<ConstantSpectrum>(1.0) : coefficient("sigma_a");
+  d.sigma_s = type == "rgbgrid" ? std::make_shared<ConstantSpectrum>(1.0) : coefficient("sigma_s");
   if (auto s = node.find("scale")) d.scale = s->number_in(0, 1e30);
   if (auto fl = node.find("fluorophores")) {
     if (!fl->is_array()) fl->fail("expected an array of fluorophores");
@@ -242,6 +291,28 @@ MediumInterface parse_medium_interface(const JsonNode& node, const std::vector<M
   return mi;
 }
 
+// A colour grid's components, and as its sigma_a and sigma_s their mean over the samples: what
+// a collision does on average (vcm's pseudo-densities, whether it scatters at all).
+static void colour_grid_means(Medium& m, double scale, const WavelengthGrid& grid) {
+  m.components = colour_grid_components(*m.grid, scale, grid);
+  m.sigma_a.assign(grid.bins, 0.0);
+  m.sigma_s.assign(grid.bins, 0.0);
+  for (const GridComponent& k : m.components) {
+    double mean = 1;
+    if (!k.values.empty()) {
+      double sum = 0;
+      for (float v : k.values) sum += v;
+      mean = sum / static_cast<double>(k.values.size());
+    }
+    for (int i = 0; i < grid.bins; ++i) {
+      m.sigma_a[i] += mean * (k.sigma_t[i] - k.sigma_s[i]);
+      m.sigma_s[i] += mean * k.sigma_s[i];
+    }
+  }
+  m.grid->sigma_a_rgb.clear();
+  m.grid->sigma_s_rgb.clear();
+}
+
 Medium discretize_medium(const MediumDesc& desc, const WavelengthGrid& grid) {
   Medium m;
   m.sigma_a = grid.resample(*desc.sigma_a);
@@ -250,6 +321,7 @@ Medium discretize_medium(const MediumDesc& desc, const WavelengthGrid& grid) {
   for (double& v : m.sigma_s) v *= desc.scale;
   m.g = desc.g;
   m.grid = desc.grid;
+  if (desc.grid && desc.grid->coloured) colour_grid_means(m, desc.scale, grid);
   if (desc.emission || desc.blackbody) {
     // Emitted radiance per unit length: σa·Le (pbrt-v4's), nothing where the medium absorbs
     // nothing; a blackbody's spectrum is the kernels' to evaluate at each point's temperature.

@@ -45,6 +45,17 @@ struct DensityGrid {
   // scale of the emission per sample (pbrt-v4's "Lescale" grid), and a temperature per sample
   // whose blackbody the medium emits (docs/media.md#emitting-grids).
   std::vector<float> emission_scale, temperature;
+  // A colour grid (pbrt-v4's rgbgrid, scene/colour_grid.h): σa's and σs's linear sRGB colour
+  // per sample (3 floats each, any size ≥ 0) in place of a density; an empty list is 1 in the
+  // whole box.
+  bool coloured = false;
+  std::vector<float> sigma_a_rgb, sigma_s_rgb;
+};
+
+// One component of a colour grid as the kernels track it (kernels/media/colour_grid.h).
+struct GridComponent {
+  std::vector<float> values;             // ρ_k per sample (x fastest); empty: 1 in the whole box
+  std::vector<double> sigma_t, sigma_s;  // per bin, times the medium's scale
 };
 
 // A medium's blackbody emission (pbrt-v4's temperature grids): at a point whose interpolated
@@ -54,8 +65,8 @@ struct Blackbody {
   double offset = 0, scale = 1;
 };
 
-// A medium as the scene gives it (JSON "media", pbrt-v4's MakeNamedMedium "homogeneous" and
-// "uniformgrid").
+// A medium as the scene gives it (JSON "media", pbrt-v4's MakeNamedMedium "homogeneous",
+// "uniformgrid", "rgbgrid" and "nanovdb").
 struct MediumDesc {
   std::string name;
   std::string where;  // FILE: JSON path of its entry, for messages
@@ -85,6 +96,8 @@ struct Medium {
   // blackbody's spectrum instead of Le), empty: none.
   std::vector<double> emission;
   std::optional<Blackbody> blackbody;
+  // A colour grid's components (its sigma_a and sigma_s are then their mean over the samples).
+  std::vector<GridComponent> components;
   // Some collision in it sends light on (σs > 0 in some bin, or a fluorophore) or emits: its
   // collisions are sampled.
   bool scatters() const;

@@ -16,6 +16,10 @@
 #ifndef KASHA_MEDIUM_GRIDS
 #define KASHA_MEDIUM_GRIDS 0
 #endif
+/* The most components a component grid of the scene has (colour_grid.h), 0: none. */
+#ifndef KASHA_GRID_COMPONENTS
+#define KASHA_GRID_COMPONENTS 0
+#endif
 
 #if KASHA_MEDIA && KASHA_MEDIUM_GRIDS
 /* Sample (x, y, z) of the grid of m's lattice whose samples start at `base` in the spectra
@@ -60,27 +64,49 @@ inline float3 grid_map(const __global KMedium* m, float3 p, float w) {
                   a[8] * p.x + a[9] * p.y + a[10] * p.z + a[11] * w);
 }
 
-/* ∫ density over t in [a, b] along q0 + t dq, inside the lattice cell c (a cubic: exact). */
-inline float grid_cell_integral(const SceneView* s, const __global KMedium* m, int3 c, float3 q0, float3 dq, float a,
-                                float b) {
-  const float k = 0.28867513f; /* 1 / (2√3) */
-  float h = b - a, mid = 0.5f * (a + b);
-  return 0.5f * h *
-         (grid_trilinear(s, m, c.x, c.y, c.z, q0 + (mid - k * h) * dq) +
-          grid_trilinear(s, m, c.x, c.y, c.z, q0 + (mid + k * h) * dq));
+#if KASHA_GRID_COMPONENTS
+/* A component grid's component k (colour_grid.h) at lattice point q in cell c: 1 for the box-wide
+ * one (the last, where m->uniform_last), else trilinear between the samples of its grid, the k-th
+ * after m->density. */
+inline float component_trilinear(const SceneView* s, const __global KMedium* m, int k, int3 c, float3 q) {
+  if (m->uniform_last && k == m->components - 1) return 1.0f;
+  int samples = m->grid_size[0] * m->grid_size[1] * m->grid_size[2];
+  return grid_trilinear_in(s, m, m->density + k * samples, c.x, c.y, c.z, q);
+}
+#endif
+
+/* The field a walk integrates, at lattice point q in cell c: the density, or (w non-null) a
+ * component grid's Σ_k w_k ρ_k (colour_grid.h: a bin's σt). */
+inline float grid_field(const SceneView* s, const __global KMedium* m, const float* w, int3 c, float3 q) {
+#if KASHA_GRID_COMPONENTS
+  if (w) {
+    float sum = 0.0f;
+    for (int k = 0; k < m->components; ++k) sum += w[k] * component_trilinear(s, m, k, c, q);
+    return sum;
+  }
+#endif
+  return grid_trilinear(s, m, c.x, c.y, c.z, q);
 }
 
-/* Where in [a, b] (cell c, holding `whole` of the integral) the integral from a reaches r: Newton's
- * method kept in its bracket, bisection where it would leave it. */
-inline float grid_cell_invert(const SceneView* s, const __global KMedium* m, int3 c, float3 q0, float3 dq, float a,
-                              float b, float whole, float r) {
+/* ∫ of the field over t in [a, b] along q0 + t dq, inside the lattice cell c (a cubic: exact). */
+inline float grid_cell_integral(const SceneView* s, const __global KMedium* m, const float* w, int3 c, float3 q0,
+                                float3 dq, float a, float b) {
+  const float k = 0.28867513f; /* 1 / (2√3) */
+  float h = b - a, mid = 0.5f * (a + b);
+  return 0.5f * h * (grid_field(s, m, w, c, q0 + (mid - k * h) * dq) + grid_field(s, m, w, c, q0 + (mid + k * h) * dq));
+}
+
+/* Where in [a, b] (cell c, holding `whole` of the integral) the field's integral from a reaches r:
+ * Newton's method kept in its bracket, bisection where it would leave it. */
+inline float grid_cell_invert(const SceneView* s, const __global KMedium* m, const float* w, int3 c, float3 q0,
+                              float3 dq, float a, float b, float whole, float r) {
   float lo = a, hi = b, t = a + (b - a) * fmin(r / whole, 1.0f);
   for (int k = 0; k < 12; ++k) {
-    float excess = grid_cell_integral(s, m, c, q0, dq, a, t) - r;
+    float excess = grid_cell_integral(s, m, w, c, q0, dq, a, t) - r;
     if (excess == 0.0f) return t;
     if (excess > 0.0f) hi = t;
     else lo = t;
-    float rate = grid_trilinear(s, m, c.x, c.y, c.z, q0 + t * dq);
+    float rate = grid_field(s, m, w, c, q0 + t * dq);
     float next = rate > 0.0f ? t - excess / rate : 0.5f * (lo + hi);
     if (!(next > lo && next < hi)) next = 0.5f * (lo + hi);
     if (fabs(next - t) <= 1e-6f * (b - a)) return next;
@@ -114,39 +140,67 @@ inline void grid_axis(float q0, float dq, float q, int* cell, float* next, float
   *step = dq != 0.0f ? 1.0f / fabs(dq) : INFINITY;
 }
 
-/* ∫ density along org + t dir over [0, len] in m, cell by cell (integer steps: every piece lies in
- * one cell); with target ≥ 0, stops where the integral reaches it: *t_hit that t (else -1).
- * Returns the integral up to where it stopped. */
+/* A ray's walk through the lattice's cells, piece by piece (every piece lies in one cell): the
+ * ray in lattice space, the cell, the t of the planes it leaves by along each axis and between
+ * them, and the t it has reached of the span's end. */
+typedef struct {
+  float3 q0, dq;
+  int3 cell, unit;
+  float3 next, step;
+  float t, end;
+  int left; /* pieces it may still take: a guard against a walk that does not advance */
+} GridWalk;
+
+/* The walk of org + t dir, t in [0, len], through m's lattice; false if it misses the box. */
+inline bool grid_walk_begin(const __global KMedium* m, float3 org, float3 dir, float len, GridWalk* g) {
+  g->q0 = grid_map(m, org, 1.0f);
+  g->dq = grid_map(m, dir, 0.0f);
+  if (!grid_span(m, g->q0, g->dq, len, &g->t, &g->end)) return false;
+  /* The first cell: where the span's first sliver lies. */
+  float3 q = g->q0 + fmin(g->t + 1e-4f * (g->end - g->t), 0.5f * (g->t + g->end)) * g->dq;
+  int cx, cy, cz;
+  float nx, ny, nz, sx, sy, sz;
+  grid_axis(g->q0.x, g->dq.x, q.x, &cx, &nx, &sx);
+  grid_axis(g->q0.y, g->dq.y, q.y, &cy, &ny, &sy);
+  grid_axis(g->q0.z, g->dq.z, q.z, &cz, &nz, &sz);
+  g->cell = (int3)(cx, cy, cz);
+  g->next = (float3)(nx, ny, nz);
+  g->step = (float3)(sx, sy, sz);
+  g->unit = (int3)(g->dq.x > 0.0f ? 1 : -1, g->dq.y > 0.0f ? 1 : -1, g->dq.z > 0.0f ? 1 : -1);
+  g->left = m->grid_size[0] + m->grid_size[1] + m->grid_size[2] + 6;
+  return true;
+}
+
+/* The walk's next piece: its cell *c and its span [*a, *b]; false when the walk is over. */
+inline bool grid_walk_next(GridWalk* g, int3* c, float* a, float* b) {
+  if (g->left-- <= 0 || !(g->t < g->end)) return false;
+  *c = g->cell;
+  *a = g->t;
+  *b = fmax(fmin(fmin(fmin(g->next.x, g->next.y), g->next.z), g->end), g->t);
+  g->t = *b;
+  /* Into the neighbour across the plane it leaves by. */
+  if (g->next.x <= g->next.y && g->next.x <= g->next.z) g->cell.x += g->unit.x, g->next.x += g->step.x;
+  else if (g->next.y <= g->next.z) g->cell.y += g->unit.y, g->next.y += g->step.y;
+  else g->cell.z += g->unit.z, g->next.z += g->step.z;
+  return true;
+}
+
+/* ∫ density along org + t dir over [0, len] in m, cell by cell; with target ≥ 0, stops where the
+ * integral reaches it: *t_hit that t (else -1). Returns the integral up to where it stopped. */
 inline float grid_march(const SceneView* s, const __global KMedium* m, float3 org, float3 dir, float len, float target,
                         float* t_hit) {
   *t_hit = -1.0f;
-  float3 q0 = grid_map(m, org, 1.0f), dq = grid_map(m, dir, 0.0f);
-  float t, end;
-  if (!grid_span(m, q0, dq, len, &t, &end)) return 0.0f;
-  /* The first cell: where the span's first sliver lies. */
-  float3 q = q0 + fmin(t + 1e-4f * (end - t), 0.5f * (t + end)) * dq;
-  int cx, cy, cz;
-  float nx, ny, nz, sx, sy, sz;
-  grid_axis(q0.x, dq.x, q.x, &cx, &nx, &sx);
-  grid_axis(q0.y, dq.y, q.y, &cy, &ny, &sy);
-  grid_axis(q0.z, dq.z, q.z, &cz, &nz, &sz);
-  const int ux = dq.x > 0.0f ? 1 : -1, uy = dq.y > 0.0f ? 1 : -1, uz = dq.z > 0.0f ? 1 : -1;
-  float sum = 0.0f;
-  int most = m->grid_size[0] + m->grid_size[1] + m->grid_size[2] + 6;
-  for (int k = 0; k < most && t < end; ++k) {
-    int3 c = (int3)(cx, cy, cz);
-    float leave = fmin(fmin(fmin(nx, ny), nz), end), until = fmax(leave, t);
-    float piece = grid_cell_integral(s, m, c, q0, dq, t, until);
+  GridWalk g;
+  if (!grid_walk_begin(m, org, dir, len, &g)) return 0.0f;
+  float sum = 0.0f, a, b;
+  int3 c;
+  while (grid_walk_next(&g, &c, &a, &b)) {
+    float piece = grid_cell_integral(s, m, 0, c, g.q0, g.dq, a, b);
     if (target >= 0.0f && sum + piece >= target && piece > 0.0f) {
-      *t_hit = grid_cell_invert(s, m, c, q0, dq, t, until, piece, target - sum);
+      *t_hit = grid_cell_invert(s, m, 0, c, g.q0, g.dq, a, b, piece, target - sum);
       return target;
     }
     sum += piece;
-    t = until;
-    /* Into the neighbour across the plane it leaves by. */
-    if (nx <= ny && nx <= nz) cx += ux, nx += sx;
-    else if (ny <= nz) cy += uy, ny += sy;
-    else cz += uz, nz += sz;
   }
   return sum;
 }

@@ -30,22 +30,30 @@
 #define KASHA_MAX_INTERFACES 64
 
 #include "media/density_grid.h"
+#include "media/colour_grid.h"
 
 #if KASHA_MEDIA
 /* How far a ray has travelled in each medium since its last vertex, as optical length (a grid's
  * ∫ density): a medium's transmittance depends only on that, so the order of the pieces does not
  * matter. */
 typedef struct {
-  float d[KASHA_MEDIA_COUNT];
+  float d[KASHA_TRAIL_SLOTS]; /* one per medium, and a component grid's further components' */
 } MediaTrail;
 
 inline void trail_clear(MediaTrail* t) {
-  for (int m = 0; m < KASHA_MEDIA_COUNT; ++m) t->d[m] = 0.0f;
+  for (int m = 0; m < KASHA_TRAIL_SLOTS; ++m) t->d[m] = 0.0f;
 }
 
 inline void trail_add(MediaTrail* t, int medium, float d) {
   if (medium >= 0) t->d[medium] += d;
 }
+
+#if KASHA_GRID_COMPONENTS
+/* A component grid's integrals ∫ ρ_k (components_march) onto the trail. */
+inline void trail_add_components(MediaTrail* t, const __global KMedium* md, int medium, const float* sums) {
+  for (int k = 0; k < md->components; ++k) t->d[component_slot(md, medium, k)] += sums[k];
+}
+#endif
 
 /* The optical length of org + t dir, t in [0, len], in medium m (≥ 0): len where it is
  * homogeneous. */
@@ -65,6 +73,9 @@ inline float medium_optical_length(const SceneView* s, int m, float3 org, float3
 inline float medium_inverse_density(const SceneView* s, int m, float3 x) {
 #if KASHA_MEDIUM_GRIDS
   const __global KMedium* md = &s->media[m];
+#if KASHA_GRID_COMPONENTS
+  if (md->components > 0) return 1.0f; /* its flights weigh with the true coefficients */
+#endif
   if (md->density >= 0) {
     float d = grid_density_at(s, md, grid_map(md, x, 1.0f));
     return d > 0.0f ? 1.0f / d : 0.0f;
@@ -75,11 +86,22 @@ inline float medium_inverse_density(const SceneView* s, int m, float3 x) {
 
 /* The segment org + t dir, t in [0, len], in `medium` (-1: vacuum), onto the trail. */
 inline void trail_add_span(const SceneView* s, MediaTrail* t, int medium, float3 org, float3 dir, float len) {
-  if (medium >= 0) t->d[medium] += medium_optical_length(s, medium, org, dir, len);
+  if (medium < 0) return;
+#if KASHA_GRID_COMPONENTS
+  const __global KMedium* md = &s->media[medium];
+  if (md->components > 0) {
+    float sums[KASHA_GRID_COMPONENTS], unused;
+    for (int k = 0; k < md->components; ++k) sums[k] = 0.0f;
+    components_march(s, md, org, dir, len, 0, -1.0f, sums, &unused);
+    trail_add_components(t, md, medium, sums);
+    return;
+  }
+#endif
+  t->d[medium] += medium_optical_length(s, medium, org, dir, len);
 }
 
 inline bool trail_empty(const MediaTrail* t) {
-  for (int m = 0; m < KASHA_MEDIA_COUNT; ++m)
+  for (int m = 0; m < KASHA_TRAIL_SLOTS; ++m)
     if (t->d[m] > 0.0f) return false;
   return true;
 }
@@ -89,6 +111,16 @@ inline bool trail_empty(const MediaTrail* t) {
 inline float trail_transmittance(const SceneView* s, const MediaTrail* t, int i) {
   float tau = 0.0f;
   for (int m = 0; m < KASHA_MEDIA_COUNT; ++m) {
+#if KASHA_GRID_COMPONENTS
+    const __global KMedium* md = &s->media[m];
+    if (md->components > 0) {
+      for (int k = 0; k < md->components; ++k) {
+        float d = t->d[component_slot(md, m, k)], sigma = s->spectra[md->sigma_t + k * KASHA_BINS + i];
+        if (d > 0.0f && sigma > 0.0f) tau += sigma * d;
+      }
+      continue;
+    }
+#endif
     if (!(t->d[m] > 0.0f)) continue;
     float sigma = s->spectra[s->media[m].sigma_t + i];
     if (sigma > 0.0f) tau += sigma * t->d[m];

@@ -172,7 +172,7 @@ inline void medium_visible_point(const CameraWalk* w, const SceneView* s, const 
   /* In a grid the photons around x are denser by its density there (medium_inverse_density). */
   float sparse = medium_inverse_density(s, w->medium, x);
   if (branch == 0) {
-    vf_build_medium(layout, vp, w->p.w, s->spectra + m->sigma_s, 0, 0, sparse / probs[0]);
+    vf_build_medium(layout, vp, w->p.w, medium_scattering(s, m), 0, 0, sparse / probs[0]);
   }
 #if KASHA_FLUORESCENCE
   else {

@@ -237,7 +237,14 @@ typedef struct {
   int bin_nodes;
   float temperature_offset;
   float temperature_scale;
-  int pad[3];
+  /* A component grid (kernels/media/colour_grid.h), σa and σs varying in colour over its grid:
+   * its components (0: not one), each a grid of weights (the k-th after `density`) with σt and σs
+   * spectra (the k-th after sigma_t and sigma_s); the first slot of the trail its components
+   * after the first take (the first takes the medium's own); whether the last component is 1
+   * everywhere in the box (pbrt-v4's rgbgrid without a σa or σs grid) and has no samples. */
+  int components;
+  int trail_extra;
+  int uniform_last;
 } KMedium;
 KASHA_STATIC_SIZE(KMedium, 192);
 

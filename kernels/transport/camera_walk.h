@@ -492,7 +492,7 @@ inline bool walk_interface(CameraWalk* w, const SceneView* s, const FilmView* f,
  * probs[0] elastic, probs[1 + k] fluorophore k. False: no branch carries anything on. */
 inline bool medium_branches(const CameraWalk* w, const SceneView* s, const FilmView* f, const __global KMedium* m,
                             float* probs) {
-  float sum = probs[0] = pw_energy(&w->p, f, s->spectra + m->sigma_s);
+  float sum = probs[0] = pw_energy(&w->p, f, medium_scattering(s, m));
 #if KASHA_FLUORESCENCE
   for (int k = 0; k < m->fluorophores; ++k) {
     const __global KFluorophore* fl = &m->fluorophore[k];
@@ -547,7 +547,7 @@ inline void walk_medium_next_event(const CameraWalk* w, const SceneView* s, cons
   const float reach = 1.0f;
 #endif
   float phase = hg_phase(dot(-w->dir, wi), m->g);
-  pw_add(&w->p, f, s->spectra + m->sigma_s, le, base * phase * mis_weight(pdf_light, reach * probs[0] * phase), rows);
+  pw_add(&w->p, f, medium_scattering(s, m), le, base * phase * mis_weight(pdf_light, reach * probs[0] * phase), rows);
 #if KASHA_FLUORESCENCE
   for (int k = 0; k < m->fluorophores; ++k) {
     const __global KFluorophore* fl = &m->fluorophore[k];
@@ -570,7 +570,7 @@ inline bool walk_medium_scatter(CameraWalk* w, const SceneView* s, const FilmVie
   if (!(probs[branch] > 0.0f)) return false;
   if (branch == 0) {
     w->dir = hg_sample(-w->dir, m->g, v->u_dir, &pdf);
-    pw_scatter_diagonal(&w->p, s->spectra + m->sigma_s, 1.0f / probs[0]);
+    pw_scatter_diagonal(&w->p, medium_scattering(s, m), 1.0f / probs[0]);
     w->prev_pdf = probs[0] * pdf;
   }
 #if KASHA_FLUORESCENCE

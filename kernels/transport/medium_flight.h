@@ -55,12 +55,28 @@ inline void pw_transmit(PathWeight* p, const SceneView* s, const MediaTrail* t, 
 
 #if KASHA_SCATTERING
 
+/* σt in bin i at the latest collision in medium m (a component grid's: collision_coefficients'). */
 inline float medium_sigma_t(const SceneView* s, int m, int i) {
+#if KASHA_GRID_COMPONENTS
+  if (s->media[m].components > 0) return s->scratch[KASHA_SCRATCH_COMPONENTS + i];
+#endif
   return s->spectra[s->media[m].sigma_t + i];
 }
 
-inline float medium_sigma_s(const SceneView* s, int m, int i) {
-  return s->spectra[s->media[m].sigma_s + i];
+/* σs per bin at the latest collision in m, likewise. */
+inline const __global float* medium_scattering(const SceneView* s, const __global KMedium* m) {
+#if KASHA_GRID_COMPONENTS
+  if (m->components > 0) return s->scratch + KASHA_SCRATCH_COMPONENTS + KASHA_BINS;
+#endif
+  return s->spectra + m->sigma_s;
+}
+
+/* A collision at x in medium m: a component grid's coefficients there into scratch slot 0, which
+ * medium_sigma_t and medium_scattering read until the path's next collision. */
+inline void collision_coefficients(const SceneView* s, int m, float3 x) {
+#if KASHA_GRID_COMPONENTS
+  if (s->media[m].components > 0) components_at(s, &s->media[m], x, 0);
+#endif
 }
 
 /* T ← T·diag(T_i)/Σ_k c_k u_k: the flight's weight, with u_k = σt_k(m) T_k at a collision in medium
@@ -109,6 +125,31 @@ inline float beyond_scene(const SceneView* s, float3 org, float3 dir) {
   return disc > 0.0f ? fmax(-b + sqrt(disc), 0.0f) : 0.0f;
 }
 
+#if KASHA_MEDIUM_GRIDS
+/* A flight's piece through grid medium m (index `medium`), org + t dir for t in [0, len]: the t
+ * where bin j's optical depth reaches *depth, or -1 with *depth lessened by the piece's (never
+ * below 0); the piece's optical lengths, up to where it stopped, onto the trail. */
+inline float grid_flight(const SceneView* s, const __global KMedium* m, int medium, float3 org, float3 dir, float len,
+                         int j, float* depth, MediaTrail* trail) {
+  float at;
+#if KASHA_GRID_COMPONENTS
+  if (m->components > 0) {
+    float w[KASHA_GRID_COMPONENTS], sums[KASHA_GRID_COMPONENTS];
+    for (int k = 0; k < m->components; ++k) w[k] = s->spectra[m->sigma_t + k * KASHA_BINS + j], sums[k] = 0.0f;
+    float used = components_march(s, m, org, dir, len, w, *depth, sums, &at);
+    trail_add_components(trail, m, medium, sums);
+    if (at < 0.0f) *depth = fmax(*depth - used, 0.0f);
+    return at;
+  }
+#endif
+  float sigma = s->spectra[m->sigma_t + j];
+  float optical = grid_march(s, m, org, dir, len, sigma > 0.0f ? *depth / sigma : -1.0f, &at);
+  trail_add(trail, medium, optical);
+  if (at < 0.0f) *depth = fmax(*depth - sigma * optical, 0.0f);
+  return at;
+}
+#endif
+
 /* The distance part of the flight, shared by camera paths and photons: from org along dir in
  * *medium, through interfaces, to where bin j's optical depth reaches `depth` (KASHA_FLIGHT_SCATTERED,
  * h->x the point, in *medium as the walk left it), or the next surface
@@ -120,21 +161,18 @@ inline int flight_walk(const SceneView* s, float3 org, float3 dir, int* medium, 
   float travelled = 0.0f;
   for (int k = 0; k < KASHA_MAX_INTERFACES; ++k) {
     bool hit = intersect_surface(s, org, dir, h);
-    float len = hit ? h->t : INFINITY, sigma = *medium >= 0 ? medium_sigma_t(s, *medium, j) : 0.0f;
+    float len = hit ? h->t : INFINITY, sigma = *medium >= 0 ? s->spectra[s->media[*medium].sigma_t + j] : 0.0f;
 #if KASHA_MEDIUM_GRIDS
     const __global KMedium* grid = *medium >= 0 && s->media[*medium].density >= 0 ? &s->media[*medium] : 0;
     if (grid) {
-      /* Where bin j's optical depth σ ∫ density reaches `depth` (density_grid.h). */
-      float at, optical = grid_march(s, grid, org, dir, len, sigma > 0.0f ? depth / sigma : -1.0f, &at);
+      /* Where bin j's optical depth reaches `depth` (density_grid.h, colour_grid.h). */
+      float at = grid_flight(s, grid, *medium, org, dir, len, j, &depth, trail);
       if (at >= 0.0f) {
         float t = hit ? fmax(fmin(at, len - h->eps), 0.0f) : at;
-        trail_add(trail, *medium, optical);
         h->x = org + t * dir;
         h->t = travelled + t;
         return KASHA_FLIGHT_SCATTERED;
       }
-      depth = fmax(depth - sigma * optical, 0.0f);
-      trail_add(trail, *medium, optical);
     } else
 #endif
     if (sigma > 0.0f && depth < sigma * (hit ? len : beyond_scene(s, org, dir))) {
@@ -177,6 +215,7 @@ inline int flight(PathWeight* p, const SceneView* s, const FilmView* f, float3 o
   int j = flight_bin(p, f, u.x, &total);
   if (j < 0) return KASHA_FLIGHT_ESCAPED;
   int reached = flight_walk(s, org, dir, medium, j, flight_depth(u.y), &trail, h);
+  if (reached == KASHA_FLIGHT_SCATTERED) collision_coefficients(s, *medium, h->x);
   *tbar = pw_flight(p, s, f, &trail, reached == KASHA_FLIGHT_SCATTERED ? *medium : -1, total);
   return reached;
 }

@@ -46,6 +46,7 @@ inline int photon_flight(Photon* p, const SceneView* s, Sampler* sampler, int de
   if (!(total > 0.0f)) return KASHA_FLIGHT_ESCAPED;
   int j = photon_bin_by_power(p, u.x, total);
   int reached = flight_walk(s, p->position, p->direction, &p->medium, j, flight_depth(u.y), &trail, h);
+  if (reached == KASHA_FLIGHT_SCATTERED) collision_coefficients(s, p->medium, h->x);
   *tbar = photon_flight_weight(p, s, &trail, reached == KASHA_FLIGHT_SCATTERED ? p->medium : -1, total);
   return reached;
 }
@@ -55,7 +56,7 @@ inline int photon_flight(Photon* p, const SceneView* s, Sampler* sampler, int de
  * dye's ê Φ_d (a·Φ) / 4π. Light tracing's splat of a collision, forward's and vcm's. */
 inline void collision_film_rows(const SceneView* s, const FilmView* f, const __global KMedium* m, const Photon* p,
                                 float3 to, const __global float* tr, float scale, float* rows) {
-  film_rows(f, p->power, s->spectra + m->sigma_s, tr, scale * hg_phase(dot(to, -p->direction), m->g), rows);
+  film_rows(f, p->power, medium_scattering(s, m), tr, scale * hg_phase(dot(to, -p->direction), m->g), rows);
 #if KASHA_FLUORESCENCE
   for (int d = 0; d < m->fluorophores; ++d) {
     const __global KFluorophore* fl = &m->fluorophore[d];
@@ -68,7 +69,7 @@ inline void collision_film_rows(const SceneView* s, const FilmView* f, const __g
 /* The power each branch of a collision in medium m carries on: [0] elastic, Σ σs_i Φ_i; [1 + k]
  * dye k's re-emission, Φ_k Σ a_i Φ_i (ê sums to 1). Returns their sum. */
 inline float photon_medium_branches(const Photon* p, const SceneView* s, const __global KMedium* m, float* power) {
-  float sum = power[0] = spectrum_dot(KASHA_BINS, p->power, s->spectra + m->sigma_s, 0);
+  float sum = power[0] = spectrum_dot(KASHA_BINS, p->power, medium_scattering(s, m), 0);
 #if KASHA_FLUORESCENCE
   for (int k = 0; k < m->fluorophores; ++k) {
     const __global KFluorophore* fl = &m->fluorophore[k];
@@ -96,7 +97,8 @@ inline int scatter_photon_in_medium(Photon* p, const SceneView* s, float3 x, Sam
   p->position = x;
   if (branch == 0) {
     float pdf;
-    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= s->spectra[m->sigma_s + i] * k;
+    const __global float* sigma_s = medium_scattering(s, m);
+    for (int i = 0; i < KASHA_BINS; ++i) p->power[i] *= sigma_s[i] * k;
     p->direction = hg_sample(-p->direction, m->g, u_dir, &pdf);
   }
 #if KASHA_FLUORESCENCE

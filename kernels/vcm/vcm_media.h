@@ -49,12 +49,16 @@ inline void vcm_through(float tbar, float sigma_prev, float sigma_here, float* d
   *dvc_merge *= k;
 }
 
-/* out = f·Φ at a light vertex in medium m, the light having arrived from `light` and leaving
- * along `to` (both away from it): Φ∘σs times the phase function, and each dye's ê Φ_d (a·Φ)/4π. */
-inline void vcm_medium_light_apply(const SceneView* s, const __global KMedium* m, float3 light, float3 to,
+/* out = f·Φ at a light vertex at x in medium m, the light having arrived from `light` and leaving
+ * along `to` (both away from it): Φ∘σs times the phase function, and each dye's ê Φ_d (a·Φ)/4π.
+ * A component grid's σs at x goes to scratch slot 1: slot 0 holds the camera vertex's. */
+inline void vcm_medium_light_apply(const SceneView* s, const __global KMedium* m, float3 x, float3 light, float3 to,
                                    const __global float* phi, __global float* out) {
   float phase = hg_phase(dot(light, to), m->g);
   const __global float* sigma_s = s->spectra + m->sigma_s;
+#if KASHA_GRID_COMPONENTS
+  if (m->components > 0) sigma_s = components_at(s, m, x, 1) + KASHA_BINS;
+#endif
   for (int i = 0; i < KASHA_BINS; ++i) out[i] = phi[i] * sigma_s[i] * phase;
 #if KASHA_FLUORESCENCE
   for (int k = 0; k < m->fluorophores; ++k) {
@@ -71,7 +75,7 @@ inline void vcm_medium_light_apply(const SceneView* s, const __global KMedium* m
 inline void vcm_medium_camera_apply(const PathWeight* p, const SceneView* s, const FilmView* f,
                                     const __global KMedium* m, float3 eye, float3 light,
                                     const __global float* spectrum, float scale, float* rows) {
-  pw_add(p, f, s->spectra + m->sigma_s, spectrum, scale * hg_phase(dot(eye, light), m->g), rows);
+  pw_add(p, f, medium_scattering(s, m), spectrum, scale * hg_phase(dot(eye, light), m->g), rows);
 #if KASHA_FLUORESCENCE
   for (int k = 0; k < m->fluorophores; ++k) {
     const __global KFluorophore* fl = &m->fluorophore[k];

@@ -755,13 +755,14 @@ class Importer {
     const std::string type = params.get_string("type", "");
     if (type.empty()) pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) + ": no \"type\"");
     if (name.empty()) pbrt_fail(where, "MakeNamedMedium: a medium's name must not be empty");
-    if (type != "homogeneous" && type != "uniformgrid" && type != "nanovdb") {
+    if (type != "homogeneous" && type != "uniformgrid" && type != "rgbgrid" && type != "nanovdb") {
       refuse_medium(name, where,
                     "is a \"" + type +
                         "\" medium, which kasha does not build (homogeneous, "
-                        "uniformgrid, nanovdb)");
+                        "uniformgrid, rgbgrid, nanovdb)");
       return;
     }
+    if (type == "rgbgrid") return rgb_grid_medium(name, params, where);
     if (type == "nanovdb" && params.get_string("filename", "").empty())
       pbrt_fail(where, "MakeNamedMedium " + in_quotes(name) +
                            ": Must supply \"filename\" to \"nanovdb\" medium");
@@ -813,6 +814,16 @@ class Importer {
     for (double v : density)
       if (!(v >= 0 && std::isfinite(v)))
         pbrt_fail(where, what + ": a density must be finite and not negative");
+    nlohmann::json m = {{"type", "grid"},
+                        {"density", {{"size", {nx, ny, nz}}, {"values", density}}}};
+    grid_box(m, params, where, what);
+    emitting_grid(m, params, where, what, density.size(), has_le, emits_le);
+    return m;
+  }
+
+  // A grid medium's box, [p0, p1] in the space of the transform current at MakeNamedMedium.
+  void grid_box(nlohmann::json& m, const PbrtParameters& params, const PbrtLocation& where,
+                const std::string& what) {
     // pbrt-v4's Bounds3f(p0, p1) takes the corners in either order.
     auto p0 = params.get_triple("p0").value_or(std::array<double, 3>{0, 0, 0});
     auto p1 = params.get_triple("p1").value_or(std::array<double, 3>{1, 1, 1});
@@ -822,12 +833,64 @@ class Importer {
         pbrt_fail(where, what + ": \"p0\" and \"p1\" must differ on every axis");
     }
     check_affine(state_.ctm, where);
-    nlohmann::json m = {{"type", "grid"},
-                        {"density", {{"size", {nx, ny, nz}}, {"values", density}}},
-                        {"bounds", {{"min", p0}, {"max", p1}}},
-                        {"transform", {{"matrix", row_major(state_.ctm)}}}};
-    emitting_grid(m, params, where, what, density.size(), has_le, emits_le);
-    return m;
+    m["bounds"] = {{"min", p0}, {"max", p1}};
+    m["transform"] = {{"matrix", row_major(state_.ctm)}};
+  }
+
+  // pbrt-v4's rgbgrid (RGBGridMedium::Create): an RGB of σa and of σs per sample (either may be
+  // absent: 1 in the whole box), "scale", "g"; an emitting one ("Le" with "Lescale" > 0) is
+  // refused where it is used.
+  void rgb_grid_medium(const std::string& name, const PbrtParameters& params,
+                       const PbrtLocation& where) {
+    const std::string what = "MakeNamedMedium " + in_quotes(name);
+    const std::vector<double> sigma_a = colour_array(params, "sigma_a", where, what);
+    const std::vector<double> sigma_s = colour_array(params, "sigma_s", where, what);
+    const std::vector<double> le = params.get_numbers("Le", "rgb");
+    if (sigma_a.empty() && sigma_s.empty())
+      pbrt_fail(where, what + ": RGB grid requires \"sigma_a\" and/or \"sigma_s\" parameter values.");
+    const size_t n = (sigma_a.empty() ? sigma_s : sigma_a).size() / 3;
+    if (!sigma_a.empty() && !sigma_s.empty() && sigma_a.size() != sigma_s.size())
+      pbrt_fail(where, what + ": Different number of samples (" + std::to_string(n) + " vs " +
+                           std::to_string(sigma_s.size() / 3) +
+                           ") provided for \"sigma_a\" and \"sigma_s\".");
+    if (!le.empty() && sigma_a.empty())
+      pbrt_fail(where, what + ": RGB grid requires \"sigma_a\" if \"Le\" value provided.");
+    const int nx = params.get_int("nx", 1), ny = params.get_int("ny", 1), nz = params.get_int("nz", 1);
+    if (nx < 1 || ny < 1 || nz < 1 || static_cast<double>(nx) * ny * nz != static_cast<double>(n))
+      pbrt_fail(where, what + ": RGB grid medium has " + std::to_string(n) +
+                           " density values; expected nx*ny*nz = " +
+                           std::to_string(static_cast<long long>(nx) * ny * nz));
+    nlohmann::json m = {{"type", "rgbgrid"}, {"size", {nx, ny, nz}}};
+    if (!sigma_a.empty()) m["sigma_a"] = {{"rgb_values", sigma_a}};
+    if (!sigma_s.empty()) m["sigma_s"] = {{"rgb_values", sigma_s}};
+    grid_box(m, params, where, what);
+    m["scale"] = params.get_float("scale", 1);
+    m["g"] = params.get_float("g", 0);
+    if (!le.empty() && params.get_float("Lescale", 1) > 0)
+      return refuse_medium(name, where, "is an emitting \"rgbgrid\" (\"Le\"), which kasha does not build");
+    params.warn_unused(what);
+    media_[name] = m;
+    refused_media_.erase(name);
+    sources_["/media/" + pointer_segment(name)] = where.str();
+  }
+
+  // An "rgb" array of an rgbgrid as linear sRGB (from its ColorSpace), each part ≥ 0.
+  std::vector<double> colour_array(const PbrtParameters& params, const std::string& key,
+                                   const PbrtLocation& where, const std::string& what) {
+    const PbrtParameter* p = params.find(key, "rgb");
+    if (!p) return {};
+    std::vector<double> v = p->numbers;
+    if (v.size() % 3 != 0) pbrt_fail(where, what + ": \"rgb " + key + "\" takes RGB triples");
+    for (double x : v)
+      if (!(x >= 0 && std::isfinite(x))) pbrt_fail(where, what + ": \"rgb " + key + "\" has a negative component");
+    if (p->color_space == "srgb") return v;
+    const PbrtColorSpace* space = pbrt_color_space(p->color_space);
+    if (!space) pbrt_fail(where, "unknown color space " + in_quotes(p->color_space));
+    for (size_t i = 0; i < v.size(); i += 3) {
+      const std::array<double, 3> c = pbrt_rgb_to_srgb(*space, {v[i], v[i + 1], v[i + 2]}, true);
+      for (int k = 0; k < 3; ++k) v[i + k] = std::max(c[k], 0.0);
+    }
+    return v;
   }
 
   // A uniformgrid's emission as pbrt-v4's GridMedium::Create reads it: a "temperature" per sample
