@@ -98,7 +98,10 @@ INSTANTIATE_TEST_SUITE_P(
                       ReferenceCase{"fire_grid", {}, 32},
                       // The same file's temperature grid glowing (nanovdb's temperaturename,
                       // offset, scale and Lescale), read on the density's voxels.
-                      ReferenceCase{"vdb_fire", {}, 32}),
+                      ReferenceCase{"vdb_fire", {}, 32},
+                      // A colour grid (rgbgrid): its absorption a colour per sample (a component
+                      // per bin: 42 in all, so 16 passes), its scattering two colours, tracked exactly.
+                      ReferenceCase{"rgb_grid", {}, 16}),
     [](const auto& info) { return info.param.scene; });
 
 // --max-depth N as pbrt-v4's maxdepth: the Cornell box with direct light alone (1) and one bounce
