@@ -113,6 +113,8 @@ set(kasha_long_other
   "LayeredMetal.EveryIntegratorAgreesWithBackward"
   "SphereLight.EveryIntegratorAgreesWithTriangleSampling"
   "Medium.ForwardPhotonAndVcmAgreeWithBackwardOnTonicWaterUnderAUvSpot"
+  # dye in glass: PbrtReference/media's dye-in-glass region and the dye slab in every integrator
+  "Medium.EveryIntegratorAgreesWithBackwardOnDyeInGlass"
   "Colorimetry/Hemisphere.RenderShowsColorimetryXyz/ppm"
   "Integrators/MpiRender.TwoAndThreeRanksWriteTheOneProcessFile/vcm"
   "RoughnessTexture.EachSquareRendersAsItsConstantRoughness"
