@@ -7,14 +7,14 @@
 
 #include <Eigen/Dense>
 #include <cmath>
-#include <sstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "core/error.h"
 #include "render/integrator_registry.h"
 #include "render_support.h"
-#include "scene/pbrt/pbrt_import.h"
 #include "scene/colour_grid.h"
+#include "scene/pbrt/pbrt_import.h"
 #include "scene/scene.h"
 #include "spectrum/rgb_spectrum.h"
 #include "test_support.h"
@@ -677,7 +677,8 @@ void lattice_weights(const Eigen::Vector3d& world, const int (&n)[3], F&& f) {
 // The density at a world point.
 double grid_density(const Eigen::Vector3d& world) {
   double sum = 0;
-  lattice_weights(world, {kGridX, kGridY, kGridZ}, [&](int v, double w) { sum += w * kGridValues[v]; });
+  lattice_weights(world, {kGridX, kGridY, kGridZ},
+                  [&](int v, double w) { sum += w * kGridValues[v]; });
   return sum;
 }
 
@@ -831,7 +832,8 @@ constexpr int kColourSamples = 4 * 3 * 4;
 std::array<double, 3> sample_colour(int v, bool distinct) {
   const double factor = 0.3 + 0.25 * ((v * 7) % 11);
   if (distinct)
-    return {factor * (0.2 + 0.8 * ((v * 5) % 13) / 12.0), factor * (0.2 + 0.8 * ((v * 3) % 17) / 16.0),
+    return {factor * (0.2 + 0.8 * ((v * 5) % 13) / 12.0),
+            factor * (0.2 + 0.8 * ((v * 3) % 17) / 16.0),
             factor * (0.2 + 0.8 * ((v * 11) % 19) / 18.0)};
   const double base[3][3] = {{1, 0.3, 0.1}, {0.2, 0.6, 1}, {0.5, 1, 0.4}};
   return {factor * base[v % 3][0], factor * base[v % 3][1], factor * base[v % 3][2]};
@@ -885,9 +887,11 @@ TEST(Medium, AColourGridsComponentsRebuildEverySample) {
       const std::vector<double> a = sample_spectrum(v, distinct, grid);
       for (int i = 0; i < grid.bins; ++i) {
         double t = 0, sc = 0;
-        for (const GridComponent& c : k) t += c.values[v] * c.sigma_t[i], sc += c.values[v] * c.sigma_s[i];
+        for (const GridComponent& c : k)
+          t += c.values[v] * c.sigma_t[i], sc += c.values[v] * c.sigma_s[i];
         // σs's colours are half σa's: the same spectra, half the size.
-        EXPECT_NEAR(t, 1.5 * 1.5 * a[i], 2e-5 * (1 + a[i])) << v << " bin " << i << " distinct " << distinct;
+        EXPECT_NEAR(t, 1.5 * 1.5 * a[i], 2e-5 * (1 + a[i]))
+            << v << " bin " << i << " distinct " << distinct;
         EXPECT_NEAR(sc, 1.5 * 0.5 * a[i], 2e-5 * (1 + a[i])) << v << " bin " << i;
       }
     }
@@ -910,24 +914,28 @@ TEST(Medium, AColourGridsComponentsRebuildEverySample) {
 TEST(Medium, AnEmitterSeenThroughAColourGridFollowsItsIntegral) {
   for (const bool distinct : {false, true}) {
     std::string scene = slab_scene();
-    const size_t at = scene.find(R"("dye": {)"), end = scene.find('}', scene.find(R"("sigma_s")", at));
+    const size_t at = scene.find(R"("dye": {)"),
+                 end = scene.find('}', scene.find(R"("sigma_s")", at));
     scene.replace(at, end + 1 - at,
-                  R"("dye": {)" + colour_grid_json(distinct, false,
-                                                    R"({"min": [-0.8, -1, 0.5], "max": [0.9, 0.7, 1.5]})") +
+                  R"("dye": {)" +
+                      colour_grid_json(distinct, false,
+                                       R"({"min": [-0.8, -1, 0.5], "max": [0.9, 0.7, 1.5]})") +
                       ", \"scale\": 0.8}");
     const std::string path = write_file("medium_colour_slab.json", scene);
     const Scene loaded = load_scene(path);
     ASSERT_EQ(loaded.media.at(0).components.size(), distinct ? size_t(loaded.grid.bins) : 3u);
     std::vector<std::vector<double>> spectra;
-    for (int v = 0; v < kColourSamples; ++v) spectra.push_back(sample_spectrum(v, distinct, loaded.grid));
+    for (int v = 0; v < kColourSamples; ++v)
+      spectra.push_back(sample_spectrum(v, distinct, loaded.grid));
     std::vector<double> truth(loaded.grid.bins, 0.0);
     constexpr int kSide = 100, kSteps = 400;
     for (int y = 0; y < kSide; ++y)
       for (int x = 0; x < kSide; ++x) {
         double weight[kColourSamples] = {};
         for (int k = 0; k < kSteps; ++k)
-          lattice_weights({-1 + (x + 0.5) * 2 / kSide, -1 + (y + 0.5) * 2 / kSide, 0.5 + (k + 0.5) / kSteps},
-                          kColourN, [&](int v, double w) { weight[v] += w / kSteps; });
+          lattice_weights(
+              {-1 + (x + 0.5) * 2 / kSide, -1 + (y + 0.5) * 2 / kSide, 0.5 + (k + 0.5) / kSteps},
+              kColourN, [&](int v, double w) { weight[v] += w / kSteps; });
         for (int i = 0; i < loaded.grid.bins; ++i) {
           double optical = 0;
           for (int v = 0; v < kColourSamples; ++v) optical += weight[v] * 0.8 * spectra[v][i];
@@ -945,8 +953,8 @@ TEST(Medium, AnEmitterSeenThroughAColourGridFollowsItsIntegral) {
 TEST(Medium, AColourGridScatteringFurnaceShowsTheEmittersRadiance) {
   const std::string box = R"({"min": [-0.7, -0.7, -0.7], "max": [0.7, 0.7, 0.7]})";
   for (const bool distinct : {false, true}) {
-    const std::string scene =
-        sphere_furnace("{" + colour_grid_json(distinct, true, box) + R"(, "g": 0.5, "scale": 0.7})");
+    const std::string scene = sphere_furnace("{" + colour_grid_json(distinct, true, box) +
+                                             R"(, "g": 0.5, "scale": 0.7})");
     const std::vector<std::string> integrators =
         distinct ? std::vector<std::string>{"backward", "vcm"}
                  : std::vector<std::string>{"backward", "forward", "photon", "vcm", "bpt", "ppm"};
@@ -982,7 +990,8 @@ AttributeEnd
   const nlohmann::json& m = s.at("media").at("smoke");
   EXPECT_EQ(m.at("type"), "rgbgrid");
   EXPECT_EQ(m.at("size"), nlohmann::json::parse("[2, 1, 1]"));
-  EXPECT_EQ(m.at("sigma_a").at("rgb_values"), nlohmann::json::parse("[0.5, 1.0, 2.0, 0.0, 0.0, 0.0]"));
+  EXPECT_EQ(m.at("sigma_a").at("rgb_values"),
+            nlohmann::json::parse("[0.5, 1.0, 2.0, 0.0, 0.0, 0.0]"));
   EXPECT_FALSE(m.contains("sigma_s"));  // 1 in the whole box
   EXPECT_EQ(m.at("transform").at("matrix").at(3), 1.0);
   EXPECT_EQ(m.at("scale"), 3.0);
@@ -992,7 +1001,8 @@ AttributeEnd
   };
   const std::vector<Case> pbrt = {
       {R"("integer nx" 2)", "RGB grid requires \"sigma_a\" and/or \"sigma_s\""},
-      {R"("rgb sigma_a" [1 1 1] "rgb sigma_s" [1 1 1 1 1 1])", "Different number of samples (1 vs 2)"},
+      {R"("rgb sigma_a" [1 1 1] "rgb sigma_s" [1 1 1 1 1 1])",
+       "Different number of samples (1 vs 2)"},
       {R"("integer nx" 2 "rgb sigma_a" [1 1 1])", "has 1 density values; expected nx*ny*nz = 2"},
       {R"("rgb sigma_a" [1 -1 1])", "has a negative component"},
       {R"("rgb sigma_s" [1 1 1] "rgb Le" [1 1 1])", "requires \"sigma_a\" if \"Le\""},
@@ -1014,7 +1024,8 @@ Shape "sphere")",
   }
   const std::vector<Case> json = {
       {R"("size": [1, 1, 1], "sigma_a": {"rgb_values": [1, 1]})", "needs 3 values, not 2"},
-      {R"("size": [1, 1, 1], "sigma_s": {"rgb_values": [1, -1, 1]})", "a colour must be finite and not negative"},
+      {R"("size": [1, 1, 1], "sigma_s": {"rgb_values": [1, -1, 1]})",
+       "a colour must be finite and not negative"},
       {R"("size": [1, 1, 1])", "an rgbgrid needs \"sigma_a\" or \"sigma_s\" colours"},
       {R"("size": [1, 1, 1], "sigma_a": 1)", "expected {\"rgb_values\""},
       {R"("size": [1, 1, 1], "sigma_a": {"rgb_values": [1, 1, 1]}, "emission": 1)",

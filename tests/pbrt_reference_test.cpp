@@ -65,43 +65,43 @@ TEST_P(PbrtReference, RegionMeansMatchPbrtV4WithinOnePercent) {
 
 INSTANTIATE_TEST_SUITE_P(
     Scenes, PbrtReference,
-    ::testing::Values(ReferenceCase{"cornell_box", {"lacquer"}},
-                      // The rough copper's glossy reflections are the noisiest region.
-                      ReferenceCase{"rough_metals", {}, 64}, ReferenceCase{"glass", {}},
-                      ReferenceCase{"textured", {"textured.pbrt:38"}},
-                      ReferenceCase{"coated_metals", {}},
-                      // pbrt-v4's textures of textures, nine tiles and a sphere.
-                      ReferenceCase{"procedural_textures", {}, 16},
-                      // Its rough glass block (554 pixels, lit through its nearly smooth
-                      // squares) is too noisy at 64 passes: +5 % at 2 standard errors.
-                      ReferenceCase{"rough_textures", {"rough_textures.pbrt:46"}, 64},
-                      // Rough layered metals in a uniform sky, where kasha's split of the
-                      // layer's light keeps its energy exactly (docs/materials.md).
-                      ReferenceCase{"layered_metals", {}, 32},
-                      // Absorbing media (docs/media.md): the camera in a haze, dye in glass, an
-                      // ink block bounded by an interface cube (its region: "(interface)").
-                      ReferenceCase{"media", {}, 32},
-                      // A cube of fog that scatters (σs spectral, g 0.3) under a lamp: the
-                      // free flight's MIS over bins and next-event estimation from the fog.
-                      ReferenceCase{"fog", {}, 32},
-                      // Smoke on a grid of density (uniformgrid), turned and stretched: the
-                      // lattice's exact tracking against pbrt-v4's delta and ratio tracking.
-                      ReferenceCase{"smoke", {}, 32},
-                      // Smoke on a sparse grid with its own turned map (nanovdb, a zipped .nvdb
-                      // file, read as pbrt-v4 reads it), against pbrt-v4's render.
-                      ReferenceCase{"vdb_smoke", {}, 32},
-                      // The fog cube glowing as well (a homogeneous medium's Le and Lescale):
-                      // emission picked up at the camera path's collisions.
-                      ReferenceCase{"emitting_fog", {}, 32},
-                      // A uniformgrid glowing as a blackbody of its temperature grid (offset and
-                      // scaled) times its Lescale grid, and scattering.
-                      ReferenceCase{"fire_grid", {}, 32},
-                      // The same file's temperature grid glowing (nanovdb's temperaturename,
-                      // offset, scale and Lescale), read on the density's voxels.
-                      ReferenceCase{"vdb_fire", {}, 32},
-                      // A colour grid (rgbgrid): its absorption a colour per sample (a component
-                      // per bin: 42 in all, so 16 passes), its scattering two colours, tracked exactly.
-                      ReferenceCase{"rgb_grid", {}, 16}),
+    ::testing::Values(
+        ReferenceCase{"cornell_box", {"lacquer"}},
+        // The rough copper's glossy reflections are the noisiest region.
+        ReferenceCase{"rough_metals", {}, 64}, ReferenceCase{"glass", {}},
+        ReferenceCase{"textured", {"textured.pbrt:38"}}, ReferenceCase{"coated_metals", {}},
+        // pbrt-v4's textures of textures, nine tiles and a sphere.
+        ReferenceCase{"procedural_textures", {}, 16},
+        // Its rough glass block (554 pixels, lit through its nearly smooth
+        // squares) is too noisy at 64 passes: +5 % at 2 standard errors.
+        ReferenceCase{"rough_textures", {"rough_textures.pbrt:46"}, 64},
+        // Rough layered metals in a uniform sky, where kasha's split of the
+        // layer's light keeps its energy exactly (docs/materials.md).
+        ReferenceCase{"layered_metals", {}, 32},
+        // Absorbing media (docs/media.md): the camera in a haze, dye in glass, an
+        // ink block bounded by an interface cube (its region: "(interface)").
+        ReferenceCase{"media", {}, 32},
+        // A cube of fog that scatters (σs spectral, g 0.3) under a lamp: the
+        // free flight's MIS over bins and next-event estimation from the fog.
+        ReferenceCase{"fog", {}, 32},
+        // Smoke on a grid of density (uniformgrid), turned and stretched: the
+        // lattice's exact tracking against pbrt-v4's delta and ratio tracking.
+        ReferenceCase{"smoke", {}, 32},
+        // Smoke on a sparse grid with its own turned map (nanovdb, a zipped .nvdb
+        // file, read as pbrt-v4 reads it), against pbrt-v4's render.
+        ReferenceCase{"vdb_smoke", {}, 32},
+        // The fog cube glowing as well (a homogeneous medium's Le and Lescale):
+        // emission picked up at the camera path's collisions.
+        ReferenceCase{"emitting_fog", {}, 32},
+        // A uniformgrid glowing as a blackbody of its temperature grid (offset and
+        // scaled) times its Lescale grid, and scattering.
+        ReferenceCase{"fire_grid", {}, 32},
+        // The same file's temperature grid glowing (nanovdb's temperaturename,
+        // offset, scale and Lescale), read on the density's voxels.
+        ReferenceCase{"vdb_fire", {}, 32},
+        // A colour grid (rgbgrid): its absorption a colour per sample (a component
+        // per bin: 42 in all, so 16 passes), its scattering two colours, tracked exactly.
+        ReferenceCase{"rgb_grid", {}, 16}),
     [](const auto& info) { return info.param.scene; });
 
 // --max-depth N as pbrt-v4's maxdepth: the Cornell box with direct light alone (1) and one bounce

@@ -11,7 +11,8 @@ namespace kasha {
 struct DeviceMedia {
   std::vector<KMedium> media;
   std::vector<KTriMedia> tri_media;  // per leaf triangle; empty when no shape bounds a medium
-  int trail_slots = 0;  // a MediaTrail's slots: one per medium, and a colour grid's further components
+  int trail_slots =
+      0;  // a MediaTrail's slots: one per medium, and a colour grid's further components
 };
 
 // `leaf_triangles`: the BVH's triangles in leaf order (their prim is the scene order); spectra are

@@ -12,7 +12,8 @@ namespace kasha {
 namespace {
 
 // pbrt-v4's RGBUnboundedSpectrum of a colour whose largest part is 1, on the grid: 2·S(rgb/2).
-std::vector<double> unit_colour_spectrum(const std::array<float, 3>& key, const WavelengthGrid& grid) {
+std::vector<double> unit_colour_spectrum(const std::array<float, 3>& key,
+                                         const WavelengthGrid& grid) {
   RgbReflectanceSpectrum s({key[0] / 2.0, key[1] / 2.0, key[2] / 2.0});
   std::vector<double> out = grid.resample(s);
   for (double& v : out) v *= 2;

@@ -4,8 +4,8 @@
 
 #include "core/error.h"
 #include "core/printable.h"
-#include "scene/transform.h"
 #include "scene/colour_grid.h"
+#include "scene/transform.h"
 #include "scene/vdb_grid.h"
 #include "spectrum/spectrum_parser.h"
 
@@ -246,7 +246,8 @@ MediumDesc parse_medium(const JsonNode& node, const std::string& name) {
   if (type == "rgbgrid") {
     d.grid = parse_colour_grid(node);
     for (const char* key : {"fluorophores", "emission", "emission_scale", "temperature"})
-      if (auto k = node.find(key)) k->fail("an rgbgrid medium takes no \"" + std::string(key) + "\"");
+      if (auto k = node.find(key))
+        k->fail("an rgbgrid medium takes no \"" + std::string(key) + "\"");
   }
   // pbrt-v4's defaults: σa = σs = 1, scale 1, g 0.
   const auto coefficient = [&](const char* key) -> SpectrumPtr {

@@ -24,8 +24,8 @@
 
 #if KASHA_MEDIA && KASHA_MEDIUM_GRIDS && KASHA_GRID_COMPONENTS
 /* out[k] = ∫ ρ_k over t in [a, b] along q0 + t dq, inside cell c, for each component. */
-inline void components_cell_integrals(const SceneView* s, const __global KMedium* m, int3 c, float3 q0, float3 dq,
-                                      float a, float b, float* out) {
+inline void components_cell_integrals(const SceneView* s, const __global KMedium* m, int3 c,
+                                      float3 q0, float3 dq, float a, float b, float* out) {
   const float r = 0.28867513f; /* 1 / (2√3) */
   float h = b - a, mid = 0.5f * (a + b);
   float3 qa = q0 + (mid - r * h) * dq, qb = q0 + (mid + r * h) * dq;
@@ -36,8 +36,8 @@ inline void components_cell_integrals(const SceneView* s, const __global KMedium
 /* sums[k] += ∫ ρ_k along org + t dir over [0, len] in m; with target ≥ 0, stops where the
  * field Σ_k w_k ρ_k's integral reaches it: *t_hit that t (else -1). Returns the field's integral
  * up to where it stopped (0 without a target). */
-inline float components_march(const SceneView* s, const __global KMedium* m, float3 org, float3 dir, float len,
-                              const float* w, float target, float* sums, float* t_hit) {
+inline float components_march(const SceneView* s, const __global KMedium* m, float3 org, float3 dir,
+                              float len, const float* w, float target, float* sums, float* t_hit) {
   *t_hit = -1.0f;
   GridWalk g;
   if (!grid_walk_begin(m, org, dir, len, &g)) return 0.0f;
@@ -68,7 +68,8 @@ inline int component_slot(const __global KMedium* m, int index, int k) {
 }
 
 /* σt (then σs, N floats on) at x in the component grid m, per bin, into scratch slot `slot`. */
-inline __global float* components_at(const SceneView* s, const __global KMedium* m, float3 x, int slot) {
+inline __global float* components_at(const SceneView* s, const __global KMedium* m, float3 x,
+                                     int slot) {
   __global float* out = s->scratch + KASHA_SCRATCH_COMPONENTS + slot * 2 * KASHA_BINS;
   float3 q = grid_map(m, x, 1.0f), f = floor(q);
   int3 c = (int3)((int)f.x, (int)f.y, (int)f.z);

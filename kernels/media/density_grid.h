@@ -68,7 +68,8 @@ inline float3 grid_map(const __global KMedium* m, float3 p, float w) {
 /* A component grid's component k (colour_grid.h) at lattice point q in cell c: 1 for the box-wide
  * one (the last, where m->uniform_last), else trilinear between the samples of its grid, the k-th
  * after m->density. */
-inline float component_trilinear(const SceneView* s, const __global KMedium* m, int k, int3 c, float3 q) {
+inline float component_trilinear(const SceneView* s, const __global KMedium* m, int k, int3 c,
+                                 float3 q) {
   if (m->uniform_last && k == m->components - 1) return 1.0f;
   int samples = m->grid_size[0] * m->grid_size[1] * m->grid_size[2];
   return grid_trilinear_in(s, m, m->density + k * samples, c.x, c.y, c.z, q);
@@ -77,7 +78,8 @@ inline float component_trilinear(const SceneView* s, const __global KMedium* m, 
 
 /* The field a walk integrates, at lattice point q in cell c: the density, or (w non-null) a
  * component grid's Σ_k w_k ρ_k (colour_grid.h: a bin's σt). */
-inline float grid_field(const SceneView* s, const __global KMedium* m, const float* w, int3 c, float3 q) {
+inline float grid_field(const SceneView* s, const __global KMedium* m, const float* w, int3 c,
+                        float3 q) {
 #if KASHA_GRID_COMPONENTS
   if (w) {
     float sum = 0.0f;
@@ -89,17 +91,19 @@ inline float grid_field(const SceneView* s, const __global KMedium* m, const flo
 }
 
 /* ∫ of the field over t in [a, b] along q0 + t dq, inside the lattice cell c (a cubic: exact). */
-inline float grid_cell_integral(const SceneView* s, const __global KMedium* m, const float* w, int3 c, float3 q0,
-                                float3 dq, float a, float b) {
+inline float grid_cell_integral(const SceneView* s, const __global KMedium* m, const float* w,
+                                int3 c, float3 q0, float3 dq, float a, float b) {
   const float k = 0.28867513f; /* 1 / (2√3) */
   float h = b - a, mid = 0.5f * (a + b);
-  return 0.5f * h * (grid_field(s, m, w, c, q0 + (mid - k * h) * dq) + grid_field(s, m, w, c, q0 + (mid + k * h) * dq));
+  return 0.5f * h *
+         (grid_field(s, m, w, c, q0 + (mid - k * h) * dq) +
+          grid_field(s, m, w, c, q0 + (mid + k * h) * dq));
 }
 
 /* Where in [a, b] (cell c, holding `whole` of the integral) the field's integral from a reaches r:
  * Newton's method kept in its bracket, bisection where it would leave it. */
-inline float grid_cell_invert(const SceneView* s, const __global KMedium* m, const float* w, int3 c, float3 q0,
-                              float3 dq, float a, float b, float whole, float r) {
+inline float grid_cell_invert(const SceneView* s, const __global KMedium* m, const float* w, int3 c,
+                              float3 q0, float3 dq, float a, float b, float whole, float r) {
   float lo = a, hi = b, t = a + (b - a) * fmin(r / whole, 1.0f);
   for (int k = 0; k < 12; ++k) {
     float excess = grid_cell_integral(s, m, w, c, q0, dq, a, t) - r;
@@ -152,7 +156,8 @@ typedef struct {
 } GridWalk;
 
 /* The walk of org + t dir, t in [0, len], through m's lattice; false if it misses the box. */
-inline bool grid_walk_begin(const __global KMedium* m, float3 org, float3 dir, float len, GridWalk* g) {
+inline bool grid_walk_begin(const __global KMedium* m, float3 org, float3 dir, float len,
+                            GridWalk* g) {
   g->q0 = grid_map(m, org, 1.0f);
   g->dq = grid_map(m, dir, 0.0f);
   if (!grid_span(m, g->q0, g->dq, len, &g->t, &g->end)) return false;
@@ -179,16 +184,19 @@ inline bool grid_walk_next(GridWalk* g, int3* c, float* a, float* b) {
   *b = fmax(fmin(fmin(fmin(g->next.x, g->next.y), g->next.z), g->end), g->t);
   g->t = *b;
   /* Into the neighbour across the plane it leaves by. */
-  if (g->next.x <= g->next.y && g->next.x <= g->next.z) g->cell.x += g->unit.x, g->next.x += g->step.x;
-  else if (g->next.y <= g->next.z) g->cell.y += g->unit.y, g->next.y += g->step.y;
-  else g->cell.z += g->unit.z, g->next.z += g->step.z;
+  if (g->next.x <= g->next.y && g->next.x <= g->next.z)
+    g->cell.x += g->unit.x, g->next.x += g->step.x;
+  else if (g->next.y <= g->next.z)
+    g->cell.y += g->unit.y, g->next.y += g->step.y;
+  else
+    g->cell.z += g->unit.z, g->next.z += g->step.z;
   return true;
 }
 
 /* ∫ density along org + t dir over [0, len] in m, cell by cell; with target ≥ 0, stops where the
  * integral reaches it: *t_hit that t (else -1). Returns the integral up to where it stopped. */
-inline float grid_march(const SceneView* s, const __global KMedium* m, float3 org, float3 dir, float len, float target,
-                        float* t_hit) {
+inline float grid_march(const SceneView* s, const __global KMedium* m, float3 org, float3 dir,
+                        float len, float target, float* t_hit) {
   *t_hit = -1.0f;
   GridWalk g;
   if (!grid_walk_begin(m, org, dir, len, &g)) return 0.0f;

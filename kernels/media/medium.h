@@ -29,8 +29,8 @@
  * on a degenerate boundary, far beyond what a scene's nested media make. */
 #define KASHA_MAX_INTERFACES 64
 
-#include "media/density_grid.h"
 #include "media/colour_grid.h"
+#include "media/density_grid.h"
 
 #if KASHA_MEDIA
 /* How far a ray has travelled in each medium since its last vertex, as optical length (a grid's
@@ -50,7 +50,8 @@ inline void trail_add(MediaTrail* t, int medium, float d) {
 
 #if KASHA_GRID_COMPONENTS
 /* A component grid's integrals ∫ ρ_k (components_march) onto the trail. */
-inline void trail_add_components(MediaTrail* t, const __global KMedium* md, int medium, const float* sums) {
+inline void trail_add_components(MediaTrail* t, const __global KMedium* md, int medium,
+                                 const float* sums) {
   for (int k = 0; k < md->components; ++k) t->d[component_slot(md, medium, k)] += sums[k];
 }
 #endif
@@ -115,7 +116,8 @@ inline float trail_transmittance(const SceneView* s, const MediaTrail* t, int i)
     const __global KMedium* md = &s->media[m];
     if (md->components > 0) {
       for (int k = 0; k < md->components; ++k) {
-        float d = t->d[component_slot(md, m, k)], sigma = s->spectra[md->sigma_t + k * KASHA_BINS + i];
+        float d = t->d[component_slot(md, m, k)],
+              sigma = s->spectra[md->sigma_t + k * KASHA_BINS + i];
         if (d > 0.0f && sigma > 0.0f) tau += sigma * d;
       }
       continue;

@@ -547,7 +547,8 @@ inline void walk_medium_next_event(const CameraWalk* w, const SceneView* s, cons
   const float reach = 1.0f;
 #endif
   float phase = hg_phase(dot(-w->dir, wi), m->g);
-  pw_add(&w->p, f, medium_scattering(s, m), le, base * phase * mis_weight(pdf_light, reach * probs[0] * phase), rows);
+  pw_add(&w->p, f, medium_scattering(s, m), le,
+         base * phase * mis_weight(pdf_light, reach * probs[0] * phase), rows);
 #if KASHA_FLUORESCENCE
   for (int k = 0; k < m->fluorophores; ++k) {
     const __global KFluorophore* fl = &m->fluorophore[k];

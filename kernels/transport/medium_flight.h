@@ -129,13 +129,14 @@ inline float beyond_scene(const SceneView* s, float3 org, float3 dir) {
 /* A flight's piece through grid medium m (index `medium`), org + t dir for t in [0, len]: the t
  * where bin j's optical depth reaches *depth, or -1 with *depth lessened by the piece's (never
  * below 0); the piece's optical lengths, up to where it stopped, onto the trail. */
-inline float grid_flight(const SceneView* s, const __global KMedium* m, int medium, float3 org, float3 dir, float len,
-                         int j, float* depth, MediaTrail* trail) {
+inline float grid_flight(const SceneView* s, const __global KMedium* m, int medium, float3 org,
+                         float3 dir, float len, int j, float* depth, MediaTrail* trail) {
   float at;
 #if KASHA_GRID_COMPONENTS
   if (m->components > 0) {
     float w[KASHA_GRID_COMPONENTS], sums[KASHA_GRID_COMPONENTS];
-    for (int k = 0; k < m->components; ++k) w[k] = s->spectra[m->sigma_t + k * KASHA_BINS + j], sums[k] = 0.0f;
+    for (int k = 0; k < m->components; ++k)
+      w[k] = s->spectra[m->sigma_t + k * KASHA_BINS + j], sums[k] = 0.0f;
     float used = components_march(s, m, org, dir, len, w, *depth, sums, &at);
     trail_add_components(trail, m, medium, sums);
     if (at < 0.0f) *depth = fmax(*depth - used, 0.0f);
@@ -161,7 +162,8 @@ inline int flight_walk(const SceneView* s, float3 org, float3 dir, int* medium, 
   float travelled = 0.0f;
   for (int k = 0; k < KASHA_MAX_INTERFACES; ++k) {
     bool hit = intersect_surface(s, org, dir, h);
-    float len = hit ? h->t : INFINITY, sigma = *medium >= 0 ? s->spectra[s->media[*medium].sigma_t + j] : 0.0f;
+    float len = hit ? h->t : INFINITY,
+          sigma = *medium >= 0 ? s->spectra[s->media[*medium].sigma_t + j] : 0.0f;
 #if KASHA_MEDIUM_GRIDS
     const __global KMedium* grid = *medium >= 0 && s->media[*medium].density >= 0 ? &s->media[*medium] : 0;
     if (grid) {

@@ -56,7 +56,8 @@ inline int photon_flight(Photon* p, const SceneView* s, Sampler* sampler, int de
  * dye's ê Φ_d (a·Φ) / 4π. Light tracing's splat of a collision, forward's and vcm's. */
 inline void collision_film_rows(const SceneView* s, const FilmView* f, const __global KMedium* m, const Photon* p,
                                 float3 to, const __global float* tr, float scale, float* rows) {
-  film_rows(f, p->power, medium_scattering(s, m), tr, scale * hg_phase(dot(to, -p->direction), m->g), rows);
+  film_rows(f, p->power, medium_scattering(s, m), tr,
+            scale * hg_phase(dot(to, -p->direction), m->g), rows);
 #if KASHA_FLUORESCENCE
   for (int d = 0; d < m->fluorophores; ++d) {
     const __global KFluorophore* fl = &m->fluorophore[d];

@@ -136,8 +136,8 @@ inline void vcm_connect_vertex(const VcmCamera* c, const SceneView* s, const Fil
   if (!(weight > 0.0f)) return;
 #if KASHA_SCATTERING
   if (medium_y)
-    vcm_medium_light_apply(s, &s->media[lv->medium], load_float3(lv->position), -load_float3(lv->arrival), -dir,
-                           vcm_vertex_power(lv), out);
+    vcm_medium_light_apply(s, &s->media[lv->medium], load_float3(lv->position),
+                           -load_float3(lv->arrival), -dir, vcm_vertex_power(lv), out);
   else
 #endif
     vcm_light_apply(&sy, el.f, vcm_vertex_power(lv), out);

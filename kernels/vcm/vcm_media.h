@@ -52,8 +52,9 @@ inline void vcm_through(float tbar, float sigma_prev, float sigma_here, float* d
 /* out = f·Φ at a light vertex at x in medium m, the light having arrived from `light` and leaving
  * along `to` (both away from it): Φ∘σs times the phase function, and each dye's ê Φ_d (a·Φ)/4π.
  * A component grid's σs at x goes to scratch slot 1: slot 0 holds the camera vertex's. */
-inline void vcm_medium_light_apply(const SceneView* s, const __global KMedium* m, float3 x, float3 light, float3 to,
-                                   const __global float* phi, __global float* out) {
+inline void vcm_medium_light_apply(const SceneView* s, const __global KMedium* m, float3 x,
+                                   float3 light, float3 to, const __global float* phi,
+                                   __global float* out) {
   float phase = hg_phase(dot(light, to), m->g);
   const __global float* sigma_s = s->spectra + m->sigma_s;
 #if KASHA_GRID_COMPONENTS

@@ -847,7 +847,8 @@ class Importer {
     const std::vector<double> sigma_s = colour_array(params, "sigma_s", where, what);
     const std::vector<double> le = params.get_numbers("Le", "rgb");
     if (sigma_a.empty() && sigma_s.empty())
-      pbrt_fail(where, what + ": RGB grid requires \"sigma_a\" and/or \"sigma_s\" parameter values.");
+      pbrt_fail(where,
+                what + ": RGB grid requires \"sigma_a\" and/or \"sigma_s\" parameter values.");
     const size_t n = (sigma_a.empty() ? sigma_s : sigma_a).size() / 3;
     if (!sigma_a.empty() && !sigma_s.empty() && sigma_a.size() != sigma_s.size())
       pbrt_fail(where, what + ": Different number of samples (" + std::to_string(n) + " vs " +
@@ -855,7 +856,8 @@ class Importer {
                            ") provided for \"sigma_a\" and \"sigma_s\".");
     if (!le.empty() && sigma_a.empty())
       pbrt_fail(where, what + ": RGB grid requires \"sigma_a\" if \"Le\" value provided.");
-    const int nx = params.get_int("nx", 1), ny = params.get_int("ny", 1), nz = params.get_int("nz", 1);
+    const int nx = params.get_int("nx", 1), ny = params.get_int("ny", 1),
+              nz = params.get_int("nz", 1);
     if (nx < 1 || ny < 1 || nz < 1 || static_cast<double>(nx) * ny * nz != static_cast<double>(n))
       pbrt_fail(where, what + ": RGB grid medium has " + std::to_string(n) +
                            " density values; expected nx*ny*nz = " +
@@ -867,7 +869,8 @@ class Importer {
     m["scale"] = params.get_float("scale", 1);
     m["g"] = params.get_float("g", 0);
     if (!le.empty() && params.get_float("Lescale", 1) > 0)
-      return refuse_medium(name, where, "is an emitting \"rgbgrid\" (\"Le\"), which kasha does not build");
+      return refuse_medium(name, where,
+                           "is an emitting \"rgbgrid\" (\"Le\"), which kasha does not build");
     params.warn_unused(what);
     media_[name] = m;
     refused_media_.erase(name);
@@ -882,7 +885,8 @@ class Importer {
     std::vector<double> v = p->numbers;
     if (v.size() % 3 != 0) pbrt_fail(where, what + ": \"rgb " + key + "\" takes RGB triples");
     for (double x : v)
-      if (!(x >= 0 && std::isfinite(x))) pbrt_fail(where, what + ": \"rgb " + key + "\" has a negative component");
+      if (!(x >= 0 && std::isfinite(x)))
+        pbrt_fail(where, what + ": \"rgb " + key + "\" has a negative component");
     if (p->color_space == "srgb") return v;
     const PbrtColorSpace* space = pbrt_color_space(p->color_space);
     if (!space) pbrt_fail(where, "unknown color space " + in_quotes(p->color_space));
