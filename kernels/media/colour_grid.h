@@ -14,6 +14,8 @@
 #ifndef KASHA_COLOUR_GRID_H
 #define KASHA_COLOUR_GRID_H
 
+#include "media/density_grid.h"
+
 #ifndef KASHA_SCRATCH_COMPONENTS
 #define KASHA_SCRATCH_COMPONENTS 0 /* where the two slots of σt, σs (2 N floats each) start */
 #endif
