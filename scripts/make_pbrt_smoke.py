@@ -12,6 +12,43 @@ import sys
 NX, NY, NZ = 12, 10, 14
 
 
+def stage(eye, sky, lamp):
+    """The grid scenes' stage: the camera at `eye` looking at the box, a dim sky, a lamp above,
+    a grey floor (make_pbrt_rgb_grid.py shares it)."""
+    return """LookAt %s  0 0.5 0  0 1 0
+Camera "perspective" "float fov" 38
+Film "rgb" "integer xresolution" 96 "integer yresolution" 64
+
+PixelFilter "box" "float xradius" [0.5] "float yradius" [0.5]
+
+WorldBegin
+
+LightSource "infinite" "rgb L" [%s]
+
+AttributeBegin
+    AreaLightSource "diffuse" "rgb L" [%s]
+    Material "diffuse" "rgb reflectance" [0 0 0]
+    Shape "trianglemesh" "point3 P" [-0.3 1.8 -0.3  0.3 1.8 -0.3  0.3 1.8 0.3  -0.3 1.8 0.3]
+        "integer indices" [0 1 2  0 2 3]
+AttributeEnd
+
+Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]
+Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indices" [0 2 1  0 3 2]
+""" % (eye, sky, lamp)
+
+
+# The medium "smoke" in its box [-0.5, 0.5] x [0, 1] x [-0.5, 0.5], bounded by interface
+# triangles, its normals outwards; it closes the grid's AttributeBegin.
+INTERFACE_BOX = """    MediumInterface "smoke" ""
+    Material "interface"
+    # the grid's box, its normals outwards
+    Shape "trianglemesh" "point3 P" [-0.5 0 -0.5  0.5 0 -0.5  0.5 1 -0.5  -0.5 1 -0.5
+                                     -0.5 0 0.5  0.5 0 0.5  0.5 1 0.5  -0.5 1 0.5]
+        "integer indices" [0 2 1  0 3 2  4 5 6  4 6 7  0 1 5  0 5 4  3 7 6  3 6 2  0 4 7  0 7 3  1 2 6  1 6 5]
+AttributeEnd
+"""
+
+
 def density(x, y, z):
     """The smoke at the cell centre (x, y, z) in the unit cube."""
     r2 = (x - 0.45) ** 2 + 2 * (y - 0.4) ** 2 + 0.7 * (z - 0.55) ** 2
@@ -32,26 +69,7 @@ def main():
 # Written by scripts/make_pbrt_smoke.py. The reference (tests/data/pbrt-v4/smoke.exr) is
 # pbrt-v4's volpath render.
 # `kasha render scenes/pbrt/smoke.pbrt --integrator backward -o smoke.exr`
-LookAt 0 1.3 3.4  0 0.5 0  0 1 0
-Camera "perspective" "float fov" 38
-Film "rgb" "integer xresolution" 96 "integer yresolution" 64
-
-PixelFilter "box" "float xradius" [0.5] "float yradius" [0.5]
-
-WorldBegin
-
-LightSource "infinite" "rgb L" [0.2 0.2 0.2]
-
-AttributeBegin
-    AreaLightSource "diffuse" "rgb L" [6 6 5]
-    Material "diffuse" "rgb reflectance" [0 0 0]
-    Shape "trianglemesh" "point3 P" [-0.3 1.8 -0.3  0.3 1.8 -0.3  0.3 1.8 0.3  -0.3 1.8 0.3]
-        "integer indices" [0 1 2  0 2 3]
-AttributeEnd
-
-Material "diffuse" "rgb reflectance" [0.5 0.5 0.5]
-Shape "trianglemesh" "point3 P" [-3 0 -3  3 0 -3  3 0 3  -3 0 3] "integer indices" [0 2 1  0 3 2]
-
+""" % (NX, NY, NZ) + stage("0 1.3 3.4", "0.2 0.2 0.2", "6 6 5") + """
 AttributeBegin
     Translate 0 0.05 0
     Rotate 25 0 1 0
@@ -63,14 +81,7 @@ AttributeBegin
         "float density" [
 %s
         ]
-    MediumInterface "smoke" ""
-    Material "interface"
-    # the grid's box, its normals outwards
-    Shape "trianglemesh" "point3 P" [-0.5 0 -0.5  0.5 0 -0.5  0.5 1 -0.5  -0.5 1 -0.5
-                                     -0.5 0 0.5  0.5 0 0.5  0.5 1 0.5  -0.5 1 0.5]
-        "integer indices" [0 2 1  0 3 2  4 5 6  4 6 7  0 1 5  0 5 4  3 7 6  3 6 2  0 4 7  0 7 3  1 2 6  1 6 5]
-AttributeEnd
-""" % (NX, NY, NZ, NX, NY, NZ, "\n".join(lines)))
+""" % (NX, NY, NZ, "\n".join(lines)) + INTERFACE_BOX)
 
 
 if __name__ == "__main__":

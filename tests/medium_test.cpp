@@ -734,6 +734,33 @@ TEST(Medium, AGriddedScatteringFurnaceShowsTheEmittersRadiance) {
   }
 }
 
+namespace {
+
+// The error of loading a scene whose medium "fog", the camera's, is {"type": TYPE, ENTRY}.
+std::string bad_medium_error(const std::string& type, const std::string& entry) {
+  const std::string text =
+      R"({"kasha_scene": 1, "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "fog"},
+      "materials": {"m": {}}, "media": {"fog": {"type": ")" +
+      type + "\", " + entry + R"(}},
+      "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], "material": "m", "emission": 1}]})";
+  return error_of([&] { load_scene(write_file("bad_medium.json", text)); });
+}
+
+// The error of importing a pbrt-v4 file that makes the medium "smoke" of TYPE with PARAMS.
+std::string bad_pbrt_medium_error(const std::string& type, const std::string& params) {
+  const std::string text = "Camera \"perspective\"\nWorldBegin\nMakeNamedMedium \"smoke\" \"string type\" \"" +
+                           type + "\" " + params + "\n";
+  return error_of([&] { import_pbrt_scene(write_file("bad_medium.pbrt", text), {}); });
+}
+
+// One line that says `message`.
+void expect_one_line(const std::string& e, const std::string& message, const std::string& input) {
+  EXPECT_NE(e.find(message), std::string::npos) << input << "\n  got: " << e;
+  EXPECT_EQ(e.find('\n'), std::string::npos) << e;
+}
+
+}  // namespace
+
 TEST(Medium, BadGridsAreOneLine) {
   struct Case {
     std::string grid, message;
@@ -759,16 +786,7 @@ TEST(Medium, BadGridsAreOneLine) {
           "emission_scale": {"values": [-1]})",
        "must be finite and not negative"},
   };
-  for (const Case& c : cases) {
-    const std::string text =
-        R"({"kasha_scene": 1, "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "fog"},
-      "materials": {"m": {}}, "media": {"fog": {"type": "grid", )" +
-        c.grid + R"(}},
-      "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], "material": "m", "emission": 1}]})";
-    const std::string e = error_of([&] { load_scene(write_file("bad_grid.json", text)); });
-    EXPECT_NE(e.find(c.message), std::string::npos) << c.grid << "\n  got: " << e;
-    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
-  }
+  for (const Case& c : cases) expect_one_line(bad_medium_error("grid", c.grid), c.message, c.grid);
   const std::vector<Case> pbrt = {
       {R"("integer nx" 2 "float density" [1 1 1])", "3 density values for nx*ny*nz = 2"},
       {R"("float density" [-1])", "a density must be finite and not negative"},
@@ -781,17 +799,8 @@ TEST(Medium, BadGridsAreOneLine) {
        "expected 2 values for \"Lescale\""},
       {R"("integer nx" 1)", "no \"density\" value provided"},
   };
-  for (const Case& c : pbrt) {
-    const std::string e = error_of([&] {
-      import_pbrt_scene(write_file("bad_grid.pbrt",
-                                   "Camera \"perspective\"\nWorldBegin\nMakeNamedMedium \"smoke\" "
-                                   "\"string type\" \"uniformgrid\" " +
-                                       c.grid + "\n"),
-                        {});
-    });
-    EXPECT_NE(e.find(c.message), std::string::npos) << c.grid << "\n  got: " << e;
-    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
-  }
+  for (const Case& c : pbrt)
+    expect_one_line(bad_pbrt_medium_error("uniformgrid", c.grid), c.message, c.grid);
 }
 
 // pbrt-v4's uniformgrid: its samples, box and transform as kasha's grid medium.
@@ -1011,17 +1020,8 @@ MediumInterface "smoke" ""
 Shape "sphere")",
        "is an emitting \"rgbgrid\""},
   };
-  for (const Case& c : pbrt) {
-    const std::string e = error_of([&] {
-      import_pbrt_scene(write_file("bad_rgb_grid.pbrt",
-                                   "Camera \"perspective\"\nWorldBegin\nMakeNamedMedium \"smoke\" "
-                                   "\"string type\" \"rgbgrid\" " +
-                                       c.grid + "\n"),
-                        {});
-    });
-    EXPECT_NE(e.find(c.message), std::string::npos) << c.grid << "\n  got: " << e;
-    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
-  }
+  for (const Case& c : pbrt)
+    expect_one_line(bad_pbrt_medium_error("rgbgrid", c.grid), c.message, c.grid);
   const std::vector<Case> json = {
       {R"("size": [1, 1, 1], "sigma_a": {"rgb_values": [1, 1]})", "needs 3 values, not 2"},
       {R"("size": [1, 1, 1], "sigma_s": {"rgb_values": [1, -1, 1]})",
@@ -1031,14 +1031,5 @@ Shape "sphere")",
       {R"("size": [1, 1, 1], "sigma_a": {"rgb_values": [1, 1, 1]}, "emission": 1)",
        "an rgbgrid medium takes no \"emission\""},
   };
-  for (const Case& c : json) {
-    const std::string text =
-        R"({"kasha_scene": 1, "camera": {"position": [0, 0, 3], "look_at": [0, 0, 0], "medium": "fog"},
-      "materials": {"m": {}}, "media": {"fog": {"type": "rgbgrid", )" +
-        c.grid + R"(}},
-      "shapes": [{"type": "quad", "corner": [-1, -1, 0], "u": [2, 0, 0], "v": [0, 2, 0], "material": "m", "emission": 1}]})";
-    const std::string e = error_of([&] { load_scene(write_file("bad_colour_grid.json", text)); });
-    EXPECT_NE(e.find(c.message), std::string::npos) << c.grid << "\n  got: " << e;
-    EXPECT_EQ(e.find('\n'), std::string::npos) << e;
-  }
+  for (const Case& c : json) expect_one_line(bad_medium_error("rgbgrid", c.grid), c.message, c.grid);
 }

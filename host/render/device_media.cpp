@@ -62,7 +62,7 @@ static void place_emission_grids(const Medium& m, const WavelengthGrid& grid,
 }
 
 // A colour grid's components (kernels/media/colour_grid.h): their σt and σs spectra end to end
-// (in place of the medium's, which stay for its mean), and trail slots beyond the media's own for
+// (in place of the medium's), and trail slots beyond the media's own for
 // all but the first.
 static void place_components(const Medium& m, std::vector<float>& spectra, KMedium& k,
                              int& trail_slots) {
@@ -101,9 +101,13 @@ DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_
       for (size_t i = 0; i < sigma_t.size(); ++i) sigma_t[i] += f.absorption[i], sum += f.absorption[i];
       kf.absorption_sum = static_cast<float>(sum);
     }
-    k.sigma_t = append_spectrum(spectra, sigma_t);
-    k.sigma_s = append_spectrum(spectra, m.sigma_s);
-    if (!m.components.empty()) place_components(m, spectra, k, d.trail_slots);
+    // A colour grid's spectra are its components' (its mean ones only feed the sums below).
+    if (m.components.empty()) {
+      k.sigma_t = append_spectrum(spectra, sigma_t);
+      k.sigma_s = append_spectrum(spectra, m.sigma_s);
+    } else {
+      place_components(m, spectra, k, d.trail_slots);
+    }
     k.g = static_cast<float>(m.g);
     double sigma_sum = 0, scattered = 0, reemitted = 0;
     for (size_t i = 0; i < sigma_t.size(); ++i) sigma_sum += sigma_t[i], scattered += m.sigma_s[i];

@@ -100,6 +100,27 @@ static void parse_lattice_size(const JsonNode& size, DensityGrid& g) {
     size.fail("a grid holds at most 2^28 samples");
 }
 
+// "A x B x C", a lattice's size in messages.
+static std::string lattice_text(const DensityGrid& g) {
+  return std::to_string(g.nx) + " x " + std::to_string(g.ny) + " x " + std::to_string(g.nz);
+}
+
+// `values`: `want` numbers, each in [lo, 1e30], as floats; a wrong count fails with `count`
+// followed by " N values, not M", a value out of range with `bad`.
+static std::vector<float> sample_values(const JsonNode& values, size_t want, const std::string& count,
+                                        double lo, const char* bad) {
+  const std::vector<double> v = values.numbers();
+  if (v.size() != want)
+    values.fail(count + " " + std::to_string(want) + " values, not " + std::to_string(v.size()));
+  std::vector<float> out;
+  out.reserve(v.size());
+  for (double x : v) {
+    if (!(x >= lo && x <= 1e30)) values.fail(bad);
+    out.push_back(static_cast<float>(x));
+  }
+  return out;
+}
+
 // A grid medium's "bounds": {"min", "max"} (default the unit cube) and "transform" (the medium's
 // space to the world's).
 static void parse_grid_box(const JsonNode& node, DensityGrid& g) {
@@ -125,17 +146,9 @@ static DensityGrid parse_density_grid(const JsonNode& node) {
     density.fail("expected {\"size\": [nx, ny, nz], \"values\": [...]} or {\"vdb\": FILE}");
   if (density.has("vdb")) return parse_vdb_density(node, density);
   parse_lattice_size(density.at("size"), g);
-  const JsonNode values = density.at("values");
-  const std::vector<double> v = values.numbers();
-  const size_t want = static_cast<size_t>(g.nx) * g.ny * g.nz;
-  if (v.size() != want)
-    values.fail("a grid of " + std::to_string(g.nx) + " x " + std::to_string(g.ny) + " x " +
-                std::to_string(g.nz) + " needs " + std::to_string(want) + " values, not " +
-                std::to_string(v.size()));
-  for (double x : v) {
-    if (!(x >= 0 && x <= 1e30)) values.fail("a density must be finite and not negative");
-    g.values.push_back(static_cast<float>(x));
-  }
+  g.values = sample_values(density.at("values"), static_cast<size_t>(g.nx) * g.ny * g.nz,
+                           "a grid of " + lattice_text(g) + " needs", 0,
+                           "a density must be finite and not negative");
   density.finish();
   parse_grid_box(node, g);
   return g;
@@ -146,7 +159,6 @@ static DensityGrid parse_density_grid(const JsonNode& node) {
 // "bounds" and "transform".
 static DensityGrid parse_colour_grid(const JsonNode& node) {
   DensityGrid g;
-  g.coloured = true;
   parse_lattice_size(node.at("size"), g);
   const size_t want = 3 * static_cast<size_t>(g.nx) * g.ny * g.nz;
   for (const char* key : {"sigma_a", "sigma_s"}) {
@@ -156,16 +168,9 @@ static DensityGrid parse_colour_grid(const JsonNode& node) {
       c->fail("expected {\"rgb_values\": [r, g, b, ...]}, a colour per sample");
     const JsonNode values = c->at("rgb_values");
     c->finish();
-    const std::vector<double> v = values.numbers();
-    if (v.size() != want)
-      values.fail("a grid of " + std::to_string(g.nx) + " x " + std::to_string(g.ny) + " x " +
-                  std::to_string(g.nz) + " needs " + std::to_string(want) + " values, not " +
-                  std::to_string(v.size()));
-    std::vector<float>& out = key[6] == 'a' ? g.sigma_a_rgb : g.sigma_s_rgb;
-    for (double x : v) {
-      if (!(x >= 0 && x <= 1e30)) values.fail("a colour must be finite and not negative");
-      out.push_back(static_cast<float>(x));
-    }
+    (key[6] == 'a' ? g.sigma_a_rgb : g.sigma_s_rgb) =
+        sample_values(values, want, "a grid of " + lattice_text(g) + " needs", 0,
+                      "a colour must be finite and not negative");
   }
   if (g.sigma_a_rgb.empty() && g.sigma_s_rgb.empty())
     node.fail("an rgbgrid needs \"sigma_a\" or \"sigma_s\" colours");
@@ -190,19 +195,9 @@ static std::vector<float> parse_lattice_values(const JsonNode& node, const Densi
   }
   const JsonNode values = node.at("values");
   node.finish();
-  const std::vector<double> v = values.numbers();
-  const size_t want = static_cast<size_t>(lattice.nx) * lattice.ny * lattice.nz;
-  if (v.size() != want)
-    values.fail("the density's " + std::to_string(lattice.nx) + " x " + std::to_string(lattice.ny) +
-                " x " + std::to_string(lattice.nz) + " samples need " + std::to_string(want) +
-                " values, not " + std::to_string(v.size()));
-  std::vector<float> out;
-  for (double x : v) {
-    if (!(x >= lo && x <= 1e30))
-      values.fail(lo == 0 ? "a value must be finite and not negative" : "a value must be finite");
-    out.push_back(static_cast<float>(x));
-  }
-  return out;
+  return sample_values(values, static_cast<size_t>(lattice.nx) * lattice.ny * lattice.nz,
+                       "the density's " + lattice_text(lattice) + " samples need", lo,
+                       lo == 0 ? "a value must be finite and not negative" : "a value must be finite");
 }
 
 // A medium's emission beyond "emission" (docs/media.md#emitting-grids): "emission_scale" (a
@@ -322,7 +317,7 @@ Medium discretize_medium(const MediumDesc& desc, const WavelengthGrid& grid) {
   for (double& v : m.sigma_s) v *= desc.scale;
   m.g = desc.g;
   m.grid = desc.grid;
-  if (desc.grid && desc.grid->coloured) colour_grid_means(m, desc.scale, grid);
+  if (desc.grid && desc.grid->coloured()) colour_grid_means(m, desc.scale, grid);
   if (desc.emission || desc.blackbody) {
     // Emitted radiance per unit length: σa·Le (pbrt-v4's), nothing where the medium absorbs
     // nothing; a blackbody's spectrum is the kernels' to evaluate at each point's temperature.

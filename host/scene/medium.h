@@ -46,10 +46,10 @@ struct DensityGrid {
   // whose blackbody the medium emits (docs/media.md#emitting-grids).
   std::vector<float> emission_scale, temperature;
   // A colour grid (pbrt-v4's rgbgrid, scene/colour_grid.h): σa's and σs's linear sRGB colour
-  // per sample (3 floats each, any size ≥ 0) in place of a density; an empty list is 1 in the
-  // whole box.
-  bool coloured = false;
+  // per sample (3 floats each, any size ≥ 0) in place of a density; one list empty: that
+  // coefficient is 1 in the whole box; both: not a colour grid.
   std::vector<float> sigma_a_rgb, sigma_s_rgb;
+  bool coloured() const { return !sigma_a_rgb.empty() || !sigma_s_rgb.empty(); }
 };
 
 // One component of a colour grid as the kernels track it (kernels/media/colour_grid.h).

@@ -55,12 +55,12 @@ inline void pw_transmit(PathWeight* p, const SceneView* s, const MediaTrail* t, 
 
 #if KASHA_SCATTERING
 
-/* σt in bin i at the latest collision in medium m (a component grid's: collision_coefficients'). */
-inline float medium_sigma_t(const SceneView* s, int m, int i) {
+/* σt per bin at the latest collision in medium m (a component grid's: collision_coefficients'). */
+inline const __global float* medium_extinction(const SceneView* s, const __global KMedium* m) {
 #if KASHA_GRID_COMPONENTS
-  if (s->media[m].components > 0) return s->scratch[KASHA_SCRATCH_COMPONENTS + i];
+  if (m->components > 0) return s->scratch + KASHA_SCRATCH_COMPONENTS;
 #endif
-  return s->spectra[s->media[m].sigma_t + i];
+  return s->spectra + m->sigma_t;
 }
 
 /* σs per bin at the latest collision in m, likewise. */
@@ -72,7 +72,7 @@ inline const __global float* medium_scattering(const SceneView* s, const __globa
 }
 
 /* A collision at x in medium m: a component grid's coefficients there into scratch slot 0, which
- * medium_sigma_t and medium_scattering read until the path's next collision. */
+ * medium_extinction and medium_scattering read until the path's next collision. */
 inline void collision_coefficients(const SceneView* s, int m, float3 x) {
 #if KASHA_GRID_COMPONENTS
   if (s->media[m].components > 0) components_at(s, &s->media[m], x, 0);
@@ -87,9 +87,10 @@ inline void collision_coefficients(const SceneView* s, int m, float3 x) {
 inline float pw_flight(PathWeight* p, const SceneView* s, const FilmView* f, const MediaTrail* t, int m, float total) {
   float tr[KASHA_BINS], den = 0.0f;
   float tbar = trail_bins(s, t, tr);
+  const __global float* sigma_t = m >= 0 ? medium_extinction(s, &s->media[m]) : 0;
   for (int k = 0; k < KASHA_BINS; ++k) {
     float e = pw_bin_energy(p, f, k);
-    if (e > 0.0f) den += e * tr[k] * (m >= 0 ? medium_sigma_t(s, m, k) : 1.0f);
+    if (e > 0.0f) den += e * tr[k] * (sigma_t ? sigma_t[k] : 1.0f);
   }
   den /= total;
   pw_transmit_bins(p, tr, den > 0.0f ? 1.0f / den : 0.0f);

@@ -26,8 +26,9 @@
 inline float photon_flight_weight(Photon* p, const SceneView* s, const MediaTrail* t, int m, float total) {
   float den = 0.0f, tr[KASHA_BINS];
   float tbar = trail_bins(s, t, tr);
+  const __global float* sigma_t = m >= 0 ? medium_extinction(s, &s->media[m]) : 0;
   for (int k = 0; k < KASHA_BINS; ++k)
-    if (p->power[k] > 0.0f) den += p->power[k] * tr[k] * (m >= 0 ? medium_sigma_t(s, m, k) : 1.0f);
+    if (p->power[k] > 0.0f) den += p->power[k] * tr[k] * (sigma_t ? sigma_t[k] : 1.0f);
   float scale = den > 0.0f ? total / den : 0.0f;
   for (int k = 0; k < KASHA_BINS; ++k) p->power[k] *= tr[k] * scale;
   return tbar;

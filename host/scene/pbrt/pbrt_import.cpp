@@ -790,6 +790,13 @@ class Importer {
     m["scale"] = params.get_float("scale", 1);
     m["g"] = params.get_float("g", 0);
     if (!emission.is_null()) m["emission"] = emission;
+    add_medium(name, m, params, where);
+  }
+
+  // A medium kasha builds as the JSON entry m: its parameters not read are warned about, and it
+  // takes the place of any earlier one of its name (refused or not).
+  void add_medium(const std::string& name, const nlohmann::json& m, const PbrtParameters& params,
+                  const PbrtLocation& where) {
     params.warn_unused("MakeNamedMedium " + in_quotes(name));
     media_[name] = m;
     refused_media_.erase(name);
@@ -871,10 +878,7 @@ class Importer {
     if (!le.empty() && params.get_float("Lescale", 1) > 0)
       return refuse_medium(name, where,
                            "is an emitting \"rgbgrid\" (\"Le\"), which kasha does not build");
-    params.warn_unused(what);
-    media_[name] = m;
-    refused_media_.erase(name);
-    sources_["/media/" + pointer_segment(name)] = where.str();
+    add_medium(name, m, params, where);
   }
 
   // An "rgb" array of an rgbgrid as linear sRGB (from its ColorSpace), each part ≥ 0.
