@@ -759,6 +759,27 @@ void expect_one_line(const std::string& e, const std::string& message, const std
   EXPECT_EQ(e.find('\n'), std::string::npos) << e;
 }
 
+// The JSON entry pbrt-v4's `MakeNamedMedium "smoke" "string type" TYPE_AND_PARAMS` imports as,
+// made under Translate 1 2 3 and put in an interface sphere.
+nlohmann::json imported_medium(const std::string& type_and_params) {
+  const nlohmann::json s = import_pbrt_scene(write_file("grid.pbrt", R"(
+LookAt 0 1 3  0 0 0  0 1 0
+Camera "perspective"
+WorldBegin
+AttributeBegin
+  Translate 1 2 3
+  MakeNamedMedium "smoke" "string type" )" + type_and_params + R"(
+AttributeEnd
+AttributeBegin
+  MediumInterface "smoke" ""
+  Material "interface"
+  Shape "sphere"
+AttributeEnd
+)"),
+                                             {});
+  return s.at("media").at("smoke");
+}
+
 }  // namespace
 
 TEST(Medium, BadGridsAreOneLine) {
@@ -805,23 +826,9 @@ TEST(Medium, BadGridsAreOneLine) {
 
 // pbrt-v4's uniformgrid: its samples, box and transform as kasha's grid medium.
 TEST(Medium, PbrtUniformGridImportsAsKashasGrid) {
-  const nlohmann::json s = import_pbrt_scene(write_file("grid.pbrt", R"(
-LookAt 0 1 3  0 0 0  0 1 0
-Camera "perspective"
-WorldBegin
-AttributeBegin
-  Translate 1 2 3
-  MakeNamedMedium "smoke" "string type" "uniformgrid" "integer nx" 2 "integer ny" 1 "integer nz" 1
-    "float density" [0.5 2] "point3 p0" [-1 -1 -1] "point3 p1" [1 1 1] "rgb sigma_a" [1 1 1] "rgb sigma_s" [2 2 2] "float scale" 3
-AttributeEnd
-AttributeBegin
-  MediumInterface "smoke" ""
-  Material "interface"
-  Shape "sphere"
-AttributeEnd
-)"),
-                                             {});
-  const nlohmann::json& m = s.at("media").at("smoke");
+  const nlohmann::json m =
+      imported_medium(R"("uniformgrid" "integer nx" 2 "integer ny" 1 "integer nz" 1
+    "float density" [0.5 2] "point3 p0" [-1 -1 -1] "point3 p1" [1 1 1] "rgb sigma_a" [1 1 1] "rgb sigma_s" [2 2 2] "float scale" 3)");
   EXPECT_EQ(m.at("type"), "grid");
   EXPECT_EQ(m.at("density").at("size"), nlohmann::json::parse("[2, 1, 1]"));
   EXPECT_EQ(m.at("density").at("values"), nlohmann::json::parse("[0.5, 2.0]"));
@@ -980,23 +987,8 @@ TEST(Medium, AColourGridScatteringFurnaceShowsTheEmittersRadiance) {
 // pbrt-v4's rgbgrid: its colours, box, transform, scale and g as kasha's; its refusals as
 // pbrt-v4's, one line each, and an emitting one refused where it is used.
 TEST(Medium, PbrtRgbGridImportsAsKashas) {
-  const nlohmann::json s = import_pbrt_scene(write_file("rgb_grid.pbrt", R"(
-LookAt 0 1 3  0 0 0  0 1 0
-Camera "perspective"
-WorldBegin
-AttributeBegin
-  Translate 1 2 3
-  MakeNamedMedium "smoke" "string type" "rgbgrid" "integer nx" 2 "integer ny" 1 "integer nz" 1
-    "rgb sigma_a" [0.5 1 2  0 0 0] "point3 p0" [-1 -1 -1] "point3 p1" [1 1 1] "float scale" 3 "float g" 0.4
-AttributeEnd
-AttributeBegin
-  MediumInterface "smoke" ""
-  Material "interface"
-  Shape "sphere"
-AttributeEnd
-)"),
-                                             {});
-  const nlohmann::json& m = s.at("media").at("smoke");
+  const nlohmann::json m = imported_medium(R"("rgbgrid" "integer nx" 2 "integer ny" 1 "integer nz" 1
+    "rgb sigma_a" [0.5 1 2  0 0 0] "point3 p0" [-1 -1 -1] "point3 p1" [1 1 1] "float scale" 3 "float g" 0.4)");
   EXPECT_EQ(m.at("type"), "rgbgrid");
   EXPECT_EQ(m.at("size"), nlohmann::json::parse("[2, 1, 1]"));
   EXPECT_EQ(m.at("sigma_a").at("rgb_values"),

@@ -100,8 +100,8 @@ INSTANTIATE_TEST_SUITE_P(
         // offset, scale and Lescale), read on the density's voxels.
         ReferenceCase{"vdb_fire", {}, 32},
         // A colour grid (rgbgrid): its absorption a colour per sample (a component
-        // per bin: 42 in all, so 16 passes), its scattering two colours, tracked exactly.
-        ReferenceCase{"rgb_grid", {}, 16}),
+        // per bin: 42 in all, so 8 passes), its scattering two colours, tracked exactly.
+        ReferenceCase{"rgb_grid", {}, 8}),
     [](const auto& info) { return info.param.scene; });
 
 // --max-depth N as pbrt-v4's maxdepth: the Cornell box with direct light alone (1) and one bounce
