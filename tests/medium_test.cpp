@@ -304,24 +304,30 @@ TEST(Medium, AFluorescentFurnaceWhoseDyeReemitsItsAbsorptionShowsTheEmittersRadi
 
 // An emitting furnace: the sphere filled with a medium that absorbs (σa varying over the bins),
 // scatters and emits σa·Le with Le the enclosure's radiance L. In equilibrium what it absorbs it
-// emits, so the radiance stays L everywhere, in every bin and every integrator that sees a
-// medium's emission: backward, vcm and bpt. Forward, photon mapping and ppm take light from light
-// paths, which no medium starts, and refuse the scene with one line (photon mapping, which picks
-// the emission up at the camera path's collision but misses what the medium emitted elsewhere and
-// scattered there, was 13–29 % low). Without the emission backward falls to 0.05–0.62 L.
+// emits, so the radiance stays L everywhere, in every bin and every integrator: backward's, vcm's
+// and bpt's camera paths take the emission where they collide; forward's, photon mapping's and
+// ppm's light paths also start in the medium (without them photon mapping was 13–29 % low).
+// Without the emission backward falls to 0.05–0.62 L. A medium that emits outside every shape
+// has no box for light paths to start in: those three refuse it in one line.
 TEST(Medium, AnEmittingFurnaceShowsTheEmittersRadianceInEveryIntegrator) {
-  const std::string scene = sphere_furnace(R"({"sigma_a": {"nm": [380, 780], "value": [3.0, 0.3]},
-      "sigma_s": {"nm": [380, 780], "value": [0.5, 2.0]}, "g": 0.5, "emission": 0.01})");
-  for (const std::string integrator : {"backward", "vcm", "bpt"}) {
+  const std::string fill = R"({"sigma_a": {"nm": [380, 780], "value": [3.0, 0.3]},
+      "sigma_s": {"nm": [380, 780], "value": [0.5, 2.0]}, "g": 0.5, "emission": 0.01})";
+  const std::string scene = sphere_furnace(fill);
+  for (const std::string integrator : {"backward", "vcm", "bpt", "forward", "photon", "ppm"}) {
     RenderResult r = render_furnace("emitting_furnace.json", scene, integrator);
     ASSERT_GE(r.scene.emitting_medium(), 0);
     expect_bins_match(r, r.scene.emitters.at(0).per_bin, integrator == "backward" ? 0.02 : 0.05,
                       integrator + " emitting furnace");
   }
+  std::string outside = scene;
+  outside.replace(outside.find(R"("inside": "fill")"), 16, R"("outside": "fill")");
+  outside.replace(outside.find(R"("width": 8)"), 0, R"("medium": "fill", )");
   for (const std::string integrator : {"forward", "photon", "ppm"}) {
     const std::string e =
-        error_of([&] { render_furnace("emitting_furnace.json", scene, integrator); });
-    EXPECT_NE(e.find("/media/fill: the medium emits, and " + integrator), std::string::npos) << e;
+        error_of([&] { render_furnace("emitting_outside.json", outside, integrator); });
+    EXPECT_NE(e.find("/media/fill: the medium emits and fills the space outside every shape"),
+              std::string::npos)
+        << e;
     EXPECT_EQ(e.find('\n'), std::string::npos) << e;
   }
 }
@@ -366,7 +372,9 @@ TEST(Medium, AnEmittingSlabFollowsItsClosedForm) {
   const std::vector<Case> cases = {
       {homogeneous, "backward", 1, 0, none},  {homogeneous, "vcm", 1, 0, none},
       {homogeneous, "vcm", 1, 1 << 20, none}, {grid, "backward", 0.5 * 0.9375, 0, none},
-      {homogeneous, "backward", 1, 0, 1},     {homogeneous, "backward", 0, 0, 0}};
+      {homogeneous, "backward", 1, 0, 1},     {homogeneous, "backward", 0, 0, 0},
+      {homogeneous, "forward", 1, 0, none},   {grid, "forward", 0.5 * 0.9375, 0, none},
+      {grid, "photon", 0.5 * 0.9375, 0, none}, {homogeneous, "ppm", 1, 0, none}};
   for (const Case& c : cases) {
     const std::string path = emitting_box_scene("emitting_slab.json", c.medium);
     RenderSettings s;
@@ -397,7 +405,7 @@ TEST(Medium, AnEmittingSlabFollowsItsClosedForm) {
 //   L = ∫ σa ρ(z) e(z) B̄(T(z)) exp(−σa ∫_z^top ρ) dz,  T = (v(z) − 10) · 100 K,
 // B̄ the bin's mean of Planck's law over its peak (0 at 100 K and below), every factor
 // interpolated as the grid interpolates (falling to 0 half a sample past the outer ones), here by
-// the midpoint rule in 4000 steps and 20 nodes a bin; backward and vcm within 1 % per bin.
+// the midpoint rule in 4000 steps and 20 nodes a bin; backward, vcm and forward within 1 % per bin.
 TEST(Medium, AnEmittingTemperatureGridFollowsItsIntegral) {
   const std::vector<double> rho = {0.8, 0.4, 1.2, 0.6}, v = {50, 70, 90, 60}, e = {1, 0.5, 2, 1.5};
   const auto lattice = [](const std::vector<double>& z) {  // the 4 values at each (x, y) of 2 × 2
@@ -423,7 +431,8 @@ TEST(Medium, AnEmittingTemperatureGridFollowsItsIntegral) {
     const double c2 = 1.4387769e-2, b = 2.8977721e-3, x = nm * 1e-9 * T;
     return std::pow(b / x, 5) * std::expm1(c2 / b) / std::expm1(c2 / x);
   };
-  for (const std::string integrator : {"backward", "vcm"}) {
+  // Light tracing's photons start at the grid's points, with its density, scale and blackbody there.
+  for (const std::string integrator : {"backward", "vcm", "forward"}) {
     const std::string path = emitting_box_scene("emitting_grid.json", medium);
     RenderSettings settings;
     settings.integrator = integrator;

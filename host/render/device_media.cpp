@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "scene/medium_light_region.h"
 
 namespace kasha {
 
@@ -83,8 +84,31 @@ static int place_component_grids(const Medium& m, std::vector<float>& spectra) {
   return at;
 }
 
+// Each emitting medium's share of the light paths that start in media (forward, photon and ppm:
+// kernels/transport/medium_light.h), against the lights' `light_power`, and its box.
+static void place_medium_lights(const Scene& scene, double light_power, std::vector<KMedium>& media) {
+  const std::vector<bool> used = scene.used_media();
+  std::vector<std::optional<MediumLightRegion>> regions(media.size());
+  double total = light_power;
+  for (size_t m = 0; m < media.size(); ++m) {
+    if (!used[m]) continue;
+    regions[m] = medium_light_region(scene, static_cast<int>(m));
+    if (regions[m]) total += regions[m]->power;
+  }
+  for (size_t m = 0; m < media.size(); ++m) {
+    KMedium& k = media[m];
+    if (!regions[m] || !(regions[m]->power > 0) || !(total > 0)) continue;
+    k.light_pick = static_cast<float>(regions[m]->power / total);
+    k.light_volume = static_cast<float>(regions[m]->volume);
+    k.light_outer = regions[m]->outer ? 1 : 0;
+    const Eigen::Matrix<double, 3, 4> a = regions[m]->from_unit.matrix().topRows<3>();
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 4; ++c) k.light_box[4 * r + c] = static_cast<float>(a(r, c));
+  }
+}
+
 DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_triangles,
-                         std::vector<float>& spectra) {
+                         double light_power, std::vector<float>& spectra) {
   DeviceMedia d;
   d.trail_slots = static_cast<int>(scene.media.size());
   for (const Medium& m : scene.media) {
@@ -123,6 +147,7 @@ DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_
     place_emission_grids(m, scene.grid, spectra, k);
     d.media.push_back(k);
   }
+  place_medium_lights(scene, light_power, d.media);
   if (!scene.triangle_media.empty())
     for (const KTriangle& t : leaf_triangles) {
       const MediumInterface& mi = scene.triangle_media[t.prim];

@@ -15,9 +15,10 @@ struct DeviceMedia {
       0;  // a MediaTrail's slots: one per medium, and a colour grid's further components
 };
 
-// `leaf_triangles`: the BVH's triangles in leaf order (their prim is the scene order); spectra are
-// appended to `spectra` at the KMedium offsets.
+// `leaf_triangles`: the BVH's triangles in leaf order (their prim is the scene order);
+// `light_power`: the lights' and emitters' (W), against which emitting media take their share of
+// light paths; spectra are appended to `spectra` at the KMedium offsets.
 DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_triangles,
-                         std::vector<float>& spectra);
+                         double light_power, std::vector<float>& spectra);
 
 }  // namespace kasha

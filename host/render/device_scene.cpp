@@ -276,7 +276,7 @@ KernelSceneData::KernelSceneData(const Scene& scene)
   for (const Emitter& e : scene.emitters) append(emitter_radiance, e.per_bin);
   for (const Light& l : scene.lights) append(emitter_radiance, l.per_bin);
   add_light_sampling(scene);
-  media = device_media(scene, bvh.triangles, spectra);
+  media = device_media(scene, bvh.triangles, total_power, spectra);
   camera_medium = scene.camera_medium;
   for (size_t k = 0; k < lights.size(); ++k) lights[k].medium = scene.light_media[k];
 }

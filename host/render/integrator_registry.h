@@ -48,10 +48,10 @@ struct IntegratorTraits {
   // Takes the light seen through delta bounces alone (a lamp, its highlight in glass or a coat)
   // from extra samples where it has an edge (vcm and its modes): camera paths alone find it.
   bool samples_seen_light = false;
-  // Its camera paths take all of an emitting medium's light (docs/media.md#emitting-media): no
-  // light path starts in a medium, so those that take light from light paths (forward, photon
-  // mapping, ppm) would miss what it emits and scatters, and refuse such scenes.
-  bool sees_medium_emission = true;
+  // Its light paths start inside emitting media too (docs/media.md#emitting-media): it takes
+  // their light from light paths (forward, photon mapping, ppm), so a medium that emits in a
+  // region no box holds is refused. The others' camera paths take that light whole.
+  bool medium_light_paths = false;
 };
 
 struct IntegratorInfo {

@@ -1,6 +1,7 @@
 #include "render/render_job.h"
 
 #include "core/error.h"
+#include "scene/medium_light_region.h"
 
 namespace kasha {
 
@@ -11,13 +12,19 @@ static const std::string& lit(const Scene& scene, const DeviceScene& device_scen
     throw Error(scene.file + ": no emitter has power on the wavelength grid " +
                 scene.grid.describe() + " (zero area, or emission outside the grid); the " +
                 integrator + " integrator needs light");
-  // Light tracing and photon mapping carry light that starts at lights and emitters only: an
-  // emitting medium's light, scattered before the camera path meets it, they never find.
-  if (const int m = scene.emitting_medium();
-      m >= 0 && !IntegratorRegistry::find(integrator).traits.sees_medium_emission)
-    throw Error(scene.medium_descs[m].where + ": the medium emits, and " + integrator +
-                " takes light from light paths, which start only at lights and emitters: render "
-                "it with backward, vcm or bpt");
+  // Light tracing and photon mapping start light paths in emitting media too, at points of a
+  // box that holds each: a medium emitting past every boundary has none.
+  if (IntegratorRegistry::find(integrator).traits.medium_light_paths) {
+    const std::vector<bool> used = scene.used_media();
+    for (size_t m = 0; m < scene.media.size(); ++m)
+      if (used[m] && !scene.media[m].emission.empty() &&
+          !medium_light_region(scene, static_cast<int>(m)))
+        throw Error(scene.medium_descs[m].where +
+                    ": the medium emits and fills the space outside every shape, where no light "
+                    "path of " + integrator +
+                    " can start (give it a shape that bounds it, or render with backward, vcm "
+                    "or bpt)");
+  }
   return integrator;
 }
 

@@ -160,6 +160,21 @@ inline void splat_medium(const SceneView* s, const FilmView* f, SplatTarget* tar
 }
 #endif
 
+#if KASHA_MEDIUM_LIGHTS
+/* A photon's start inside an emitting medium seen by the camera: the medium emits isotropically,
+ * so the radiance per nm it sends there is Φ / (4π Δλ). */
+inline void splat_emission_point(const SceneView* s, const FilmView* f, SplatTarget* target, const Photon* p,
+                                 float* rows) {
+  int pixel;
+  float k;
+  const __global float* tr;
+  if (!camera_connection_from_medium(s, p->position, p->medium, &pixel, &k, &tr)) return;
+  film_rows_clear(rows);
+  film_rows(f, p->power, tr, 0, k * KASHA_INV_4PI / s->bin_nm, rows);
+  splat_rows(target, pixel, rows);
+}
+#endif
+
 /* A work item's energy ledger (W): emitted = absorbed + escaped + in flight, exactly. */
 typedef struct {
   float emitted, absorbed, escaped, in_flight;
@@ -217,13 +232,17 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunc
   for (int index = first; index < last; ++index) {
     Sampler sampler = photon_sampler(seed, pass, photons, index);
     LightOrigin o;
-    Photon p = emit_photon(&s, (float)photons, &sampler, &o);
+    Photon p = emit_photon(&s, (float)photons, true, &sampler, &o);
     l.emitted += photon_total(&p);
+    if (!(p.start > 0.0f)) continue; /* a point outside the emitting medium it was drawn for */
+#if KASHA_MEDIUM_LIGHTS
+    if (origin_in_medium(&o)) splat_emission_point(&s, &f, &target, &p, rows);
+#endif
     /* The light point seen directly: Le cos / (p_area · photons). */
     int pixel;
     float k;
     const __global float* tr;
-    if (camera_connection(&s, p.position, o.normal, o.eps, photon_medium(&p), &pixel, &k, &tr)) {
+    if (!origin_in_medium(&o) && camera_connection(&s, p.position, o.normal, o.eps, photon_medium(&p), &pixel, &k, &tr)) {
       film_rows_clear(rows);
 #if KASHA_EMISSION_TEXTURES
       k *= o.scale;

@@ -245,8 +245,16 @@ typedef struct {
   int components;
   int trail_extra;
   int uniform_last;
+  /* Light paths that start in it where it emits (kernels/transport/medium_light.h): the
+   * probability that a light path does (0: none), the box they start in as a map from the unit
+   * cube (row-major 3 × 4) and its volume, and whether it is the medium outside every boundary. */
+  float light_pick;
+  float light_box[12];
+  float light_volume;
+  int light_outer;
+  int pad_light;
 } KMedium;
-KASHA_STATIC_SIZE(KMedium, 192);
+KASHA_STATIC_SIZE(KMedium, 256);
 
 /* Per leaf triangle (KASHA_MEDIA), its shape's media: inside (behind the front side) and outside,
  * KMedium indices, -1 for vacuum. Equal sides are no boundary: a ray keeps its medium there. */

@@ -16,6 +16,7 @@
 #include "geometry/hit_point.h"
 #include "materials/hit_material.h"
 #include "media/medium.h"
+#include "media/medium_emission.h"
 
 #if KASHA_MEDIA
 /* T ← T·diag(tr)·scale (b kept normalised to a maximum of 1 in rank-1 mode, path_weight.h). */
@@ -224,27 +225,14 @@ inline int flight(PathWeight* p, const SceneView* s, const FilmView* f, float3 o
 }
 
 #if KASHA_MEDIUM_EMISSION
-#ifndef KASHA_MEDIUM_BLACKBODY
-#define KASHA_MEDIUM_BLACKBODY 0
-#endif
 #if KASHA_MEDIUM_BLACKBODY
-/* pbrt-v4's BlackbodySpectrum: Planck's law at nm and T kelvin over its value at Wien's peak, a
- * function of λT alone: (b / λT)^5 (e^(c2/b) − 1) / (e^(c2/λT) − 1). */
-inline float blackbody_normalized(float nm, float T) {
-  const float b = 2.8977721e-3f, c2 = 1.4387769e-2f, peak = 142.32146f; /* e^(c2/b) − 1 */
-  float x = nm * 1e-9f * T, r = b / x;
-  return r * r * r * r * r * peak / (exp(c2 / x) - 1.0f);
-}
-
 /* rows += scale · the path's weight ∘ em ∘ B̂(T), em the medium's σa per bin and B̂ each bin's
- * blackbody, the mean at its two Gauss nodes (in registers: the spectrum changes per point). */
+ * blackbody (media/medium_emission.h; in registers: the spectrum changes per point). */
 inline void pw_add_blackbody(const PathWeight* p, const SceneView* s, const FilmView* f, const __global KMedium* m,
                              float T, float scale, float* rows) {
-  const __global float* node = s->spectra + m->bin_nodes;
   const __global float* em = s->spectra + m->emission;
   float le[KASHA_BINS];
-  for (int i = 0; i < KASHA_BINS; ++i)
-    le[i] = 0.5f * (blackbody_normalized(node[2 * i], T) + blackbody_normalized(node[2 * i + 1], T));
+  for (int i = 0; i < KASHA_BINS; ++i) le[i] = blackbody_bin(s, m, i, T);
 #if KASHA_FULL_MATRIX
   for (int r = 0; r < KASHA_FILM_ROWS; ++r) {
     float sum = 0.0f;
@@ -273,21 +261,15 @@ inline void medium_emission_add(const PathWeight* p, const SceneView* s, const F
                                 float* rows) {
   const __global KMedium* m = &s->media[medium];
   if (m->emission < 0) return;
-  float scale = 1.0f;
-#if KASHA_MEDIUM_GRIDS
-  if (m->density >= 0 && (m->emission_scale >= 0 || m->temperature >= 0)) {
-    float3 q = grid_map(m, x, 1.0f);
-    if (m->emission_scale >= 0) scale = grid_value_at(s, m, m->emission_scale, q);
+  float T, scale = medium_emission_factor(s, m, x, &T);
+  if (!(scale > 0.0f)) return;
 #if KASHA_MEDIUM_BLACKBODY
-    if (m->temperature >= 0) {
-      float T = (grid_value_at(s, m, m->temperature, q) - m->temperature_offset) * m->temperature_scale;
-      if (T > 100.0f && scale > 0.0f) pw_add_blackbody(p, s, f, m, T, scale, rows);
-      return;
-    }
-#endif
+  if (T > 0.0f) {
+    pw_add_blackbody(p, s, f, m, T, scale, rows);
+    return;
   }
 #endif
-  if (scale > 0.0f) pw_add(p, f, s->spectra + m->emission, 0, scale, rows);
+  pw_add(p, f, s->spectra + m->emission, 0, scale, rows);
 }
 #endif
 #endif

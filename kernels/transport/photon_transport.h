@@ -19,6 +19,7 @@
 #include "materials/surface_at.h"
 #include "materials/texture.h"
 #include "media/medium.h"
+#include "transport/medium_light.h"
 
 typedef struct {
   float3 position;
@@ -55,15 +56,76 @@ typedef struct {
 #if KASHA_LIGHT_SOURCES
   const __global KLight* source; /* the light that is not a triangle it left, else null */
 #endif
+#if KASHA_MEDIUM_LIGHTS
+  int medium; /* the emitting medium it started in (medium_light.h), -1: a light */
+#endif
 } LightOrigin;
+
+/* Whether the photon started inside an emitting medium rather than at a light. */
+inline bool origin_in_medium(const LightOrigin* o) {
+#if KASHA_MEDIUM_LIGHTS
+  return o->medium >= 0;
+#else
+  return false;
+#endif
+}
+
+#if KASHA_MEDIUM_LIGHTS
+/* A photon from a point of an emitting medium (medium_light.h), picked with u0 below the media's
+ * share: a uniform direction, and power 4π E(x) V Δλ / (pick · photons), E what the medium emits
+ * at x per unit length and solid angle and V its box's volume; 0 where x is not in the medium (the
+ * caller passes such a photon over). The origin has no normal and no light. */
+inline Photon emit_from_medium(const SceneView* s, float photons, float u0, float2 u, float2 d, LightOrigin* origin) {
+  float rest;
+  int m = medium_light_pick(s, u0, &rest);
+  const __global KMedium* md = &s->media[m];
+  Photon p;
+  p.position = medium_light_point(md, (float3)(u.x, u.y, rest));
+  p.direction = sample_uniform_sphere(d);
+  p.medium = m;
+#if KASHA_DISPERSION
+  p.bin = -1;
+#endif
+  float scale = 4.0f * KASHA_PI * md->light_volume * s->bin_nm / (md->light_pick * photons);
+  if (!medium_holds(s, m, p.position, p.direction)) scale = 0.0f;
+  medium_emission_at(s, md, p.position, scale, p.power);
+  p.start = photon_total(&p);
+  origin->normal = (float3)(0.0f, 0.0f, 0.0f);
+  origin->emitter = -1;
+  origin->tri = -1;
+  origin->area_pdf = 0.0f;
+  origin->eps = 0.0f;
+#if KASHA_LIGHT_SOURCES
+  origin->source = 0;
+#endif
+#if KASHA_EMISSION_TEXTURES
+  origin->scale = 1.0f;
+#endif
+  origin->medium = m;
+  return p;
+}
+#endif
 
 /* A photon leaving a light: a triangle chosen by power, a uniform point, a cosine-weighted
  * direction; its spectrum is the emitter's radiance scaled so that the `photons` of a pass carry
- * the lights' total power: Φ_i = Le_i Δλ · π / (p_area · photons). */
-inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, LightOrigin* origin) {
+ * the lights' total power: Φ_i = Le_i Δλ · π / (p_area · photons). With `from_media` some start
+ * in emitting media instead (emit_from_medium). */
+inline Photon emit_photon(const SceneView* s, float photons, bool from_media, Sampler* sampler, LightOrigin* origin) {
   sampler_at(sampler, 0);
   float u0 = sample_2d(sampler).x;
   float2 u = sample_2d(sampler), d = sample_2d(sampler);
+  float lights = 1.0f; /* the share of photons that leave the lights */
+#if KASHA_MEDIUM_LIGHTS
+  origin->medium = -1;
+  /* With `from_media`, light paths start in emitting media by their share of the power; the
+   * lights' densities (a source's pick, a triangle's p_area) take the rest's factor. */
+  if (from_media) {
+    float share = medium_light_share(s);
+    if (u0 < share) return emit_from_medium(s, photons, u0, u, d, origin);
+    lights = 1.0f - share;
+    u0 = fmin((u0 - share) / lights, 0x1.fffffep-1f);
+  }
+#endif
   /* The light chosen by power: an emitting triangle, or (negative) a light that is not one. */
   int tri = s->light_tri[choose_light(s->light_cdf, s->light_count, u0)];
 #if KASHA_LIGHT_SOURCES
@@ -72,7 +134,7 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
     const __global KLight* l = &s->lights[~tri];
     Photon p;
     int texel;
-    float scale = emit_from_source(s, l, u, d, &p.position, &p.direction, &texel) * s->bin_nm / photons;
+    float scale = emit_from_source(s, l, u, d, &p.position, &p.direction, &texel) * s->bin_nm / (lights * photons);
     origin->normal = (float3)(0.0f, 0.0f, 0.0f);
     origin->emitter = l->spectrum;
     origin->tri = -1;
@@ -112,7 +174,7 @@ inline Photon emit_photon(const SceneView* s, float photons, Sampler* sampler, L
 #if KASHA_LIGHT_SOURCES
   origin->source = 0;
 #endif
-  origin->area_pdf = s->emitter_area_pdf[lp.emitter];
+  origin->area_pdf = s->emitter_area_pdf[lp.emitter] * lights;
   origin->eps = lp.eps;
   float scale = s->bin_nm * KASHA_PI / (origin->area_pdf * photons);
   const __global float* le = emitter_spectrum(s, lp.emitter);

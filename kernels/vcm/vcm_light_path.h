@@ -177,6 +177,11 @@ inline bool vcm_light_collision(const SceneView* s, const FilmView* f, const KVc
 inline void vcm_light_start(const SceneView* s, const LightOrigin* o, const Photon* p, float vc, float* dvcm,
                             float* dvc, float* dvm, bool* far_start) {
   *far_start = false;
+  if (origin_in_medium(o)) {
+    /* Inside an emitting medium (ppm alone, whose merges are unweighted): no other technique. */
+    *dvcm = *dvc = *dvm = 0.0f;
+    return;
+  }
 #if KASHA_LIGHT_SOURCES
   if (o->source) {
     const __global KLight* l = o->source;
@@ -237,7 +242,11 @@ inline float vcm_light_path(const SceneView* s, const FilmView* f, const KVcmIte
   const float paths = (float)it->paths;
   Sampler sampler = photon_sampler(it->seed, it->pass, it->paths, index);
   LightOrigin o;
-  Photon p = emit_photon(s, paths, &sampler, &o);
+  /* ppm's light subpaths also start in emitting media (vcm's and bpt's camera paths take that
+   * light whole, so their light subpaths must not). */
+  Photon p = emit_photon(s, paths, !KASHA_VCM_CONNECT, &sampler, &o);
+  *last_stored = -1;
+  if (!(p.start > 0.0f)) return 0.0f; /* a point outside the emitting medium it was drawn for */
   const float3 start = p.position;
   p.position += o.normal * o.eps;
   float dvcm, dvc, dvm;

@@ -134,6 +134,6 @@ KASHA_REGISTER_INTEGRATOR(
       number_text(kForwardPhotons), KASHA_SETTING(photons)}},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ true, /*sees camera mirrors*/ false,
                      /*reference*/ false, /*direct by merges*/ false,
-                     /*samples seen light*/ false, /*sees medium emission*/ false});
+                     /*samples seen light*/ false, /*medium light paths*/ true});
 
 }  // namespace kasha

@@ -365,6 +365,6 @@ KASHA_REGISTER_INTEGRATOR(
       "on", KASHA_SETTING(edge_correction)}},
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
                      /*reference*/ false, /*direct by merges*/ false,
-                     /*samples seen light*/ false, /*sees medium emission*/ false});
+                     /*samples seen light*/ false, /*medium light paths*/ true});
 
 }  // namespace kasha

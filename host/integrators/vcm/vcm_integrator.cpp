@@ -520,6 +520,6 @@ KASHA_REGISTER_INTEGRATOR(
     vcm_options(VcmMode::ppm),
     IntegratorTraits{/*physical*/ true, /*unbiased*/ false, /*sees camera mirrors*/ true,
                      /*reference*/ false, /*direct by merges*/ true, /*samples seen light*/ true,
-                     /*sees medium emission*/ false});
+                     /*medium light paths*/ true});
 
 }  // namespace kasha

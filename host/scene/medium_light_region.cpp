@@ -1,0 +1,101 @@
+#include "scene/medium_light_region.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace kasha {
+
+// Whether triangle i is where the kernels place it: the scene's own, not an instanced object's
+// (whose triangles are in object space).
+static bool world_triangle(const Scene& scene, size_t i) {
+  return scene.instances.empty() || i < static_cast<size_t>(scene.instances.world_triangles);
+}
+
+static Eigen::Vector3d vertex(const KTriangle& t, int k) {
+  const float* v = k == 0 ? t.v0 : k == 1 ? t.v1 : t.v2;
+  return {v[0], v[1], v[2]};
+}
+
+int outer_medium(const Scene& scene) {
+  if (scene.triangle_media.empty()) return scene.camera_medium;
+  int best = -1;
+  double reach = -std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < scene.triangle_media.size(); ++i) {
+    if (!scene.triangle_media[i].transition() || !world_triangle(scene, i)) continue;
+    const KTriangle& t = scene.triangles[i];
+    for (int k = 0; k < 3; ++k)
+      if (vertex(t, k).x() > reach) reach = vertex(t, k).x(), best = static_cast<int>(i);
+  }
+  if (best < 0) return scene.camera_medium;
+  // At the farthest vertex nothing lies beyond along +x: the side the normal's x points to faces out.
+  const KTriangle& t = scene.triangles[best];
+  const Eigen::Vector3d n = (vertex(t, 1) - vertex(t, 0)).cross(vertex(t, 2) - vertex(t, 0));
+  const MediumInterface& mi = scene.triangle_media[best];
+  return n.x() >= 0 ? mi.outside : mi.inside;
+}
+
+// The box of the triangles with medium m on a side; an instanced object's with m on a side make
+// it the scene's bounding cube. False: none has.
+static bool boundary_box(const Scene& scene, int m, Eigen::AlignedBox3d& box) {
+  for (size_t i = 0; i < scene.triangle_media.size(); ++i) {
+    const MediumInterface& mi = scene.triangle_media[i];
+    if (mi.inside != m && mi.outside != m) continue;
+    if (!world_triangle(scene, i)) {
+      Eigen::Vector3d centre;
+      double radius;
+      scene.bounding_sphere(centre, radius);
+      box = Eigen::AlignedBox3d(centre.array() - radius, centre.array() + radius);
+      return true;
+    }
+    for (int k = 0; k < 3; ++k) box.extend(vertex(scene.triangles[i], k));
+  }
+  return !box.isEmpty();
+}
+
+// The mean over a grid's samples of what scales its emission: density, emission scale, and
+// whether the temperature is above pbrt-v4's cutoff.
+static double grid_emission_mean(const Medium& medium) {
+  const DensityGrid& g = *medium.grid;
+  if (g.values.empty()) return 1;
+  double sum = 0;
+  for (size_t i = 0; i < g.values.size(); ++i) {
+    double v = g.values[i];
+    if (!g.emission_scale.empty()) v *= g.emission_scale[i];
+    if (medium.blackbody && !g.temperature.empty() &&
+        !((g.temperature[i] - medium.blackbody->offset) * medium.blackbody->scale > 100))
+      v = 0;
+    sum += v;
+  }
+  return sum / static_cast<double>(g.values.size());
+}
+
+std::optional<MediumLightRegion> medium_light_region(const Scene& scene, int m) {
+  const Medium& medium = scene.media[m];
+  MediumLightRegion r;
+  if (medium.emission.empty()) return r;
+  r.outer = outer_medium(scene) == m;
+  double mean = 1;
+  if (medium.grid) {
+    const DensityGrid& g = *medium.grid;
+    const Eigen::Vector3d extent = g.p1 - g.p0;
+    r.from_unit = g.to_world * Eigen::Translation3d(g.p0) * Eigen::Scaling(extent);
+    r.volume = std::abs(g.to_world.linear().determinant()) * extent.prod();
+    mean = grid_emission_mean(medium);
+  } else {
+    Eigen::AlignedBox3d box;
+    if (r.outer || !boundary_box(scene, m, box)) return std::nullopt;
+    // A little wider, so float rounding in the kernels cannot cut the region's faces.
+    const Eigen::Vector3d pad = Eigen::Vector3d::Constant(1e-4 * box.diagonal().maxCoeff());
+    box.extend(box.min() - pad).extend(box.max() + pad);
+    r.from_unit = Eigen::Translation3d(box.min()) * Eigen::Scaling(Eigen::Vector3d(box.sizes()));
+    r.volume = box.sizes().prod();
+  }
+  double emitted = 0;
+  for (double e : medium.emission) emitted += e * scene.grid.bin_nm;
+  r.power = 4 * M_PI * r.volume * mean * emitted;
+  if (!(r.power > 0) || !std::isfinite(r.power)) r.power = 0;
+  return r;
+}
+
+}  // namespace kasha
