@@ -351,8 +351,11 @@ static std::string emitting_box_scene(const std::string& file, const std::string
 // density ρ along z. Homogeneous (ρ = 1 over d = 1) in backward and vcm, vcm also with its light
 // subpaths in several chunks (each replays the camera paths: the emission must count once); as a
 // grid of density 0.5 (∫ρ dz = 0.5 · 0.9375: it falls to half at the box's faces) in backward,
-// where σa·Le, like the flight's weights, leaves the density out. At --max-depth 0 the slab shows
-// nothing (pbrt-v4's volpath adds a medium's emission only below its maxdepth), at 1 all of it.
+// where σa·Le, like the flight's weights, leaves the density out. Light paths that start in the
+// medium: forward (homogeneous, and the grid, where the photon's power takes the density), photon
+// mapping (the grid) and ppm. At --max-depth 0 the slab shows nothing (pbrt-v4's volpath adds a
+// medium's emission only below its maxdepth; forward counts a photon's start in the medium as a
+// vertex alike), at 1 all of it.
 TEST(Medium, AnEmittingSlabFollowsItsClosedForm) {
   const std::string homogeneous =
       R"({"sigma_a": {"nm": [380, 780], "value": [2.0, 0.1]}, "sigma_s": 0,
@@ -374,7 +377,8 @@ TEST(Medium, AnEmittingSlabFollowsItsClosedForm) {
       {homogeneous, "vcm", 1, 1 << 20, none}, {grid, "backward", 0.5 * 0.9375, 0, none},
       {homogeneous, "backward", 1, 0, 1},     {homogeneous, "backward", 0, 0, 0},
       {homogeneous, "forward", 1, 0, none},   {grid, "forward", 0.5 * 0.9375, 0, none},
-      {grid, "photon", 0.5 * 0.9375, 0, none}, {homogeneous, "ppm", 1, 0, none}};
+      {grid, "photon", 0.5 * 0.9375, 0, none}, {homogeneous, "ppm", 1, 0, none},
+      {homogeneous, "forward", 1, 0, 1},      {homogeneous, "forward", 0, 0, 0}};
   for (const Case& c : cases) {
     const std::string path = emitting_box_scene("emitting_slab.json", c.medium);
     RenderSettings s;

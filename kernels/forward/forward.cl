@@ -236,7 +236,8 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunc
     l.emitted += photon_total(&p);
     if (!(p.start > 0.0f)) continue; /* a point outside the emitting medium it was drawn for */
 #if KASHA_MEDIUM_LIGHTS
-    if (origin_in_medium(&o)) splat_emission_point(&s, &f, &target, &p, rows);
+    /* A point of an emitting medium is a vertex (origin_depth): seen only under a cap above 0. */
+    if (origin_in_medium(&o) && max_depth > 0) splat_emission_point(&s, &f, &target, &p, rows);
 #endif
     /* The light point seen directly: Le cos / (p_area · photons). */
     int pixel;
@@ -253,7 +254,7 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunc
     p.position += o.normal * o.eps;
 
     bool alive = true;
-    for (int depth = 0; depth < max_depth && alive; ++depth) {
+    for (int depth = origin_depth(&o); depth < max_depth && alive; ++depth) {
       HitPoint h;
       if (!forward_next_surface(&s, &f, &target, &p, &sampler, &depth, max_depth, rows, &l, &h)) {
         alive = depth == max_depth;

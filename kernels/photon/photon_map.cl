@@ -57,16 +57,16 @@ inline void write_photon(__global float* rec, float3 x, float3 n, int index, int
 }
 
 /* The photon's next surface hit h (photon_intersect); with scattering media, its collisions on
- * the way (photon_medium.h) count as hits: each from hit `first_stored` on is stored (normal 0), and
+ * the way (photon_medium.h) count as hits: each after the first bounce is stored (normal 0), and
  * the photon scatters or re-emits there. False: it escaped or ended, or *depth reached `until`. */
 inline bool photon_next_surface(const SceneView* s, Photon* p, Sampler* sampler, int* depth, int until, int index,
-                                int first_stored, StoreCursor* cursor, HitPoint* h) {
+                                StoreCursor* cursor, HitPoint* h) {
 #if KASHA_SCATTERING
   for (; *depth < until; ++*depth) {
     float tbar;
     int reached = photon_flight(p, s, sampler, *depth, h, &tbar);
     if (reached != KASHA_FLIGHT_SCATTERED) return reached == KASHA_FLIGHT_SURFACE;
-    __global float* rec = *depth >= first_stored ? next_record(cursor) : 0;
+    __global float* rec = *depth > 0 ? next_record(cursor) : 0;
     if (rec) write_photon(rec, h->x, (float3)(0.0f, 0.0f, 0.0f), index, *depth, p, 1.0f);
     if (scatter_photon_in_medium(p, s, h->x, sampler, *depth) == BRANCH_ABSORBED) return false;
   }
@@ -107,14 +107,12 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KPhotonTra
     Photon p = emit_photon(&s, (float)photons, true, &sampler, &o);
     if (!(p.start > 0.0f)) continue; /* a point outside the emitting medium it was drawn for */
     p.position += o.normal * o.eps;
-    /* Direct light at the visible points is next-event estimation's, but for a photon from inside
-     * a medium, which no light sample reaches: it is stored from its first hit. */
-    const int first_stored = origin_in_medium(&o) ? 0 : 1;
     StoreCursor cursor = {store, stored, capacity, skip};
-    for (int depth = 0;; ++depth) {
+    /* A photon from inside an emitting medium starts a vertex deep (origin_depth), so it is stored
+     * from its first hit: no next-event estimate reaches a medium's light. */
+    for (int depth = origin_depth(&o);; ++depth) {
       HitPoint h;
-      bool hit = depth < until &&
-                 photon_next_surface(&s, &p, &sampler, &depth, until, index, first_stored, &cursor, &h);
+      bool hit = depth < until && photon_next_surface(&s, &p, &sampler, &depth, until, index, &cursor, &h);
       if (depth == KASHA_MAX_PATH_DEPTH) guard += photon_total(&p) / p.start;
       if (!hit) break;
       float3 ns = hit_ng(&h), x = h.x;
@@ -124,7 +122,7 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KPhotonTra
 #endif
       Surface surf;
       load_surface_at(&s, &h, &surf);
-      __global float* rec = depth >= first_stored && surface_has_lambert(&surf) ? next_record(&cursor) : 0;
+      __global float* rec = depth > 0 && surface_has_lambert(&surf) ? next_record(&cursor) : 0;
       if (rec) {
 #if KASHA_COATED
         /* Under a coat, the power that reaches the base: t(θi) Φ (coat.h); the visible point's

@@ -70,6 +70,11 @@ inline bool origin_in_medium(const LightOrigin* o) {
 #endif
 }
 
+/* The scattering vertices a light path has at its start: a point of an emitting medium counts as
+ * one, as pbrt-v4's volpath counts the collision that picks a medium's emission up against its
+ * maxdepth (--max-depth), so every integrator caps the same paths. */
+inline int origin_depth(const LightOrigin* o) { return origin_in_medium(o) ? 1 : 0; }
+
 #if KASHA_MEDIUM_LIGHTS
 /* A photon from a point of an emitting medium (medium_light.h), picked with u0 below the media's
  * share: a uniform direction, and power 4π E(x) V Δλ / (pick · photons), E what the medium emits

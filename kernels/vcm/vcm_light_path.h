@@ -260,7 +260,7 @@ inline float vcm_light_path(const SceneView* s, const FilmView* f, const KVcmIte
 #if KASHA_SCATTERING
   float sigma_prev = 1.0f; /* σ̄ where the segment now flown started (vcm_media.h) */
 #endif
-  for (int depth = 0;; ++depth) {
+  for (int depth = origin_depth(&o);; ++depth) {
     if (depth == KASHA_MAX_PATH_DEPTH) {
       guard = photon_total(&p) / p.start;
       break;
