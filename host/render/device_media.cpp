@@ -77,6 +77,16 @@ static void place_components(const Medium& m, std::vector<float>& spectra, KMedi
   for (const GridComponent& c : m.components) append_spectrum(spectra, c.sigma_s);
 }
 
+// An emitting colour grid's radiance components (kernels/media/medium_emission.h): their spectra
+// end to end at `emission`, their weights end to end at `emission_scale`.
+static void place_emission_components(const Medium& m, std::vector<float>& spectra, KMedium& k) {
+  k.emission_components = static_cast<int>(m.emission_components.size());
+  k.emission = static_cast<int>(spectra.size());
+  for (const EmissionComponent& c : m.emission_components) append_spectrum(spectra, c.radiance);
+  k.emission_scale = static_cast<int>(spectra.size());
+  for (const EmissionComponent& c : m.emission_components) append_samples(spectra, c.values);
+}
+
 // Its components' weights end to end (the box-wide one, last, has none): where they start.
 static int place_component_grids(const Medium& m, std::vector<float>& spectra) {
   const int at = static_cast<int>(spectra.size());
@@ -145,6 +155,7 @@ DeviceMedia device_media(const Scene& scene, const std::vector<KTriangle>& leaf_
     if (!m.components.empty()) k.density = place_component_grids(m, spectra);
     k.emission = m.emission.empty() ? -1 : append_spectrum(spectra, m.emission);
     place_emission_grids(m, scene.grid, spectra, k);
+    if (!m.emission_components.empty()) place_emission_components(m, spectra, k);
     d.media.push_back(k);
   }
   place_medium_lights(scene, light_power, d.media);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <map>
 
 #include "spectrum/rgb_spectrum.h"
@@ -20,10 +21,18 @@ std::vector<double> unit_colour_spectrum(const std::array<float, 3>& key,
   return out;
 }
 
-// One coefficient's colours (3 per sample) as components: a class of colours equal up to a
-// factor each (its weight the factor), or one per bin where more classes than bins differ.
-void coefficient_components(const std::vector<float>& rgb, bool scatters, double scale,
-                            const WavelengthGrid& grid, std::vector<GridComponent>& out) {
+// Colours (3 per sample) split as non-negative components, each weights per sample and a
+// spectrum: a class of colours equal up to a factor each (its weights the factors, its spectrum
+// `unit`'s of the class's colour scaled to a largest part of 1 — pbrt-v4's spectrum of c·rgb is c
+// times that of rgb), or one per bin where more classes than bins differ.
+struct ColourPart {
+  std::vector<float> values;
+  std::vector<double> spectrum;
+};
+
+std::vector<ColourPart> colour_parts(
+    const std::vector<float>& rgb, const WavelengthGrid& grid,
+    const std::function<std::vector<double>(const std::array<float, 3>&)>& unit) {
   const size_t samples = rgb.size() / 3;
   // Colours equal up to a factor to one part in 2^20 (c·rgb rounds apart from rgb in the last
   // bits): a class's spectrum, its first colour's, is then each member's to about 10⁻⁶.
@@ -43,30 +52,37 @@ void coefficient_components(const std::vector<float>& rgb, bool scatters, double
     factor[v] = m;
   }
   std::vector<std::vector<double>> spectra(classes.size());
-  for (size_t c = 0; c < keys.size(); ++c) spectra[c] = unit_colour_spectrum(keys[c], grid);
-  const auto component = [&](std::vector<double> spectrum) {
-    GridComponent k;
-    for (double& x : spectrum) x *= scale;
-    k.sigma_t = spectrum;
-    k.sigma_s = scatters ? spectrum : std::vector<double>(spectrum.size(), 0.0);
-    k.values.assign(samples, 0.0f);
-    return k;
-  };
+  for (size_t c = 0; c < keys.size(); ++c) spectra[c] = unit(keys[c]);
+  std::vector<ColourPart> out;
   if (classes.size() <= static_cast<size_t>(grid.bins)) {
     for (size_t c = 0; c < classes.size(); ++c) {
-      GridComponent k = component(spectra[c]);
+      ColourPart k{std::vector<float>(samples, 0.0f), spectra[c]};
       for (size_t v = 0; v < samples; ++v)
         if (of[v] == static_cast<int>(c)) k.values[v] = factor[v];
       out.push_back(std::move(k));
     }
-    return;
+    return out;
   }
   for (int i = 0; i < grid.bins; ++i) {
-    std::vector<double> unit(grid.bins, 0.0);
-    unit[i] = 1;
-    GridComponent k = component(unit);
+    ColourPart k{std::vector<float>(samples, 0.0f), std::vector<double>(grid.bins, 0.0)};
+    k.spectrum[i] = 1;
     for (size_t v = 0; v < samples; ++v)
       if (of[v] >= 0) k.values[v] = static_cast<float>(factor[v] * spectra[of[v]][i]);
+    out.push_back(std::move(k));
+  }
+  return out;
+}
+
+// One coefficient's colours as components (σs's also extinguish).
+void coefficient_components(const std::vector<float>& rgb, bool scatters, double scale,
+                            const WavelengthGrid& grid, std::vector<GridComponent>& out) {
+  const auto unit = [&](const std::array<float, 3>& key) { return unit_colour_spectrum(key, grid); };
+  for (ColourPart& part : colour_parts(rgb, grid, unit)) {
+    GridComponent k;
+    for (double& x : part.spectrum) x *= scale;
+    k.sigma_t = part.spectrum;
+    k.sigma_s = scatters ? part.spectrum : std::vector<double>(part.spectrum.size(), 0.0);
+    k.values = std::move(part.values);
     out.push_back(std::move(k));
   }
 }
@@ -98,6 +114,22 @@ std::vector<GridComponent> colour_grid_components(const DensityGrid& g, double s
             out.end());
   if (std::any_of(uniform.sigma_t.begin(), uniform.sigma_t.end(), [](double v) { return v > 0; }))
     out.push_back(std::move(uniform));
+  return out;
+}
+
+std::vector<EmissionComponent> colour_grid_emission(const DensityGrid& g, double scale,
+                                                   const WavelengthGrid& grid) {
+  // pbrt-v4's RGBIlluminantSpectrum, also linear in the colour's size.
+  const auto unit = [&](const std::array<float, 3>& key) {
+    return grid.resample(RgbIlluminantSpectrum({key[0], key[1], key[2]}));
+  };
+  std::vector<EmissionComponent> out;
+  for (ColourPart& part : colour_parts(g.emission_rgb, grid, unit)) {
+    if (std::none_of(part.values.begin(), part.values.end(), [](float v) { return v > 0; }))
+      continue;
+    for (double& x : part.spectrum) x *= scale;
+    out.push_back({std::move(part.values), std::move(part.spectrum)});
+  }
   return out;
 }
 

@@ -174,6 +174,16 @@ static DensityGrid parse_colour_grid(const JsonNode& node) {
   }
   if (g.sigma_a_rgb.empty() && g.sigma_s_rgb.empty())
     node.fail("an rgbgrid needs \"sigma_a\" or \"sigma_s\" colours");
+  if (auto e = node.find("emission")) {
+    // It emits σa·Le: pbrt-v4 refuses an "Le" without "sigma_a".
+    if (g.sigma_a_rgb.empty()) e->fail("an rgbgrid emits σa·Le: its emission needs \"sigma_a\" colours");
+    if (!e->is_object() || !e->has("rgb_values"))
+      e->fail("expected {\"rgb_values\": [r, g, b, ...]}, a colour per sample");
+    const JsonNode values = e->at("rgb_values");
+    e->finish();
+    g.emission_rgb = sample_values(values, want, "a grid of " + lattice_text(g) + " needs", 0,
+                                   "a colour must be finite and not negative");
+  }
   parse_grid_box(node, g);
   return g;
 }
@@ -224,6 +234,7 @@ static void parse_emission_grids(const JsonNode& node, MediumDesc& d) {
       d.emission_scale = e->number_in(0, 1e30);
     } else {
       if (!d.grid) e->fail("a grid of emission scales needs a grid medium");
+      if (d.grid->coloured()) e->fail("an rgbgrid's emission scale is a number (pbrt-v4's Lescale)");
       d.grid->emission_scale = parse_lattice_values(*e, *d.grid, 0);
     }
   }
@@ -240,7 +251,7 @@ MediumDesc parse_medium(const JsonNode& node, const std::string& name) {
   if (type == "grid") d.grid = parse_density_grid(node);
   if (type == "rgbgrid") {
     d.grid = parse_colour_grid(node);
-    for (const char* key : {"fluorophores", "emission", "emission_scale", "temperature"})
+    for (const char* key : {"fluorophores", "temperature"})
       if (auto k = node.find(key))
         k->fail("an rgbgrid medium takes no \"" + std::string(key) + "\"");
   }
@@ -263,7 +274,7 @@ MediumDesc parse_medium(const JsonNode& node, const std::string& name) {
     d.g = g->number();
     if (!(std::abs(d.g) < 1)) g->fail("the phase function's g must lie strictly between -1 and 1");
   }
-  if (auto e = node.find("emission")) d.emission = parse_spectrum(*e);
+  if (auto e = node.find("emission"); e && type != "rgbgrid") d.emission = parse_spectrum(*e);
   parse_emission_grids(node, d);
   node.finish();
   return d;
@@ -309,6 +320,24 @@ static void colour_grid_means(Medium& m, double scale, const WavelengthGrid& gri
   m.grid->sigma_s_rgb.clear();
 }
 
+// An emitting colour grid's radiance as components, and as its `emission` mean σa times mean Le
+// (what the light paths' share of the power is reckoned from, docs/media.md#emitting-media).
+static void colour_grid_emission_means(Medium& m, double scale, const WavelengthGrid& grid) {
+  m.emission_components = colour_grid_emission(*m.grid, scale, grid);
+  m.grid->emission_rgb.clear();
+  if (m.emission_components.empty()) return;
+  std::vector<double> le(grid.bins, 0.0);
+  for (const EmissionComponent& k : m.emission_components) {
+    double sum = 0;
+    for (float v : k.values) sum += v;
+    for (int i = 0; i < grid.bins; ++i)
+      le[i] += sum / static_cast<double>(k.values.size()) * k.radiance[i];
+  }
+  double total = 0;
+  for (int i = 0; i < grid.bins; ++i) total += m.emission.emplace_back(m.sigma_a[i] * le[i]);
+  if (!(total > 0)) m.emission.clear(), m.emission_components.clear();
+}
+
 Medium discretize_medium(const MediumDesc& desc, const WavelengthGrid& grid) {
   Medium m;
   m.sigma_a = grid.resample(*desc.sigma_a);
@@ -317,7 +346,10 @@ Medium discretize_medium(const MediumDesc& desc, const WavelengthGrid& grid) {
   for (double& v : m.sigma_s) v *= desc.scale;
   m.g = desc.g;
   m.grid = desc.grid;
-  if (desc.grid && desc.grid->coloured()) colour_grid_means(m, desc.scale, grid);
+  if (desc.grid && desc.grid->coloured()) {
+    colour_grid_means(m, desc.scale, grid);
+    if (!desc.grid->emission_rgb.empty()) colour_grid_emission_means(m, desc.emission_scale, grid);
+  }
   if (desc.emission || desc.blackbody) {
     // Emitted radiance per unit length: σa·Le (pbrt-v4's), nothing where the medium absorbs
     // nothing; a blackbody's spectrum is the kernels' to evaluate at each point's temperature.

@@ -49,6 +49,9 @@ struct DensityGrid {
   // per sample (3 floats each, any size ≥ 0) in place of a density; one list empty: that
   // coefficient is 1 in the whole box; both: not a colour grid.
   std::vector<float> sigma_a_rgb, sigma_s_rgb;
+  // An emitting colour grid's radiance Le (pbrt-v4's rgbgrid "Le"): a linear sRGB colour per
+  // sample, each pbrt-v4's RGBIlluminantSpectrum; empty: it emits nothing.
+  std::vector<float> emission_rgb;
   bool coloured() const { return !sigma_a_rgb.empty() || !sigma_s_rgb.empty(); }
 };
 
@@ -56,6 +59,13 @@ struct DensityGrid {
 struct GridComponent {
   std::vector<float> values;             // ρ_k per sample (x fastest); empty: 1 in the whole box
   std::vector<double> sigma_t, sigma_s;  // per bin, times the medium's scale
+};
+
+// One component of an emitting colour grid's radiance (kernels/media/medium_emission.h): Le(λ, x)
+// = Σ_j ρ_j(x) Le_j(λ), as colour_grid_components splits σa and σs.
+struct EmissionComponent {
+  std::vector<float> values;     // ρ_j per sample (x fastest)
+  std::vector<double> radiance;  // Le_j per bin, times the medium's emission scale
 };
 
 // A medium's blackbody emission (pbrt-v4's temperature grids): at a point whose interpolated
@@ -96,8 +106,10 @@ struct Medium {
   // blackbody's spectrum instead of Le), empty: none.
   std::vector<double> emission;
   std::optional<Blackbody> blackbody;
-  // A colour grid's components (its sigma_a and sigma_s are then their mean over the samples).
+  // A colour grid's components (its sigma_a and sigma_s are then their mean over the samples),
+  // and where it emits its radiance's (its `emission` is then mean σa times mean Le).
   std::vector<GridComponent> components;
+  std::vector<EmissionComponent> emission_components;
   // Some collision in it sends light on (σs > 0 in some bin, or a fluorophore) or emits: its
   // collisions are sampled.
   bool scatters() const;

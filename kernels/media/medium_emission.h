@@ -1,12 +1,14 @@
 /* What an emitting medium emits at a point (docs/media.md#emitting-media): σa·Le per bin, the
  * KMedium's `emission` spectrum, times a grid's density, its emission scale there and, with a
- * temperature grid, the blackbody of the temperature there in Le's place. Camera paths take it
- * over their collision's density (transport/medium_flight.h: the density cancels); light paths
- * that start in the medium (transport/medium_light.h) take it whole. */
+ * temperature grid, the blackbody of the temperature there in Le's place; in a colour grid σa(x)
+ * times its radiance Le(x), both sums of components (colour_grid.h). Camera paths take it over
+ * their collision's density (transport/medium_flight.h: a density grid's density cancels); light
+ * paths that start in the medium (transport/medium_light.h) take it whole. */
 #ifndef KASHA_MEDIUM_EMISSION_H
 #define KASHA_MEDIUM_EMISSION_H
 
 #include "geometry/scene_view.h"
+#include "media/colour_grid.h"
 #include "media/density_grid.h"
 
 #ifndef KASHA_MEDIUM_EMISSION
@@ -33,6 +35,34 @@ inline float blackbody_bin(const SceneView* s, const __global KMedium* m, int i,
 }
 #endif
 
+#if KASHA_GRID_COMPONENTS
+/* out[i] = scale · σa_i(x) Le_i(x) in a colour grid that emits (pbrt-v4's rgbgrid "Le"): σa = σt −
+ * σs from its coefficients at x (st, ss: components_at's), Le trilinear in its radiance
+ * components (KMedium::emission_components). */
+inline void colour_emission_at(const SceneView* s, const __global KMedium* m, float3 x, const __global float* st,
+                               const __global float* ss, float scale, float* out) {
+  float3 q = grid_map(m, x, 1.0f), f = floor(q);
+  int samples = m->grid_size[0] * m->grid_size[1] * m->grid_size[2];
+  for (int i = 0; i < KASHA_BINS; ++i) out[i] = 0.0f;
+  for (int j = 0; j < m->emission_components; ++j) {
+    float w = grid_trilinear_in(s, m, m->emission_scale + j * samples, (int)f.x, (int)f.y, (int)f.z, q);
+    if (!(w > 0.0f)) continue;
+    const __global float* le = s->spectra + m->emission + j * KASHA_BINS;
+    for (int i = 0; i < KASHA_BINS; ++i) out[i] += w * le[i];
+  }
+  for (int i = 0; i < KASHA_BINS; ++i) out[i] *= scale * fmax(st[i] - ss[i], 0.0f);
+}
+#endif
+
+/* Whether m is a colour grid that emits, whose emission colour_emission_at gives. */
+inline bool colour_emission(const __global KMedium* m) {
+#if KASHA_GRID_COMPONENTS
+  return m->emission_components > 0;
+#else
+  return false;
+#endif
+}
+
 /* The factor on m's emission at x beyond its density: an emitting grid's scale there, 1
  * elsewhere. *T: the temperature whose blackbody takes Le's place (0 where there is none; a
  * temperature at or below pbrt-v4's cutoff of 100 K emits nothing: factor 0). */
@@ -55,8 +85,16 @@ inline float medium_emission_factor(const SceneView* s, const __global KMedium* 
 }
 
 /* out[i] = scale · what m emits at x in bin i (per unit length and solid angle): σa·Le times the
- * density, the emission factor and the blackbody. */
+ * density, the emission factor and the blackbody, or a colour grid's σa(x) Le(x). Uses scratch
+ * slot 0 in a colour grid (a light path's start, before its first collision). */
 inline void medium_emission_at(const SceneView* s, const __global KMedium* m, float3 x, float scale, float* out) {
+#if KASHA_GRID_COMPONENTS
+  if (colour_emission(m)) {
+    const __global float* c = components_at(s, m, x, 0);
+    colour_emission_at(s, m, x, c, c + KASHA_BINS, scale, out);
+    return;
+  }
+#endif
   float T;
   scale *= medium_emission_factor(s, m, x, &T);
 #if KASHA_MEDIUM_GRIDS

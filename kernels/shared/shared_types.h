@@ -252,7 +252,10 @@ typedef struct {
   float light_box[12];
   float light_volume;
   int light_outer;
-  int pad_light;
+  /* An emitting component grid's radiance (kernels/media/medium_emission.h), pbrt-v4's rgbgrid
+   * "Le": its components (0: none), each a grid of weights (the j-th after emission_scale) with a
+   * radiance per bin (the j-th after emission); it emits σa(x) Σ_j ρ_j(x) Le_j. */
+  int emission_components;
 } KMedium;
 KASHA_STATIC_SIZE(KMedium, 256);
 

@@ -225,47 +225,53 @@ inline int flight(PathWeight* p, const SceneView* s, const FilmView* f, float3 o
 }
 
 #if KASHA_MEDIUM_EMISSION
-#if KASHA_MEDIUM_BLACKBODY
-/* rows += scale · the path's weight ∘ em ∘ B̂(T), em the medium's σa per bin and B̂ each bin's
- * blackbody (media/medium_emission.h; in registers: the spectrum changes per point). */
-inline void pw_add_blackbody(const PathWeight* p, const SceneView* s, const FilmView* f, const __global KMedium* m,
-                             float T, float scale, float* rows) {
-  const __global float* em = s->spectra + m->emission;
-  float le[KASHA_BINS];
-  for (int i = 0; i < KASHA_BINS; ++i) le[i] = blackbody_bin(s, m, i, T);
+/* rows += scale · the path's weight ∘ e, e a spectrum in registers (N floats; changed). */
+inline void pw_add_private(const PathWeight* p, const FilmView* f, float* e, float scale, float* rows) {
 #if KASHA_FULL_MATRIX
   for (int r = 0; r < KASHA_FILM_ROWS; ++r) {
     float sum = 0.0f;
-    for (int i = 0; i < KASHA_BINS; ++i) sum += p->T[r][i] * em[i] * le[i];
+    for (int i = 0; i < KASHA_BINS; ++i) sum += p->T[r][i] * e[i];
     rows[r] += scale * sum;
   }
 #else
 #if KASHA_FLUORESCENCE
   if (p->rank1) {
     float sum = 0.0f;
-    for (int i = 0; i < KASHA_BINS; ++i) sum += p->b[i] * em[i] * le[i];
+    for (int i = 0; i < KASHA_BINS; ++i) sum += p->b[i] * e[i];
     for (int r = 0; r < KASHA_FILM_ROWS; ++r) rows[r] += scale * sum * p->c[r];
     return;
   }
 #endif
-  for (int i = 0; i < KASHA_BINS; ++i) le[i] *= p->w[i];
-  film_rows(f, le, em, 0, scale, rows);
+  for (int i = 0; i < KASHA_BINS; ++i) e[i] *= p->w[i];
+  film_rows(f, e, 0, 0, scale, rows);
 #endif
 }
-#endif
 
 /* A camera path's collision at x in `medium` picks up what the medium emits there (docs/media.md
  * #emitting-media): σa·Le over the flight's density (which the flight's weight divides out),
- * times an emitting grid's scale at x, with a temperature grid's blackbody in Le's place. */
+ * times an emitting grid's scale at x, with a temperature grid's blackbody in Le's place; in a
+ * colour grid σa(x) Le(x) (media/medium_emission.h). */
 inline void medium_emission_add(const PathWeight* p, const SceneView* s, const FilmView* f, int medium, float3 x,
                                 float* rows) {
   const __global KMedium* m = &s->media[medium];
   if (m->emission < 0) return;
+#if KASHA_GRID_COMPONENTS
+  /* A colour grid: the collision's own σt, σs (scratch slot 0), no density to cancel. */
+  if (colour_emission(m)) {
+    float e[KASHA_BINS];
+    colour_emission_at(s, m, x, medium_extinction(s, m), medium_scattering(s, m), 1.0f, e);
+    pw_add_private(p, f, e, 1.0f, rows);
+    return;
+  }
+#endif
   float T, scale = medium_emission_factor(s, m, x, &T);
   if (!(scale > 0.0f)) return;
 #if KASHA_MEDIUM_BLACKBODY
   if (T > 0.0f) {
-    pw_add_blackbody(p, s, f, m, T, scale, rows);
+    const __global float* em = s->spectra + m->emission;
+    float e[KASHA_BINS];
+    for (int i = 0; i < KASHA_BINS; ++i) e[i] = em[i] * blackbody_bin(s, m, i, T);
+    pw_add_private(p, f, e, scale, rows);
     return;
   }
 #endif

@@ -845,14 +845,14 @@ class Importer {
   }
 
   // pbrt-v4's rgbgrid (RGBGridMedium::Create): an RGB of σa and of σs per sample (either may be
-  // absent: 1 in the whole box), "scale", "g"; an emitting one ("Le" with "Lescale" > 0) is
-  // refused where it is used.
+  // absent: 1 in the whole box), "scale", "g", and an RGB illuminant "Le" per sample times
+  // "Lescale" (1): it emits σa·Le (none where Lescale ≤ 0, as pbrt-v4's IsEmissive).
   void rgb_grid_medium(const std::string& name, const PbrtParameters& params,
                        const PbrtLocation& where) {
     const std::string what = "MakeNamedMedium " + in_quotes(name);
-    const std::vector<double> sigma_a = colour_array(params, "sigma_a", where, what);
-    const std::vector<double> sigma_s = colour_array(params, "sigma_s", where, what);
-    const std::vector<double> le = params.get_numbers("Le", "rgb");
+    const std::vector<double> sigma_a = colour_array(params, "sigma_a", where, what, true);
+    const std::vector<double> sigma_s = colour_array(params, "sigma_s", where, what, true);
+    const std::vector<double> le = colour_array(params, "Le", where, what, false);
     if (sigma_a.empty() && sigma_s.empty())
       pbrt_fail(where,
                 what + ": RGB grid requires \"sigma_a\" and/or \"sigma_s\" parameter values.");
@@ -863,6 +863,10 @@ class Importer {
                            ") provided for \"sigma_a\" and \"sigma_s\".");
     if (!le.empty() && sigma_a.empty())
       pbrt_fail(where, what + ": RGB grid requires \"sigma_a\" if \"Le\" value provided.");
+    if (!le.empty() && le.size() != 3 * n)
+      pbrt_fail(where, what + ": Expected " + std::to_string(n) +
+                           " values for \"Le\" parameter but were given " +
+                           std::to_string(le.size() / 3) + ".");
     const int nx = params.get_int("nx", 1), ny = params.get_int("ny", 1),
               nz = params.get_int("nz", 1);
     if (nx < 1 || ny < 1 || nz < 1 || static_cast<double>(nx) * ny * nz != static_cast<double>(n))
@@ -875,15 +879,17 @@ class Importer {
     grid_box(m, params, where, what);
     m["scale"] = params.get_float("scale", 1);
     m["g"] = params.get_float("g", 0);
-    if (!le.empty() && params.get_float("Lescale", 1) > 0)
-      return refuse_medium(name, where,
-                           "is an emitting \"rgbgrid\" (\"Le\"), which kasha does not build");
+    if (const double scale = params.get_float("Lescale", 1); !le.empty() && scale > 0) {
+      m["emission"] = {{"rgb_values", le}};
+      m["emission_scale"] = scale;
+    }
     add_medium(name, m, params, where);
   }
 
-  // An "rgb" array of an rgbgrid as linear sRGB (from its ColorSpace), each part ≥ 0.
+  // An "rgb" array of an rgbgrid as linear sRGB (from its ColorSpace), each part ≥ 0; `adapt`:
+  // a coefficient's colour (chromatically adapted), else an illuminant's (its XYZ kept).
   std::vector<double> colour_array(const PbrtParameters& params, const std::string& key,
-                                   const PbrtLocation& where, const std::string& what) {
+                                   const PbrtLocation& where, const std::string& what, bool adapt) {
     const PbrtParameter* p = params.find(key, "rgb");
     if (!p) return {};
     std::vector<double> v = p->numbers;
@@ -895,7 +901,7 @@ class Importer {
     const PbrtColorSpace* space = pbrt_color_space(p->color_space);
     if (!space) pbrt_fail(where, "unknown color space " + in_quotes(p->color_space));
     for (size_t i = 0; i < v.size(); i += 3) {
-      const std::array<double, 3> c = pbrt_rgb_to_srgb(*space, {v[i], v[i + 1], v[i + 2]}, true);
+      const std::array<double, 3> c = pbrt_rgb_to_srgb(*space, {v[i], v[i + 1], v[i + 2]}, adapt);
       for (int k = 0; k < 3; ++k) v[i + k] = std::max(c[k], 0.0);
     }
     return v;
