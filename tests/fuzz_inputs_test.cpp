@@ -203,6 +203,7 @@ const char* const kSeedScene = R"({"kasha_scene": 1,
     "tint": {"type": "rgbgrid", "size": [2, 1, 2], "scale": 3, "g": -0.2,
              "sigma_a": {"rgb_values": [1, 0.2, 0.1, 0, 0, 0, 0.5, 0.1, 0.05, 0.2, 0.4, 1]},
              "sigma_s": {"rgb_values": [0.5, 0.5, 0.5, 1, 1, 1, 0.2, 0.2, 0.2, 0.1, 0.3, 0.9]},
+             "emission": {"rgb_values": [2, 1, 0.5, 0, 0, 0, 1, 1, 1, 0.3, 0.6, 2]}, "emission_scale": 0.5,
              "bounds": {"min": [0.5, 0.6, 0.2], "max": [0.8, 0.9, 0.5]}},
     "puff": {"type": "grid", "sigma_a": 0.3, "sigma_s": 2, "density": {"vdb": "grid.nvdb"},
              "transform": {"translate": [-0.05, 0.75, 1.35]}},
@@ -479,6 +480,7 @@ AttributeBegin
 AttributeEnd
 MakeNamedMedium "ink" "string type" "homogeneous" "rgb sigma_a" [0.5 2 4] "rgb sigma_s" [0 0 0] "float scale" 2
 MakeNamedMedium "tint" "string type" "rgbgrid" "integer nx" 2 "rgb sigma_a" [1 0.2 0.1 0.2 0.4 1]
+  "rgb Le" [0.5 1 2 2 1 0.5] "float Lescale" 0.7
   "point3 p0" [0.5 0.6 0.2] "point3 p1" [0.8 0.9 0.5] "float scale" 2 "float g" 0.5
 MakeNamedMedium "haze" "string type" "homogeneous" "spectrum sigma_a" [400 0.1 830 0.3] "float sigma_s" 0 "float g" 0.3
 AttributeBegin

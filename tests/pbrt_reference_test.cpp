@@ -101,7 +101,10 @@ INSTANTIATE_TEST_SUITE_P(
         ReferenceCase{"vdb_fire", {}, 32},
         // A colour grid (rgbgrid): its absorption a colour per sample (a component
         // per bin: 42 in all, so 8 passes), its scattering two colours, tracked exactly.
-        ReferenceCase{"rgb_grid", {}, 8}),
+        ReferenceCase{"rgb_grid", {}, 8},
+        // The same colour grid glowing (its "Le" a colour per sample, "Lescale"):
+        // σa(x)·Le(x) at the camera paths' collisions, from the point's own σa.
+        ReferenceCase{"emitting_rgb_grid", {}, 8}),
     [](const auto& info) { return info.param.scene; });
 
 // --max-depth N as pbrt-v4's maxdepth: the Cornell box with direct light alone (1) and one bounce

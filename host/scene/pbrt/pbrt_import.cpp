@@ -757,8 +757,8 @@ class Importer {
     if (name.empty()) pbrt_fail(where, "MakeNamedMedium: a medium's name must not be empty");
     if (type != "homogeneous" && type != "uniformgrid" && type != "rgbgrid" && type != "nanovdb") {
       refuse_medium(name, where,
-                    "is a \"" + type +
-                        "\" medium, which kasha does not build (homogeneous, "
+                    "is a " + in_quotes(type) +
+                        " medium, which kasha does not build (homogeneous, "
                         "uniformgrid, rgbgrid, nanovdb)");
       return;
     }
