@@ -374,12 +374,12 @@ TEST(Medium, AnEmittingSlabFollowsItsClosedForm) {
   };
   const int none = IntegratorSettings::kNoDepthCap;
   const std::vector<Case> cases = {
-      {homogeneous, "backward", 1, 0, none},  {homogeneous, "vcm", 1, 0, none},
-      {homogeneous, "vcm", 1, 1 << 20, none}, {grid, "backward", 0.5 * 0.9375, 0, none},
-      {homogeneous, "backward", 1, 0, 1},     {homogeneous, "backward", 0, 0, 0},
-      {homogeneous, "forward", 1, 0, none},   {grid, "forward", 0.5 * 0.9375, 0, none},
+      {homogeneous, "backward", 1, 0, none},   {homogeneous, "vcm", 1, 0, none},
+      {homogeneous, "vcm", 1, 1 << 20, none},  {grid, "backward", 0.5 * 0.9375, 0, none},
+      {homogeneous, "backward", 1, 0, 1},      {homogeneous, "backward", 0, 0, 0},
+      {homogeneous, "forward", 1, 0, none},    {grid, "forward", 0.5 * 0.9375, 0, none},
       {grid, "photon", 0.5 * 0.9375, 0, none}, {homogeneous, "ppm", 1, 0, none},
-      {homogeneous, "forward", 1, 0, 1},      {homogeneous, "forward", 0, 0, 0}};
+      {homogeneous, "forward", 1, 0, 1},       {homogeneous, "forward", 0, 0, 0}};
   for (const Case& c : cases) {
     const std::string path = emitting_box_scene("emitting_slab.json", c.medium);
     RenderSettings s;
@@ -436,7 +436,8 @@ TEST(Medium, AnEmittingTemperatureGridFollowsItsIntegral) {
     const double c2 = 1.4387769e-2, b = 2.8977721e-3, x = nm * 1e-9 * T;
     return std::pow(b / x, 5) * std::expm1(c2 / b) / std::expm1(c2 / x);
   };
-  // Light tracing's photons start at the grid's points, with its density, scale and blackbody there.
+  // Light tracing's photons start at the grid's points, with its density, scale and blackbody
+  // there.
   for (const std::string integrator : {"backward", "vcm", "forward"}) {
     const std::string path = emitting_box_scene("emitting_grid.json", medium);
     RenderSettings settings;
@@ -988,7 +989,8 @@ TEST(Medium, AnEmitterSeenThroughAColourGridFollowsItsIntegral) {
 TEST(Medium, AnEmittingColourGridFollowsItsIntegral) {
   constexpr int kZ = 12;
   std::vector<std::array<double, 3>> sigma, le;
-  const std::array<std::array<double, 3>, 3> base = {{{1, 0.5, 0.2}, {0.3, 0.8, 1.2}, {0.9, 0.9, 0.1}}};
+  const std::array<std::array<double, 3>, 3> base = {
+      {{1, 0.5, 0.2}, {0.3, 0.8, 1.2}, {0.9, 0.9, 0.1}}};
   for (int k = 0; k < kZ; ++k) {
     const double f = 0.6 + 0.15 * (k % 5);
     sigma.push_back({f * base[k % 3][0], f * base[k % 3][1], f * base[k % 3][2]});
@@ -1019,7 +1021,8 @@ TEST(Medium, AnEmittingColourGridFollowsItsIntegral) {
     sa.emplace_back(grid.bins, 0.0);
     for (int i = 0; i < grid.bins; ++i)
       for (int n = 0; n < 20; ++n)
-        sa[k][i] += 1.5 * scale * sigmoid_spectrum(c, grid.lo(i) + (n + 0.5) * grid.bin_nm / 20) / 20;
+        sa[k][i] +=
+            1.5 * scale * sigmoid_spectrum(c, grid.lo(i) + (n + 0.5) * grid.bin_nm / 20) / 20;
     ra.push_back(grid.resample(RgbIlluminantSpectrum(le[k])));
     for (double& v : ra[k]) v *= 0.7;
   }
@@ -1090,8 +1093,9 @@ TEST(Medium, PbrtRgbGridImportsAsKashas) {
   EXPECT_EQ(e.at("emission").at("rgb_values"),
             nlohmann::json::parse("[1.0, 2.0, 3.0, 0.0, 0.5, 0.0]"));
   EXPECT_EQ(e.at("emission_scale"), 4.0);
-  EXPECT_FALSE(imported_medium(R"("rgbgrid" "rgb sigma_a" [1 1 1] "rgb Le" [1 1 1] "float Lescale" 0)")
-                   .contains("emission"));
+  EXPECT_FALSE(
+      imported_medium(R"("rgbgrid" "rgb sigma_a" [1 1 1] "rgb Le" [1 1 1] "float Lescale" 0)")
+          .contains("emission"));
   struct Case {
     std::string grid, message;
   };

@@ -96,7 +96,8 @@ static int place_component_grids(const Medium& m, std::vector<float>& spectra) {
 
 // Each emitting medium's share of the light paths that start in media (forward, photon and ppm:
 // kernels/transport/medium_light.h), against the lights' `light_power`, and its box.
-static void place_medium_lights(const Scene& scene, double light_power, std::vector<KMedium>& media) {
+static void place_medium_lights(const Scene& scene, double light_power,
+                                std::vector<KMedium>& media) {
   const std::vector<bool> used = scene.used_media();
   std::vector<std::optional<MediumLightRegion>> regions(media.size());
   double total = light_power;

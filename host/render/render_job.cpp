@@ -21,7 +21,8 @@ static const std::string& lit(const Scene& scene, const DeviceScene& device_scen
           !medium_light_region(scene, static_cast<int>(m)))
         throw Error(scene.medium_descs[m].where +
                     ": the medium emits and fills the space outside every shape, where no light "
-                    "path of " + integrator +
+                    "path of " +
+                    integrator +
                     " can start (give it a shape that bounds it, or render with backward, vcm "
                     "or bpt)");
   }

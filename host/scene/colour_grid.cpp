@@ -76,7 +76,9 @@ std::vector<ColourPart> colour_parts(
 // One coefficient's colours as components (σs's also extinguish).
 void coefficient_components(const std::vector<float>& rgb, bool scatters, double scale,
                             const WavelengthGrid& grid, std::vector<GridComponent>& out) {
-  const auto unit = [&](const std::array<float, 3>& key) { return unit_colour_spectrum(key, grid); };
+  const auto unit = [&](const std::array<float, 3>& key) {
+    return unit_colour_spectrum(key, grid);
+  };
   for (ColourPart& part : colour_parts(rgb, grid, unit)) {
     GridComponent k;
     for (double& x : part.spectrum) x *= scale;
@@ -118,7 +120,7 @@ std::vector<GridComponent> colour_grid_components(const DensityGrid& g, double s
 }
 
 std::vector<EmissionComponent> colour_grid_emission(const DensityGrid& g, double scale,
-                                                   const WavelengthGrid& grid) {
+                                                    const WavelengthGrid& grid) {
   // pbrt-v4's RGBIlluminantSpectrum, also linear in the colour's size.
   const auto unit = [&](const std::array<float, 3>& key) {
     return grid.resample(RgbIlluminantSpectrum({key[0], key[1], key[2]}));

@@ -23,6 +23,6 @@ std::vector<GridComponent> colour_grid_components(const DensityGrid& g, double s
 // The components of an emitting colour grid's radiance (g.emission_rgb, each pbrt-v4's
 // RGBIlluminantSpectrum) times `scale`, split alike; none whose weights are all 0 is kept.
 std::vector<EmissionComponent> colour_grid_emission(const DensityGrid& g, double scale,
-                                                   const WavelengthGrid& grid);
+                                                    const WavelengthGrid& grid);
 
 }  // namespace kasha

@@ -176,7 +176,8 @@ static DensityGrid parse_colour_grid(const JsonNode& node) {
     node.fail("an rgbgrid needs \"sigma_a\" or \"sigma_s\" colours");
   if (auto e = node.find("emission")) {
     // It emits σa·Le: pbrt-v4 refuses an "Le" without "sigma_a".
-    if (g.sigma_a_rgb.empty()) e->fail("an rgbgrid emits σa·Le: its emission needs \"sigma_a\" colours");
+    if (g.sigma_a_rgb.empty())
+      e->fail("an rgbgrid emits σa·Le: its emission needs \"sigma_a\" colours");
     if (!e->is_object() || !e->has("rgb_values"))
       e->fail("expected {\"rgb_values\": [r, g, b, ...]}, a colour per sample");
     const JsonNode values = e->at("rgb_values");
@@ -234,7 +235,8 @@ static void parse_emission_grids(const JsonNode& node, MediumDesc& d) {
       d.emission_scale = e->number_in(0, 1e30);
     } else {
       if (!d.grid) e->fail("a grid of emission scales needs a grid medium");
-      if (d.grid->coloured()) e->fail("an rgbgrid's emission scale is a number (pbrt-v4's Lescale)");
+      if (d.grid->coloured())
+        e->fail("an rgbgrid's emission scale is a number (pbrt-v4's Lescale)");
       d.grid->emission_scale = parse_lattice_values(*e, *d.grid, 0);
     }
   }

@@ -28,7 +28,8 @@ int outer_medium(const Scene& scene) {
       if (vertex(t, k).x() > reach) reach = vertex(t, k).x(), best = static_cast<int>(i);
   }
   if (best < 0) return scene.camera_medium;
-  // At the farthest vertex nothing lies beyond along +x: the side the normal's x points to faces out.
+  // At the farthest vertex nothing lies beyond along +x: the side the normal's x points to faces
+  // out.
   const KTriangle& t = scene.triangles[best];
   const Eigen::Vector3d n = (vertex(t, 1) - vertex(t, 0)).cross(vertex(t, 2) - vertex(t, 0));
   const MediumInterface& mi = scene.triangle_media[best];

@@ -3,9 +3,8 @@
 // transport/medium_light.h): a box that holds the medium's region, its volume, whether the medium
 // is the one outside every boundary, and roughly what it emits — for the integrators whose light
 // paths carry all the light (forward, photon, ppm).
-#include <optional>
-
 #include <Eigen/Geometry>
+#include <optional>
 
 #include "scene/scene.h"
 
