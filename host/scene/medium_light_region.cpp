@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 
 namespace kasha {
@@ -54,21 +55,24 @@ static bool boundary_box(const Scene& scene, int m, Eigen::AlignedBox3d& box) {
   return !box.isEmpty();
 }
 
-// The mean over a grid's samples of what scales its emission: density, emission scale, and
-// whether the temperature is above pbrt-v4's cutoff.
+// What scales a grid's emission, as the means over its samples of its density, its emission
+// scale and whether the temperature is above pbrt-v4's cutoff, multiplied: each is interpolated
+// on its own, so the product is 0 only where one of them is 0 at every sample — where the grid
+// emits nothing anywhere (a product per sample could be 0 while the interpolated ones are not).
 static double grid_emission_mean(const Medium& medium) {
   const DensityGrid& g = *medium.grid;
-  if (g.values.empty()) return 1;
-  double sum = 0;
-  for (size_t i = 0; i < g.values.size(); ++i) {
-    double v = g.values[i];
-    if (!g.emission_scale.empty()) v *= g.emission_scale[i];
-    if (medium.blackbody && !g.temperature.empty() &&
-        !((g.temperature[i] - medium.blackbody->offset) * medium.blackbody->scale > 100))
-      v = 0;
-    sum += v;
-  }
-  return sum / static_cast<double>(g.values.size());
+  const auto mean = [](const std::vector<float>& v, const std::function<double(float)>& f) {
+    double sum = 0;
+    for (float x : v) sum += f(x);
+    return v.empty() ? 1.0 : sum / static_cast<double>(v.size());
+  };
+  const auto same = [](float x) { return static_cast<double>(x); };
+  double m = mean(g.values, same) * mean(g.emission_scale, same);
+  if (medium.blackbody && !g.temperature.empty())
+    m *= mean(g.temperature, [&](float t) {
+      return (t - medium.blackbody->offset) * medium.blackbody->scale > 100 ? 1.0 : 0.0;
+    });
+  return m;
 }
 
 std::optional<MediumLightRegion> medium_light_region(const Scene& scene, int m) {

@@ -92,9 +92,13 @@ inline Photon emit_from_medium(const SceneView* s, float photons, float u0, floa
   p.bin = -1;
 #endif
   float scale = 4.0f * KASHA_PI * md->light_volume * s->bin_nm / (md->light_pick * photons);
-  if (!medium_holds(s, m, p.position, p.direction)) scale = 0.0f;
   medium_emission_at(s, md, p.position, scale, p.power);
   p.start = photon_total(&p);
+  /* The ray that finds the point's medium is traced only where the medium would emit there. */
+  if (p.start > 0.0f && !medium_holds(s, m, p.position, p.direction)) {
+    for (int i = 0; i < KASHA_BINS; ++i) p.power[i] = 0.0f;
+    p.start = 0.0f;
+  }
   origin->normal = (float3)(0.0f, 0.0f, 0.0f);
   origin->emitter = -1;
   origin->tri = -1;
