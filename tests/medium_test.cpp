@@ -14,6 +14,7 @@
 #include "render/integrator_registry.h"
 #include "render_support.h"
 #include "scene/colour_grid.h"
+#include "scene/medium_light_region.h"
 #include "scene/pbrt/pbrt_import.h"
 #include "scene/scene.h"
 #include "spectrum/rgb_spectrum.h"
@@ -330,6 +331,29 @@ TEST(Medium, AnEmittingFurnaceShowsTheEmittersRadianceInEveryIntegrator) {
         << e;
     EXPECT_EQ(e.find('\n'), std::string::npos) << e;
   }
+}
+
+// The medium past every boundary (where light paths that start in a grid's box outside every
+// shape are): the side of the first boundary a ray from outside meets — a box holding fog has
+// vacuum outside, turned or not; a glass box in a world of fog has fog; an inward box (its fronts
+// facing in, its "inside" the world beyond), whose side faces run along x where the farthest
+// vertex is, has its "inside" outside; without boundaries, the camera's medium.
+TEST(Medium, TheOuterMediumIsTheSideARayFromOutsideMeetsFirst) {
+  const auto outer = [](const std::string& box, const std::string& camera_medium) {
+    const std::string text = R"({"kasha_scene": 1, "camera": {"position": [0, 0, 5], "look_at": [0, 0, 0])" +
+                             camera_medium + R"(}, "materials": {"m": {}}, "media": {"fog": {"sigma_s": 0}},
+      "shapes": [)" + box + R"(, {"type": "quad", "corner": [-1, -1, -3], "u": [2, 0, 0], "v": [0, 2, 0],
+                  "material": "m", "emission": 1}]})";
+    return outer_medium(load_scene(write_file("outer_medium.json", text)));
+  };
+  const std::string box = R"({"type": "box", "min": [-1, -1, -1], "max": [1, 1, 1], "interface": true, )";
+  EXPECT_EQ(outer(box + R"("medium": {"inside": "fog"}})", ""), -1);
+  EXPECT_EQ(outer(box + R"("medium": {"inside": "fog"}, "transform": {"rotate": {"axis": [0, 1, 1], "deg": 30}}})", ""), -1);
+  EXPECT_EQ(outer(box + R"("medium": {"outside": "fog"}})", R"(, "medium": "fog")"), 0);
+  EXPECT_EQ(outer(box + R"("medium": {"inside": "fog"}, "inward": true})", R"(, "medium": "fog")"), 0);
+  EXPECT_EQ(outer(R"({"type": "box", "min": [-1, -1, -1], "max": [1, 1, 1], "material": "m"})",
+                  R"(, "medium": "fog")"),
+            0);
 }
 
 // A box of `medium` over z in [0.5, 1.5] (an interface shape) seen face on from above by an

@@ -18,23 +18,53 @@ static Eigen::Vector3d vertex(const KTriangle& t, int k) {
   return {v[0], v[1], v[2]};
 }
 
+// The distance along the ray o + t d (t > 0) to triangle t, Möller–Trumbore; infinity for a miss
+// or a triangle the ray runs along.
+static double ray_distance(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const KTriangle& t) {
+  const Eigen::Vector3d v0 = vertex(t, 0), e1 = vertex(t, 1) - v0, e2 = vertex(t, 2) - v0;
+  const Eigen::Vector3d p = d.cross(e2);
+  const double det = e1.dot(p);
+  const double none = std::numeric_limits<double>::infinity();
+  if (std::abs(det) < 1e-300) return none;
+  const Eigen::Vector3d s = o - v0;
+  const double u = s.dot(p) / det;
+  if (u < 0 || u > 1) return none;
+  const Eigen::Vector3d q = s.cross(e1);
+  const double v = d.dot(q) / det;
+  if (v < 0 || u + v > 1) return none;
+  const double dist = e2.dot(q) / det;
+  return dist > 0 ? dist : none;
+}
+
 int outer_medium(const Scene& scene) {
   if (scene.triangle_media.empty()) return scene.camera_medium;
-  int best = -1;
-  double reach = -std::numeric_limits<double>::infinity();
+  // A ray from past every boundary along −x, aimed at the centre of the boundary triangle that
+  // lies farthest along x: the first boundary it meets faces it with the outer medium's side.
+  int aim = -1;
+  double reach = -std::numeric_limits<double>::infinity(), far = reach;
   for (size_t i = 0; i < scene.triangle_media.size(); ++i) {
     if (!scene.triangle_media[i].transition() || !world_triangle(scene, i)) continue;
     const KTriangle& t = scene.triangles[i];
-    for (int k = 0; k < 3; ++k)
-      if (vertex(t, k).x() > reach) reach = vertex(t, k).x(), best = static_cast<int>(i);
+    const double centre = (vertex(t, 0).x() + vertex(t, 1).x() + vertex(t, 2).x()) / 3;
+    if (centre > reach) reach = centre, aim = static_cast<int>(i);
+    for (int k = 0; k < 3; ++k) far = std::max(far, vertex(t, k).x());
   }
-  if (best < 0) return scene.camera_medium;
-  // At the farthest vertex nothing lies beyond along +x: the side the normal's x points to faces
-  // out.
-  const KTriangle& t = scene.triangles[best];
+  if (aim < 0) return scene.camera_medium;
+  const KTriangle& target = scene.triangles[aim];
+  const Eigen::Vector3d c = (vertex(target, 0) + vertex(target, 1) + vertex(target, 2)) / 3;
+  const Eigen::Vector3d o(far + 1 + std::abs(far), c.y(), c.z()), d(-1, 0, 0);
+  int hit = aim;
+  double nearest = ray_distance(o, d, target);
+  for (size_t i = 0; i < scene.triangle_media.size(); ++i) {
+    if (!scene.triangle_media[i].transition() || !world_triangle(scene, i)) continue;
+    const double t = ray_distance(o, d, scene.triangles[i]);
+    if (t < nearest) nearest = t, hit = static_cast<int>(i);
+  }
+  const KTriangle& t = scene.triangles[hit];
   const Eigen::Vector3d n = (vertex(t, 1) - vertex(t, 0)).cross(vertex(t, 2) - vertex(t, 0));
-  const MediumInterface& mi = scene.triangle_media[best];
-  return n.x() >= 0 ? mi.outside : mi.inside;
+  const MediumInterface& mi = scene.triangle_media[hit];
+  // Arriving against the front (n · d < 0), the ray came from the outside.
+  return n.dot(d) < 0 ? mi.outside : mi.inside;
 }
 
 // The box of the triangles with medium m on a side; an instanced object's with m on a side make

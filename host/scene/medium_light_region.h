@@ -11,14 +11,14 @@
 namespace kasha {
 
 struct MediumLightRegion {
-  Eigen::Affine3d from_unit;  // the unit cube onto the box
+  Eigen::Affine3d from_unit = Eigen::Affine3d::Identity();  // the unit cube onto the box
   double volume = 0;          // the box's
   bool outer = false;         // the medium a point past every boundary is in
   double power = 0;           // W, roughly: 4π · volume · mean emission (it sets the picks only)
 };
 
-// The medium that points past every medium boundary are in: the side facing out of the boundary
-// triangle that reaches farthest along x; without boundaries, the camera's.
+// The medium that points past every medium boundary are in: the side that a ray from past them
+// all meets first; without boundaries, the camera's.
 int outer_medium(const Scene& scene);
 
 // Medium m's region as light paths sample it: a grid's box, or the box of the boundaries that

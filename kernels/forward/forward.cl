@@ -234,7 +234,7 @@ __kernel void trace_forward(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KForwardLaunc
     LightOrigin o;
     Photon p = emit_photon(&s, (float)photons, true, &sampler, &o);
     l.emitted += photon_total(&p);
-    if (!(p.start > 0.0f)) continue; /* a point outside the emitting medium it was drawn for */
+    if (origin_in_medium(&o) && !(p.start > 0.0f)) continue; /* drawn where the medium emits nothing */
 #if KASHA_MEDIUM_LIGHTS
     /* A point of an emitting medium is a vertex (origin_depth): seen only under a cap above 0. */
     if (origin_in_medium(&o) && max_depth > 0) splat_emission_point(&s, &f, &target, &p, rows);

@@ -36,21 +36,29 @@ inline float blackbody_bin(const SceneView* s, const __global KMedium* m, int i,
 #endif
 
 #if KASHA_GRID_COMPONENTS
-/* out[i] = scale · σa_i(x) Le_i(x) in a colour grid that emits (pbrt-v4's rgbgrid "Le"): σa = σt −
- * σs from its coefficients at x (st, ss: components_at's), Le trilinear in its radiance
- * components (KMedium::emission_components). */
-inline void colour_emission_at(const SceneView* s, const __global KMedium* m, float3 x, const __global float* st,
-                               const __global float* ss, float scale, float* out) {
+/* out[i] = scale · σa_i(x) Le_i(x) in a colour grid that emits (pbrt-v4's rgbgrid "Le"): σa summed
+ * over its components (σt_k − σs_k is exact per component: a σa colour's or 0), Le trilinear in
+ * its radiance components (KMedium::emission_components). */
+inline void colour_emission_at(const SceneView* s, const __global KMedium* m, float3 x, float scale, float* out) {
   float3 q = grid_map(m, x, 1.0f), f = floor(q);
+  int3 c = (int3)((int)f.x, (int)f.y, (int)f.z);
   int samples = m->grid_size[0] * m->grid_size[1] * m->grid_size[2];
-  for (int i = 0; i < KASHA_BINS; ++i) out[i] = 0.0f;
-  for (int j = 0; j < m->emission_components; ++j) {
-    float w = grid_trilinear_in(s, m, m->emission_scale + j * samples, (int)f.x, (int)f.y, (int)f.z, q);
-    if (!(w > 0.0f)) continue;
-    const __global float* le = s->spectra + m->emission + j * KASHA_BINS;
-    for (int i = 0; i < KASHA_BINS; ++i) out[i] += w * le[i];
+  float le[KASHA_BINS];
+  for (int i = 0; i < KASHA_BINS; ++i) out[i] = 0.0f, le[i] = 0.0f;
+  for (int k = 0; k < m->components; ++k) {
+    float rho = component_trilinear(s, m, k, c, q);
+    if (!(rho > 0.0f)) continue;
+    const __global float* st = s->spectra + m->sigma_t + k * KASHA_BINS;
+    const __global float* ss = s->spectra + m->sigma_s + k * KASHA_BINS;
+    for (int i = 0; i < KASHA_BINS; ++i) out[i] += rho * (st[i] - ss[i]);
   }
-  for (int i = 0; i < KASHA_BINS; ++i) out[i] *= scale * fmax(st[i] - ss[i], 0.0f);
+  for (int j = 0; j < m->emission_components; ++j) {
+    float w = grid_trilinear_in(s, m, m->emission_scale + j * samples, c.x, c.y, c.z, q);
+    if (!(w > 0.0f)) continue;
+    const __global float* e = s->spectra + m->emission + j * KASHA_BINS;
+    for (int i = 0; i < KASHA_BINS; ++i) le[i] += w * e[i];
+  }
+  for (int i = 0; i < KASHA_BINS; ++i) out[i] *= scale * le[i];
 }
 #endif
 
@@ -85,13 +93,11 @@ inline float medium_emission_factor(const SceneView* s, const __global KMedium* 
 }
 
 /* out[i] = scale · what m emits at x in bin i (per unit length and solid angle): σa·Le times the
- * density, the emission factor and the blackbody, or a colour grid's σa(x) Le(x). Uses scratch
- * slot 0 in a colour grid (a light path's start, before its first collision). */
+ * density, the emission factor and the blackbody, or a colour grid's σa(x) Le(x). */
 inline void medium_emission_at(const SceneView* s, const __global KMedium* m, float3 x, float scale, float* out) {
 #if KASHA_GRID_COMPONENTS
   if (colour_emission(m)) {
-    const __global float* c = components_at(s, m, x, 0);
-    colour_emission_at(s, m, x, c, c + KASHA_BINS, scale, out);
+    colour_emission_at(s, m, x, scale, out);
     return;
   }
 #endif

@@ -105,7 +105,7 @@ __kernel void trace_photon_map(KASHA_SCENE_PARAMS, KASHA_FILM_PARAMS, KPhotonTra
     Sampler sampler = photon_sampler(seed, pass, photons, index);
     LightOrigin o;
     Photon p = emit_photon(&s, (float)photons, true, &sampler, &o);
-    if (!(p.start > 0.0f)) continue; /* a point outside the emitting medium it was drawn for */
+    if (origin_in_medium(&o) && !(p.start > 0.0f)) continue; /* drawn where the medium emits nothing */
     p.position += o.normal * o.eps;
     StoreCursor cursor = {store, stored, capacity, skip};
     /* A photon from inside an emitting medium starts a vertex deep (origin_depth), so it is stored

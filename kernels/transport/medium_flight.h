@@ -256,10 +256,10 @@ inline void medium_emission_add(const PathWeight* p, const SceneView* s, const F
   const __global KMedium* m = &s->media[medium];
   if (m->emission < 0) return;
 #if KASHA_GRID_COMPONENTS
-  /* A colour grid: the collision's own σt, σs (scratch slot 0), no density to cancel. */
+  /* A colour grid: the point's own σa, no density to cancel. */
   if (colour_emission(m)) {
     float e[KASHA_BINS];
-    colour_emission_at(s, m, x, medium_extinction(s, m), medium_scattering(s, m), 1.0f, e);
+    colour_emission_at(s, m, x, 1.0f, e);
     pw_add_private(p, f, e, 1.0f, rows);
     return;
   }

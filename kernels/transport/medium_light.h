@@ -55,7 +55,8 @@ inline float3 medium_light_point(const __global KMedium* m, float3 u) {
  * boundaries every point is in the camera's medium. */
 inline bool medium_holds(const SceneView* s, int m, float3 x, float3 dir) {
 #if KASHA_MEDIUM_BOUNDARIES
-  for (int k = 0; k < KASHA_MAX_INTERFACES; ++k) {
+  /* Surfaces inside a medium (not its boundaries) are passed: a generous guard, for dense ones. */
+  for (int k = 0; k < 16 * KASHA_MAX_INTERFACES; ++k) {
     HitPoint h;
     if (!intersect_surface(s, x, dir, &h)) return s->media[m].light_outer != 0;
     KTriMedia tm = s->tri_media[h.tri];

@@ -133,7 +133,8 @@ inline bool vcm_camera_collision(VcmCamera* c, const SceneView* s, const FilmVie
   float probs[1 + KASHA_MEDIUM_FLUOROPHORES];
   v->in_medium = true;
 #if KASHA_MEDIUM_EMISSION
-  /* The medium's emission at the collision counts whole: no light subpath starts in a medium.
+  /* The medium's emission at the collision counts whole: vcm's and bpt's light subpaths never
+   * start in a medium, and ppm's, which do, make paths through a merge here (another vertex).
    * Once per camera path (`own`: the path is replayed for each chunk of light subpaths), and, as
    * pbrt-v4's volpath, only below the --max-depth cap (the collision would be one vertex more). */
   bool emits = in->own && VCM_LENGTH_COUNTS(c->w.depth + 1);

@@ -246,7 +246,7 @@ inline float vcm_light_path(const SceneView* s, const FilmView* f, const KVcmIte
    * light whole, so their light subpaths must not). */
   Photon p = emit_photon(s, paths, !KASHA_VCM_CONNECT, &sampler, &o);
   *last_stored = -1;
-  if (!(p.start > 0.0f)) return 0.0f; /* a point outside the emitting medium it was drawn for */
+  if (origin_in_medium(&o) && !(p.start > 0.0f)) return 0.0f; /* drawn where the medium emits nothing */
   const float3 start = p.position;
   p.position += o.normal * o.eps;
   float dvcm, dvc, dvm;
