@@ -92,9 +92,11 @@ inline float medium_emission_factor(const SceneView* s, const __global KMedium* 
   return scale;
 }
 
-/* out[i] = scale · what m emits at x in bin i (per unit length and solid angle): σa·Le times the
- * density, the emission factor and the blackbody, or a colour grid's σa(x) Le(x). */
-inline void medium_emission_at(const SceneView* s, const __global KMedium* m, float3 x, float scale, float* out) {
+/* out[i] = scale · what m emits at x in bin i (per unit length and solid angle) over a density
+ * grid's density there, which a camera path's collision weight cancels: σa·Le times the emission
+ * factor and the blackbody, or a colour grid's σa(x) Le(x) (no density to cancel). */
+inline void medium_emission_per_density(const SceneView* s, const __global KMedium* m, float3 x, float scale,
+                                        float* out) {
 #if KASHA_GRID_COMPONENTS
   if (colour_emission(m)) {
     colour_emission_at(s, m, x, scale, out);
@@ -103,15 +105,21 @@ inline void medium_emission_at(const SceneView* s, const __global KMedium* m, fl
 #endif
   float T;
   scale *= medium_emission_factor(s, m, x, &T);
-#if KASHA_MEDIUM_GRIDS
-  if (m->density >= 0) scale *= grid_density_at(s, m, grid_map(m, x, 1.0f));
-#endif
   const __global float* em = s->spectra + m->emission;
   for (int i = 0; i < KASHA_BINS; ++i) out[i] = scale > 0.0f ? scale * em[i] : 0.0f;
 #if KASHA_MEDIUM_BLACKBODY
   if (T > 0.0f && scale > 0.0f)
     for (int i = 0; i < KASHA_BINS; ++i) out[i] *= blackbody_bin(s, m, i, T);
 #endif
+}
+
+/* out[i] = scale · what m emits at x in bin i, whole: the above times a density grid's density
+ * (a light path's start, transport/medium_light.h). */
+inline void medium_emission_at(const SceneView* s, const __global KMedium* m, float3 x, float scale, float* out) {
+#if KASHA_MEDIUM_GRIDS
+  if (m->density >= 0 && !colour_emission(m)) scale *= grid_density_at(s, m, grid_map(m, x, 1.0f));
+#endif
+  medium_emission_per_density(s, m, x, scale, out);
 }
 #endif
 

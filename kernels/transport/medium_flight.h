@@ -255,27 +255,9 @@ inline void medium_emission_add(const PathWeight* p, const SceneView* s, const F
                                 float* rows) {
   const __global KMedium* m = &s->media[medium];
   if (m->emission < 0) return;
-#if KASHA_GRID_COMPONENTS
-  /* A colour grid: the point's own σa, no density to cancel. */
-  if (colour_emission(m)) {
-    float e[KASHA_BINS];
-    colour_emission_at(s, m, x, 1.0f, e);
-    pw_add_private(p, f, e, 1.0f, rows);
-    return;
-  }
-#endif
-  float T, scale = medium_emission_factor(s, m, x, &T);
-  if (!(scale > 0.0f)) return;
-#if KASHA_MEDIUM_BLACKBODY
-  if (T > 0.0f) {
-    const __global float* em = s->spectra + m->emission;
-    float e[KASHA_BINS];
-    for (int i = 0; i < KASHA_BINS; ++i) e[i] = em[i] * blackbody_bin(s, m, i, T);
-    pw_add_private(p, f, e, scale, rows);
-    return;
-  }
-#endif
-  pw_add(p, f, s->spectra + m->emission, 0, scale, rows);
+  float e[KASHA_BINS];
+  medium_emission_per_density(s, m, x, 1.0f, e);
+  pw_add_private(p, f, e, 1.0f, rows);
 }
 #endif
 #endif
